@@ -1,0 +1,21 @@
+#ifndef bender_Frame_h
+#define bender_Frame_h
+
+#include "Vec3.h"
+
+namespace bender
+{
+
+/// A right-handed orthonormal frame C = (O; T, N, B) with B = T x N.
+/// As a matrix M = [T N B] (columns).
+struct Frame
+{
+  Vec3 origin;
+  Vec3 T{ 1, 0, 0 };
+  Vec3 N{ 0, 1, 0 };
+  Vec3 B{ 0, 0, 1 };
+};
+
+} // namespace bender
+
+#endif
