@@ -1,0 +1,247 @@
+#include "RibbonWarp.h"
+
+#include "Decay.h"
+#include "GeometryErrors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace bender
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+constexpr double MaxTurn = 2.0 * Pi - 20.0 * Pi / 180.0; // 340 degrees
+
+Ribbon BuildRibbon(const RibbonSpec& spec, const std::string& which)
+{
+  try
+  {
+    return Ribbon(spec);
+  }
+  catch (const InvalidRibbonError& e)
+  {
+    throw InvalidRibbonError(e.field().empty() ? which : which + "." + e.field(), e.problem());
+  }
+}
+
+std::string Fixed(double v, int digits)
+{
+  std::ostringstream os;
+  os.setf(std::ios::fixed);
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+} // namespace
+
+RibbonWarp::RibbonWarp(const WarpSpec& spec, const WarpOptions& options)
+  : Input(spec)
+  , Opts(options)
+{
+  if (!std::isfinite(spec.radius) || !(spec.radius > 0.0))
+  {
+    throw InvalidRibbonError("radius", "must be a finite number > 0");
+  }
+  if (spec.decay.shape == DecayShape::Plateau &&
+    !(spec.decay.plateau >= 0.0 && spec.decay.plateau <= 0.95))
+  {
+    throw InvalidRibbonError("decay.plateau", "must be in [0, 0.95]");
+  }
+  this->InitialRibbon = BuildRibbon(spec.initial, "initial");
+  this->FinalRibbon = BuildRibbon(spec.final, "final");
+
+  const double twistChange = this->FinalRibbon.Twist() - this->InitialRibbon.Twist();
+  if (std::abs(twistChange) > MaxTurn)
+  {
+    throw InvalidWarpError("final",
+      "the ribbon twists by " + Fixed(twistChange * 180.0 / Pi, 0) +
+        " degrees relative to where it was grabbed (more than 340); release and grab again to "
+        "go further");
+  }
+
+  int samples = std::max(1024, options.signTableSamples);
+  while (true)
+  {
+    if (this->TryBuildSignTable(samples))
+    {
+      break;
+    }
+    if (samples >= (1 << 20))
+    {
+      throw InvalidWarpError(
+        "", "the ribbon's frames rotate too fast along the wire to follow the screws");
+    }
+    samples *= 2;
+  }
+
+  // The 340 degree rule on the lifted rotation (spec 4.4).
+  const int n = static_cast<int>(this->Lifted.size());
+  for (int j = 0; j < n; ++j)
+  {
+    const Quaternion& q = this->Lifted[j];
+    const double beta = 2.0 * std::atan2(Norm(q.Vector()), q.w);
+    if (beta > MaxTurn)
+    {
+      const double s = static_cast<double>(j) / (n - 1);
+      throw InvalidWarpError("",
+        "the ribbon turns more than 340 degrees relative to where it was grabbed (at s = " +
+          Fixed(s, 2) + "); release and grab again to go further");
+    }
+  }
+}
+
+void RibbonWarp::Validate(const WarpSpec& spec)
+{
+  RibbonWarp warp(spec);
+  (void)warp;
+}
+
+Quaternion RibbonWarp::RelativeRotation(const Frame& c, const Frame& cp)
+{
+  // quat(M' M^T) = q' conj(q), normalised to the minimal rotation (w >= 0).
+  Quaternion q = QuaternionOfFrame(cp) * Conjugate(QuaternionOfFrame(c));
+  if (q.w < 0.0)
+  {
+    q = -q;
+  }
+  return q;
+}
+
+bool RibbonWarp::TryBuildSignTable(int samples)
+{
+  const double cos45 = std::sqrt(0.5);
+  this->Lifted.assign(samples, Quaternion{});
+  this->Table.assign(samples, DualQuaternion{});
+  this->AnyFlip = false;
+  for (int j = 0; j < samples; ++j)
+  {
+    const double s = static_cast<double>(j) / (samples - 1);
+    const Frame c = this->InitialRibbon.FrameAt(s);
+    const Frame cp = this->FinalRibbon.FrameAt(s);
+    Quaternion q = RelativeRotation(c, cp);
+    if (j == 0)
+    {
+      if (std::abs(q.w) <= 1e-12)
+      {
+        // Half a turn at s = 0: w >= 0 does not decide; the axis in C_0's own coordinates does.
+        const Vec3 v = q.Vector();
+        const double comps[3] = { Dot(v, c.T), Dot(v, c.N), Dot(v, c.B) };
+        for (double comp : comps)
+        {
+          if (std::abs(comp) > 1e-9)
+          {
+            if (comp < 0.0)
+            {
+              q = -q;
+            }
+            break;
+          }
+        }
+      }
+      if (this->Input.reverseScrews)
+      {
+        q = -q;
+      }
+    }
+    else
+    {
+      const Quaternion& prev = this->Lifted[j - 1];
+      const double dot = Dot4(q, prev);
+      if (dot < 0.0)
+      {
+        q = -q;
+      }
+      if (std::abs(dot) <= cos45)
+      {
+        return false;
+      }
+    }
+    this->Lifted[j] = q;
+    this->Table[j] = MotionBetween(c, cp, q);
+    if (q.w < 0.0)
+    {
+      this->AnyFlip = true;
+    }
+  }
+  return true;
+}
+
+bool RibbonWarp::SpaceInversionRisk() const
+{
+  const double r = this->Input.radius;
+  return r >= this->InitialMinimumRadius() || r >= this->FinalMinimumRadius();
+}
+
+std::string RibbonWarp::SpaceInversionWarning() const
+{
+  if (!this->SpaceInversionRisk())
+  {
+    return {};
+  }
+  const double ri = this->InitialMinimumRadius();
+  const double rf = this->FinalMinimumRadius();
+  const bool initial = this->Input.radius >= ri;
+  std::ostringstream os;
+  os.precision(4);
+  os << "space inversion possible: R = " << this->Input.radius << " is not smaller than the "
+     << (initial ? "initial" : "final") << " wire's smallest arc radius r_min = "
+     << (initial ? ri : rf) << "; reduce R or straighten the ribbon";
+  return os.str();
+}
+
+DualQuaternion RibbonWarp::MotionAt(double s) const
+{
+  s = std::clamp(s, 0.0, 1.0);
+  const Frame c = this->InitialRibbon.FrameAt(s);
+  const Frame cp = this->FinalRibbon.FrameAt(s);
+  Quaternion q = RelativeRotation(c, cp);
+  const int n = static_cast<int>(this->Lifted.size());
+  const int j = static_cast<int>(std::lround(s * (n - 1)));
+  if (Dot4(this->Lifted[j], q) < 0.0)
+  {
+    q = -q;
+  }
+  return MotionBetween(c, cp, q);
+}
+
+Screw RibbonWarp::ScrewAt(double s) const
+{
+  return ScrewOf(this->MotionAt(s));
+}
+
+double RibbonWarp::Weight(double distance) const
+{
+  return EvaluateDecay(this->Input.decay, distance / this->Input.radius);
+}
+
+Vec3 RibbonWarp::Apply(const Vec3& p) const
+{
+  return this->Apply(p, ProjectOntoWire(this->InitialRibbon.Wire(), p, this->Input.radius));
+}
+
+Vec3 RibbonWarp::Apply(const Vec3& p, const WireProjections& pr) const
+{
+  if (pr.count == 0)
+  {
+    return p;
+  }
+  const double f0 = this->Weight(pr.items[0].distance);
+  if (pr.count == 1 || this->Opts.blend == BlendMode::SingleProjection)
+  {
+    return ApplyScrewFraction(this->MotionAt(pr.items[0].s), p, f0);
+  }
+  const double f1 = this->Weight(pr.items[1].distance);
+  if (!(f0 + f1 > 0.0))
+  {
+    return p;
+  }
+  const double f = 1.0 - (1.0 - f0) * (1.0 - f1);
+  const double l0 = f0 / (f0 + f1);
+  const double l1 = f1 / (f0 + f1);
+  return ApplyScrewFraction(this->MotionAt(pr.items[0].s), p, f) * l0 +
+    ApplyScrewFraction(this->MotionAt(pr.items[1].s), p, f) * l1;
+}
+
+} // namespace bender

@@ -85,8 +85,8 @@ private:
   std::vector<DualQuaternion> Table;
   bool AnyFlip = false;
 
-  Quaternion RelativeRotation(const Frame& c, const Frame& cp) const;
-  void BuildSignTable(int samples);
+  static Quaternion RelativeRotation(const Frame& c, const Frame& cp);
+  bool TryBuildSignTable(int samples);
 };
 
 } // namespace bender

@@ -1,0 +1,185 @@
+#include "WarpBinding.h"
+
+#include "Decay.h"
+#include "GeometryErrors.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bender
+{
+namespace
+{
+bool SameEnd(const RibbonEnd& a, const RibbonEnd& b)
+{
+  auto eq = [](const Vec3& u, const Vec3& v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
+  return eq(a.position, b.position) && eq(a.tangent, b.tangent) && eq(a.normal, b.normal);
+}
+} // namespace
+
+WarpBinding::WarpBinding(const WarpSpec& spec, BlendMode blend)
+  : InitialSpec(spec.initial)
+  , R(spec.radius)
+  , Decay(spec.decay)
+  , Blend(blend)
+{
+  if (!std::isfinite(spec.radius) || !(spec.radius > 0.0))
+  {
+    throw InvalidRibbonError("radius", "must be a finite number > 0");
+  }
+  try
+  {
+    this->Initial = Ribbon(spec.initial);
+  }
+  catch (const InvalidRibbonError& e)
+  {
+    throw InvalidRibbonError(
+      e.field().empty() ? "initial" : "initial." + e.field(), e.problem());
+  }
+  // The tube of radius R around the wire lies in the box of the wire's points grown by R.
+  // The wire is sampled densely enough that the sagitta between samples (at most
+  // L^2 / (8 r n^2) per arc) is covered by a small extra margin.
+  const Biarc& w = this->Initial.Wire();
+  const int n = 256;
+  Vec3 lo = w.Start(), hi = w.Start();
+  for (int i = 0; i <= n; ++i)
+  {
+    const Vec3 p = w.PointAt(static_cast<double>(i) / n);
+    lo = { std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z) };
+    hi = { std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z) };
+  }
+  const double margin = this->R + w.Length() / n + 1e-9 * std::max(1.0, Norm(hi - lo));
+  this->BoxMin = lo - Vec3{ margin, margin, margin };
+  this->BoxMax = hi + Vec3{ margin, margin, margin };
+}
+
+bool WarpBinding::Matches(const WarpSpec& spec, BlendMode blend) const
+{
+  return blend == this->Blend && spec.radius == this->R && spec.decay.shape == this->Decay.shape &&
+    (spec.decay.shape == DecayShape::Bell || spec.decay.plateau == this->Decay.plateau) &&
+    spec.initial.extraTurns == this->InitialSpec.extraTurns &&
+    SameEnd(spec.initial.start, this->InitialSpec.start) &&
+    SameEnd(spec.initial.end, this->InitialSpec.end);
+}
+
+bool WarpBinding::Bind(const Vec3& p, BoundPoint& out) const
+{
+  if (!(p.x >= this->BoxMin.x && p.x <= this->BoxMax.x && p.y >= this->BoxMin.y &&
+        p.y <= this->BoxMax.y && p.z >= this->BoxMin.z && p.z <= this->BoxMax.z))
+  {
+    return false;
+  }
+  const WireProjections pr = ProjectOntoWire(this->Initial.Wire(), p, this->R);
+  if (pr.count == 0)
+  {
+    return false;
+  }
+  const double f0 = EvaluateDecay(this->Decay, pr.items[0].distance / this->R);
+  out.s0 = pr.items[0].s;
+  out.s1 = pr.items[0].s;
+  if (pr.count == 1 || this->Blend == BlendMode::SingleProjection)
+  {
+    out.f = f0;
+    out.lambda0 = 1.0;
+    return f0 > 0.0;
+  }
+  const double f1 = EvaluateDecay(this->Decay, pr.items[1].distance / this->R);
+  if (!(f0 + f1 > 0.0))
+  {
+    return false;
+  }
+  out.s1 = pr.items[1].s;
+  out.f = 1.0 - (1.0 - f0) * (1.0 - f1);
+  out.lambda0 = f0 / (f0 + f1);
+  return true;
+}
+
+template <typename T>
+void WarpBinding::BindRange(const T* xyz, std::size_t begin, std::size_t end,
+  BoundPoint* records, std::uint8_t* bound) const
+{
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const T* q = xyz + 3 * i;
+    const Vec3 p{ static_cast<double>(q[0]), static_cast<double>(q[1]),
+      static_cast<double>(q[2]) };
+    bound[i] = this->Bind(p, records[i]) ? 1 : 0;
+  }
+}
+
+template void WarpBinding::BindRange<float>(
+  const float*, std::size_t, std::size_t, BoundPoint*, std::uint8_t*) const;
+template void WarpBinding::BindRange<double>(
+  const double*, std::size_t, std::size_t, BoundPoint*, std::uint8_t*) const;
+
+WarpEvaluator::WarpEvaluator(const RibbonWarp& warp, WarpPrecision precision)
+  : Warp(warp)
+  , Precision(precision)
+  , TableData(warp.MotionTable().data())
+  , TableScale(static_cast<double>(warp.MotionTable().size() - 1))
+  , TableLast(static_cast<int>(warp.MotionTable().size()) - 1)
+{
+}
+
+DualQuaternion WarpEvaluator::MotionAt(double s) const
+{
+  if (this->Precision == WarpPrecision::Exact)
+  {
+    return this->Warp.MotionAt(s);
+  }
+  // Linear blend of the neighbouring lifted dual quaternions, renormalised (DLB).
+  const double u = std::clamp(s, 0.0, 1.0) * this->TableScale;
+  const int j = std::min(static_cast<int>(u), this->TableLast - 1);
+  const double a = u - j;
+  const DualQuaternion& m0 = this->TableData[j];
+  const DualQuaternion& m1 = this->TableData[j + 1];
+  const double b = 1.0 - a;
+  DualQuaternion m;
+  m.real = { b * m0.real.w + a * m1.real.w, b * m0.real.x + a * m1.real.x,
+    b * m0.real.y + a * m1.real.y, b * m0.real.z + a * m1.real.z };
+  m.dual = { b * m0.dual.w + a * m1.dual.w, b * m0.dual.x + a * m1.dual.x,
+    b * m0.dual.y + a * m1.dual.y, b * m0.dual.z + a * m1.dual.z };
+  const double inv = 1.0 / std::sqrt(Dot4(m.real, m.real));
+  m.real = { m.real.w * inv, m.real.x * inv, m.real.y * inv, m.real.z * inv };
+  m.dual = { m.dual.w * inv, m.dual.x * inv, m.dual.y * inv, m.dual.z * inv };
+  // Unit dual quaternions have real . dual = 0.
+  const double rd = Dot4(m.real, m.dual);
+  m.dual = { m.dual.w - rd * m.real.w, m.dual.x - rd * m.real.x, m.dual.y - rd * m.real.y,
+    m.dual.z - rd * m.real.z };
+  return m;
+}
+
+Vec3 WarpEvaluator::Apply(const Vec3& p, const BoundPoint& rec) const
+{
+  if (rec.lambda0 >= 1.0)
+  {
+    return ApplyScrewFraction(this->MotionAt(rec.s0), p, rec.f);
+  }
+  return ApplyScrewFraction(this->MotionAt(rec.s0), p, rec.f) * rec.lambda0 +
+    ApplyScrewFraction(this->MotionAt(rec.s1), p, rec.f) * (1.0 - rec.lambda0);
+}
+
+template <typename T>
+void WarpEvaluator::EvaluateRange(const T* in, T* out, const BoundPoint* records,
+  const std::int64_t* ids, std::size_t begin, std::size_t end) const
+{
+  for (std::size_t k = begin; k < end; ++k)
+  {
+    const std::int64_t i = ids[k];
+    const T* q = in + 3 * i;
+    const Vec3 p{ static_cast<double>(q[0]), static_cast<double>(q[1]),
+      static_cast<double>(q[2]) };
+    const Vec3 r = this->Apply(p, records[i]);
+    T* o = out + 3 * i;
+    o[0] = static_cast<T>(r.x);
+    o[1] = static_cast<T>(r.y);
+    o[2] = static_cast<T>(r.z);
+  }
+}
+
+template void WarpEvaluator::EvaluateRange<float>(const float*, float*, const BoundPoint*,
+  const std::int64_t*, std::size_t, std::size_t) const;
+template void WarpEvaluator::EvaluateRange<double>(const double*, double*, const BoundPoint*,
+  const std::int64_t*, std::size_t, std::size_t) const;
+
+} // namespace bender

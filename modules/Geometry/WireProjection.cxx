@@ -1,0 +1,99 @@
+#include "WireProjection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bender
+{
+namespace
+{
+// Nearest point of an arc's circle (or segment) to p, the angle clamped to the arc.
+// Returns false when p is on the circle's axis (every point equidistant).
+bool NearestOnArc(const Arc& arc, const Vec3& p, double& u, Vec3& q)
+{
+  const Vec3 rel = p - arc.start;
+  if (arc.line)
+  {
+    const double t = std::clamp(Dot(rel, arc.tangent), 0.0, arc.length);
+    u = arc.length > 0.0 ? t / arc.length : 0.0;
+    q = arc.start + arc.tangent * t;
+    return true;
+  }
+  // phi = atan2(kappa (P - Ps).Ts, 1 - kappa (P - Ps).Np): the centre is never formed.
+  const double aT = Dot(rel, arc.tangent);
+  const double aN = Dot(rel, arc.toCentre);
+  const double y = aT;
+  const double x = arc.radius - aN;
+  if (std::hypot(x, y) <= 1e-12 * arc.radius)
+  {
+    return false;
+  }
+  const double phi = std::clamp(std::atan2(y, x), 0.0, arc.angle);
+  u = arc.angle > 0.0 ? phi / arc.angle : 0.0;
+  q = arc.PointAt(u);
+  return true;
+}
+} // namespace
+
+WireProjections ProjectOntoWire(const Biarc& wire, const Vec3& p, double radius)
+{
+  WireProjection cand[4];
+  int n = 0;
+  const double sJ = wire.JunctionParameter();
+  const double h0 = Dot(p - wire.Start(), wire.StartTangent());
+  const double hJ = Dot(p - wire.Junction(), wire.JunctionTangent());
+  const double h1 = Dot(p - wire.End(), wire.EndTangent());
+  double u = 0.0;
+  Vec3 q;
+  if (h0 >= 0.0 && hJ < 0.0 && NearestOnArc(wire.FirstArc(), p, u, q))
+  {
+    cand[n++] = { sJ * u, Distance(p, q), q };
+  }
+  if (hJ >= 0.0 && h1 <= 0.0 && NearestOnArc(wire.SecondArc(), p, u, q))
+  {
+    cand[n++] = { sJ + (1.0 - sJ) * u, Distance(p, q), q };
+  }
+  if (h0 < 0.0)
+  {
+    cand[n++] = { 0.0, Distance(p, wire.Start()), wire.Start() };
+  }
+  if (h1 > 0.0)
+  {
+    cand[n++] = { 1.0, Distance(p, wire.End()), wire.End() };
+  }
+  WireProjections out;
+  WireProjection kept[4];
+  int k = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    if (cand[i].distance < radius)
+    {
+      kept[k++] = cand[i];
+    }
+  }
+  // Nearest first, ties by smaller s (insertion sort of at most four).
+  for (int i = 1; i < k; ++i)
+  {
+    for (int j = i; j > 0; --j)
+    {
+      const WireProjection& a = kept[j];
+      const WireProjection& b = kept[j - 1];
+      if (a.distance < b.distance || (a.distance == b.distance && a.s < b.s))
+      {
+        std::swap(kept[j], kept[j - 1]);
+      }
+      else
+      {
+        break;
+      }
+    }
+  }
+  out.count = std::min(k, 2);
+  for (int i = 0; i < out.count; ++i)
+  {
+    out.items[i] = kept[i];
+  }
+  return out;
+}
+
+} // namespace bender

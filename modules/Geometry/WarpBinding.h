@@ -1,0 +1,91 @@
+#ifndef bender_WarpBinding_h
+#define bender_WarpBinding_h
+
+#include "RibbonWarp.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace bender
+{
+
+/// What a point needs from the initial ribbon to be warped (spec 6, 9): the parameters of its
+/// (at most two) projections and its weights. lambda0 == 1 means one projection counts.
+struct BoundPoint
+{
+  double s0 = 0.0;
+  double s1 = 0.0;
+  double f = 0.0;       ///< combined weight f = 1 - (1 - f0)(1 - f1), or f0 alone
+  double lambda0 = 1.0; ///< f0 / (f0 + f1); the second image gets 1 - lambda0
+};
+
+/// The per-grab half of the warp (spec 9): projections of points onto the initial wire,
+/// depending only on the initial ribbon, R, the decay and the blend mode. Computed once when
+/// the user grabs; the final ribbon can then move freely at the cost of an evaluation only.
+class WarpBinding
+{
+public:
+  /// Throws InvalidRibbonError as RibbonWarp does for the initial ribbon and parameters.
+  WarpBinding(const WarpSpec& spec, BlendMode blend);
+
+  /// True when a warp with this spec and mode can reuse this binding (same initial ribbon,
+  /// radius, decay and blend mode).
+  bool Matches(const WarpSpec& spec, BlendMode blend) const;
+
+  /// The record of one point; false when it is outside the region of influence (P' = P).
+  bool Bind(const Vec3& p, BoundPoint& out) const;
+
+  /// Binds points [begin, end) of the xyz array (3 values each); bound[i] = 1 when point i
+  /// is inside the region of influence. Safe to call concurrently on disjoint ranges.
+  template <typename T>
+  void BindRange(const T* xyz, std::size_t begin, std::size_t end, BoundPoint* records,
+    std::uint8_t* bound) const;
+
+  const Ribbon& InitialRibbon() const { return this->Initial; }
+  double Radius() const { return this->R; }
+
+private:
+  RibbonSpec InitialSpec;
+  Ribbon Initial;
+  double R;
+  DecaySpec Decay;
+  BlendMode Blend;
+  Vec3 BoxMin, BoxMax; // bounds of the region of influence, for quick rejection
+};
+
+/// How the screws are evaluated per point.
+enum class WarpPrecision
+{
+  Exact, ///< frames and screw at each point's exact s (double precision; the normative result)
+  Table  ///< screws interpolated from the sign table (O(ds^2) error; for interactive moves)
+};
+
+/// The per-move half of the warp: evaluates the bound points under a RibbonWarp.
+class WarpEvaluator
+{
+public:
+  WarpEvaluator(const RibbonWarp& warp, WarpPrecision precision);
+
+  /// The lifted relative motion at s, exact or interpolated per the precision.
+  DualQuaternion MotionAt(double s) const;
+
+  /// The warped position of p with its record.
+  Vec3 Apply(const Vec3& p, const BoundPoint& rec) const;
+
+  /// out[i] = warp(in[i]) for the points listed in ids[begin, end), with their records
+  /// records[ids[k]]. Safe to call concurrently on disjoint ranges.
+  template <typename T>
+  void EvaluateRange(const T* in, T* out, const BoundPoint* records, const std::int64_t* ids,
+    std::size_t begin, std::size_t end) const;
+
+private:
+  const RibbonWarp& Warp;
+  WarpPrecision Precision;
+  const DualQuaternion* TableData;
+  double TableScale;
+  int TableLast;
+};
+
+} // namespace bender
+
+#endif
