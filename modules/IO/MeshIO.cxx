@@ -1,0 +1,673 @@
+#include "MeshIO.h"
+
+#include "FileUtilities.h"
+#include "OffFormat.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkOBJReader.h>
+#include <vtkOBJWriter.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPLYReader.h>
+#include <vtkPLYWriter.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataReader.h>
+#include <vtkPolyDataWriter.h>
+#include <vtkSTLReader.h>
+#include <vtkSTLWriter.h>
+#include <vtkTriangleFilter.h>
+#include <vtkWriter.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+namespace bender
+{
+
+namespace
+{
+
+using io_detail::DisplayName;
+
+[[noreturn]] void Fail(const std::string& path, const std::string& problem)
+{
+  throw MeshIOError(DisplayName(path) + ": " + problem);
+}
+
+// VTK's "ERROR: In file, line N\nvtkClass (0x...): text\n\n" reduced to "text".
+std::string CleanVtkMessage(const char* raw)
+{
+  std::string text = raw ? raw : "";
+  std::istringstream lines(text);
+  std::string line;
+  std::string result;
+  while (std::getline(lines, line))
+  {
+    if (line.rfind("ERROR: In ", 0) == 0 || line.rfind("Warning: In ", 0) == 0 ||
+      line.rfind("Generic Warning: In ", 0) == 0)
+    {
+      continue;
+    }
+    const std::size_t marker = line.find("): ");
+    if (marker != std::string::npos && line.rfind("vtk", 0) == 0)
+    {
+      line = line.substr(marker + 3);
+    }
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+    {
+      line.pop_back();
+    }
+    if (!line.empty())
+    {
+      result += result.empty() ? line : "; " + line;
+    }
+  }
+  return result.empty() ? "unknown VTK error" : result;
+}
+
+// An output window that keeps what it is given, so that messages from VTK helper objects
+// without observers (parsers, internal readers) end up in our error instead of on stderr.
+class CapturingOutputWindow : public vtkOutputWindow
+{
+public:
+  static CapturingOutputWindow* New();
+  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override
+  {
+    if (text)
+    {
+      this->Text += text;
+    }
+  }
+  std::string Text;
+
+protected:
+  CapturingOutputWindow() = default;
+};
+vtkStandardNewMacro(CapturingOutputWindow);
+
+// Watches one VTK algorithm (ErrorEvent, WarningEvent through an observer, which also keeps
+// the message off the global output window) and, for the lifetime of the object, routes the
+// global output window into a buffer. One at a time: the output window is process-wide.
+class VtkMessageGuard
+{
+public:
+  VtkMessageGuard()
+    : Lock(Mutex())
+  {
+    this->Previous = vtkOutputWindow::GetInstance();
+    vtkOutputWindow::SetInstance(this->Capture);
+  }
+  ~VtkMessageGuard() { vtkOutputWindow::SetInstance(this->Previous); }
+  VtkMessageGuard(const VtkMessageGuard&) = delete;
+  VtkMessageGuard& operator=(const VtkMessageGuard&) = delete;
+
+  void Watch(vtkObject* object)
+  {
+    vtkNew<vtkCallbackCommand> callback;
+    callback->SetClientData(this);
+    callback->SetCallback(&VtkMessageGuard::OnEvent);
+    object->AddObserver(vtkCommand::ErrorEvent, callback);
+    object->AddObserver(vtkCommand::WarningEvent, callback);
+  }
+
+  bool HasError() const { return !this->Errors.empty(); }
+  /// The first error seen, else anything the output window received.
+  std::string Message() const
+  {
+    if (!this->Errors.empty())
+    {
+      return this->Errors.front();
+    }
+    if (!this->Capture->Text.empty())
+    {
+      return CleanVtkMessage(this->Capture->Text.c_str());
+    }
+    return {};
+  }
+  bool CapturedSomething() const { return !this->Capture->Text.empty(); }
+
+private:
+  static std::mutex& Mutex()
+  {
+    static std::mutex mutex;
+    return mutex;
+  }
+  static void OnEvent(vtkObject*, unsigned long event, void* clientData, void* callData)
+  {
+    auto* self = static_cast<VtkMessageGuard*>(clientData);
+    const std::string text = CleanVtkMessage(static_cast<const char*>(callData));
+    if (event == vtkCommand::ErrorEvent)
+    {
+      self->Errors.push_back(text);
+    }
+    else
+    {
+      self->Warnings.push_back(text);
+    }
+  }
+
+  std::unique_lock<std::mutex> Lock;
+  vtkSmartPointer<vtkOutputWindow> Previous;
+  vtkNew<CapturingOutputWindow> Capture;
+  std::vector<std::string> Errors;
+  std::vector<std::string> Warnings;
+};
+
+std::string Lowercase(std::string text)
+{
+  for (char& c : text)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return text;
+}
+
+const char* const SupportedExtensions = ".stl, .obj, .ply, .vtp, .vtk, .off";
+
+// Every point finite, every cell index in range: a reader that returns less is a bad file.
+void CheckMesh(const std::string& path, vtkPolyData* mesh)
+{
+  if (!mesh || !mesh->GetPoints() || mesh->GetNumberOfPoints() == 0)
+  {
+    Fail(path, "no points in the file");
+  }
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  vtkPoints* points = mesh->GetPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      std::ostringstream msg;
+      msg << "point " << i << " has a non-finite coordinate (" << p[0] << ", " << p[1] << ", "
+          << p[2] << ")";
+      Fail(path, msg.str());
+    }
+  }
+  const std::array<std::pair<vtkCellArray*, const char*>, 4> arrays{ {
+    { mesh->GetVerts(), "vertex cell" },
+    { mesh->GetLines(), "line" },
+    { mesh->GetPolys(), "face" },
+    { mesh->GetStrips(), "triangle strip" },
+  } };
+  for (const auto& [cells, what] : arrays)
+  {
+    if (!cells || cells->GetNumberOfConnectivityIds() == 0)
+    {
+      continue;
+    }
+    double range[2];
+    cells->GetConnectivityArray()->GetRange(range, 0);
+    if (range[0] < 0 || range[1] >= static_cast<double>(n))
+    {
+      std::ostringstream msg;
+      msg << "a " << what << " refers to point " << (range[0] < 0 ? range[0] : range[1])
+          << ", but the file has " << n << " points";
+      Fail(path, msg.str());
+    }
+  }
+}
+
+// Runs a configured VTK reader and returns its output, or throws with its first error.
+template <typename Reader>
+vtkSmartPointer<vtkPolyData> RunReader(
+  const std::string& path, Reader* reader, VtkMessageGuard& guard)
+{
+  reader->Update();
+  const unsigned long code = reader->GetErrorCode();
+  if (guard.HasError() || code != 0)
+  {
+    std::string message = guard.Message();
+    if (message.empty())
+    {
+      message = std::string("read error (") +
+        vtkErrorCode::GetStringFromErrorCode(static_cast<unsigned long>(code)) + ")";
+    }
+    Fail(path, message);
+  }
+  vtkSmartPointer<vtkPolyData> output = reader->GetOutput();
+  if (!output || output->GetNumberOfPoints() == 0)
+  {
+    const std::string message = guard.Message();
+    Fail(path, message.empty() ? "no points in the file" : "no points in the file (" + message + ")");
+  }
+  // Detach from the reader so that the caller owns plain data.
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(output);
+  return mesh;
+}
+
+bool LooksLikeText(const std::string& bytes)
+{
+  std::size_t odd = 0;
+  for (const char c : bytes)
+  {
+    const auto u = static_cast<unsigned char>(c);
+    if (u == 0)
+    {
+      return false;
+    }
+    if (u < 32 && u != '\n' && u != '\r' && u != '\t' && u != '\f' && u != '\v')
+    {
+      ++odd;
+    }
+  }
+  return odd * 20 <= bytes.size();
+}
+
+vtkSmartPointer<vtkPolyData> ReadStl(const std::string& path, std::uintmax_t size)
+{
+  std::string head(static_cast<std::size_t>(std::min<std::uintmax_t>(size, 1024)), '\0');
+  {
+    std::ifstream in(path, std::ios::binary);
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    if (!in && !in.eof())
+    {
+      Fail(path, "cannot read the file");
+    }
+  }
+  std::size_t first = 0;
+  while (first < head.size() && std::isspace(static_cast<unsigned char>(head[first])))
+  {
+    ++first;
+  }
+  const bool startsWithSolid = Lowercase(head.substr(first, 5)) == "solid";
+  const bool text = LooksLikeText(head);
+
+  bool binary = false;
+  if (size >= 84)
+  {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(head.data());
+    const std::uint64_t triangles = static_cast<std::uint64_t>(bytes[80]) |
+      (static_cast<std::uint64_t>(bytes[81]) << 8) | (static_cast<std::uint64_t>(bytes[82]) << 16) |
+      (static_cast<std::uint64_t>(bytes[83]) << 24);
+    const std::uint64_t expected = 84 + 50 * triangles;
+    if (expected == size)
+    {
+      binary = true; // exact size: binary even when the header starts with "solid"
+    }
+    else if (!(startsWithSolid && text))
+    {
+      if (text)
+      {
+        Fail(path, "not an STL file (text that does not start with \"solid\")");
+      }
+      if (size < expected)
+      {
+        std::ostringstream msg;
+        msg << "truncated binary STL (header says " << triangles << " triangles, file holds "
+            << (size - 84) / 50 << ")";
+        Fail(path, msg.str());
+      }
+      // Longer than announced: some exporters pad binary STL files; the announced triangles
+      // are all there.
+      binary = true;
+    }
+  }
+  else if (!(startsWithSolid && text))
+  {
+    std::ostringstream msg;
+    msg << "not an STL file (" << size << " bytes: too short for binary STL, not ASCII STL)";
+    Fail(path, msg.str());
+  }
+
+  VtkMessageGuard guard;
+  vtkNew<vtkSTLReader> reader;
+  guard.Watch(reader);
+  reader->SetFileName(path.c_str());
+  // STL triangles are independent: weld exactly coincident corners into shared vertices.
+  reader->MergingOn();
+  reader->ScalarTagsOff();
+  auto mesh = RunReader(path, reader.Get(), guard);
+  if (mesh->GetNumberOfPolys() == 0 && !binary)
+  {
+    Fail(path, "ASCII STL without any facet");
+  }
+  return mesh;
+}
+
+vtkSmartPointer<vtkPolyData> ReadObj(const std::string& path)
+{
+  VtkMessageGuard guard;
+  vtkNew<vtkOBJReader> reader;
+  guard.Watch(reader);
+  reader->SetFileName(path.c_str());
+  return RunReader(path, reader.Get(), guard);
+}
+
+vtkSmartPointer<vtkPolyData> ReadPly(const std::string& path)
+{
+  VtkMessageGuard guard;
+  if (!vtkPLYReader::CanReadFile(path.c_str()))
+  {
+    Fail(path, "not a PLY file (no valid \"ply\" header)");
+  }
+  vtkNew<vtkPLYReader> reader;
+  guard.Watch(reader);
+  reader->SetFileName(path.c_str());
+  return RunReader(path, reader.Get(), guard);
+}
+
+vtkSmartPointer<vtkPolyData> ReadVtp(const std::string& path)
+{
+  VtkMessageGuard guard;
+  vtkNew<vtkXMLPolyDataReader> reader;
+  guard.Watch(reader);
+  if (!reader->CanReadFile(path.c_str()))
+  {
+    Fail(path, "not a VTK XML PolyData file");
+  }
+  reader->SetFileName(path.c_str());
+  auto mesh = RunReader(path, reader.Get(), guard);
+  if (guard.CapturedSomething())
+  {
+    // The XML parser reports through the output window, not through the reader.
+    Fail(path, guard.Message());
+  }
+  return mesh;
+}
+
+vtkSmartPointer<vtkPolyData> ReadLegacyVtk(const std::string& path)
+{
+  VtkMessageGuard guard;
+  vtkNew<vtkPolyDataReader> reader;
+  guard.Watch(reader);
+  reader->SetFileName(path.c_str());
+  if (!reader->IsFilePolyData())
+  {
+    std::string message = "not a legacy VTK polydata file";
+    if (guard.HasError())
+    {
+      message += " (" + guard.Message() + ")";
+    }
+    Fail(path, message);
+  }
+  reader->ReadAllScalarsOn();
+  reader->ReadAllVectorsOn();
+  reader->ReadAllNormalsOn();
+  reader->ReadAllTensorsOn();
+  reader->ReadAllColorScalarsOn();
+  reader->ReadAllTCoordsOn();
+  reader->ReadAllFieldsOn();
+  return RunReader(path, reader.Get(), guard);
+}
+
+std::string OneLine(const std::string& text, std::size_t maxLength)
+{
+  std::string line;
+  for (const char c : text)
+  {
+    line += (c == '\n' || c == '\r' || c == '\0') ? ' ' : c;
+  }
+  if (line.size() > maxLength)
+  {
+    line.resize(maxLength);
+  }
+  return line;
+}
+
+// Polygons and strips as triangles, for the formats that hold only triangles.
+vtkSmartPointer<vtkPolyData> Triangulated(vtkPolyData* mesh)
+{
+  bool onlyTriangles = mesh->GetNumberOfStrips() == 0;
+  if (onlyTriangles && mesh->GetPolys())
+  {
+    auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal() && onlyTriangles; it->GoToNextCell())
+    {
+      vtkIdType npts;
+      const vtkIdType* ids;
+      it->GetCurrentCell(npts, ids);
+      onlyTriangles = npts == 3;
+    }
+  }
+  if (onlyTriangles)
+  {
+    return mesh;
+  }
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputData(mesh);
+  triangles->PassVertsOff();
+  triangles->PassLinesOff();
+  triangles->Update();
+  vtkSmartPointer<vtkPolyData> result = triangles->GetOutput();
+  return result;
+}
+
+// Runs a configured VTK writer on the temporary file, reporting its first error.
+bool RunWriter(vtkWriter* writer, const std::string& tempPath, std::string& problem)
+{
+  VtkMessageGuard guard;
+  guard.Watch(writer);
+  const int ok = writer->Write();
+  if (!ok || guard.HasError() || writer->GetErrorCode() != 0)
+  {
+    problem = guard.Message();
+    if (problem.empty())
+    {
+      problem = std::string("write error (") +
+        vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode()) + ")";
+    }
+    (void)tempPath;
+    return false;
+  }
+  return true;
+}
+
+} // namespace
+
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
+{
+  std::uintmax_t size = 0;
+  std::string problem;
+  if (!io_detail::CheckReadableFile(path, size, problem))
+  {
+    Fail(path, problem);
+  }
+  const std::string ext = io_detail::LowerExtension(path);
+  vtkSmartPointer<vtkPolyData> mesh;
+  if (ext == ".stl")
+  {
+    mesh = ReadStl(path, size);
+  }
+  else if (ext == ".obj")
+  {
+    mesh = ReadObj(path);
+  }
+  else if (ext == ".ply")
+  {
+    mesh = ReadPly(path);
+  }
+  else if (ext == ".vtp")
+  {
+    mesh = ReadVtp(path);
+  }
+  else if (ext == ".vtk")
+  {
+    mesh = ReadLegacyVtk(path);
+  }
+  else if (ext == ".off")
+  {
+    try
+    {
+      mesh = io_detail::ReadOff(path);
+    }
+    catch (const io_detail::OffError& e)
+    {
+      Fail(path, e.what());
+    }
+  }
+  else
+  {
+    Fail(path,
+      (ext.empty() ? std::string("no file extension") : "unknown extension \"" + ext + "\"") +
+        " (meshes are read from " + SupportedExtensions + ")");
+  }
+  CheckMesh(path, mesh);
+  return mesh;
+}
+
+void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOptions& options)
+{
+  if (!mesh || !mesh->GetPoints() || mesh->GetNumberOfPoints() == 0)
+  {
+    Fail(path, "refusing to write a mesh without points");
+  }
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      Fail(path,
+        "refusing to write a mesh with a non-finite coordinate (point " + std::to_string(i) +
+          ")");
+    }
+  }
+  const std::string ext = io_detail::LowerExtension(path);
+
+  std::function<bool(const std::string&, std::string&)> produce;
+  if (ext == ".stl")
+  {
+    produce = [&](const std::string& temp, std::string& problem) {
+      vtkSmartPointer<vtkPolyData> triangles = Triangulated(mesh);
+      if (triangles->GetNumberOfPolys() == 0)
+      {
+        problem = "STL holds triangles only, and the mesh has none";
+        return false;
+      }
+      vtkNew<vtkSTLWriter> writer;
+      writer->SetInputData(triangles);
+      writer->SetFileName(temp.c_str());
+      if (options.stlEncoding == StlEncoding::Binary)
+      {
+        writer->SetFileTypeToBinary();
+        std::string header = OneLine(options.header, 80);
+        // A binary header that starts with "solid" makes other readers take it for ASCII.
+        if (Lowercase(header.substr(0, 5)) == "solid")
+        {
+          header = OneLine("# " + header, 80);
+        }
+        if (!options.header.empty())
+        {
+          writer->SetHeader(header.c_str());
+        }
+      }
+      else
+      {
+        writer->SetFileTypeToASCII();
+        if (!options.header.empty())
+        {
+          writer->SetHeader(OneLine(options.header, 200).c_str());
+        }
+      }
+      return RunWriter(writer, temp, problem);
+    };
+  }
+  else if (ext == ".obj")
+  {
+    produce = [&](const std::string& temp, std::string& problem) {
+      vtkNew<vtkOBJWriter> writer;
+      writer->SetInputData(mesh);
+      writer->SetFileName(temp.c_str());
+      return RunWriter(writer, temp, problem);
+    };
+  }
+  else if (ext == ".ply")
+  {
+    produce = [&](const std::string& temp, std::string& problem) {
+      vtkNew<vtkPLYWriter> writer;
+      writer->SetInputData(mesh);
+      writer->SetFileName(temp.c_str());
+      writer->SetFileTypeToBinary();
+      return RunWriter(writer, temp, problem);
+    };
+  }
+  else if (ext == ".vtp")
+  {
+    produce = [&](const std::string& temp, std::string& problem) {
+      vtkNew<vtkXMLPolyDataWriter> writer;
+      writer->SetInputData(mesh);
+      writer->SetFileName(temp.c_str());
+      writer->SetDataModeToAppended();
+      writer->EncodeAppendedDataOff();
+      writer->SetHeaderTypeToUInt64();
+      writer->SetCompressorTypeToZLib();
+      return RunWriter(writer, temp, problem);
+    };
+  }
+  else if (ext == ".vtk")
+  {
+    produce = [&](const std::string& temp, std::string& problem) {
+      vtkNew<vtkPolyDataWriter> writer;
+      writer->SetInputData(mesh);
+      writer->SetFileName(temp.c_str());
+      writer->SetFileTypeToBinary();
+      const std::string header = OneLine(options.header.empty() ? "bender mesh" : options.header, 250);
+      writer->SetHeader(header.c_str());
+      return RunWriter(writer, temp, problem);
+    };
+  }
+  else if (ext == ".off")
+  {
+    produce = [&](const std::string& temp, std::string& problem) {
+      return io_detail::WriteOff(mesh, temp, OneLine(options.header, 1000), problem);
+    };
+  }
+  else
+  {
+    Fail(path,
+      (ext.empty() ? std::string("no file extension") : "unknown extension \"" + ext + "\"") +
+        " (meshes are written as " + SupportedExtensions + ")");
+  }
+
+  std::string problem;
+  if (!io_detail::AtomicWrite(path, produce, problem))
+  {
+    Fail(path, problem);
+  }
+}
+
+bool SameFile(const std::string& a, const std::string& b)
+{
+  if (a.empty() || b.empty())
+  {
+    return false;
+  }
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec))
+  {
+    const bool same = fs::equivalent(a, b, ec);
+    if (!ec)
+    {
+      return same;
+    }
+  }
+  const fs::path na = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  std::error_code ec2;
+  const fs::path nb = fs::weakly_canonical(fs::absolute(b, ec2), ec2);
+  if (ec || ec2)
+  {
+    return fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
+  }
+  return na == nb;
+}
+
+} // namespace bender

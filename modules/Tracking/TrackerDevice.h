@@ -1,0 +1,55 @@
+#ifndef bender_TrackerDevice_h
+#define bender_TrackerDevice_h
+
+#include "PoseStore.h"
+#include "TrackerEvent.h"
+#include "TrackerPose.h"
+#include "TrackerStatistics.h"
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bender
+{
+
+/// A 6-DoF tracker: a Fastrak over some Transport, or the simulator.
+///
+/// Life cycle: Open() -> Start() -> (LatestPose/TakeEvents from any thread) -> Stop() ->
+/// Close(). After a Disconnected event, Close() and Open() again reconnect without
+/// restarting the application. Start() runs a reader thread; Stop() joins it within one read
+/// timeout. Open() and Start() throw TrackingError subclasses; Stop() and Close() never
+/// throw. The destructor of a concrete device stops and closes it.
+class TrackerDevice
+{
+public:
+  virtual ~TrackerDevice() = default;
+
+  virtual std::string Name() const = 0;
+  virtual void Open() = 0;
+  virtual void Start() = 0;
+  virtual void Stop() = 0;
+  virtual void Close() = 0;
+  virtual bool IsOpen() const = 0;
+  virtual bool IsStreaming() const = 0;
+
+  /// Newest pose of station 1..4, never waits on the device (see PoseStore).
+  std::optional<TrackerPose> LatestPose(int station) const { return this->Store.Latest(station); }
+  std::vector<TrackerEvent> TakeEvents() { return this->Store.TakeEvents(); }
+  /// Every pose in order; only after EnablePoseQueue().
+  std::vector<TrackerPose> TakePoses() { return this->Store.TakePoses(); }
+  void EnablePoseQueue(std::size_t capacity, bool block) { this->Store.EnableQueue(capacity, block); }
+  bool WaitForActivity(std::chrono::milliseconds timeout) const
+  {
+    return this->Store.WaitForActivity(timeout);
+  }
+  virtual TrackerStatistics Statistics() const { return this->Store.Statistics(); }
+
+protected:
+  PoseStore Store;
+};
+
+} // namespace bender
+
+#endif
