@@ -12,5 +12,8 @@ int RunWarpCommand(const std::vector<std::string>& args);
 int RunSegmentCommand(const std::vector<std::string>& args);
 int RunPhantomCommand(const std::vector<std::string>& args);
 int RunTrackerCommand(const std::vector<std::string>& args);
+int RunCheckCommand(const std::vector<std::string>& args);
+int RunExportCommand(const std::vector<std::string>& args);
+int RunRenderCommand(const std::vector<std::string>& args);
 
 #endif

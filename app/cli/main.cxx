@@ -20,6 +20,10 @@ const Command Commands[] = {
   { "warp", "apply a warp plan (.bender.json) to a mesh", RunWarpCommand },
   { "segment", "segment the vessels of a volume and extract their surface", RunSegmentCommand },
   { "phantom", "build the MRA-like demo volume from a vessel surface", RunPhantomCommand },
+  { "check", "check a mesh for CFD: watertight, manifold, flips, self-intersections",
+    RunCheckCommand },
+  { "export", "export a surface for CFD meshing (caps, patches, frame)", RunExportCommand },
+  { "render", "render a mesh (optionally with a plan's ribbons) to a PNG", RunRenderCommand },
   { "tracker", "stream poses from a Polhemus Fastrak, a recording or the simulator",
     RunTrackerCommand },
 };

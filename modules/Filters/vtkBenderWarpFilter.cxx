@@ -1,5 +1,6 @@
 #include "vtkBenderWarpFilter.h"
 
+#include "FastWarpKernel.h"
 #include "GeometryErrors.h"
 
 #include "vtkCellData.h"
@@ -29,6 +30,13 @@ struct vtkBenderWarpFilter::BindingCache
   vtkIdType NumberOfPoints = 0;
   std::vector<bender::BoundPoint> Records;
   std::vector<std::int64_t> Ids;
+  // The interactive (Table) path: points with one projection in SoA float relative to Origin,
+  // evaluated by the vectorised kernel; points with two projections by the scalar evaluator.
+  bender::Vec3 Origin;
+  std::vector<std::int64_t> SingleIds;
+  std::vector<float> Px, Py, Pz, S, F;
+  std::vector<float> Ox, Oy, Oz;
+  std::vector<std::int64_t> PairIds;
 };
 
 namespace
@@ -93,6 +101,36 @@ struct EvaluateWorker
     for (vtkIdType k = begin; k < end; ++k)
     {
       const T* o = this->Out + 3 * this->Ids[k];
+      if (!std::isfinite(o[0]) || !std::isfinite(o[1]) || !std::isfinite(o[2]))
+      {
+        ++bad;
+      }
+    }
+  }
+};
+
+// The vectorised kernel for one-projection points, then a scatter into the output array.
+template <typename T>
+struct FastWorker
+{
+  const bender::FastWarpKernel& Kernel;
+  const float *Px, *Py, *Pz, *S, *F;
+  float *Ox, *Oy, *Oz;
+  const std::int64_t* Ids;
+  bender::Vec3 Origin;
+  T* Out;
+  vtkSMPThreadLocal<vtkIdType> Bad;
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    this->Kernel.Evaluate(this->Px, this->Py, this->Pz, this->S, this->F, this->Ox, this->Oy,
+      this->Oz, static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
+    vtkIdType& bad = this->Bad.Local();
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      T* o = this->Out + 3 * this->Ids[k];
+      o[0] = static_cast<T>(this->Origin.x + this->Ox[k]);
+      o[1] = static_cast<T>(this->Origin.y + this->Oy[k]);
+      o[2] = static_cast<T>(this->Origin.z + this->Oz[k]);
       if (!std::isfinite(o[0]) || !std::isfinite(o[1]) || !std::isfinite(o[2]))
       {
         ++bad;
@@ -285,13 +323,39 @@ int vtkBenderWarpFilter::RequestData(
       BindWorker<T> worker{ *cache.Binding, xyz, cache.Records.data(), bound.data() };
       vtkSMPTools::For(0, n, worker);
     });
+    cache.SingleIds.clear();
+    cache.PairIds.clear();
+    cache.Px.clear();
+    cache.Py.clear();
+    cache.Pz.clear();
+    cache.S.clear();
+    cache.F.clear();
+    cache.Origin = this->Spec.initial.start.position;
     for (vtkIdType i = 0; i < n; ++i)
     {
-      if (bound[i])
+      if (!bound[i])
       {
-        cache.Ids.push_back(i);
+        continue;
       }
+      cache.Ids.push_back(i);
+      const bender::BoundPoint& rec = cache.Records[i];
+      if (rec.lambda0 < 1.0)
+      {
+        cache.PairIds.push_back(i);
+        continue;
+      }
+      double p[3];
+      source->GetPoint(i, p);
+      cache.SingleIds.push_back(i);
+      cache.Px.push_back(static_cast<float>(p[0] - cache.Origin.x));
+      cache.Py.push_back(static_cast<float>(p[1] - cache.Origin.y));
+      cache.Pz.push_back(static_cast<float>(p[2] - cache.Origin.z));
+      cache.S.push_back(static_cast<float>(rec.s0));
+      cache.F.push_back(static_cast<float>(rec.f));
     }
+    cache.Ox.resize(cache.SingleIds.size());
+    cache.Oy.resize(cache.SingleIds.size());
+    cache.Oz.resize(cache.SingleIds.size());
     cache.Points = inPts;
     cache.PointsTime = inPts->GetMTime();
     cache.NumberOfPoints = n;
@@ -308,9 +372,23 @@ int vtkBenderWarpFilter::RequestData(
     T* out = static_cast<T*>(outPts->GetData()->GetVoidPointer(0));
     CopyWorker<T> copy{ xyz, out };
     vtkSMPTools::For(0, n, copy);
-    EvaluateWorker<T> eval{ evaluator, xyz, out, cache.Records.data(), cache.Ids.data(), {} };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(cache.Ids.size()), eval);
-    bad = SumLocal(eval.Bad);
+    if (this->Precision == bender::WarpPrecision::Exact)
+    {
+      EvaluateWorker<T> eval{ evaluator, xyz, out, cache.Records.data(), cache.Ids.data(), {} };
+      vtkSMPTools::For(0, static_cast<vtkIdType>(cache.Ids.size()), eval);
+      bad = SumLocal(eval.Bad);
+      return;
+    }
+    bender::FastWarpKernel kernel;
+    kernel.SetMotion(*warp, cache.Origin);
+    FastWorker<T> fast{ kernel, cache.Px.data(), cache.Py.data(), cache.Pz.data(),
+      cache.S.data(), cache.F.data(), cache.Ox.data(), cache.Oy.data(), cache.Oz.data(),
+      cache.SingleIds.data(), cache.Origin, out, {} };
+    vtkSMPTools::For(0, static_cast<vtkIdType>(cache.SingleIds.size()), fast);
+    EvaluateWorker<T> pairs{ evaluator, xyz, out, cache.Records.data(), cache.PairIds.data(),
+      {} };
+    vtkSMPTools::For(0, static_cast<vtkIdType>(cache.PairIds.size()), pairs);
+    bad = SumLocal(fast.Bad) + SumLocal(pairs.Bad);
   });
   if (bad > 0)
   {

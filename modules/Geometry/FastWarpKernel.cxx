@@ -1,0 +1,167 @@
+#include "FastWarpKernel.h"
+
+#include <cmath>
+
+namespace bender
+{
+
+void FastWarpKernel::SetMotion(const RibbonWarp& warp, const Vec3& origin)
+{
+  const std::vector<DualQuaternion>& src = warp.MotionTable();
+  const std::size_t n = src.size();
+  this->Table.resize(8 * n);
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    // Conjugate by the translation to the origin: X_l -> R X_l + (R c + t - c).
+    const DualQuaternion& m = src[j];
+    const Vec3 t = (m.dual * Conjugate(m.real)).Vector() * 2.0;
+    const Vec3 tl = RotateByQuaternion(m.real, origin) + t - origin;
+    const Quaternion d = Quaternion{ 0.0, 0.5 * tl.x, 0.5 * tl.y, 0.5 * tl.z } * m.real;
+    float* o = this->Table.data() + 8 * j;
+    o[0] = static_cast<float>(m.real.w);
+    o[1] = static_cast<float>(m.real.x);
+    o[2] = static_cast<float>(m.real.y);
+    o[3] = static_cast<float>(m.real.z);
+    o[4] = static_cast<float>(d.w);
+    o[5] = static_cast<float>(d.x);
+    o[6] = static_cast<float>(d.y);
+    o[7] = static_cast<float>(d.z);
+  }
+  this->Scale = static_cast<float>(n - 1);
+  this->Last = static_cast<int>(n) - 1;
+}
+
+#if defined(__GNUC__)
+#define BENDER_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define BENDER_ALWAYS_INLINE inline
+#endif
+
+namespace
+{
+constexpr float PiF = 3.14159265358979f;
+
+// atan2(y, x) for y >= 0, about 1e-7 absolute (Cephes' atanf reduction).
+BENDER_ALWAYS_INLINE float Atan2Pos(float y, float x)
+{
+  const float ax = std::fabs(x);
+  const float mx = ax > y ? ax : y;
+  const float mn = ax > y ? y : ax;
+  float t = mn / mx;
+  const bool big = t > 0.41421356f;
+  t = big ? (t - 1.0f) / (t + 1.0f) : t;
+  const float z = t * t;
+  float a = (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
+              3.33329491539e-1f) *
+      z * t +
+    t;
+  a = big ? a + 0.25f * PiF : a;
+  a = ax > y ? a : 0.5f * PiF - a;
+  return x < 0.0f ? PiF - a : a;
+}
+
+// sin and cos of phi in [0, pi], through x = phi - pi/2 in [-pi/2, pi/2] (Taylor, < 4e-8).
+BENDER_ALWAYS_INLINE void SinCos(float phi, float& s, float& c)
+{
+  const float x = phi - 0.5f * PiF;
+  const float x2 = x * x;
+  const float sx = x *
+    (1.0f +
+      x2 * (-1.0f / 6.0f +
+             x2 * (1.0f / 120.0f +
+                    x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f - x2 / 39916800.0f)))));
+  const float cx = 1.0f +
+    x2 *
+      (-0.5f +
+        x2 *
+          (1.0f / 24.0f +
+            x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f + x2 * (-1.0f / 3628800.0f)))));
+  s = cx;  // sin(phi) = cos(x)
+  c = -sx; // cos(phi) = -sin(x)
+}
+
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+#define BENDER_TARGET_CLONES __attribute__((target_clones("arch=haswell", "default")))
+#else
+#define BENDER_TARGET_CLONES
+#endif
+
+BENDER_TARGET_CLONES
+void EvaluateKernel(const float* table, float scale, int last, const float* px, const float* py,
+  const float* pz, const float* sp, const float* fp, float* ox, float* oy, float* oz,
+  std::size_t begin, std::size_t end)
+{
+  const long long kb = static_cast<long long>(begin);
+  const long long ke = static_cast<long long>(end);
+#pragma omp simd
+  for (long long k = kb; k < ke; ++k)
+  {
+    const float u = sp[k] * scale;
+    int j = static_cast<int>(u);
+    j = j < last ? j : last - 1;
+    const float a = u - static_cast<float>(j);
+    const float b = 1.0f - a;
+    const int i0 = 8 * j;
+    const int i1 = i0 + 8;
+    float w = b * table[i0] + a * table[i1];
+    float vx = b * table[i0 + 1] + a * table[i1 + 1];
+    float vy = b * table[i0 + 2] + a * table[i1 + 2];
+    float vz = b * table[i0 + 3] + a * table[i1 + 3];
+    float dw = b * table[i0 + 4] + a * table[i1 + 4];
+    float dx = b * table[i0 + 5] + a * table[i1 + 5];
+    float dy = b * table[i0 + 6] + a * table[i1 + 6];
+    float dz = b * table[i0 + 7] + a * table[i1 + 7];
+    // Renormalise (DLB) and make the dual part orthogonal to the real part.
+    const float inv = 1.0f / std::sqrt(w * w + vx * vx + vy * vy + vz * vz);
+    w *= inv;
+    vx *= inv;
+    vy *= inv;
+    vz *= inv;
+    dw *= inv;
+    dx *= inv;
+    dy *= inv;
+    dz *= inv;
+    const float rd = w * dw + vx * dx + vy * dy + vz * dz;
+    dw -= rd * w;
+    dx -= rd * vx;
+    dy -= rd * vy;
+    dz -= rd * vz;
+    // Power f of the screw: half angle h, rotation (cos fh, v sin fh / |v|), and the dual
+    // part written without the axis direction so that it stays finite as |v| -> 0.
+    const float f = fp[k];
+    const float sv = std::sqrt(vx * vx + vy * vy + vz * vz);
+    const float h = Atan2Pos(sv, w);
+    float sphi, cphi;
+    SinCos(f * h, sphi, cphi);
+    const bool rotating = sv > 1e-6f;
+    const float svSafe = rotating ? sv : 1.0f;
+    const float rho = rotating ? sphi / svSafe : f;
+    const float g = rotating ? (dw / (svSafe * svSafe)) * (rho * w - f * cphi) : 0.0f;
+    const float rw = cphi;
+    const float rx = rho * vx, ry = rho * vy, rz = rho * vz;
+    const float Dw = f * dw * rho;
+    const float Dx = rho * dx + g * vx, Dy = rho * dy + g * vy, Dz = rho * dz + g * vz;
+    // t = 2 (D conj(r)).vec = 2 (-Dw rv + rw D - D x rv)
+    const float tx = 2.0f * (-Dw * rx + rw * Dx - (Dy * rz - Dz * ry));
+    const float ty = 2.0f * (-Dw * ry + rw * Dy - (Dz * rx - Dx * rz));
+    const float tz = 2.0f * (-Dw * rz + rw * Dz - (Dx * ry - Dy * rx));
+    // Rotate P by r: P + rw c + rv x c with c = 2 rv x P.
+    const float x = px[k], y = py[k], z = pz[k];
+    const float cx = 2.0f * (ry * z - rz * y);
+    const float cy = 2.0f * (rz * x - rx * z);
+    const float cz = 2.0f * (rx * y - ry * x);
+    ox[k] = x + rw * cx + (ry * cz - rz * cy) + tx;
+    oy[k] = y + rw * cy + (rz * cx - rx * cz) + ty;
+    oz[k] = z + rw * cz + (rx * cy - ry * cx) + tz;
+  }
+}
+} // namespace
+
+void FastWarpKernel::Evaluate(const float* px, const float* py, const float* pz, const float* s,
+  const float* f, float* ox, float* oy, float* oz, std::size_t begin, std::size_t end) const
+{
+  EvaluateKernel(this->Table.data(), this->Scale, this->Last, px, py, pz, s, f, ox, oy, oz,
+    begin, end);
+}
+
+} // namespace bender
