@@ -1,0 +1,196 @@
+// bender-cli warp end to end: the real executable on real files.
+
+#include "MeshIO.h"
+#include "RibbonWarp.h"
+#include "WarpPlanIO.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkPolyData.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+const std::string Cli = BENDER_CLI_PATH;
+const std::string Data = BENDER_TEST_DATA_DIR;
+const std::string External = BENDER_EXTERNAL_DATA_DIR;
+
+struct Result
+{
+  int status = -1;
+  std::string output; // stdout and stderr together
+};
+
+Result Run(const std::string& args)
+{
+  Result r;
+  const std::string cmd = Cli + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p)
+  {
+    return r;
+  }
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), static_cast<int>(buf.size()), p))
+  {
+    r.output += buf.data();
+  }
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+class CliWarp : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Dir = fs::temp_directory_path() /
+      ("bender-cli-test-" + std::to_string(::getpid()) + "-" +
+        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(this->Dir);
+  }
+  void TearDown() override { fs::remove_all(this->Dir); }
+  std::string Tmp(const std::string& name) const { return (this->Dir / name).string(); }
+  // Files left in the scratch folder (a failed command must leave none).
+  int FileCount() const
+  {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(this->Dir))
+    {
+      (void)e;
+      ++n;
+    }
+    return n;
+  }
+  fs::path Dir;
+};
+
+TEST_F(CliWarp, HelpAndUsage)
+{
+  Result r = Run("--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("warp"), std::string::npos);
+  r = Run("warp --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("IN_MESH PLAN OUT_MESH"), std::string::npos);
+  r = Run("warp only-one-argument");
+  EXPECT_EQ(r.status, 2);
+  r = Run("no-such-command");
+  EXPECT_EQ(r.status, 2);
+}
+
+TEST_F(CliWarp, ReproducesTheConformanceResultsExactly)
+{
+  for (const std::string name : { "bend90", "twist150", "semicircle_chain" })
+  {
+    const std::string out = this->Tmp(name + ".vtp");
+    const Result r = Run(Data + "/conformance/tube.off " + Data + "/conformance/" + name +
+      ".bender.json " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    auto result = bender::ReadMesh(out);
+    auto expected = bender::ReadMesh(Data + "/conformance/" + name + ".expected.off");
+    ASSERT_EQ(result->GetNumberOfPoints(), expected->GetNumberOfPoints());
+    ASSERT_EQ(result->GetNumberOfPolys(), expected->GetNumberOfPolys());
+    double worst = 0.0;
+    for (vtkIdType i = 0; i < result->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      result->GetPoint(i, a);
+      expected->GetPoint(i, b);
+      worst = std::max(worst, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+    }
+    EXPECT_LT(worst, 50.0 * 1e-9) << name;
+  }
+}
+
+TEST_F(CliWarp, WarpsTheCowLocallyWithoutNaN)
+{
+  const std::string cow = External + "/cow.off";
+  ASSERT_TRUE(fs::exists(cow)) << cow << " missing: run scripts/fetch-data";
+  const std::string plan = Data + "/cli/cow_bend.bender.json";
+  const std::string out = this->Tmp("cow_warped.stl");
+  const Result ok = Run("warp " + cow + " " + plan + " " + out);
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  auto before = bender::ReadMesh(cow);
+  auto after = bender::ReadMesh(out);
+  ASSERT_EQ(after->GetNumberOfPolys(), before->GetNumberOfPolys());
+  ASSERT_EQ(after->GetNumberOfPoints(), before->GetNumberOfPoints());
+  const bender::WarpPlan p = bender::ReadWarpPlan(plan);
+  const bender::RibbonWarp warp(p.warps[0]);
+  int moved = 0;
+  for (vtkIdType i = 0; i < before->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    before->GetPoint(i, a);
+    after->GetPoint(i, b);
+    ASSERT_TRUE(std::isfinite(b[0]) && std::isfinite(b[1]) && std::isfinite(b[2]));
+    const double shift = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    const auto pr =
+      bender::ProjectOntoWire(warp.Initial().Wire(), { a[0], a[1], a[2] }, p.warps[0].radius);
+    if (pr.count == 0)
+    {
+      // STL stores float: an untouched point round-trips within float precision.
+      EXPECT_LT(shift, 1e-6) << "point " << i << " outside R moved";
+    }
+    else if (shift > 1e-3)
+    {
+      ++moved;
+    }
+  }
+  EXPECT_GT(moved, 100);
+}
+
+TEST_F(CliWarp, BadInputsGiveOneLineAndNoOutput)
+{
+  const std::string tube = Data + "/conformance/tube.off";
+  const std::string plan = Data + "/conformance/bend90.bender.json";
+  struct Case
+  {
+    std::string args;
+    std::string expect;
+  };
+  const std::string out = this->Tmp("out.stl");
+  const Case cases[] = {
+    { "warp " + this->Tmp("missing.off") + " " + plan + " " + out, "missing.off" },
+    { "warp " + Data + "/cli/truncated.stl " + plan + " " + out, "truncated.stl" },
+    { "warp " + tube + " " + this->Tmp("missing.bender.json") + " " + out, "missing.bender.json" },
+    { "warp " + tube + " " + Data + "/cli/coincident.bender.json " + out, "warps[0].final" },
+    { "warp " + tube + " " + plan + " " + this->Tmp("out.xyz"), "out.xyz" },
+  };
+  for (const Case& c : cases)
+  {
+    const Result r = Run(c.args);
+    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Segmentation fault"), std::string::npos);
+    EXPECT_EQ(this->FileCount(), 0) << "a failed warp left a file behind: " << c.args;
+  }
+}
+
+TEST_F(CliWarp, NeverOverwritesItsInput)
+{
+  const std::string copy = this->Tmp("tube.off");
+  fs::copy_file(Data + "/conformance/tube.off", copy);
+  const auto sizeBefore = fs::file_size(copy);
+  const Result r = Run("warp " + copy + " " + Data + "/conformance/bend90.bender.json " + copy);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("overwrite"), std::string::npos) << r.output;
+  EXPECT_EQ(fs::file_size(copy), sizeBefore);
+  // The same file through another spelling of its path.
+  const Result r2 = Run("warp " + copy + " " + Data + "/conformance/bend90.bender.json " +
+    (this->Dir / "." / "tube.off").string());
+  EXPECT_EQ(r2.status, 1);
+  EXPECT_EQ(fs::file_size(copy), sizeBefore);
+}
+
+} // namespace
