@@ -380,7 +380,7 @@ int vtkBenderWarpFilter::RequestData(
       return;
     }
     bender::FastWarpKernel kernel;
-    kernel.SetMotion(*warp, cache.Origin);
+    kernel.SetMotion(*evaluator.GetMotionTable(), cache.Origin);
     FastWorker<T> fast{ kernel, cache.Px.data(), cache.Py.data(), cache.Pz.data(),
       cache.S.data(), cache.F.data(), cache.Ox.data(), cache.Oy.data(), cache.Oz.data(),
       cache.SingleIds.data(), cache.Origin, out, {} };

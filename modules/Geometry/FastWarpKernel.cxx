@@ -5,9 +5,9 @@
 namespace bender
 {
 
-void FastWarpKernel::SetMotion(const RibbonWarp& warp, const Vec3& origin)
+void FastWarpKernel::SetMotion(const MotionTable& table, const Vec3& origin)
 {
-  const std::vector<DualQuaternion>& src = warp.MotionTable();
+  const std::vector<DualQuaternion>& src = table.Samples();
   const std::size_t n = src.size();
   this->Table.resize(8 * n);
   for (std::size_t j = 0; j < n; ++j)
@@ -27,8 +27,25 @@ void FastWarpKernel::SetMotion(const RibbonWarp& warp, const Vec3& origin)
     o[6] = static_cast<float>(d.y);
     o[7] = static_cast<float>(d.z);
   }
-  this->Scale = static_cast<float>(n - 1);
-  this->Last = static_cast<int>(n) - 1;
+  const auto& pieces = table.Pieces();
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    if (k < pieces.size())
+    {
+      this->Start[k] = static_cast<float>(pieces[k].start);
+      this->End[k] = k + 1 < pieces.size() ? static_cast<float>(pieces[k].end) : 2.0f;
+      this->Scale[k] = static_cast<float>(pieces[k].scale);
+      this->Offset[k] = pieces[k].offset;
+      this->Last[k] = pieces[k].last;
+    }
+    else
+    {
+      this->Start[k] = 2.0f;
+      this->End[k] = 2.0f;
+      this->Scale[k] = 0.0f;
+      this->Offset[k] = this->Last[k] = 0;
+    }
+  }
 }
 
 #if defined(__GNUC__)
@@ -87,7 +104,8 @@ BENDER_ALWAYS_INLINE void SinCos(float phi, float& s, float& c)
 #endif
 
 BENDER_TARGET_CLONES
-void EvaluateKernel(const float* table, float scale, int last, const float* px, const float* py,
+void EvaluateKernel(const float* table, const float* pend, const float* pstart,
+  const float* pscale, const int* poffset, const int* plast, const float* px, const float* py,
   const float* pz, const float* sp, const float* fp, float* ox, float* oy, float* oz,
   std::size_t begin, std::size_t end)
 {
@@ -96,11 +114,22 @@ void EvaluateKernel(const float* table, float scale, int last, const float* px, 
 #pragma omp simd
   for (long long k = kb; k < ke; ++k)
   {
-    const float u = sp[k] * scale;
-    int j = static_cast<int>(u);
-    j = j < last ? j : last - 1;
-    const float a = u - static_cast<float>(j);
+    // The uniform piece holding s (at most three, split at the junction parameters).
+    const float sk = sp[k];
+    const bool p1 = sk >= pend[0];
+    const bool p2 = sk >= pend[1];
+    const float start = p2 ? pstart[2] : (p1 ? pstart[1] : pstart[0]);
+    const float scale = p2 ? pscale[2] : (p1 ? pscale[1] : pscale[0]);
+    const int offset = p2 ? poffset[2] : (p1 ? poffset[1] : poffset[0]);
+    const int last = p2 ? plast[2] : (p1 ? plast[1] : plast[0]);
+    const float u = (sk - start) * scale;
+    int jl = static_cast<int>(u);
+    jl = jl < last - offset ? jl : last - offset - 1;
+    jl = jl > 0 ? jl : 0;
+    float a = u - static_cast<float>(jl);
+    a = a < 1.0f ? a : 1.0f;
     const float b = 1.0f - a;
+    const int j = offset + jl;
     const int i0 = 8 * j;
     const int i1 = i0 + 8;
     float w = b * table[i0] + a * table[i1];
@@ -160,8 +189,8 @@ void EvaluateKernel(const float* table, float scale, int last, const float* px, 
 void FastWarpKernel::Evaluate(const float* px, const float* py, const float* pz, const float* s,
   const float* f, float* ox, float* oy, float* oz, std::size_t begin, std::size_t end) const
 {
-  EvaluateKernel(this->Table.data(), this->Scale, this->Last, px, py, pz, s, f, ox, oy, oz,
-    begin, end);
+  EvaluateKernel(this->Table.data(), this->End, this->Start, this->Scale, this->Offset,
+    this->Last, px, py, pz, s, f, ox, oy, oz, begin, end);
 }
 
 } // namespace bender

@@ -1,7 +1,7 @@
 #ifndef bender_FastWarpKernel_h
 #define bender_FastWarpKernel_h
 
-#include "RibbonWarp.h"
+#include "MotionTable.h"
 
 #include <cstddef>
 #include <vector>
@@ -18,8 +18,8 @@ namespace bender
 class FastWarpKernel
 {
 public:
-  /// Prepares the per-move table for `warp`, for positions given relative to `origin`.
-  void SetMotion(const RibbonWarp& warp, const Vec3& origin);
+  /// Prepares the per-move table from `table`, for positions given relative to `origin`.
+  void SetMotion(const MotionTable& table, const Vec3& origin);
 
   /// For k in [begin, end): (ox, oy, oz)[k] = warp of (px, py, pz)[k] (relative to the origin)
   /// with projection parameter s[k] and weight f[k]. Safe to call concurrently.
@@ -28,8 +28,12 @@ public:
 
 private:
   std::vector<float> Table; // 8 floats per sample: real (w, x, y, z), dual (w, x, y, z)
-  float Scale = 0.0f;
-  int Last = 0;
+  // The table's (up to three) uniform pieces; unused pieces start beyond s = 1.
+  float End[3] = { 2.0f, 2.0f, 2.0f };
+  float Start[3] = { 0.0f, 0.0f, 0.0f };
+  float Scale[3] = { 0.0f, 0.0f, 0.0f };
+  int Offset[3] = { 0, 0, 0 };
+  int Last[3] = { 0, 0, 0 };
 };
 
 } // namespace bender

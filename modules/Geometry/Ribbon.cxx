@@ -64,6 +64,14 @@ Ribbon::Ribbon(const RibbonSpec& spec)
   this->Tau = tau + 2.0 * Pi * spec.extraTurns;
 }
 
+int Ribbon::UnwrappedExtraTurns(const RibbonSpec& spec, double referenceTwist)
+{
+  RibbonSpec principal = spec;
+  principal.extraTurns = 0;
+  const double tau = Ribbon(principal).PrincipalTwist();
+  return static_cast<int>(std::lround((referenceTwist - tau) / (2.0 * Pi)));
+}
+
 Frame Ribbon::FrameAt(double s) const
 {
   const Biarc& w = this->Curve;

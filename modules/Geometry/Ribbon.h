@@ -32,6 +32,13 @@ public:
   /// Total twist tau = principal + 2 pi extraTurns.
   double Twist() const { return this->Tau; }
 
+  /// The extraTurns that puts this ribbon's total twist nearest to referenceTwist: the live
+  /// unwrapping of spec 2.1 (tau += 2 pi round((tau_prev - tau) / 2 pi)). An interactive
+  /// session starts at grab with the initial ribbon's twist as the reference and passes the
+  /// previous update's twist afterwards, so a twist past half a turn does not jump.
+  /// Throws InvalidRibbonError as the constructor does.
+  static int UnwrappedExtraTurns(const RibbonSpec& spec, double referenceTwist);
+
   /// The frame C_s at s in [0, 1] (spec 2.2).
   Frame FrameAt(double s) const;
 

@@ -32,6 +32,9 @@ struct ScrewParts
   Vec3 t; // translation when pure
 };
 
+// Below this |v| the rotation is rounding noise: report a pure translation (spec 4.1 eps_rot).
+constexpr double EpsRot = 1e-12;
+
 ScrewParts Decompose(const DualQuaternion& m)
 {
   ScrewParts p;
@@ -62,12 +65,13 @@ Screw ScrewOf(const DualQuaternion& m)
   const ScrewParts p = Decompose(m);
   Screw s;
   s.flipped = m.real.w < 0.0;
-  if (p.translation)
+  if (p.translation || (p.sh < EpsRot && m.real.w > 0.0))
   {
-    const double n = Norm(p.t);
-    s.K = n > 0.0 ? p.t / n : Vec3{ 1, 0, 0 };
+    const Vec3 t = (m.dual * Conjugate(m.real)).Vector() * 2.0;
+    const double n = Norm(t);
+    s.K = n > 0.0 ? t / n : Vec3{ 1, 0, 0 };
     s.d = n;
-    s.beta = 2.0 * p.h;
+    s.beta = p.translation ? 2.0 * p.h : 0.0;
     s.A = Vec3{};
     return s;
   }

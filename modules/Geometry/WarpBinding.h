@@ -1,10 +1,12 @@
 #ifndef bender_WarpBinding_h
 #define bender_WarpBinding_h
 
+#include "MotionTable.h"
 #include "RibbonWarp.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 namespace bender
 {
@@ -57,7 +59,7 @@ private:
 enum class WarpPrecision
 {
   Exact, ///< frames and screw at each point's exact s (double precision; the normative result)
-  Table  ///< screws interpolated from the sign table (O(ds^2) error; for interactive moves)
+  Table  ///< screws interpolated from a MotionTable (second order in ds; interactive moves)
 };
 
 /// The per-move half of the warp: evaluates the bound points under a RibbonWarp.
@@ -65,6 +67,9 @@ class WarpEvaluator
 {
 public:
   WarpEvaluator(const RibbonWarp& warp, WarpPrecision precision);
+
+  /// The interpolation table (Table precision only, else null).
+  const MotionTable* GetMotionTable() const { return this->Table.get(); }
 
   /// The lifted relative motion at s, exact or interpolated per the precision.
   DualQuaternion MotionAt(double s) const;
@@ -81,9 +86,7 @@ public:
 private:
   const RibbonWarp& Warp;
   WarpPrecision Precision;
-  const DualQuaternion* TableData;
-  double TableScale;
-  int TableLast;
+  std::unique_ptr<MotionTable> Table;
 };
 
 } // namespace bender
