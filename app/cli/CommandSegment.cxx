@@ -1,14 +1,16 @@
-// Placeholder, replaced by the module's owner.
+// bender-cli segment / phantom: thin wrappers; the logic lives in modules/Segmentation.
 #include "CliCommands.h"
 
-#include <cstdio>
-int RunSegmentCommand(const std::vector<std::string>&)
+#include "SegmentCommand.h"
+
+#include <iostream>
+
+int RunSegmentCommand(const std::vector<std::string>& args)
 {
-  std::fprintf(stderr, "bender-cli segment: not available in this build\n");
-  return 2;
+  return bender::RunSegmentCli(args, std::cout, std::cerr);
 }
-int RunPhantomCommand(const std::vector<std::string>&)
+
+int RunPhantomCommand(const std::vector<std::string>& args)
 {
-  std::fprintf(stderr, "bender-cli phantom: not available in this build\n");
-  return 2;
+  return bender::RunPhantomCli(args, std::cout, std::cerr);
 }

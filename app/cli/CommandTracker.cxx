@@ -1,9 +1,12 @@
-// Placeholder, replaced by the module's owner.
+// bender-cli tracker: the command's logic lives in modules/Tracking (TrackerCommand) so
+// that the tests run it in-process.
 #include "CliCommands.h"
 
-#include <cstdio>
-int RunTrackerCommand(const std::vector<std::string>&)
+#include "TrackerCommand.h"
+
+#include <iostream>
+
+int RunTrackerCommand(const std::vector<std::string>& args)
 {
-  std::fprintf(stderr, "bender-cli tracker: not available in this build\n");
-  return 2;
+  return bender::RunTrackerCli(args, std::cout, std::cerr);
 }

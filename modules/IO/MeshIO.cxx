@@ -2,12 +2,17 @@
 
 #include "FileUtilities.h"
 #include "OffFormat.h"
+#include "PlyValidation.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
+#include <vtkCellArrayIterator.h>
 #include <vtkDataArray.h>
+#include <vtkErrorCode.h>
+#include <vtkExecutive.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
 #include <vtkOBJWriter.h>
@@ -22,18 +27,20 @@
 #include <vtkSTLReader.h>
 #include <vtkSTLWriter.h>
 #include <vtkTriangleFilter.h>
-#include <vtkWriter.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
+#include <vtk_loguru.h>
 
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <vector>
 
 namespace bender
 {
@@ -46,6 +53,28 @@ using io_detail::DisplayName;
 [[noreturn]] void Fail(const std::string& path, const std::string& problem)
 {
   throw MeshIOError(DisplayName(path) + ": " + problem);
+}
+
+// A VTK message fit for a one-line error: the file's base name instead of its full path
+// (readers quote it), no control or binary bytes (readers quote garbage), at most 200 bytes.
+std::string Tidy(const std::string& path, std::string message)
+{
+  for (std::size_t at = message.find(path); !path.empty() && at != std::string::npos;
+       at = message.find(path, at))
+  {
+    message.replace(at, path.size(), DisplayName(path));
+  }
+  std::string tidy;
+  for (const char c : message)
+  {
+    const auto u = static_cast<unsigned char>(c);
+    tidy += (u < 32 || u >= 127) ? '?' : c;
+  }
+  if (tidy.size() > 200)
+  {
+    tidy = tidy.substr(0, 197) + "...";
+  }
+  return tidy;
 }
 
 // VTK's "ERROR: In file, line N\nvtkClass (0x...): text\n\n" reduced to "text".
@@ -80,7 +109,8 @@ std::string CleanVtkMessage(const char* raw)
 }
 
 // An output window that keeps what it is given, so that messages from VTK helper objects
-// without observers (parsers, internal readers) end up in our error instead of on stderr.
+// without observers (parsers, vtkGenericWarningMacro) end up in our error instead of on
+// stderr.
 class CapturingOutputWindow : public vtkOutputWindow
 {
 public:
@@ -88,21 +118,35 @@ public:
   vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow);
   void DisplayText(const char* text) override
   {
-    if (text)
+    if (!text)
     {
-      this->Text += text;
+      return;
+    }
+    switch (this->GetCurrentMessageType())
+    {
+      case MESSAGE_TYPE_ERROR:
+        this->Errors.push_back(CleanVtkMessage(text));
+        break;
+      case MESSAGE_TYPE_WARNING:
+      case MESSAGE_TYPE_GENERIC_WARNING:
+        this->Warnings.push_back(CleanVtkMessage(text));
+        break;
+      default:
+        break;
     }
   }
-  std::string Text;
+  std::vector<std::string> Errors;
+  std::vector<std::string> Warnings;
 
 protected:
   CapturingOutputWindow() = default;
 };
 vtkStandardNewMacro(CapturingOutputWindow);
 
-// Watches one VTK algorithm (ErrorEvent, WarningEvent through an observer, which also keeps
-// the message off the global output window) and, for the lifetime of the object, routes the
-// global output window into a buffer. One at a time: the output window is process-wide.
+// For its lifetime: collects the errors and warnings of the watched VTK objects (through
+// observers, which also keeps them off the output window), routes the global output window
+// into a buffer and mutes VTK's logger on stderr, restoring both afterwards. The output
+// window and the logger are process-wide, so guards run one at a time.
 class VtkMessageGuard
 {
 public:
@@ -111,35 +155,47 @@ public:
   {
     this->Previous = vtkOutputWindow::GetInstance();
     vtkOutputWindow::SetInstance(this->Capture);
+    this->PreviousStderrVerbosity = vtkloguru::g_stderr_verbosity;
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   }
-  ~VtkMessageGuard() { vtkOutputWindow::SetInstance(this->Previous); }
+  ~VtkMessageGuard()
+  {
+    vtkLogger::SetStderrVerbosity(static_cast<vtkLogger::Verbosity>(this->PreviousStderrVerbosity));
+    vtkOutputWindow::SetInstance(this->Previous);
+  }
   VtkMessageGuard(const VtkMessageGuard&) = delete;
   VtkMessageGuard& operator=(const VtkMessageGuard&) = delete;
 
-  void Watch(vtkObject* object)
+  /// Watches an algorithm and its executive (which reports "returned failure" on its own).
+  void Watch(vtkAlgorithm* algorithm)
   {
     vtkNew<vtkCallbackCommand> callback;
     callback->SetClientData(this);
     callback->SetCallback(&VtkMessageGuard::OnEvent);
-    object->AddObserver(vtkCommand::ErrorEvent, callback);
-    object->AddObserver(vtkCommand::WarningEvent, callback);
+    for (vtkObject* object : { static_cast<vtkObject*>(algorithm),
+           static_cast<vtkObject*>(algorithm->GetExecutive()) })
+    {
+      object->AddObserver(vtkCommand::ErrorEvent, callback);
+      object->AddObserver(vtkCommand::WarningEvent, callback);
+    }
   }
 
-  bool HasError() const { return !this->Errors.empty(); }
-  /// The first error seen, else anything the output window received.
+  bool HasError() const { return !this->Errors.empty() || !this->Capture->Errors.empty(); }
+  bool HasWarning() const { return !this->Warnings.empty() || !this->Capture->Warnings.empty(); }
+  /// The first error seen, else the first warning; empty when there was neither.
   std::string Message() const
   {
-    if (!this->Errors.empty())
+    const std::vector<std::string>* lists[] = { &this->Errors, &this->Capture->Errors,
+      &this->Warnings, &this->Capture->Warnings };
+    for (const auto* list : lists)
     {
-      return this->Errors.front();
-    }
-    if (!this->Capture->Text.empty())
-    {
-      return CleanVtkMessage(this->Capture->Text.c_str());
+      if (!list->empty())
+      {
+        return list->front();
+      }
     }
     return {};
   }
-  bool CapturedSomething() const { return !this->Capture->Text.empty(); }
 
 private:
   static std::mutex& Mutex()
@@ -151,21 +207,24 @@ private:
   {
     auto* self = static_cast<VtkMessageGuard*>(clientData);
     const std::string text = CleanVtkMessage(static_cast<const char*>(callData));
-    if (event == vtkCommand::ErrorEvent)
+    // The executive's "returned failure for request" says nothing the reader did not say.
+    if (text.find("returned failure for request") != std::string::npos)
     {
-      self->Errors.push_back(text);
+      self->ExecutiveFailure = true;
+      return;
     }
-    else
-    {
-      self->Warnings.push_back(text);
-    }
+    (event == vtkCommand::ErrorEvent ? self->Errors : self->Warnings).push_back(text);
   }
 
   std::unique_lock<std::mutex> Lock;
   vtkSmartPointer<vtkOutputWindow> Previous;
   vtkNew<CapturingOutputWindow> Capture;
+  int PreviousStderrVerbosity = 0;
   std::vector<std::string> Errors;
   std::vector<std::string> Warnings;
+
+public:
+  bool ExecutiveFailure = false;
 };
 
 std::string Lowercase(std::string text)
@@ -225,15 +284,17 @@ void CheckMesh(const std::string& path, vtkPolyData* mesh)
 }
 
 // Runs a configured VTK reader and returns its output, or throws with its first error.
+// warningsAreErrors: for the VTK formats, whose readers only warn about truncated data.
 template <typename Reader>
-vtkSmartPointer<vtkPolyData> RunReader(
-  const std::string& path, Reader* reader, VtkMessageGuard& guard)
+vtkSmartPointer<vtkPolyData> RunReader(const std::string& path, Reader* reader,
+  VtkMessageGuard& guard, bool warningsAreErrors = false)
 {
   reader->Update();
   const unsigned long code = reader->GetErrorCode();
-  if (guard.HasError() || code != 0)
+  if (guard.HasError() || code != 0 || guard.ExecutiveFailure ||
+    (warningsAreErrors && guard.HasWarning()))
   {
-    std::string message = guard.Message();
+    std::string message = Tidy(path, guard.Message());
     if (message.empty())
     {
       message = std::string("read error (") +
@@ -244,7 +305,7 @@ vtkSmartPointer<vtkPolyData> RunReader(
   vtkSmartPointer<vtkPolyData> output = reader->GetOutput();
   if (!output || output->GetNumberOfPoints() == 0)
   {
-    const std::string message = guard.Message();
+    const std::string message = Tidy(path, guard.Message());
     Fail(path, message.empty() ? "no points in the file" : "no points in the file (" + message + ")");
   }
   // Detach from the reader so that the caller owns plain data.
@@ -342,8 +403,59 @@ vtkSmartPointer<vtkPolyData> ReadStl(const std::string& path, std::uintmax_t siz
   return mesh;
 }
 
+// vtkOBJReader reads "v nan 0 0" or "v 1 x 0" as some number without complaint: check the
+// vertex lines first, so that such a file is refused with its line number.
+void CheckObjVertices(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::size_t lineNumber = 0;
+  while (std::getline(in, line))
+  {
+    ++lineNumber;
+    if (line.find('\0') != std::string::npos)
+    {
+      Fail(path, "not an OBJ file (binary content)");
+    }
+    if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t'))
+    {
+      continue;
+    }
+    const char* cursor = line.c_str() + 2;
+    const char* end = line.c_str() + line.size();
+    for (int c = 0; c < 3; ++c)
+    {
+      while (cursor < end && std::isspace(static_cast<unsigned char>(*cursor)))
+      {
+        ++cursor;
+      }
+      if (cursor < end && *cursor == '+')
+      {
+        ++cursor;
+      }
+      double value = 0;
+      const auto result = std::from_chars(cursor, end, value);
+      if (result.ec == std::errc::result_out_of_range)
+      {
+        Fail(path, "line " + std::to_string(lineNumber) + ": non-finite coordinate");
+      }
+      if (result.ec != std::errc() ||
+        (result.ptr < end && !std::isspace(static_cast<unsigned char>(*result.ptr))))
+      {
+        Fail(path, "line " + std::to_string(lineNumber) + ": expected 3 coordinates after \"v\"");
+      }
+      if (!std::isfinite(value))
+      {
+        Fail(path, "line " + std::to_string(lineNumber) + ": non-finite coordinate");
+      }
+      cursor = result.ptr;
+    }
+  }
+}
+
 vtkSmartPointer<vtkPolyData> ReadObj(const std::string& path)
 {
+  CheckObjVertices(path);
   VtkMessageGuard guard;
   vtkNew<vtkOBJReader> reader;
   guard.Watch(reader);
@@ -357,6 +469,11 @@ vtkSmartPointer<vtkPolyData> ReadPly(const std::string& path)
   if (!vtkPLYReader::CanReadFile(path.c_str()))
   {
     Fail(path, "not a PLY file (no valid \"ply\" header)");
+  }
+  std::string problem;
+  if (!io_detail::CheckPlyStructure(path, problem))
+  {
+    Fail(path, problem);
   }
   vtkNew<vtkPLYReader> reader;
   guard.Watch(reader);
@@ -374,18 +491,27 @@ vtkSmartPointer<vtkPolyData> ReadVtp(const std::string& path)
     Fail(path, "not a VTK XML PolyData file");
   }
   reader->SetFileName(path.c_str());
-  auto mesh = RunReader(path, reader.Get(), guard);
-  if (guard.CapturedSomething())
-  {
-    // The XML parser reports through the output window, not through the reader.
-    Fail(path, guard.Message());
-  }
-  return mesh;
+  return RunReader(path, reader.Get(), guard, true);
 }
 
 vtkSmartPointer<vtkPolyData> ReadLegacyVtk(const std::string& path)
 {
   VtkMessageGuard guard;
+  // A version line VTK cannot parse makes it read a 5.1 file's OFFSETS block as legacy cells
+  // and crash: require "# vtk DataFile Version <major>.<minor>" first.
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    std::getline(in, line);
+    int major = -1, minor = -1;
+    char dot = 0;
+    std::istringstream version(line.size() > 22 ? line.substr(22) : std::string());
+    if (line.rfind("# vtk DataFile Version ", 0) != 0 || !(version >> major >> dot >> minor) ||
+      dot != '.' || major < 1 || minor < 0)
+    {
+      Fail(path, "not a legacy VTK file (the first line is not \"# vtk DataFile Version x.y\")");
+    }
+  }
   vtkNew<vtkPolyDataReader> reader;
   guard.Watch(reader);
   reader->SetFileName(path.c_str());
@@ -394,7 +520,7 @@ vtkSmartPointer<vtkPolyData> ReadLegacyVtk(const std::string& path)
     std::string message = "not a legacy VTK polydata file";
     if (guard.HasError())
     {
-      message += " (" + guard.Message() + ")";
+      message += " (" + Tidy(path, guard.Message()) + ")";
     }
     Fail(path, message);
   }
@@ -405,7 +531,7 @@ vtkSmartPointer<vtkPolyData> ReadLegacyVtk(const std::string& path)
   reader->ReadAllColorScalarsOn();
   reader->ReadAllTCoordsOn();
   reader->ReadAllFieldsOn();
-  return RunReader(path, reader.Get(), guard);
+  return RunReader(path, reader.Get(), guard, true);
 }
 
 std::string OneLine(const std::string& text, std::size_t maxLength)
@@ -450,8 +576,9 @@ vtkSmartPointer<vtkPolyData> Triangulated(vtkPolyData* mesh)
   return result;
 }
 
-// Runs a configured VTK writer on the temporary file, reporting its first error.
-bool RunWriter(vtkWriter* writer, const std::string& tempPath, std::string& problem)
+// Runs a configured VTK writer (vtkWriter or vtkXMLWriter), reporting its first error.
+template <typename Writer>
+bool RunWriter(Writer* writer, std::string& problem)
 {
   VtkMessageGuard guard;
   guard.Watch(writer);
@@ -464,7 +591,6 @@ bool RunWriter(vtkWriter* writer, const std::string& tempPath, std::string& prob
       problem = std::string("write error (") +
         vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode()) + ")";
     }
-    (void)tempPath;
     return false;
   }
   return true;
@@ -472,7 +598,7 @@ bool RunWriter(vtkWriter* writer, const std::string& tempPath, std::string& prob
 
 } // namespace
 
-vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
+static vtkSmartPointer<vtkPolyData> ReadMeshUnchecked(const std::string& path)
 {
   std::uintmax_t size = 0;
   std::string problem;
@@ -518,6 +644,29 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
     Fail(path,
       (ext.empty() ? std::string("no file extension") : "unknown extension \"" + ext + "\"") +
         " (meshes are read from " + SupportedExtensions + ")");
+  }
+  return mesh;
+}
+
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
+{
+  vtkSmartPointer<vtkPolyData> mesh;
+  try
+  {
+    mesh = ReadMeshUnchecked(path);
+  }
+  catch (const MeshIOError&)
+  {
+    throw;
+  }
+  catch (const std::bad_alloc&)
+  {
+    // A corrupt count in a binary header can ask a VTK reader for terabytes.
+    Fail(path, "corrupt file (its sizes ask for more memory than there is)");
+  }
+  catch (const std::exception& e)
+  {
+    Fail(path, std::string("corrupt file (") + e.what() + ")");
   }
   CheckMesh(path, mesh);
   return mesh;
@@ -577,7 +726,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
           writer->SetHeader(OneLine(options.header, 200).c_str());
         }
       }
-      return RunWriter(writer, temp, problem);
+      return RunWriter(writer.Get(), problem);
     };
   }
   else if (ext == ".obj")
@@ -586,7 +735,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
       vtkNew<vtkOBJWriter> writer;
       writer->SetInputData(mesh);
       writer->SetFileName(temp.c_str());
-      return RunWriter(writer, temp, problem);
+      return RunWriter(writer.Get(), problem);
     };
   }
   else if (ext == ".ply")
@@ -596,7 +745,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
       writer->SetInputData(mesh);
       writer->SetFileName(temp.c_str());
       writer->SetFileTypeToBinary();
-      return RunWriter(writer, temp, problem);
+      return RunWriter(writer.Get(), problem);
     };
   }
   else if (ext == ".vtp")
@@ -609,7 +758,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
       writer->EncodeAppendedDataOff();
       writer->SetHeaderTypeToUInt64();
       writer->SetCompressorTypeToZLib();
-      return RunWriter(writer, temp, problem);
+      return RunWriter(writer.Get(), problem);
     };
   }
   else if (ext == ".vtk")
@@ -621,7 +770,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
       writer->SetFileTypeToBinary();
       const std::string header = OneLine(options.header.empty() ? "bender mesh" : options.header, 250);
       writer->SetHeader(header.c_str());
-      return RunWriter(writer, temp, problem);
+      return RunWriter(writer.Get(), problem);
     };
   }
   else if (ext == ".off")

@@ -29,21 +29,37 @@ struct MeshWriteOptions
 {
   StlEncoding stlEncoding = StlEncoding::Binary;
   /// Written into the STL header / file comment where the format has one (frame and unit,
-  /// e.g. "bender: LPS mm"). Truncated to what the format allows.
+  /// e.g. "bender: LPS mm"). Truncated to what the format allows: binary STL's 80-byte
+  /// header (prefixed "# " when it starts with "solid", which would make readers take the
+  /// file for ASCII), ASCII STL's "solid" line, the legacy .vtk title line, a "#" comment
+  /// line in .off. Newlines become spaces. Not stored in .obj, .ply or .vtp.
   std::string header;
 };
 
 /// Reads a surface mesh; the format is chosen by the extension (case-insensitive):
-/// .stl (binary or ASCII; vertices welded on reading), .obj, .ply, .vtp, .vtk (polydata),
-/// .off. Throws MeshIOError for a missing, unreadable, truncated or corrupt file, an unknown
-/// extension, non-finite coordinates or a file with no points.
+/// .stl (binary or ASCII; exactly coincident corners welded into shared vertices, degenerate
+/// triangles dropped), .obj, .ply, .vtp, .vtk (legacy polydata, every point and cell array),
+/// .off (ASCII; also COFF/NOFF/CNOFF/STOFF, extra vertex and face columns ignored, comments
+/// anywhere, counts on the keyword line or the next). Coordinates keep the file's precision
+/// (double for .vtp, .vtk and .off; float for STL, OBJ, PLY).
+/// Throws MeshIOError for a missing, unreadable, truncated or corrupt file, an unknown
+/// extension, non-finite coordinates, cell indices out of range or a file with no points;
+/// what() is one line starting with the file's base name. VTK's own messages are collected
+/// into that line instead of stderr (the VTK output window is redirected while a file is
+/// read, so reads and writes of meshes run one at a time across threads).
 /// A mesh with points but no polygons is returned as is (callers decide).
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path);
 
-/// Writes a surface mesh; the format is chosen by the extension: .stl, .obj, .ply, .vtp,
-/// .vtk, .off. Atomic: writes a temporary file beside the target and renames it over the
-/// target, so a failure leaves no partial file. Throws MeshIOError (unknown extension,
-/// unwritable folder, non-finite coordinates in the mesh).
+/// Writes a surface mesh; the format is chosen by the extension: .stl (binary or ASCII per
+/// options; polygons and strips triangulated; float), .obj (float), .ply (binary little
+/// endian, float), .vtp (appended raw binary, zlib, double kept, all arrays), .vtk (legacy
+/// binary, version 5.1, double kept, all arrays), .off (ASCII, shortest decimals that read
+/// back bit-identical; polygons and strips, no vertex or line cells).
+/// Atomic: writes a temporary file beside the target, flushes it to disk and renames it
+/// over the target, so a failure leaves the previous file (if any) and no partial or
+/// temporary file. Throws MeshIOError (unknown extension, missing or unwritable folder, a
+/// folder at the target, a null mesh or one without points, non-finite coordinates, no
+/// triangles for STL, a writer error).
 void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOptions& options = {});
 
 /// True when both paths name the same existing file (same device and inode), or the same

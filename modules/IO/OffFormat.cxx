@@ -7,11 +7,13 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -100,6 +102,8 @@ void Tokenize(std::string_view line, std::vector<std::string_view>& tokens)
   }
 }
 
+// Locale-independent. A value beyond the double range reads as infinity (and is then
+// refused as non-finite), one below it as zero.
 bool ParseDouble(std::string_view token, double& value)
 {
   if (!token.empty() && token.front() == '+')
@@ -107,7 +111,20 @@ bool ParseDouble(std::string_view token, double& value)
     token.remove_prefix(1);
   }
   const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
-  return result.ec == std::errc() && result.ptr == token.data() + token.size();
+  if (result.ptr != token.data() + token.size())
+  {
+    return false;
+  }
+  if (result.ec == std::errc::result_out_of_range)
+  {
+    const std::size_t e = token.find_first_of("eE");
+    const bool tiny = e != std::string_view::npos && e + 1 < token.size() && token[e + 1] == '-';
+    const bool negative = !token.empty() && token.front() == '-';
+    value = tiny ? 0.0 : std::numeric_limits<double>::infinity();
+    value = negative ? -value : value;
+    return true;
+  }
+  return result.ec == std::errc();
 }
 
 bool ParseInteger(std::string_view token, long long& value)
@@ -207,20 +224,16 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
   {
     FailAt(lines.Line(), "expected the counts \"vertices faces edges\"");
   }
-  // Each vertex line takes at least 6 bytes ("0 0 0\n") and each face 8 ("3 0 1 2\n"):
-  // refuse absurd counts before reserving memory for them.
-  if (static_cast<double>(vertexCount) * 6 + static_cast<double>(faceCount) * 8 >
-    static_cast<double>(text.size()))
-  {
-    FailAt(lines.Line(),
-      "the header announces " + std::to_string(vertexCount) + " vertices and " +
-        std::to_string(faceCount) + " faces, more than a file of " +
-        std::to_string(text.size()) + " bytes can hold");
-  }
-
+  // Reserve no more than the file can hold (each vertex line takes at least 6 bytes, "0 0 0\n",
+  // and each face 8), so that an absurd count ends in "file ends after ..." and not in an
+  // allocation failure.
+  const auto canHold = [&](long long count, std::size_t bytesPerItem) {
+    return static_cast<vtkIdType>(
+      std::min<long long>(count, static_cast<long long>(text.size() / bytesPerItem)));
+  };
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(vertexCount));
+  points->Allocate(canHold(vertexCount, 6));
   for (long long i = 0; i < vertexCount; ++i)
   {
     if (!lines.Next(line))
@@ -239,11 +252,11 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
     {
       FailAt(lines.Line(), "non-finite coordinate");
     }
-    points->SetPoint(static_cast<vtkIdType>(i), p);
+    points->InsertNextPoint(p);
   }
 
   vtkNew<vtkCellArray> polys;
-  polys->AllocateEstimate(static_cast<vtkIdType>(faceCount), 3);
+  polys->AllocateEstimate(canHold(faceCount, 8), 3);
   std::vector<vtkIdType> ids;
   for (long long f = 0; f < faceCount; ++f)
   {
@@ -347,7 +360,16 @@ bool WriteOff(vtkPolyData* mesh, const std::string& path, const std::string& hea
       }
     }
   }
-  const vtkIdType polyCount = mesh->GetPolys() ? mesh->GetPolys()->GetNumberOfCells() : 0;
+  // Polygons of fewer than 3 vertices are not faces: OFF readers (ours included) refuse them.
+  vtkIdType polyCount = 0;
+  if (vtkCellArray* polys = mesh->GetPolys())
+  {
+    auto it = vtk::TakeSmartPointer(polys->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      polyCount += it->GetCurrentCell()->GetNumberOfIds() >= 3 ? 1 : 0;
+    }
+  }
   const long long faceCount = static_cast<long long>(polyCount) +
     static_cast<long long>(stripTriangles.size());
 
@@ -409,7 +431,10 @@ bool WriteOff(vtkPolyData* mesh, const std::string& path, const std::string& hea
       vtkIdType n;
       const vtkIdType* ids;
       it->GetCurrentCell(n, ids);
-      appendFace(n, ids);
+      if (n >= 3)
+      {
+        appendFace(n, ids);
+      }
     }
   }
   for (const auto& triangle : stripTriangles)

@@ -17,8 +17,11 @@
 #include <itkNrrdImageIOFactory.h>
 
 #include <vtkCallbackCommand.h>
+#include <vtkDataArray.h>
+#include <vtkExecutive.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 
@@ -99,6 +102,11 @@ std::string OneLine(const itk::ExceptionObject& e)
 {
   std::string text = e.GetDescription();
   std::replace(text.begin(), text.end(), '\n', ' ');
+  // Drop ITK's "itk::ERROR: NrrdImageIO(0x55...): " prefix.
+  if (text.rfind("itk::ERROR: ", 0) == 0 && text.find("): ") != std::string::npos)
+  {
+    text = text.substr(text.find("): ") + 3);
+  }
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
   {
     text.pop_back();
@@ -112,6 +120,8 @@ void RegisterImageIOFactories()
 {
   static std::once_flag once;
   std::call_once(once, [] {
+    // Problems reach the user as exceptions; ITK's own warnings would only be noise on stderr.
+    itk::Object::GlobalWarningDisplayOff();
     itk::NrrdImageIOFactory::RegisterOneFactory();
     itk::NiftiImageIOFactory::RegisterOneFactory();
     itk::MetaImageIOFactory::RegisterOneFactory();

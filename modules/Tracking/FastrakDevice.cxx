@@ -214,6 +214,11 @@ void FastrakDevice::ReaderLoop()
     this->ParserStats = parser.Statistics();
     this->Filtered += filtered;
   };
+  // The stream is over: consumers that see the event also see IsStreaming() == false.
+  const auto finish = [this](const TrackerEvent& event) {
+    this->Streaming = false;
+    this->Store.PublishEvent(event);
+  };
   while (!this->StopRequested.load())
   {
     std::size_t n = 0;
@@ -223,13 +228,13 @@ void FastrakDevice::ReaderLoop()
     }
     catch (const DeviceDisconnectedError& e)
     {
-      this->Store.PublishEvent({ TrackerEventType::Disconnected, 0, this->Now(), e.what() });
-      break;
+      finish({ TrackerEventType::Disconnected, 0, this->Now(), e.what() });
+      return;
     }
     catch (const std::exception& e)
     {
-      this->Store.PublishEvent({ TrackerEventType::ReadError, 0, this->Now(), e.what() });
-      break;
+      finish({ TrackerEventType::ReadError, 0, this->Now(), e.what() });
+      return;
     }
     if (n == 0)
     {
@@ -238,8 +243,8 @@ void FastrakDevice::ReaderLoop()
         parser.Finish();
         publishStats(0);
         const double t = this->Link->RecordedTime().value_or(this->Now());
-        this->Store.PublishEvent({ TrackerEventType::EndOfStream, 0, t, {} });
-        break;
+        finish({ TrackerEventType::EndOfStream, 0, t, {} });
+        return;
       }
       continue;
     }

@@ -4,6 +4,7 @@
 #include "TrackingErrors.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <fstream>

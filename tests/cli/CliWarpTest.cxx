@@ -30,7 +30,7 @@ struct Result
   std::string output; // stdout and stderr together
 };
 
-Result Run(const std::string& args)
+Result RunCli(const std::string& args)
 {
   Result r;
   const std::string cmd = Cli + " " + args + " 2>&1";
@@ -77,15 +77,15 @@ protected:
 
 TEST_F(CliWarp, HelpAndUsage)
 {
-  Result r = Run("--help");
+  Result r = RunCli("--help");
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.output.find("warp"), std::string::npos);
-  r = Run("warp --help");
+  r = RunCli("warp --help");
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.output.find("IN_MESH PLAN OUT_MESH"), std::string::npos);
-  r = Run("warp only-one-argument");
+  r = RunCli("warp only-one-argument");
   EXPECT_EQ(r.status, 2);
-  r = Run("no-such-command");
+  r = RunCli("no-such-command");
   EXPECT_EQ(r.status, 2);
 }
 
@@ -94,7 +94,7 @@ TEST_F(CliWarp, ReproducesTheConformanceResultsExactly)
   for (const std::string name : { "bend90", "twist150", "semicircle_chain" })
   {
     const std::string out = this->Tmp(name + ".vtp");
-    const Result r = Run(Data + "/conformance/tube.off " + Data + "/conformance/" + name +
+    const Result r = RunCli("warp " + Data + "/conformance/tube.off " + Data + "/conformance/" + name +
       ".bender.json " + out);
     ASSERT_EQ(r.status, 0) << r.output;
     auto result = bender::ReadMesh(out);
@@ -118,8 +118,9 @@ TEST_F(CliWarp, WarpsTheCowLocallyWithoutNaN)
   const std::string cow = External + "/cow.off";
   ASSERT_TRUE(fs::exists(cow)) << cow << " missing: run scripts/fetch-data";
   const std::string plan = Data + "/cli/cow_bend.bender.json";
-  const std::string out = this->Tmp("cow_warped.stl");
-  const Result ok = Run("warp " + cow + " " + plan + " " + out);
+  // PLY keeps the vertex order (STL would weld the cow's duplicate vertex).
+  const std::string out = this->Tmp("cow_warped.ply");
+  const Result ok = RunCli("warp " + cow + " " + plan + " " + out);
   ASSERT_EQ(ok.status, 0) << ok.output;
   auto before = bender::ReadMesh(cow);
   auto after = bender::ReadMesh(out);
@@ -139,7 +140,7 @@ TEST_F(CliWarp, WarpsTheCowLocallyWithoutNaN)
       bender::ProjectOntoWire(warp.Initial().Wire(), { a[0], a[1], a[2] }, p.warps[0].radius);
     if (pr.count == 0)
     {
-      // STL stores float: an untouched point round-trips within float precision.
+      // PLY stores float: an untouched point round-trips within float precision.
       EXPECT_LT(shift, 1e-6) << "point " << i << " outside R moved";
     }
     else if (shift > 1e-3)
@@ -169,7 +170,7 @@ TEST_F(CliWarp, BadInputsGiveOneLineAndNoOutput)
   };
   for (const Case& c : cases)
   {
-    const Result r = Run(c.args);
+    const Result r = RunCli(c.args);
     EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Segmentation fault"), std::string::npos);
@@ -182,12 +183,12 @@ TEST_F(CliWarp, NeverOverwritesItsInput)
   const std::string copy = this->Tmp("tube.off");
   fs::copy_file(Data + "/conformance/tube.off", copy);
   const auto sizeBefore = fs::file_size(copy);
-  const Result r = Run("warp " + copy + " " + Data + "/conformance/bend90.bender.json " + copy);
+  const Result r = RunCli("warp " + copy + " " + Data + "/conformance/bend90.bender.json " + copy);
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("overwrite"), std::string::npos) << r.output;
   EXPECT_EQ(fs::file_size(copy), sizeBefore);
   // The same file through another spelling of its path.
-  const Result r2 = Run("warp " + copy + " " + Data + "/conformance/bend90.bender.json " +
+  const Result r2 = RunCli("warp " + copy + " " + Data + "/conformance/bend90.bender.json " +
     (this->Dir / "." / "tube.off").string());
   EXPECT_EQ(r2.status, 1);
   EXPECT_EQ(fs::file_size(copy), sizeBefore);

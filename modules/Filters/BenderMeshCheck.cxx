@@ -1,0 +1,887 @@
+#include "BenderMeshCheck.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkPolyData.h>
+#include <vtkSMPThreadLocal.h>
+#include <vtkSMPTools.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+namespace bender
+{
+namespace
+{
+using P3 = std::array<double, 3>;
+
+P3 Sub(const P3& a, const P3& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+P3 Cross(const P3& a, const P3& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+double Dot(const P3& a, const P3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double Norm(const P3& a)
+{
+  return std::sqrt(Dot(a, a));
+}
+// Sign of the volume of (a, b, c, d): > 0 when d is above the plane of (a, b, c).
+double Orient(const P3& a, const P3& b, const P3& c, const P3& d)
+{
+  return Dot(Cross(Sub(b, a), Sub(c, a)), Sub(d, a));
+}
+int Sign(double v)
+{
+  return (v > 0) - (v < 0);
+}
+
+// Segment pq properly crosses triangle abc (strictly: touching and coplanar cases are not
+// counted, so that triangles meeting along a shared border are never reported).
+bool SegmentCrossesTriangle(const P3& p, const P3& q, const P3& a, const P3& b, const P3& c)
+{
+  const int sp = Sign(Orient(a, b, c, p));
+  const int sq = Sign(Orient(a, b, c, q));
+  if (sp == 0 || sq == 0 || sp == sq)
+  {
+    return false;
+  }
+  const int s1 = Sign(Orient(p, q, a, b));
+  const int s2 = Sign(Orient(p, q, b, c));
+  const int s3 = Sign(Orient(p, q, c, a));
+  return s1 != 0 && s1 == s2 && s2 == s3;
+}
+
+// Two non-coplanar triangles intersect iff an edge of one crosses the other: each end of
+// their intersection segment lies on the border of one of them.
+bool TrianglesIntersect(const std::array<P3, 3>& t, const std::array<P3, 3>& u)
+{
+  for (int e = 0; e < 3; ++e)
+  {
+    if (SegmentCrossesTriangle(t[e], t[(e + 1) % 3], u[0], u[1], u[2]) ||
+      SegmentCrossesTriangle(u[e], u[(e + 1) % 3], t[0], t[1], t[2]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+struct UnionFind
+{
+  std::vector<std::size_t> Parent;
+  explicit UnionFind(vtkIdType n)
+    : Parent(static_cast<std::size_t>(n))
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), std::size_t(0));
+  }
+  std::size_t Find(std::size_t i)
+  {
+    std::size_t root = i;
+    while (this->Parent[root] != root)
+    {
+      root = this->Parent[root];
+    }
+    // Path compression.
+    while (this->Parent[i] != root)
+    {
+      const std::size_t next = this->Parent[i];
+      this->Parent[i] = root;
+      i = next;
+    }
+    return root;
+  }
+  void Join(std::size_t a, std::size_t b)
+  {
+    a = this->Find(a);
+    b = this->Find(b);
+    if (a != b)
+    {
+      this->Parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+};
+
+std::uint64_t EdgeKey(std::int64_t a, std::int64_t b)
+{
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) |
+    static_cast<std::uint64_t>(std::max(a, b));
+}
+
+// The self-intersection search over a uniform grid of triangle bounding boxes.
+struct IntersectionWorker
+{
+  const std::vector<std::int64_t>& Tris;
+  const std::vector<P3>& Pts;
+  const std::vector<std::uint8_t>& Usable;
+  const std::vector<std::array<double, 6>>& Boxes;
+  const std::vector<vtkIdType>& CellStart;
+  const std::vector<vtkIdType>& CellTris;
+  std::array<int, 3> Dims;
+  P3 Origin;
+  double Size;
+  std::size_t MaxExamples;
+  vtkSMPThreadLocal<vtkIdType> Count;
+  vtkSMPThreadLocal<std::vector<std::pair<vtkIdType, vtkIdType>>> Examples;
+
+  int CellOf(double v, int axis) const
+  {
+    const int c = static_cast<int>((v - this->Origin[axis]) / this->Size);
+    return std::clamp(c, 0, this->Dims[axis] - 1);
+  }
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    vtkIdType& count = this->Count.Local();
+    auto& examples = this->Examples.Local();
+    for (vtkIdType cell = begin; cell < end; ++cell)
+    {
+      const vtkIdType first = this->CellStart[cell];
+      const vtkIdType last = this->CellStart[cell + 1];
+      const int cx = static_cast<int>(cell % this->Dims[0]);
+      const int cy = static_cast<int>((cell / this->Dims[0]) % this->Dims[1]);
+      const int cz = static_cast<int>(cell / (static_cast<vtkIdType>(this->Dims[0]) * this->Dims[1]));
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        const vtkIdType ti = this->CellTris[i];
+        const auto& bi = this->Boxes[ti];
+        const std::int64_t* vi = &this->Tris[3 * ti];
+        for (vtkIdType j = i + 1; j < last; ++j)
+        {
+          const vtkIdType tj = this->CellTris[j];
+          const auto& bj = this->Boxes[tj];
+          bool overlap = true;
+          for (int a = 0; a < 3; ++a)
+          {
+            overlap = overlap && bi[a] <= bj[3 + a] && bj[a] <= bi[3 + a];
+          }
+          if (!overlap)
+          {
+            continue;
+          }
+          // Test each pair once: in the cell holding the low corner of the boxes' overlap.
+          if (this->CellOf(std::max(bi[0], bj[0]), 0) != cx ||
+            this->CellOf(std::max(bi[1], bj[1]), 1) != cy ||
+            this->CellOf(std::max(bi[2], bj[2]), 2) != cz)
+          {
+            continue;
+          }
+          const std::int64_t* vj = &this->Tris[3 * tj];
+          bool shared = false;
+          for (int a = 0; a < 3 && !shared; ++a)
+          {
+            shared = vi[a] == vj[0] || vi[a] == vj[1] || vi[a] == vj[2];
+          }
+          if (shared)
+          {
+            continue;
+          }
+          const std::array<P3, 3> t{ this->Pts[vi[0]], this->Pts[vi[1]], this->Pts[vi[2]] };
+          const std::array<P3, 3> u{ this->Pts[vj[0]], this->Pts[vj[1]], this->Pts[vj[2]] };
+          if (TrianglesIntersect(t, u))
+          {
+            ++count;
+            if (examples.size() < this->MaxExamples)
+            {
+              examples.emplace_back(std::min(ti, tj), std::max(ti, tj));
+            }
+          }
+        }
+      }
+    }
+  }
+};
+
+void CheckSelfIntersections(const std::vector<std::int64_t>& tris, const std::vector<P3>& pts,
+  const std::vector<std::uint8_t>& usable, std::size_t maxExamples, MeshCheckReport& report)
+{
+  const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
+  std::vector<std::array<double, 6>> boxes(static_cast<std::size_t>(nt));
+  P3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  double sumExtent = 0.0;
+  vtkIdType counted = 0;
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    auto& b = boxes[t];
+    b = { HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+    if (!usable[t])
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const P3& p = pts[tris[3 * t + k]];
+      for (int a = 0; a < 3; ++a)
+      {
+        b[a] = std::min(b[a], p[a]);
+        b[3 + a] = std::max(b[3 + a], p[a]);
+      }
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], b[a]);
+      hi[a] = std::max(hi[a], b[3 + a]);
+      sumExtent += b[3 + a] - b[a];
+    }
+    ++counted;
+  }
+  if (counted < 2)
+  {
+    return;
+  }
+  // Cells about twice the mean box extent, at most ~4 cells per triangle.
+  const double diag = Norm(Sub(hi, lo));
+  double size = std::max(2.0 * sumExtent / (3.0 * counted), 1e-9 * diag);
+  const double volume = std::max(hi[0] - lo[0], size) * std::max(hi[1] - lo[1], size) *
+    std::max(hi[2] - lo[2], size);
+  size = std::max(size, std::cbrt(volume / (4.0 * counted)));
+  if (!(size > 0) || !std::isfinite(size))
+  {
+    return;
+  }
+  std::array<int, 3> dims;
+  for (int a = 0; a < 3; ++a)
+  {
+    dims[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / size) + 1);
+  }
+  const vtkIdType ncells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  auto cellRange = [&](const std::array<double, 6>& b, std::array<int, 6>& r) {
+    for (int a = 0; a < 3; ++a)
+    {
+      r[a] = std::clamp(static_cast<int>((b[a] - lo[a]) / size), 0, dims[a] - 1);
+      r[3 + a] = std::clamp(static_cast<int>((b[3 + a] - lo[a]) / size), 0, dims[a] - 1);
+    }
+  };
+  std::vector<vtkIdType> start(static_cast<std::size_t>(ncells + 1), 0);
+  std::array<int, 6> r;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    std::vector<vtkIdType> fill;
+    std::vector<vtkIdType> items;
+    if (pass == 1)
+    {
+      for (vtkIdType c = 0; c < ncells; ++c)
+      {
+        start[c + 1] += start[c];
+      }
+      fill.assign(start.begin(), start.end() - 1);
+      items.resize(static_cast<std::size_t>(start[ncells]));
+    }
+    for (vtkIdType t = 0; t < nt; ++t)
+    {
+      if (!usable[t])
+      {
+        continue;
+      }
+      cellRange(boxes[t], r);
+      for (int z = r[2]; z <= r[5]; ++z)
+      {
+        for (int y = r[1]; y <= r[4]; ++y)
+        {
+          for (int x = r[0]; x <= r[3]; ++x)
+          {
+            const vtkIdType c = x + dims[0] * (y + static_cast<vtkIdType>(dims[1]) * z);
+            if (pass == 0)
+            {
+              ++start[c + 1];
+            }
+            else
+            {
+              items[fill[c]++] = t;
+            }
+          }
+        }
+      }
+    }
+    if (pass == 1)
+    {
+      IntersectionWorker worker{ tris, pts, usable, boxes, start, items, dims, lo, size,
+        maxExamples, {}, {} };
+      vtkSMPTools::For(0, ncells, worker);
+      for (auto it = worker.Count.begin(); it != worker.Count.end(); ++it)
+      {
+        report.selfIntersections += *it;
+      }
+      for (auto it = worker.Examples.begin(); it != worker.Examples.end(); ++it)
+      {
+        report.intersectingPairs.insert(report.intersectingPairs.end(), it->begin(), it->end());
+      }
+      std::sort(report.intersectingPairs.begin(), report.intersectingPairs.end());
+      if (report.intersectingPairs.size() > maxExamples)
+      {
+        report.intersectingPairs.resize(maxExamples);
+      }
+    }
+  }
+  report.selfIntersectionsChecked = true;
+}
+
+void Accumulate(MeshStatistic& s, double v, vtkIdType& n)
+{
+  if (n == 0)
+  {
+    s.min = s.max = v;
+  }
+  s.min = std::min(s.min, v);
+  s.max = std::max(s.max, v);
+  s.mean += v;
+  ++n;
+}
+
+std::string Plural(vtkIdType n, const char* word)
+{
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+} // namespace
+
+std::vector<std::int64_t> CollectTriangles(vtkPolyData* mesh)
+{
+  std::vector<std::int64_t> tris;
+  if (!mesh)
+  {
+    return tris;
+  }
+  if (mesh->GetPolys())
+  {
+    auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      vtkIdType npts;
+      const vtkIdType* pts;
+      it->GetCurrentCell(npts, pts);
+      for (vtkIdType k = 1; k + 1 < npts; ++k)
+      {
+        tris.insert(tris.end(), { pts[0], pts[k], pts[k + 1] });
+      }
+    }
+  }
+  if (mesh->GetStrips())
+  {
+    auto it = vtk::TakeSmartPointer(mesh->GetStrips()->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      vtkIdType npts;
+      const vtkIdType* pts;
+      it->GetCurrentCell(npts, pts);
+      for (vtkIdType k = 0; k + 2 < npts; ++k)
+      {
+        if (k % 2 == 0)
+        {
+          tris.insert(tris.end(), { pts[k], pts[k + 1], pts[k + 2] });
+        }
+        else
+        {
+          tris.insert(tris.end(), { pts[k + 1], pts[k], pts[k + 2] });
+        }
+      }
+    }
+  }
+  return tris;
+}
+
+MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshCheckOptions& options)
+{
+  MeshCheckReport report;
+  if (!mesh)
+  {
+    report.problems.push_back("no mesh");
+    return report;
+  }
+  const vtkIdType np = mesh->GetNumberOfPoints();
+  report.points = np;
+  const std::vector<std::int64_t> tris = CollectTriangles(mesh);
+  const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
+  report.triangles = nt;
+  if (nt == 0)
+  {
+    report.problems.push_back("the mesh has no triangles");
+    return report;
+  }
+
+  std::vector<P3> pts(static_cast<std::size_t>(np));
+  std::vector<std::uint8_t> finite(static_cast<std::size_t>(np), 1);
+  P3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    mesh->GetPoint(i, pts[i].data());
+    if (!std::isfinite(pts[i][0]) || !std::isfinite(pts[i][1]) || !std::isfinite(pts[i][2]))
+    {
+      finite[i] = 0;
+      ++report.nonFinitePoints;
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], pts[i][a]);
+      hi[a] = std::max(hi[a], pts[i][a]);
+    }
+  }
+  const double diag = report.nonFinitePoints == np ? 0.0 : Norm(Sub(hi, lo));
+
+  // Edges: sorted (key, triangle, direction) records.
+  struct EdgeUse
+  {
+    std::uint64_t key;
+    vtkIdType tri;
+    bool forward; // traversed from the smaller to the larger vertex id
+  };
+  std::vector<EdgeUse> uses;
+  uses.reserve(tris.size());
+  std::vector<std::uint8_t> usable(static_cast<std::size_t>(nt), 1);
+  std::vector<std::uint8_t> used(static_cast<std::size_t>(np), 0);
+  UnionFind components(nt);
+  vtkIdType lengthCount = 0, angleCount = 0, badIds = 0;
+  double volume6 = 0.0;
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    const std::int64_t* v = &tris[3 * t];
+    bool valid = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      valid = valid && v[k] >= 0 && v[k] < np;
+    }
+    if (!valid)
+    {
+      usable[t] = 0;
+      ++badIds;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      used[v[k]] = 1;
+      if (v[k] != v[(k + 1) % 3])
+      {
+        uses.push_back({ EdgeKey(v[k], v[(k + 1) % 3]), t, v[k] < v[(k + 1) % 3] });
+      }
+    }
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
+    {
+      ++report.degenerateTriangles;
+      usable[t] = 0;
+      continue;
+    }
+    if (!finite[v[0]] || !finite[v[1]] || !finite[v[2]])
+    {
+      usable[t] = 0;
+      continue;
+    }
+    const P3 &a = pts[v[0]], &b = pts[v[1]], &c = pts[v[2]];
+    const P3 n = Cross(Sub(b, a), Sub(c, a));
+    const double area2 = Norm(n);
+    report.area += 0.5 * area2;
+    volume6 += Dot(a, Cross(b, c));
+    if (area2 <= 2e-14 * diag * diag)
+    {
+      ++report.degenerateTriangles;
+      usable[t] = 0;
+    }
+    const std::array<double, 3> len{ Norm(Sub(b, a)), Norm(Sub(c, b)), Norm(Sub(a, c)) };
+    for (double l : len)
+    {
+      Accumulate(report.edgeLength, l, lengthCount);
+    }
+    if (usable[t])
+    {
+      double minAngle = 180.0;
+      const std::array<const P3*, 3> p{ &a, &b, &c };
+      for (int k = 0; k < 3; ++k)
+      {
+        const P3 u = Sub(*p[(k + 1) % 3], *p[k]);
+        const P3 w = Sub(*p[(k + 2) % 3], *p[k]);
+        const double angle = std::atan2(Norm(Cross(u, w)), Dot(u, w)) * 180.0 / M_PI;
+        minAngle = std::min(minAngle, angle);
+      }
+      Accumulate(report.minimumAngle, minAngle, angleCount);
+    }
+  }
+  report.edgeLength.mean = lengthCount ? report.edgeLength.mean / lengthCount : 0.0;
+  report.minimumAngle.mean = angleCount ? report.minimumAngle.mean / angleCount : 0.0;
+  report.volume = volume6 / 6.0;
+  report.unusedPoints = std::count(used.begin(), used.end(), 0);
+
+  std::sort(uses.begin(), uses.end(),
+    [](const EdgeUse& x, const EdgeUse& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
+  // Boundary edges, directed as their triangle traverses them, for the loops.
+  std::unordered_multimap<std::int64_t, std::int64_t> boundaryNext;
+  std::vector<std::uint8_t> nonManifoldVertex(static_cast<std::size_t>(np), 0);
+  for (std::size_t i = 0; i < uses.size();)
+  {
+    std::size_t j = i;
+    while (j < uses.size() && uses[j].key == uses[i].key)
+    {
+      // Triangles sharing an edge are in one component.
+      components.Join(static_cast<std::size_t>(uses[i].tri), static_cast<std::size_t>(uses[j].tri));
+      ++j;
+    }
+    const std::size_t count = j - i;
+    const auto lo32 = static_cast<std::int64_t>(uses[i].key >> 32);
+    const auto hi32 = static_cast<std::int64_t>(uses[i].key & 0xffffffffu);
+    if (count == 1)
+    {
+      ++report.boundaryEdges;
+      if (uses[i].forward)
+      {
+        boundaryNext.emplace(lo32, hi32);
+      }
+      else
+      {
+        boundaryNext.emplace(hi32, lo32);
+      }
+    }
+    else if (count == 2)
+    {
+      if (uses[i].forward == uses[i + 1].forward)
+      {
+        ++report.inconsistentEdges;
+      }
+    }
+    else
+    {
+      ++report.nonManifoldEdges;
+      nonManifoldVertex[lo32] = nonManifoldVertex[hi32] = 1;
+    }
+    i = j;
+  }
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    report.components += components.Find(static_cast<std::size_t>(t)) == static_cast<std::size_t>(t) ? 1 : 0;
+  }
+  report.closed = report.boundaryEdges == 0 && report.nonManifoldEdges == 0;
+
+  // Boundary loops: follow the directed boundary edges.
+  while (!boundaryNext.empty())
+  {
+    auto it = boundaryNext.begin();
+    const std::int64_t start = it->first;
+    std::int64_t current = it->second;
+    boundaryNext.erase(it);
+    vtkIdType edges = 1;
+    while (current != start)
+    {
+      auto nextIt = boundaryNext.find(current);
+      if (nextIt == boundaryNext.end())
+      {
+        break; // an open chain (inconsistent orientation or non-manifold): count it as a loop
+      }
+      current = nextIt->second;
+      boundaryNext.erase(nextIt);
+      ++edges;
+    }
+    report.boundaryLoops.push_back(edges);
+  }
+  std::sort(report.boundaryLoops.rbegin(), report.boundaryLoops.rend());
+
+  // Non-manifold vertices: the triangles around a vertex form more than one edge-connected fan
+  // (e.g. two cones touching at their tips). Vertices on non-manifold edges count too.
+  {
+    std::vector<vtkIdType> start(static_cast<std::size_t>(np + 1), 0);
+    for (vtkIdType t = 0; t < nt; ++t)
+    {
+      if (tris[3 * t] >= 0 && tris[3 * t] < np && tris[3 * t + 1] >= 0 && tris[3 * t + 1] < np &&
+        tris[3 * t + 2] >= 0 && tris[3 * t + 2] < np)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          ++start[tris[3 * t + k] + 1];
+        }
+      }
+    }
+    for (vtkIdType i = 0; i < np; ++i)
+    {
+      start[i + 1] += start[i];
+    }
+    std::vector<vtkIdType> fill(start.begin(), start.end() - 1);
+    std::vector<vtkIdType> incident(static_cast<std::size_t>(start[np]));
+    for (vtkIdType t = 0; t < nt; ++t)
+    {
+      if (tris[3 * t] >= 0 && tris[3 * t] < np && tris[3 * t + 1] >= 0 && tris[3 * t + 1] < np &&
+        tris[3 * t + 2] >= 0 && tris[3 * t + 2] < np)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          incident[fill[tris[3 * t + k]]++] = t;
+        }
+      }
+    }
+    for (vtkIdType v = 0; v < np; ++v)
+    {
+      const vtkIdType first = start[v], last = start[v + 1];
+      const vtkIdType k = last - first;
+      if (k <= 1 || nonManifoldVertex[v])
+      {
+        continue;
+      }
+      // Fans: join incident triangles sharing a second vertex.
+      std::vector<vtkIdType> parent(static_cast<std::size_t>(k));
+      std::iota(parent.begin(), parent.end(), vtkIdType(0));
+      auto find = [&](vtkIdType a) {
+        while (parent[a] != a)
+        {
+          a = parent[a] = parent[parent[a]];
+        }
+        return a;
+      };
+      for (vtkIdType a = 0; a < k; ++a)
+      {
+        const std::int64_t* ta = &tris[3 * incident[first + a]];
+        for (vtkIdType b = a + 1; b < k; ++b)
+        {
+          const std::int64_t* tb = &tris[3 * incident[first + b]];
+          bool share = false;
+          for (int i = 0; i < 3 && !share; ++i)
+          {
+            share = ta[i] != v && (ta[i] == tb[0] || ta[i] == tb[1] || ta[i] == tb[2]);
+          }
+          if (share)
+          {
+            parent[find(a)] = find(b);
+          }
+        }
+      }
+      vtkIdType fans = 0;
+      for (vtkIdType a = 0; a < k; ++a)
+      {
+        fans += find(a) == a ? 1 : 0;
+      }
+      nonManifoldVertex[v] = fans > 1 ? 1 : 0;
+    }
+    report.nonManifoldVertices = std::count(nonManifoldVertex.begin(), nonManifoldVertex.end(), 1);
+  }
+
+  if (options.selfIntersections)
+  {
+    CheckSelfIntersections(tris, pts, usable, options.maxExamples, report);
+  }
+
+  if (before)
+  {
+    const std::vector<std::int64_t> trisBefore = CollectTriangles(before);
+    if (before->GetNumberOfPoints() != np || trisBefore != tris)
+    {
+      report.flipsNote = "the mesh before the warp has other points or triangles (e.g. after "
+                         "subdivision): flips not checked";
+    }
+    else
+    {
+      report.flipsChecked = true;
+      for (vtkIdType t = 0; t < nt; ++t)
+      {
+        if (!usable[t])
+        {
+          continue;
+        }
+        const std::int64_t* v = &tris[3 * t];
+        std::array<P3, 3> b;
+        for (int k = 0; k < 3; ++k)
+        {
+          before->GetPoint(v[k], b[k].data());
+        }
+        const P3 n0 = Cross(Sub(b[1], b[0]), Sub(b[2], b[0]));
+        const P3 n1 = Cross(Sub(pts[v[1]], pts[v[0]]), Sub(pts[v[2]], pts[v[0]]));
+        if (Dot(n0, n1) < 0)
+        {
+          ++report.flippedTriangles;
+        }
+      }
+    }
+  }
+
+  auto& problems = report.problems;
+  if (badIds > 0)
+  {
+    problems.push_back(Plural(badIds, "triangle") + " with point ids out of range");
+  }
+  if (report.nonFinitePoints > 0)
+  {
+    problems.push_back(Plural(report.nonFinitePoints, "non-finite point"));
+  }
+  if (report.nonManifoldEdges > 0)
+  {
+    problems.push_back(Plural(report.nonManifoldEdges, "non-manifold edge"));
+  }
+  if (report.nonManifoldVertices > 0)
+  {
+    problems.push_back(Plural(report.nonManifoldVertices, "non-manifold vertex") );
+  }
+  if (report.inconsistentEdges > 0)
+  {
+    problems.push_back(
+      Plural(report.inconsistentEdges, "edge") + " with inconsistent orientation");
+  }
+  if (report.degenerateTriangles > 0)
+  {
+    problems.push_back(Plural(report.degenerateTriangles, "degenerate triangle"));
+  }
+  if (report.selfIntersections > 0)
+  {
+    problems.push_back(Plural(report.selfIntersections, "self-intersecting triangle pair"));
+  }
+  if (report.flippedTriangles > 0)
+  {
+    problems.push_back(Plural(report.flippedTriangles, "flipped triangle") +
+      " (space inverted by the warp)");
+  }
+  if (options.requireClosed && !report.boundaryLoops.empty())
+  {
+    problems.push_back("open: " + Plural(static_cast<vtkIdType>(report.boundaryLoops.size()),
+      "boundary loop"));
+  }
+  return report;
+}
+
+namespace
+{
+std::string Number(double v)
+{
+  if (!std::isfinite(v))
+  {
+    return "null";
+  }
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.9g", v);
+  return buffer;
+}
+
+std::string JsonString(const std::string& s)
+{
+  std::string out = "\"";
+  for (char c : s)
+  {
+    if (c == '"' || c == '\\')
+    {
+      out += '\\';
+      out += c;
+    }
+    else if (static_cast<unsigned char>(c) < 0x20)
+    {
+      char buffer[8];
+      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+      out += buffer;
+    }
+    else
+    {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+} // namespace
+
+std::string FormatReportText(const MeshCheckReport& r, const std::string& name)
+{
+  std::ostringstream os;
+  os << name << ": " << (r.Clean() ? "clean" : "PROBLEMS") << "\n";
+  os << "  triangles " << r.triangles << ", points " << r.points;
+  if (r.unusedPoints)
+  {
+    os << " (" << r.unusedPoints << " unused)";
+  }
+  os << ", components " << r.components << "\n";
+  os << "  boundary loops " << r.boundaryLoops.size();
+  if (!r.boundaryLoops.empty())
+  {
+    os << " (edges:";
+    for (vtkIdType l : r.boundaryLoops)
+    {
+      os << " " << l;
+    }
+    os << ")";
+  }
+  os << (r.closed ? ", closed" : ", open") << "\n";
+  os << "  non-manifold edges " << r.nonManifoldEdges << ", vertices " << r.nonManifoldVertices
+     << "; inconsistently oriented edges " << r.inconsistentEdges << "\n";
+  os << "  degenerate triangles " << r.degenerateTriangles << "; self-intersections "
+     << (r.selfIntersectionsChecked ? std::to_string(r.selfIntersections) : "not checked");
+  for (const auto& p : r.intersectingPairs)
+  {
+    os << " (" << p.first << "," << p.second << ")";
+  }
+  os << "\n";
+  os << "  area " << Number(r.area);
+  if (r.closed)
+  {
+    os << ", volume " << Number(std::abs(r.volume))
+       << (r.volume < 0 ? " (triangles face inwards)" : "");
+  }
+  os << "\n";
+  os << "  edge length min " << Number(r.edgeLength.min) << " mean " << Number(r.edgeLength.mean)
+     << " max " << Number(r.edgeLength.max) << "\n";
+  os << "  minimum angle (deg) min " << Number(r.minimumAngle.min) << " mean "
+     << Number(r.minimumAngle.mean) << "\n";
+  if (r.flipsChecked)
+  {
+    os << "  flipped triangles since before the warp " << r.flippedTriangles << "\n";
+  }
+  else if (!r.flipsNote.empty())
+  {
+    os << "  " << r.flipsNote << "\n";
+  }
+  for (const std::string& p : r.problems)
+  {
+    os << "  problem: " << p << "\n";
+  }
+  return os.str();
+}
+
+std::string FormatReportJson(const MeshCheckReport& r, const std::string& name)
+{
+  std::ostringstream os;
+  os << "{\n";
+  os << "  \"mesh\": " << JsonString(name) << ",\n";
+  os << "  \"clean\": " << (r.Clean() ? "true" : "false") << ",\n";
+  os << "  \"triangles\": " << r.triangles << ",\n";
+  os << "  \"points\": " << r.points << ",\n";
+  os << "  \"unusedPoints\": " << r.unusedPoints << ",\n";
+  os << "  \"components\": " << r.components << ",\n";
+  os << "  \"boundaryEdges\": " << r.boundaryEdges << ",\n";
+  os << "  \"boundaryLoops\": [";
+  for (std::size_t i = 0; i < r.boundaryLoops.size(); ++i)
+  {
+    os << (i ? ", " : "") << r.boundaryLoops[i];
+  }
+  os << "],\n";
+  os << "  \"closed\": " << (r.closed ? "true" : "false") << ",\n";
+  os << "  \"nonManifoldEdges\": " << r.nonManifoldEdges << ",\n";
+  os << "  \"nonManifoldVertices\": " << r.nonManifoldVertices << ",\n";
+  os << "  \"inconsistentEdges\": " << r.inconsistentEdges << ",\n";
+  os << "  \"degenerateTriangles\": " << r.degenerateTriangles << ",\n";
+  os << "  \"selfIntersections\": "
+     << (r.selfIntersectionsChecked ? std::to_string(r.selfIntersections) : "null") << ",\n";
+  os << "  \"intersectingPairs\": [";
+  for (std::size_t i = 0; i < r.intersectingPairs.size(); ++i)
+  {
+    os << (i ? ", " : "") << "[" << r.intersectingPairs[i].first << ", "
+       << r.intersectingPairs[i].second << "]";
+  }
+  os << "],\n";
+  os << "  \"area\": " << Number(r.area) << ",\n";
+  os << "  \"volume\": " << (r.closed ? Number(std::abs(r.volume)) : "null") << ",\n";
+  os << "  \"facesInward\": " << (r.closed && r.volume < 0 ? "true" : "false") << ",\n";
+  os << "  \"edgeLength\": {\"min\": " << Number(r.edgeLength.min)
+     << ", \"mean\": " << Number(r.edgeLength.mean) << ", \"max\": " << Number(r.edgeLength.max)
+     << "},\n";
+  os << "  \"minimumAngleDegrees\": {\"min\": " << Number(r.minimumAngle.min)
+     << ", \"mean\": " << Number(r.minimumAngle.mean) << "},\n";
+  os << "  \"flippedTriangles\": " << (r.flipsChecked ? std::to_string(r.flippedTriangles) : "null")
+     << ",\n";
+  os << "  \"nonFinitePoints\": " << r.nonFinitePoints << ",\n";
+  os << "  \"problems\": [";
+  for (std::size_t i = 0; i < r.problems.size(); ++i)
+  {
+    os << (i ? ", " : "") << JsonString(r.problems[i]);
+  }
+  os << "]\n}\n";
+  return os.str();
+}
+
+} // namespace bender

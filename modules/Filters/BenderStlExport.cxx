@@ -1,0 +1,240 @@
+#include "BenderStlExport.h"
+
+#include "BenderMeshCheck.h"
+#include "vtkBenderCapFilter.h"
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkPolyData.h>
+
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <functional>
+#include <unistd.h>
+
+namespace bender
+{
+namespace
+{
+std::string DisplayName(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// Writes through a temporary file in the target's folder, then renames it over the target.
+void AtomicWrite(const std::string& path, const std::function<bool(std::FILE*)>& produce)
+{
+  std::string tmpl = path + ".tmp.XXXXXX";
+  std::vector<char> name(tmpl.begin(), tmpl.end());
+  name.push_back('\0');
+  const int fd = mkstemp(name.data());
+  if (fd < 0)
+  {
+    throw StlExportError(DisplayName(path) + ": cannot create a file there: " + std::strerror(errno));
+  }
+  std::FILE* f = fdopen(fd, "wb");
+  const std::string tmp(name.data());
+  // mkstemp creates the file 0600; give it the usual permissions of a written mesh.
+  const bool ok = f && fchmod(fd, 0644) == 0 && produce(f) && std::fflush(f) == 0 && fsync(fd) == 0;
+  const bool closed = f ? std::fclose(f) == 0 : (close(fd), false);
+  if (!ok || !closed || std::rename(tmp.c_str(), path.c_str()) != 0)
+  {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw StlExportError(DisplayName(path) + ": write failed: " + why);
+  }
+}
+
+struct Facet
+{
+  std::array<float, 3> n;
+  std::array<std::array<float, 3>, 3> v;
+};
+
+std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh, StlFrame frame, std::size_t patches)
+{
+  const std::vector<std::int64_t> tris = CollectTriangles(mesh);
+  if (tris.empty())
+  {
+    throw StlExportError("the mesh has no triangles");
+  }
+  vtkDataArray* ids = mesh->GetCellData()->GetArray(vtkBenderCapFilter::PatchIdArrayName());
+  // Triangles come from polygons then strips; PatchId is per cell, one triangle per cell for
+  // the triangle meshes the cap filter writes.
+  const bool perTriangle = ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(tris.size() / 3);
+  std::vector<std::vector<Facet>> out(patches);
+  const double sign = frame == StlFrame::RAS ? -1.0 : 1.0;
+  for (std::size_t t = 0; t < tris.size(); t += 3)
+  {
+    std::array<std::array<double, 3>, 3> p;
+    for (int k = 0; k < 3; ++k)
+    {
+      mesh->GetPoint(tris[t + k], p[k].data());
+      p[k][0] *= sign;
+      p[k][1] *= sign;
+      for (double c : p[k])
+      {
+        if (!std::isfinite(c))
+        {
+          throw StlExportError("the mesh has non-finite (NaN or infinite) coordinates");
+        }
+      }
+    }
+    const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+    const double w[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+    double n[3] = { u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0] };
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    Facet f;
+    for (int a = 0; a < 3; ++a)
+    {
+      f.n[a] = static_cast<float>(len > 0 ? n[a] / len : 0.0);
+      for (int k = 0; k < 3; ++k)
+      {
+        f.v[k][a] = static_cast<float>(p[k][a]);
+      }
+    }
+    std::size_t patch = 0;
+    if (perTriangle && patches > 1)
+    {
+      const double id = ids->GetTuple1(static_cast<vtkIdType>(t / 3));
+      patch = id >= 0 && id < static_cast<double>(patches) ? static_cast<std::size_t>(id) : 0;
+    }
+    out[patch].push_back(f);
+  }
+  return out;
+}
+
+std::string Header(const StlExportOptions& options)
+{
+  return std::string("bender export: frame ") +
+    (options.frame == StlFrame::LPS ? "LPS" : "RAS") + ", unit " + options.unit;
+}
+
+bool WriteBinary(std::FILE* f, const std::string& header, const std::vector<Facet>& facets)
+{
+  char head[80];
+  std::memset(head, ' ', sizeof(head));
+  std::memcpy(head, header.data(), std::min<std::size_t>(header.size(), sizeof(head)));
+  const auto count = static_cast<std::uint32_t>(facets.size());
+  bool ok = std::fwrite(head, 1, 80, f) == 80 && std::fwrite(&count, 4, 1, f) == 1;
+  const std::uint16_t attribute = 0;
+  for (const Facet& facet : facets)
+  {
+    ok = ok && std::fwrite(facet.n.data(), 4, 3, f) == 3;
+    for (const auto& v : facet.v)
+    {
+      ok = ok && std::fwrite(v.data(), 4, 3, f) == 3;
+    }
+    ok = ok && std::fwrite(&attribute, 2, 1, f) == 1;
+  }
+  return ok;
+}
+
+bool WriteSolid(std::FILE* f, const std::string& name, const std::string& endNote,
+  const std::vector<Facet>& facets)
+{
+  bool ok = std::fprintf(f, "solid %s\n", name.c_str()) > 0;
+  for (const Facet& facet : facets)
+  {
+    ok = ok && std::fprintf(f, "  facet normal %.9g %.9g %.9g\n    outer loop\n", facet.n[0], facet.n[1], facet.n[2]) > 0;
+    for (const auto& v : facet.v)
+    {
+      ok = ok && std::fprintf(f, "      vertex %.9g %.9g %.9g\n", v[0], v[1], v[2]) > 0;
+    }
+    ok = ok && std::fprintf(f, "    endloop\n  endfacet\n") > 0;
+  }
+  return ok && std::fprintf(f, "endsolid %s%s\n", name.c_str(), endNote.c_str()) > 0;
+}
+} // namespace
+
+std::vector<std::string> PatchNames(vtkPolyData* mesh)
+{
+  std::vector<std::string> names{ "wall" };
+  vtkDataArray* ids =
+    mesh ? mesh->GetCellData()->GetArray(vtkBenderCapFilter::PatchIdArrayName()) : nullptr;
+  if (ids && ids->GetNumberOfTuples() > 0)
+  {
+    const int maxId = static_cast<int>(ids->GetRange(0)[1]);
+    for (int k = 1; k <= maxId; ++k)
+    {
+      names.push_back("cap_" + std::to_string(k));
+    }
+  }
+  return names;
+}
+
+std::vector<std::string> ExportStl(
+  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options)
+{
+  if (!mesh)
+  {
+    throw StlExportError(DisplayName(path) + ": no mesh to export");
+  }
+  const std::vector<std::string> names = PatchNames(mesh);
+  std::vector<std::vector<Facet>> facets;
+  try
+  {
+    facets = Facets(mesh, options.frame,
+      options.patches == StlPatchMode::Single ? 1 : names.size());
+  }
+  catch (const StlExportError& e)
+  {
+    throw StlExportError(DisplayName(path) + ": " + e.what());
+  }
+  const std::string header = Header(options);
+  std::vector<std::string> written;
+  switch (options.patches)
+  {
+    case StlPatchMode::Single:
+      AtomicWrite(path, [&](std::FILE* f) { return WriteBinary(f, header, facets[0]); });
+      written.push_back(path);
+      break;
+    case StlPatchMode::Solids:
+      AtomicWrite(path, [&](std::FILE* f) {
+        // ASCII STL has no comment: the header follows the first solid's name on its
+        // endsolid line, which readers ignore (OpenFOAM would fold it into the patch name
+        // on the solid line).
+        bool ok = true;
+        for (std::size_t k = 0; k < names.size(); ++k)
+        {
+          if (facets[k].empty())
+          {
+            continue;
+          }
+          ok = ok && WriteSolid(f, names[k], k == 0 ? "  " + header : std::string(), facets[k]);
+        }
+        return ok;
+      });
+      written.push_back(path);
+      break;
+    case StlPatchMode::Files:
+    {
+      std::string stem = path;
+      if (stem.size() > 4 && (stem.compare(stem.size() - 4, 4, ".stl") == 0 ||
+                               stem.compare(stem.size() - 4, 4, ".STL") == 0))
+      {
+        stem.resize(stem.size() - 4);
+      }
+      for (std::size_t k = 0; k < names.size(); ++k)
+      {
+        if (facets[k].empty())
+        {
+          continue;
+        }
+        const std::string file = stem + "_" + names[k] + ".stl";
+        AtomicWrite(file, [&](std::FILE* f) { return WriteBinary(f, header + ", patch " + names[k], facets[k]); });
+        written.push_back(file);
+      }
+      break;
+    }
+  }
+  return written;
+}
+
+} // namespace bender

@@ -1,0 +1,55 @@
+#ifndef bender_BenderStlExport_h
+#define bender_BenderStlExport_h
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace bender
+{
+
+/// An export that could not be written; what() names the file and the problem.
+class StlExportError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How patches (the "PatchId" cell array: wall 0, caps 1..n) are written.
+enum class StlPatchMode
+{
+  Single, ///< one binary STL of the whole surface
+  Solids, ///< one ASCII STL with a named solid per patch: wall, cap_1, ... (snappyHexMesh)
+  Files   ///< one binary STL per patch: OUT_wall.stl, OUT_cap_1.stl, ...
+};
+
+/// The frame the exported coordinates are in. Input meshes are LPS; RAS negates x and y
+/// (a rotation by 180 degrees about z: orientation and volume are kept).
+enum class StlFrame
+{
+  LPS,
+  RAS
+};
+
+struct StlExportOptions
+{
+  StlPatchMode patches = StlPatchMode::Single;
+  StlFrame frame = StlFrame::LPS;
+  std::string unit = "mm";
+};
+
+/// Patch names in order of PatchId: "wall", "cap_1", ... Without a PatchId array: "wall".
+std::vector<std::string> PatchNames(vtkPolyData* mesh);
+
+/// Writes mesh (triangles; polygons fanned) as STL. Every file states the frame and unit in
+/// its header ("bender export: frame LPS, unit mm"). Each file is written atomically (a
+/// temporary file in the same folder, then renamed). Returns the paths written. Throws
+/// StlExportError (non-finite coordinates, no triangles, unwritable folder).
+std::vector<std::string> ExportStl(
+  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options);
+
+} // namespace bender
+
+#endif

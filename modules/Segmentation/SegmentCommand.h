@@ -1,0 +1,58 @@
+#ifndef bender_SegmentCommand_h
+#define bender_SegmentCommand_h
+
+// The logic of `bender-cli segment` and `bender-cli phantom`, kept in the module so that it is
+// tested without the executable. app/cli/CommandSegment.cxx only forwards to these.
+
+#include "SurfaceExtraction.h"
+#include "VesselPhantom.h"
+#include "VesselSegmentation.h"
+#include "VolumeIO.h"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace bender
+{
+
+struct SegmentRequest
+{
+  std::string input;
+  std::string output;
+  VolumeReadOptions read;
+  SegmentationParameters segmentation;
+  SurfaceParameters surface;
+  bool quiet = false;
+  bool help = false;
+};
+
+struct PhantomRequest
+{
+  std::string input;
+  std::string output;
+  PhantomParameters phantom;
+  bool help = false;
+};
+
+std::string SegmentUsage();
+std::string PhantomUsage();
+
+/// Parses the words after `segment`. Throws ParameterError with a one-line message.
+SegmentRequest ParseSegmentArguments(const std::vector<std::string>& args);
+/// Parses the words after `phantom`. Throws ParameterError with a one-line message.
+PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args);
+
+/// Reads, segments and extracts; the surface is in LPS mm. Timings of every stage (read,
+/// segmentation, then the surface stages) are appended to the result's timings.
+SurfaceResult RunSegmentPipeline(const SegmentRequest& request, const ProgressReporter& progress = {});
+
+/// The whole commands: usage on `out` for --help (exit 0); progress and errors on `err`; exit
+/// status 0 on success, 1 on a processing error (bad input, seed outside the volume or in
+/// background), 2 on a usage error. The output file is written atomically (never half-written).
+int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunPhantomCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+} // namespace bender
+
+#endif

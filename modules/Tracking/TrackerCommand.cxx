@@ -1,0 +1,347 @@
+#include "TrackerCommand.h"
+
+#include "FastrakEncoding.h"
+#include "RibbonEndMapping.h"
+#include "StreamRecorder.h"
+#include "TrackerDeviceFactory.h"
+#include "TrackingErrors.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <ostream>
+
+namespace bender
+{
+
+namespace
+{
+volatile std::sig_atomic_t Interrupted = 0;
+
+extern "C" void OnSignal(int)
+{
+  Interrupted = 1;
+}
+
+// Installs the handlers for the duration of the command and restores the previous ones.
+class SignalGuard
+{
+public:
+  SignalGuard()
+  {
+    Interrupted = 0;
+    this->OldInt = std::signal(SIGINT, OnSignal);
+    this->OldTerm = std::signal(SIGTERM, OnSignal);
+  }
+  ~SignalGuard()
+  {
+    std::signal(SIGINT, this->OldInt);
+    std::signal(SIGTERM, this->OldTerm);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+private:
+  void (*OldInt)(int) = SIG_DFL;
+  void (*OldTerm)(int) = SIG_DFL;
+};
+
+struct UsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+double ParseNumber(const std::string& option, const std::string& value, double min, double max)
+{
+  std::size_t used = 0;
+  double v = 0.0;
+  try
+  {
+    v = std::stod(value, &used);
+  }
+  catch (const std::exception&)
+  {
+    used = 0;
+  }
+  if (used != value.size() || !std::isfinite(v) || v < min || v > max)
+  {
+    throw UsageError(option + " '" + value + "': expected a number in [" + std::to_string(min) +
+      ", " + std::to_string(max) + "]");
+  }
+  return v;
+}
+
+// "+ 0.0" turns -0 into 0, so that JSON consumers never see "-0.000000".
+std::string PoseJson(const TrackerPose& p)
+{
+  char line[320];
+  std::snprintf(line, sizeof line,
+    "{\"t\": %.6f, \"station\": %d, \"position\": [%.4f, %.4f, %.4f], "
+    "\"quaternion\": [%.6f, %.6f, %.6f, %.6f], \"button\": %d}",
+    p.time, p.station, p.position.x + 0.0, p.position.y + 0.0, p.position.z + 0.0,
+    p.orientation.w + 0.0, p.orientation.x + 0.0, p.orientation.y + 0.0, p.orientation.z + 0.0,
+    p.button ? 1 : 0);
+  return line;
+}
+
+void PrintSummary(std::ostream& err, const std::string& device, const TrackerStatistics& s,
+  std::uint64_t printed)
+{
+  char line[256];
+  std::snprintf(line, sizeof line, "tracker summary: %s, %llu poses printed\n", device.c_str(),
+    static_cast<unsigned long long>(printed));
+  err << line;
+  for (const StationStatistics& st : s.stations)
+  {
+    std::snprintf(line, sizeof line, "  station %d: %llu samples over %.3f s, %.1f Hz\n",
+      st.station, static_cast<unsigned long long>(st.samples), st.lastTime - st.firstTime,
+      st.RateHz());
+    err << line;
+  }
+  std::snprintf(line, sizeof line,
+    "  records %llu, dropped %llu, malformed %llu, truncated %llu, garbage bytes %llu, "
+    "warnings %llu, other stations %llu, queue overflows %llu\n",
+    static_cast<unsigned long long>(s.parser.records),
+    static_cast<unsigned long long>(s.parser.dropped),
+    static_cast<unsigned long long>(s.parser.malformed),
+    static_cast<unsigned long long>(s.parser.truncated),
+    static_cast<unsigned long long>(s.parser.garbageBytes),
+    static_cast<unsigned long long>(s.parser.warnings),
+    static_cast<unsigned long long>(s.filtered),
+    static_cast<unsigned long long>(s.queueOverflows));
+  err << line;
+  if (s.latencyMs)
+  {
+    std::snprintf(line, sizeof line, "  latency: %.1f ms (median round trip of 'P')\n", *s.latencyMs);
+    err << line;
+  }
+}
+} // namespace
+
+std::string TrackerCliUsage()
+{
+  return "usage: bender-cli tracker --device usb|usb:N|serial:PATH[@BAUD[,8N1]]|replay:FILE|sim\n"
+         "                          [--record FILE] [--count N] [--stations 1,2]\n"
+         "                          [--format binary|ascii] [--realtime] [--duration S]\n"
+         "                          [--timeout S] [--reset]\n\n"
+         "Streams poses from a Polhemus Fastrak (USB or serial), a recording or the simulator\n"
+         "and prints one JSON line per pose on stdout:\n"
+         "  {\"t\": s, \"station\": n, \"position\": [x, y, z] (mm), \"quaternion\": [w, x, y, z],"
+         " \"button\": 0|1}\n"
+         "Grab/release events and a summary (rates, dropped and malformed records) go to stderr.\n\n"
+         "  --device SPEC    usb: first Fastrak on USB (vendor 0x0f44); serial:/dev/ttyUSB0 at\n"
+         "                   115200 8N1 unless @BAUD[,8N1] says otherwise; replay:FILE plays raw\n"
+         "                   bytes recorded in binary mode (FILE.timestamps used when present);\n"
+         "                   sim: two scripted hands bending a ribbon\n"
+         "  --record FILE    write what the device sends to FILE (+ FILE.timestamps)\n"
+         "  --count N        stop after N poses\n"
+         "  --stations LIST  stations to activate and print (default 1,2)\n"
+         "  --format F       binary (default) or ascii records (for replay: how FILE was recorded)\n"
+         "  --realtime       replay at the recorded pace instead of as fast as possible\n"
+         "  --duration S     stop after S seconds of pose time\n"
+         "  --timeout S      fail when a live device sends no pose within S s (default 5)\n"
+         "  --reset          reset the unit (^Y) first; takes about 10 s\n"
+         "See docs/tracking.md for connecting a Fastrak, udev rules and the recording format.\n";
+}
+
+int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+  std::shared_ptr<UsbBackend> usbBackend)
+{
+  std::string deviceText;
+  TrackerDeviceOptions options;
+  options.usbBackend = std::move(usbBackend);
+  std::uint64_t count = 0;
+  double duration = 0.0;
+  double timeout = 5.0;
+  try
+  {
+    for (std::size_t i = 0; i < args.size(); ++i)
+    {
+      const std::string& a = args[i];
+      const auto value = [&]() -> const std::string& {
+        if (i + 1 >= args.size())
+        {
+          throw UsageError(a + " needs a value");
+        }
+        return args[++i];
+      };
+      if (a == "--help" || a == "-h")
+      {
+        out << TrackerCliUsage();
+        return 0;
+      }
+      else if (a == "--device")
+      {
+        deviceText = value();
+      }
+      else if (a == "--record")
+      {
+        options.recordPath = value();
+      }
+      else if (a == "--count")
+      {
+        count = std::uint64_t(ParseNumber(a, value(), 1, 1e12));
+      }
+      else if (a == "--stations")
+      {
+        options.stations = ParseStationList(value());
+      }
+      else if (a == "--format")
+      {
+        const std::string& f = value();
+        if (f != "binary" && f != "ascii")
+        {
+          throw UsageError("--format '" + f + "': expected binary or ascii");
+        }
+        options.format = f == "binary" ? FastrakFormat::Binary : FastrakFormat::Ascii;
+      }
+      else if (a == "--realtime")
+      {
+        options.realtime = true;
+      }
+      else if (a == "--duration")
+      {
+        duration = ParseNumber(a, value(), 0.001, 1e7);
+      }
+      else if (a == "--timeout")
+      {
+        timeout = ParseNumber(a, value(), 0.1, 3600);
+      }
+      else if (a == "--reset")
+      {
+        options.reset = true;
+      }
+      else
+      {
+        throw UsageError("unknown argument '" + a + "'");
+      }
+    }
+    if (deviceText.empty())
+    {
+      throw UsageError("--device is required");
+    }
+  }
+  catch (const std::exception& e)
+  {
+    err << "bender-cli tracker: " << e.what() << "\n" << "run 'bender-cli tracker --help' for usage\n";
+    return 2;
+  }
+
+  TrackerDeviceSpec spec;
+  try
+  {
+    spec = TrackerDeviceSpec::Parse(deviceText);
+  }
+  catch (const TrackingError& e)
+  {
+    err << "bender-cli tracker: " << e.what() << "\n";
+    return 2;
+  }
+  const bool live =
+    spec.kind == TrackerDeviceSpec::Kind::Usb || spec.kind == TrackerDeviceSpec::Kind::Serial;
+  const bool simulated = spec.kind == TrackerDeviceSpec::Kind::Simulator;
+
+  SignalGuard signals;
+  std::unique_ptr<TrackerDevice> device;
+  std::unique_ptr<StreamRecorder> simRecorder;
+  std::uint64_t printed = 0;
+  int status = 0;
+  try
+  {
+    // The simulator sends no bytes: its recording is the binary records it would have sent.
+    TrackerDeviceOptions deviceOptions = options;
+    if (simulated && !options.recordPath.empty())
+    {
+      simRecorder = std::make_unique<StreamRecorder>(options.recordPath);
+      deviceOptions.recordPath.clear();
+    }
+    device = CreateTrackerDevice(spec, deviceOptions);
+    // Replay: lose nothing (the reader waits for us); live: keep the newest.
+    device->EnablePoseQueue(4096, !live);
+    device->Open();
+    device->Start();
+    const auto started = std::chrono::steady_clock::now();
+    bool done = false;
+    while (!done)
+    {
+      if (Interrupted)
+      {
+        err << "bender-cli tracker: interrupted\n";
+        break;
+      }
+      device->WaitForActivity(std::chrono::milliseconds(100));
+      const std::vector<TrackerEvent> events = device->TakeEvents();
+      const std::vector<TrackerPose> poses = device->TakePoses();
+      for (const TrackerPose& pose : poses)
+      {
+        if (duration > 0.0 && pose.time > duration)
+        {
+          done = true;
+          break;
+        }
+        out << PoseJson(pose) << '\n';
+        if (simRecorder)
+        {
+          const std::vector<std::uint8_t> record = EncodeFastrakRecord(pose, FastrakFormat::Binary);
+          simRecorder->Append(record.data(), record.size(), pose.time);
+        }
+        ++printed;
+        if (count > 0 && printed >= count)
+        {
+          done = true;
+          break;
+        }
+      }
+      out.flush();
+      for (const TrackerEvent& event : events)
+      {
+        if (event.type == TrackerEventType::Grab || event.type == TrackerEventType::Release)
+        {
+          char line[96];
+          std::snprintf(line, sizeof line, "%s station %d at t=%.3f s\n", ToString(event.type),
+            event.station, event.time);
+          err << line;
+        }
+        else if (event.type == TrackerEventType::EndOfStream)
+        {
+          done = true;
+        }
+        else if (!done)
+        {
+          err << "bender-cli tracker: " << device->Name() << ": " << event.message << "\n";
+          status = 1;
+          done = true;
+        }
+      }
+      if (!done && printed == 0 && !simulated &&
+        std::chrono::steady_clock::now() - started > std::chrono::duration<double>(timeout))
+      {
+        err << "bender-cli tracker: " << device->Name() << ": no pose within " << timeout
+            << " s; is the Fastrak switched on, its receivers plugged in and streaming?\n";
+        status = 1;
+        done = true;
+      }
+    }
+    device->Stop();
+    PrintSummary(err, spec.ToString(), device->Statistics(), printed);
+    device->Close();
+    if (status == 0 && printed == 0 && spec.kind == TrackerDeviceSpec::Kind::Replay)
+    {
+      err << "bender-cli tracker: " << spec.path << ": no pose decoded (not a Fastrak "
+          << (options.format == FastrakFormat::Binary ? "binary" : "ASCII")
+          << " recording with the output list 2,11,16,0?)\n";
+      status = 1;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    err << "bender-cli tracker: " << e.what() << "\n";
+    return 1;
+  }
+  return status;
+}
+
+} // namespace bender

@@ -1,0 +1,288 @@
+// vtkBenderCapFilter and ExportStl: an open tube is capped into a closed, consistently
+// oriented surface with labelled caps; every export mode reassembles into the same closed
+// surface with the same volume; headers state frame and unit; writes are atomic.
+
+#include "BenderMeshCheck.h"
+#include "BenderStlExport.h"
+#include "vtkBenderCapFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkCleanPolyData.h>
+#include <vtkCylinderSource.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkOutputWindow.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTriangleFilter.h>
+#include <vtkCellArray.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+namespace
+{
+// An open tube of radius 2, length 10 along y, welded and triangulated.
+vtkSmartPointer<vtkPolyData> OpenTube()
+{
+  vtkNew<vtkCylinderSource> cyl;
+  cyl->SetRadius(2.0);
+  cyl->SetHeight(10.0);
+  cyl->SetResolution(40);
+  cyl->CappingOff();
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(cyl->GetOutputPort());
+  vtkNew<vtkTriangleFilter> tri;
+  tri->SetInputConnection(clean->GetOutputPort());
+  tri->Update();
+  return tri->GetOutput();
+}
+
+using Triangle = std::array<std::array<float, 3>, 3>;
+
+// Reassembles STL triangles into a mesh by welding identical coordinates.
+vtkSmartPointer<vtkPolyData> Weld(const std::vector<Triangle>& tris)
+{
+  std::map<std::array<float, 3>, vtkIdType> index;
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> polys;
+  for (const Triangle& t : tris)
+  {
+    vtkIdType ids[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      auto it = index.find(t[k]);
+      if (it == index.end())
+      {
+        it = index.emplace(t[k], pts->InsertNextPoint(t[k][0], t[k][1], t[k][2])).first;
+      }
+      ids[k] = it->second;
+    }
+    polys->InsertNextCell(3, ids);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  return pd;
+}
+
+std::vector<Triangle> ReadBinary(const std::string& path, std::string& header)
+{
+  std::ifstream in(path, std::ios::binary);
+  char head[80];
+  in.read(head, 80);
+  header.assign(head, 80);
+  std::uint32_t n = 0;
+  in.read(reinterpret_cast<char*>(&n), 4);
+  std::vector<Triangle> tris(n);
+  for (auto& t : tris)
+  {
+    float normal[3];
+    in.read(reinterpret_cast<char*>(normal), 12);
+    in.read(reinterpret_cast<char*>(t.data()), 36);
+    char attr[2];
+    in.read(attr, 2);
+  }
+  EXPECT_TRUE(in.good());
+  return tris;
+}
+
+// Parses an ASCII STL into solids: name -> triangles.
+std::map<std::string, std::vector<Triangle>> ReadSolids(const std::string& path, std::string& text)
+{
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  text = ss.str();
+  std::map<std::string, std::vector<Triangle>> solids;
+  std::istringstream lines(text);
+  std::string line, current;
+  Triangle t;
+  int k = 0;
+  while (std::getline(lines, line))
+  {
+    std::istringstream words(line);
+    std::string w;
+    words >> w;
+    if (w == "solid")
+    {
+      words >> current;
+    }
+    else if (w == "vertex")
+    {
+      words >> t[k][0] >> t[k][1] >> t[k][2];
+      if (++k == 3)
+      {
+        solids[current].push_back(t);
+        k = 0;
+      }
+    }
+  }
+  return solids;
+}
+
+std::string TempDir()
+{
+  char tmpl[] = "/tmp/bender-export-XXXXXX";
+  return mkdtemp(tmpl);
+}
+
+class CapExport : public ::testing::Test
+{
+protected:
+  void SetUp() override { vtkOutputWindow::GetInstance()->SetDisplayModeToNever(); }
+};
+} // namespace
+
+TEST_F(CapExport, OpenTubeGetsTwoLabelledCaps)
+{
+  auto tube = OpenTube();
+  const auto open = bender::CheckMesh(tube);
+  ASSERT_EQ(open.boundaryLoops.size(), 2u);
+  ASSERT_EQ(open.inconsistentEdges, 0);
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(tube);
+  cap->Update();
+  EXPECT_EQ(cap->GetNumberOfCaps(), 2);
+  EXPECT_EQ(cap->GetNumberOfSkippedLoops(), 0);
+  vtkPolyData* closed = cap->GetOutput();
+  const auto r = bender::CheckMesh(closed);
+  EXPECT_TRUE(r.closed) << bender::FormatReportText(r, "capped");
+  EXPECT_TRUE(r.Clean()) << bender::FormatReportText(r, "capped");
+  EXPECT_EQ(r.inconsistentEdges, 0);
+  // Volume of the inscribed prism of 40 sides.
+  const double exact = 0.5 * 40 * 4.0 * std::sin(2 * M_PI / 40) * 10.0;
+  EXPECT_NEAR(std::abs(r.volume), exact, 1e-6 * exact); // float points
+  vtkDataArray* patch = closed->GetCellData()->GetArray(vtkBenderCapFilter::PatchIdArrayName());
+  ASSERT_NE(patch, nullptr);
+  std::map<int, int> perPatch;
+  for (vtkIdType c = 0; c < patch->GetNumberOfTuples(); ++c)
+  {
+    ++perPatch[static_cast<int>(patch->GetTuple1(c))];
+  }
+  EXPECT_EQ(perPatch.size(), 3u);
+  EXPECT_EQ(perPatch[0], tube->GetNumberOfPolys());
+  EXPECT_EQ(perPatch[1], 40);
+  EXPECT_EQ(perPatch[2], 40);
+  EXPECT_EQ(bender::PatchNames(closed), (std::vector<std::string>{ "wall", "cap_1", "cap_2" }));
+}
+
+TEST_F(CapExport, NonPlanarLoopIsLeftOpen)
+{
+  auto tube = OpenTube();
+  // Warp one end's rim into a saddle.
+  for (vtkIdType i = 0; i < tube->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    tube->GetPoint(i, p);
+    if (p[1] > 4.9)
+    {
+      p[1] += 1.5 * p[0] * p[2]; // a saddle: not planar
+      tube->GetPoints()->SetPoint(i, p);
+    }
+  }
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(tube);
+  cap->Update();
+  EXPECT_EQ(cap->GetNumberOfCaps(), 1);
+  EXPECT_EQ(cap->GetNumberOfSkippedLoops(), 1);
+}
+
+TEST_F(CapExport, EveryModeReassemblesIntoTheSameClosedSurface)
+{
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(OpenTube());
+  cap->Update();
+  vtkPolyData* closed = cap->GetOutput();
+  const double volume = std::abs(bender::CheckMesh(closed).volume);
+  const std::string dir = TempDir();
+
+  // Single binary STL.
+  bender::StlExportOptions options;
+  auto files = bender::ExportStl(closed, dir + "/whole.stl", options);
+  ASSERT_EQ(files.size(), 1u);
+  std::string header;
+  auto whole = bender::CheckMesh(Weld(ReadBinary(files[0], header)));
+  EXPECT_EQ(header.rfind("bender export: frame LPS, unit mm", 0), 0u) << header;
+  EXPECT_TRUE(whole.closed);
+  EXPECT_EQ(whole.inconsistentEdges, 0);
+  EXPECT_NEAR(whole.volume, volume, 1e-5 * volume);
+
+  // Multi-solid ASCII STL, in RAS: same volume (a rotation), same orientation.
+  options.patches = bender::StlPatchMode::Solids;
+  options.frame = bender::StlFrame::RAS;
+  files = bender::ExportStl(closed, dir + "/solids.stl", options);
+  std::string text;
+  const auto solids = ReadSolids(files[0], text);
+  EXPECT_NE(text.find("frame RAS, unit mm"), std::string::npos);
+  ASSERT_EQ(solids.size(), 3u);
+  EXPECT_EQ(solids.count("wall"), 1u);
+  EXPECT_EQ(solids.at("cap_1").size(), 40u);
+  EXPECT_EQ(solids.at("cap_2").size(), 40u);
+  std::vector<Triangle> all;
+  for (const auto& [name, tris] : solids)
+  {
+    all.insert(all.end(), tris.begin(), tris.end());
+  }
+  auto reassembled = bender::CheckMesh(Weld(all));
+  EXPECT_TRUE(reassembled.closed);
+  EXPECT_EQ(reassembled.inconsistentEdges, 0);
+  EXPECT_NEAR(reassembled.volume, volume, 1e-5 * volume);
+  EXPECT_LT(Weld(solids.at("wall")).Get()->GetBounds()[0], 0.0); // x negated, still spans 0
+
+  // One binary file per patch.
+  options.patches = bender::StlPatchMode::Files;
+  options.frame = bender::StlFrame::LPS;
+  files = bender::ExportStl(closed, dir + "/patch.stl", options);
+  ASSERT_EQ(files.size(), 3u);
+  EXPECT_EQ(files[1], dir + "/patch_cap_1.stl");
+  all.clear();
+  for (const auto& f : files)
+  {
+    auto tris = ReadBinary(f, header);
+    EXPECT_NE(header.find("unit mm"), std::string::npos);
+    all.insert(all.end(), tris.begin(), tris.end());
+  }
+  reassembled = bender::CheckMesh(Weld(all));
+  EXPECT_TRUE(reassembled.closed);
+  EXPECT_NEAR(reassembled.volume, volume, 1e-5 * volume);
+  for (const auto& f : files)
+  {
+    std::remove(f.c_str());
+  }
+  std::remove((dir + "/whole.stl").c_str());
+  std::remove((dir + "/solids.stl").c_str());
+  rmdir(dir.c_str());
+}
+
+TEST_F(CapExport, ErrorsLeaveNothingBehind)
+{
+  vtkNew<vtkPolyData> empty;
+  const std::string dir = TempDir();
+  EXPECT_THROW(bender::ExportStl(empty, dir + "/e.stl", {}), bender::StlExportError);
+  auto tube = OpenTube();
+  tube->GetPoints()->SetPoint(0, std::nan(""), 0, 0);
+  try
+  {
+    bender::ExportStl(tube, dir + "/nan.stl", {});
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const bender::StlExportError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("nan.stl: "), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(bender::ExportStl(OpenTube(), "/nonexistent-folder/x.stl", {}),
+    bender::StlExportError);
+  EXPECT_EQ(rmdir(dir.c_str()), 0); // empty: no temporary or partial file left
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(tube);
+  cap->Update();
+  EXPECT_NE(cap->GetLastError().find("non-finite"), std::string::npos);
+}

@@ -1,0 +1,255 @@
+// bender::CheckMesh: counts, boundary loops, manifoldness, orientation, degeneracy,
+// self-intersections, volume and area, flips since before a warp, bad input.
+
+#include "BenderMeshCheck.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellArray.h>
+#include <vtkCubeSource.h>
+#include <vtkNew.h>
+#include <vtkPlaneSource.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSphereSource.h>
+#include <vtkTriangleFilter.h>
+#include <vtkCleanPolyData.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> Sphere(double radius, int resolution, double cx = 0.0)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetCenter(cx, 0, 0);
+  sphere->SetThetaResolution(resolution);
+  sphere->SetPhiResolution(resolution);
+  sphere->Update();
+  return sphere->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> Mesh(const std::vector<std::array<double, 3>>& points,
+  const std::vector<std::array<vtkIdType, 3>>& tris)
+{
+  vtkNew<vtkPoints> pts;
+  for (const auto& p : points)
+  {
+    pts->InsertNextPoint(p.data());
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const auto& t : tris)
+  {
+    polys->InsertNextCell(3, t.data());
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  return pd;
+}
+
+// A closed tetrahedron, outward-facing, with vertex offset `o` along x.
+void AddTetra(std::vector<std::array<double, 3>>& points,
+  std::vector<std::array<vtkIdType, 3>>& tris, double o)
+{
+  const vtkIdType b = static_cast<vtkIdType>(points.size());
+  points.push_back({ o, 0, 0 });
+  points.push_back({ o + 1, 0, 0 });
+  points.push_back({ o, 1, 0 });
+  points.push_back({ o, 0, 1 });
+  tris.push_back({ b, b + 2, b + 1 });
+  tris.push_back({ b, b + 1, b + 3 });
+  tris.push_back({ b, b + 3, b + 2 });
+  tris.push_back({ b + 1, b + 2, b + 3 });
+}
+} // namespace
+
+TEST(MeshCheck, ClosedSphereIsCleanWithVolumeAndArea)
+{
+  auto sphere = Sphere(2.0, 64);
+  const auto r = bender::CheckMesh(sphere);
+  EXPECT_TRUE(r.Clean()) << bender::FormatReportText(r, "sphere");
+  EXPECT_TRUE(r.closed);
+  EXPECT_EQ(r.components, 1);
+  EXPECT_TRUE(r.boundaryLoops.empty());
+  EXPECT_EQ(r.triangles, sphere->GetNumberOfPolys());
+  EXPECT_NEAR(r.volume, 4.0 / 3.0 * M_PI * 8.0, 0.01 * 4.0 / 3.0 * M_PI * 8.0);
+  EXPECT_NEAR(r.area, 4.0 * M_PI * 4.0, 0.01 * 4.0 * M_PI * 4.0);
+  EXPECT_GT(r.edgeLength.min, 0.0);
+  EXPECT_LE(r.edgeLength.min, r.edgeLength.mean);
+  EXPECT_LE(r.edgeLength.mean, r.edgeLength.max);
+  EXPECT_GT(r.minimumAngle.min, 0.0);
+  EXPECT_LE(r.minimumAngle.mean, 60.0 + 1e-9);
+  EXPECT_TRUE(r.selfIntersectionsChecked);
+  EXPECT_EQ(r.selfIntersections, 0);
+}
+
+TEST(MeshCheck, OpenPlaneHasOneBoundaryLoop)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(5, 3);
+  vtkNew<vtkTriangleFilter> tri;
+  tri->SetInputConnection(plane->GetOutputPort());
+  tri->Update();
+  auto r = bender::CheckMesh(tri->GetOutput());
+  EXPECT_TRUE(r.Clean());
+  EXPECT_FALSE(r.closed);
+  ASSERT_EQ(r.boundaryLoops.size(), 1u);
+  EXPECT_EQ(r.boundaryLoops[0], 2 * (5 + 3));
+  bender::MeshCheckOptions closed;
+  closed.requireClosed = true;
+  r = bender::CheckMesh(tri->GetOutput(), nullptr, closed);
+  EXPECT_FALSE(r.Clean());
+}
+
+TEST(MeshCheck, TwoTetrahedraTouchingAtAVertexAreNonManifold)
+{
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<vtkIdType, 3>> tris;
+  AddTetra(points, tris, 0.0);
+  AddTetra(points, tris, 1.0); // its vertex 0 is at (1,0,0), the first one's vertex 1
+  // Merge the coincident vertex: the second tetra uses vertex 1 of the first.
+  for (auto& t : tris)
+  {
+    for (auto& v : t)
+    {
+      v = v == 4 ? 1 : v;
+    }
+  }
+  const auto r = bender::CheckMesh(Mesh(points, tris));
+  EXPECT_EQ(r.nonManifoldVertices, 1);
+  EXPECT_EQ(r.nonManifoldEdges, 0);
+  EXPECT_EQ(r.components, 2);
+  EXPECT_EQ(r.unusedPoints, 1);
+  EXPECT_FALSE(r.Clean());
+  EXPECT_NEAR(r.volume, 2.0 / 6.0, 1e-12);
+}
+
+TEST(MeshCheck, FinIsNonManifoldAndFlippedTriangleIsInconsistent)
+{
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<vtkIdType, 3>> tris;
+  AddTetra(points, tris, 0.0);
+  auto flipped = tris;
+  std::swap(flipped[3][0], flipped[3][1]);
+  auto r = bender::CheckMesh(Mesh(points, flipped));
+  EXPECT_EQ(r.inconsistentEdges, 3);
+  EXPECT_FALSE(r.Clean());
+
+  points.push_back({ 0.5, -1, 0.5 });
+  tris.push_back({ 0, 1, 4 });
+  r = bender::CheckMesh(Mesh(points, tris));
+  EXPECT_EQ(r.nonManifoldEdges, 1);
+  EXPECT_FALSE(r.closed);
+}
+
+TEST(MeshCheck, SelfIntersectionsFound)
+{
+  // Two spheres overlapping: their surfaces cross along a circle.
+  auto a = Sphere(1.0, 24);
+  auto b = Sphere(1.0, 24, 1.2);
+  vtkNew<vtkPolyData> both;
+  {
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkCellArray> polys;
+    for (vtkPolyData* s : { a.Get(), b.Get() })
+    {
+      const vtkIdType offset = pts->GetNumberOfPoints();
+      for (vtkIdType i = 0; i < s->GetNumberOfPoints(); ++i)
+      {
+        pts->InsertNextPoint(s->GetPoint(i));
+      }
+      for (vtkIdType c = 0; c < s->GetNumberOfPolys(); ++c)
+      {
+        vtkIdType npts;
+        const vtkIdType* ids;
+        s->GetPolys()->GetCellAtId(c, npts, ids);
+        vtkIdType t[3] = { ids[0] + offset, ids[1] + offset, ids[2] + offset };
+        polys->InsertNextCell(3, t);
+      }
+    }
+    both->SetPoints(pts);
+    both->SetPolys(polys);
+  }
+  const auto r = bender::CheckMesh(both);
+  EXPECT_GT(r.selfIntersections, 20);
+  EXPECT_FALSE(r.intersectingPairs.empty());
+  EXPECT_EQ(r.components, 2);
+  EXPECT_FALSE(r.Clean());
+  // Apart, no intersection.
+  const auto apart = bender::CheckMesh(Sphere(1.0, 24, 3.0));
+  EXPECT_EQ(apart.selfIntersections, 0);
+}
+
+TEST(MeshCheck, FlipsSinceBeforeTheWarp)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(4, 4);
+  vtkNew<vtkTriangleFilter> tri;
+  tri->SetInputConnection(plane->GetOutputPort());
+  tri->Update();
+  vtkPolyData* before = tri->GetOutput();
+  vtkNew<vtkPolyData> after;
+  after->DeepCopy(before);
+  // Push the interior vertex at (0, 0) past its neighbours at x = 0.25 (grid step 0.25): the
+  // triangles around it fold over, as in a space inversion (paper 3.8).
+  vtkIdType centre = -1;
+  for (vtkIdType i = 0; i < before->GetNumberOfPoints(); ++i)
+  {
+    if (std::abs(before->GetPoint(i)[0]) < 1e-9 && std::abs(before->GetPoint(i)[1]) < 1e-9)
+    {
+      centre = i;
+    }
+  }
+  ASSERT_GE(centre, 0);
+  after->GetPoints()->SetPoint(centre, 0.4, 0.0, 0.0);
+  auto r = bender::CheckMesh(after, before);
+  EXPECT_TRUE(r.flipsChecked);
+  EXPECT_GE(r.flippedTriangles, 2);
+  EXPECT_LT(r.flippedTriangles, 6);
+  EXPECT_FALSE(r.Clean());
+  r = bender::CheckMesh(before, before);
+  EXPECT_EQ(r.flippedTriangles, 0);
+  EXPECT_TRUE(r.Clean());
+  r = bender::CheckMesh(before, Sphere(1.0, 12));
+  EXPECT_FALSE(r.flipsChecked);
+  EXPECT_FALSE(r.flipsNote.empty());
+}
+
+TEST(MeshCheck, EmptyNaNAndDegenerate)
+{
+  vtkNew<vtkPolyData> empty;
+  auto r = bender::CheckMesh(empty);
+  EXPECT_FALSE(r.Clean());
+  EXPECT_EQ(r.triangles, 0);
+
+  auto sphere = Sphere(1.0, 8);
+  sphere->GetPoints()->SetPoint(0, std::nan(""), 0, 0);
+  r = bender::CheckMesh(sphere);
+  EXPECT_EQ(r.nonFinitePoints, 1);
+  EXPECT_FALSE(r.Clean());
+  EXPECT_TRUE(std::isfinite(r.area));
+
+  r = bender::CheckMesh(Mesh({ { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 1, 2 }, { 0, 1, 3 }, { 0, 0, 3 } }));
+  EXPECT_EQ(r.degenerateTriangles, 2);
+  const std::string json = bender::FormatReportJson(r, "x \"q\".stl");
+  EXPECT_NE(json.find("\"degenerateTriangles\": 2"), std::string::npos);
+  EXPECT_NE(json.find("\"clean\": false"), std::string::npos);
+  EXPECT_NE(json.find("x \\\"q\\\".stl"), std::string::npos);
+}
+
+// About a million triangles: the grid keeps the self-intersection search to seconds.
+TEST(MeshCheck, MillionTrianglesInSeconds)
+{
+  auto sphere = Sphere(10.0, 710);
+  ASSERT_GT(sphere->GetNumberOfPolys(), 900000);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = bender::CheckMesh(sphere);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_TRUE(r.Clean()) << bender::FormatReportText(r, "sphere");
+  EXPECT_LT(s, 30.0);
+  std::printf("check of %lld triangles: %.2f s\n", static_cast<long long>(r.triangles), s);
+}

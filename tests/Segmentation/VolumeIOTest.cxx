@@ -1,0 +1,300 @@
+// Volume readers: every format round-trips geometry and values, NIfTI comes out in LPS,
+// real MRIs load, a DICOM series is sorted by position, and bad inputs get a clear message.
+#include "SegmentationTestUtilities.h"
+
+#include "SegmentationErrors.h"
+#include "VolumeIO.h"
+
+#include <itkGDCMImageIO.h>
+#include <itkImage.h>
+#include <itkImageFileReader.h>
+#include <itkImageFileWriter.h>
+#include <itkMetaDataObject.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+
+namespace
+{
+
+using bender_test::TempDir;
+
+bender::Volume ObliqueVolume()
+{
+  bender::Volume v;
+  v.geometry.size = { { 7, 6, 5 } };
+  v.geometry.spacing = { { 0.5, 0.75, 1.25 } };
+  v.geometry.origin = { { -12.5, 30.25, 4.0 } };
+  v.geometry.direction = bender_test::ObliqueDirection();
+  for (std::size_t n = 0; n < v.geometry.VoxelCount(); ++n)
+  {
+    v.voxels.push_back(float(n % 97) * 1.5f - 20.0f);
+  }
+  return v;
+}
+
+void ExpectSameGeometry(const bender::ImageGeometry& a, const bender::ImageGeometry& b, double tolerance)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_EQ(a.size[c], b.size[c]);
+    EXPECT_NEAR(a.spacing[c], b.spacing[c], tolerance);
+    EXPECT_NEAR(a.origin[c], b.origin[c], tolerance);
+  }
+  for (int e = 0; e < 9; ++e)
+  {
+    EXPECT_NEAR(a.direction[e], b.direction[e], tolerance) << "direction element " << e;
+  }
+}
+
+void ExpectMessage(const std::string& path, const std::string& fragment)
+{
+  try
+  {
+    bender::ReadVolume(path);
+    ADD_FAILURE() << "reading " << path << " did not throw";
+  }
+  catch (const bender::VolumeReadError& e)
+  {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+  }
+}
+
+void WriteText(const std::string& path, const std::string& text)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+TEST(VolumeIO, EveryFormatRoundTripsObliqueGeometryAndValues)
+{
+  TempDir dir;
+  const bender::Volume volume = ObliqueVolume();
+  for (const char* name : { "v.nrrd", "v.nhdr", "v.nii", "v.nii.gz", "v.mha", "v.mhd", "v.vti" })
+  {
+    SCOPED_TRACE(name);
+    bender::WriteVolume(volume, dir.File(name));
+    const bender::Volume read = bender::ReadVolume(dir.File(name));
+    ExpectSameGeometry(volume.geometry, read.geometry, 1e-4);
+    ASSERT_EQ(read.voxels.size(), volume.voxels.size());
+    for (std::size_t n = 0; n < read.voxels.size(); ++n)
+    {
+      ASSERT_FLOAT_EQ(read.voxels[n], volume.voxels[n]) << "voxel " << n;
+    }
+  }
+}
+
+TEST(VolumeIO, ObliqueNiftiIsReadInLpsMillimetres)
+{
+  TempDir dir;
+  const bender::Volume volume = ObliqueVolume();
+  const std::string path = dir.File("oblique.nii");
+  bender::WriteVolume(volume, path);
+  // The NIfTI header stores RAS: read its sform rows directly, independent of ITK.
+  std::ifstream in(path, std::ios::binary);
+  char header[348];
+  in.read(header, sizeof(header));
+  ASSERT_TRUE(in.good());
+  std::int16_t sformCode = 0;
+  std::memcpy(&sformCode, header + 254, 2);
+  ASSERT_GT(sformCode, 0);
+  float srow[3][4];
+  std::memcpy(srow, header + 280, sizeof(srow));
+  const bender::Volume read = bender::ReadVolume(path);
+  for (const bender::Point3 index : { bender::Point3{ { 0, 0, 0 } }, bender::Point3{ { 6, 0, 0 } },
+         bender::Point3{ { 2, 5, 1 } }, bender::Point3{ { 6, 5, 4 } } })
+  {
+    double ras[3];
+    for (int r = 0; r < 3; ++r)
+    {
+      ras[r] = srow[r][0] * index[0] + srow[r][1] * index[1] + srow[r][2] * index[2] + srow[r][3];
+    }
+    const bender::Point3 lps = read.geometry.IndexToPhysical(index);
+    EXPECT_NEAR(lps[0], -ras[0], 1e-3);
+    EXPECT_NEAR(lps[1], -ras[1], 1e-3);
+    EXPECT_NEAR(lps[2], ras[2], 1e-3);
+    const bender::Point3 expected = volume.geometry.IndexToPhysical(index);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(lps[c], expected[c], 1e-3);
+    }
+  }
+}
+
+TEST(VolumeIO, Colin27HeadMriLoadsInLps)
+{
+  const bender::Volume ch2 = bender::ReadVolume(bender_test::ExternalData("ch2.nii.gz"));
+  EXPECT_EQ(ch2.geometry.size, (std::array<std::size_t, 3>{ { 181, 217, 181 } }));
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(ch2.geometry.spacing[c], 1.0, 1e-6);
+  }
+  // Stored as RAS-ordered voxels (MNI): index x and y run towards L and P negative in LPS.
+  EXPECT_NEAR(ch2.geometry.direction[0], -1.0, 1e-6);
+  EXPECT_NEAR(ch2.geometry.direction[4], -1.0, 1e-6);
+  EXPECT_NEAR(ch2.geometry.direction[8], 1.0, 1e-6);
+  // MNI space: the volume spans about x in [-90, 90], y in [-126, 90] (RAS), z in [-72, 108].
+  const bender::Point3 first = ch2.geometry.IndexToPhysical({ { 0, 0, 0 } });
+  EXPECT_NEAR(first[0], 90.0, 1.5);
+  EXPECT_NEAR(first[1], 126.0, 1.5);
+  EXPECT_NEAR(first[2], -72.0, 1.5);
+}
+
+TEST(VolumeIO, SformQformMismatchLoadsWithAnOrthonormalDirection)
+{
+  const bender::Volume v = bender::ReadVolume(bender_test::ExternalData("KmeansTest_T1UCharRaw.nii.gz"));
+  EXPECT_EQ(v.geometry.size, (std::array<std::size_t, 3>{ { 128, 128, 62 } }));
+  EXPECT_NEAR(v.geometry.spacing[0], 2.0, 1e-3);
+  EXPECT_NEAR(v.geometry.spacing[1], 2.0, 1e-3);
+  EXPECT_NEAR(v.geometry.spacing[2], 3.0, 1e-3);
+  const auto& d = v.geometry.direction;
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      const double dot = d[a] * d[b] + d[3 + a] * d[3 + b] + d[6 + a] * d[6 + b];
+      EXPECT_NEAR(dot, a == b ? 1.0 : 0.0, 1e-4);
+    }
+  }
+}
+
+using DicomSlice = itk::Image<short, 2>;
+
+/// Writes `count` copies of CT_small.dcm as one series: slice k at z = 2.5 k mm, its pixels
+/// offset by 100 k, file names in shuffled order.
+void WriteDicomSeries(const std::string& folder, const std::string& seriesUid, const std::string& description, int count)
+{
+  auto reader = itk::ImageFileReader<DicomSlice>::New();
+  auto io = itk::GDCMImageIO::New();
+  reader->SetImageIO(io);
+  reader->SetFileName(bender_test::ExternalData("CT_small.dcm"));
+  reader->Update();
+  const int order[] = { 3, 0, 4, 1, 2, 5, 6, 7 };
+  for (int k = 0; k < count; ++k)
+  {
+    DicomSlice::Pointer slice = DicomSlice::New();
+    slice->Graft(reader->GetOutput());
+    DicomSlice::Pointer copy = DicomSlice::New();
+    copy->SetRegions(slice->GetLargestPossibleRegion());
+    copy->CopyInformation(slice);
+    copy->Allocate();
+    const std::size_t n = slice->GetLargestPossibleRegion().GetNumberOfPixels();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      copy->GetBufferPointer()[i] = short(slice->GetBufferPointer()[i] + 100 * k);
+    }
+    itk::MetaDataDictionary dict = reader->GetMetaDataDictionary();
+    itk::EncapsulateMetaData<std::string>(dict, "0020|000e", seriesUid);
+    itk::EncapsulateMetaData<std::string>(dict, "0008|103e", description);
+    itk::EncapsulateMetaData<std::string>(dict, "0008|0018", seriesUid + "." + std::to_string(k + 1));
+    itk::EncapsulateMetaData<std::string>(dict, "0020|0013", std::to_string(k + 1));
+    itk::EncapsulateMetaData<std::string>(dict, "0020|0032", "-10\\-20\\" + std::to_string(2.5 * k));
+    itk::EncapsulateMetaData<std::string>(dict, "0020|0037", "1\\0\\0\\0\\1\\0");
+    itk::EncapsulateMetaData<std::string>(dict, "0028|1052", "0");
+    itk::EncapsulateMetaData<std::string>(dict, "0028|1053", "1");
+    copy->SetMetaDataDictionary(dict);
+    auto writerIO = itk::GDCMImageIO::New();
+    writerIO->KeepOriginalUIDOn();
+    auto writer = itk::ImageFileWriter<DicomSlice>::New();
+    writer->SetImageIO(writerIO);
+    writer->SetInput(copy);
+    writer->SetFileName(folder + "/" + description + "_" + std::to_string(order[k]) + ".dcm");
+    writer->Update();
+  }
+}
+
+TEST(VolumeIO, DicomSeriesIsSortedByPosition)
+{
+  TempDir dir;
+  WriteDicomSeries(dir.Path.string(), "1.2.826.0.1.3680043.2.1125.1.1", "axial", 5);
+  const bender::Volume v = bender::ReadVolume(dir.Path.string());
+  ASSERT_EQ(v.geometry.size[2], 5u);
+  EXPECT_EQ(v.geometry.size[0], 128u);
+  EXPECT_NEAR(v.geometry.spacing[2], 2.5, 1e-3);
+  EXPECT_NEAR(v.geometry.origin[2], 0.0, 1e-3);
+  EXPECT_NEAR(v.geometry.origin[0], -10.0, 1e-3);
+  // Slice k was written with +100 k: the slices come back in position order.
+  const std::size_t slice = v.geometry.size[0] * v.geometry.size[1];
+  for (std::size_t k = 1; k < 5; ++k)
+  {
+    EXPECT_NEAR(v.voxels[k * slice + 1000] - v.voxels[1000], 100.0 * double(k), 1e-3) << "slice " << k;
+  }
+}
+
+TEST(VolumeIO, SeveralDicomSeriesAreListedByUidAndDescription)
+{
+  TempDir dir;
+  WriteDicomSeries(dir.Path.string(), "1.2.826.0.1.3680043.2.1125.1.1", "first", 3);
+  WriteDicomSeries(dir.Path.string(), "1.2.826.0.1.3680043.2.1125.1.2", "second", 4);
+  const auto series = bender::ListDicomSeries(dir.Path.string());
+  ASSERT_EQ(series.size(), 2u);
+  EXPECT_EQ(series[0].uid, "1.2.826.0.1.3680043.2.1125.1.1");
+  EXPECT_EQ(series[0].description, "first");
+  EXPECT_EQ(series[0].sliceCount, 3u);
+  EXPECT_EQ(series[1].description, "second");
+  ExpectMessage(dir.Path.string(), "1.2.826.0.1.3680043.2.1125.1.2 \"second\"");
+  bender::VolumeReadOptions options;
+  options.dicomSeriesUid = "1.2.826.0.1.3680043.2.1125.1.2";
+  EXPECT_EQ(bender::ReadVolume(dir.Path.string(), options).geometry.size[2], 4u);
+  options.dicomSeriesUid = "1.2.3";
+  EXPECT_THROW(bender::ReadVolume(dir.Path.string(), options), bender::VolumeReadError);
+}
+
+TEST(VolumeIO, SingleMrDicomSliceReadsAsOneSliceVolume)
+{
+  TempDir dir;
+  std::filesystem::copy_file(bender_test::ExternalData("MR_small.dcm"), dir.File("MR_small.dcm"));
+  const bender::Volume v = bender::ReadVolume(dir.Path.string());
+  EXPECT_EQ(v.geometry.size[2], 1u);
+  EXPECT_EQ(v.geometry.size[0], 64u);
+}
+
+TEST(VolumeIO, BadInputsGetAOneLineMessage)
+{
+  TempDir dir;
+  ExpectMessage(dir.File("missing.nrrd"), "no such file");
+  WriteText(dir.File("volume.xyz"), "x");
+  ExpectMessage(dir.File("volume.xyz"), "unknown volume extension");
+
+  // Truncated: a valid volume cut in half.
+  bender::WriteVolume(ObliqueVolume(), dir.File("cut.nhdr"));
+  const std::string raw = dir.File("cut.raw.gz");
+  ASSERT_TRUE(std::filesystem::exists(raw));
+  std::filesystem::resize_file(raw, std::filesystem::file_size(raw) / 2);
+  ExpectMessage(dir.File("cut.nhdr"), "cut.nhdr");
+
+  WriteText(dir.File("type.nhdr"),
+    "NRRD0004\ntype: quaternion\ndimension: 3\nsizes: 2 2 2\nencoding: raw\ndata file: type.raw\n");
+  WriteText(dir.File("type.raw"), std::string(64, '\0'));
+  ExpectMessage(dir.File("type.nhdr"), "type.nhdr: ");
+
+  WriteText(dir.File("vector.nhdr"),
+    "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 2\nkinds: vector domain domain domain\n"
+    "spacings: NaN 1 1 1\nendian: little\nencoding: raw\ndata file: vector.raw\n");
+  WriteText(dir.File("vector.raw"), std::string(96, '\0'));
+  ExpectMessage(dir.File("vector.nhdr"), "not supported");
+
+  WriteText(dir.File("zero.nhdr"),
+    "NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 2\nspacings: 1 0 1\nendian: little\nencoding: raw\ndata file: zero.raw\n");
+  WriteText(dir.File("zero.raw"), std::string(32, '\0'));
+  ExpectMessage(dir.File("zero.nhdr"), "spacing");
+
+  const std::filesystem::path empty = dir.Path / "no-dicom";
+  std::filesystem::create_directories(empty);
+  WriteText((empty / "notes.txt").string(), "not a DICOM file\n");
+  ExpectMessage(empty.string(), "no DICOM series");
+}
+
+TEST(VolumeIO, WriteRejectsUnknownExtensionAndEmptyVolume)
+{
+  TempDir dir;
+  EXPECT_THROW(bender::WriteVolume(ObliqueVolume(), dir.File("v.png")), bender::VolumeWriteError);
+  EXPECT_THROW(bender::WriteVolume(bender::Volume{}, dir.File("v.nrrd")), bender::VolumeWriteError);
+  EXPECT_THROW(bender::WriteVolume(ObliqueVolume(), dir.File("missing/folder/v.nrrd")), bender::VolumeWriteError);
+}
+
+} // namespace
