@@ -1,5 +1,6 @@
 #include "FastWarpKernel.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace bender
@@ -103,43 +104,74 @@ BENDER_ALWAYS_INLINE void SinCos(float phi, float& s, float& c)
 #define BENDER_TARGET_CLONES
 #endif
 
-BENDER_TARGET_CLONES
-void EvaluateKernel(const float* table, const float* pend, const float* pstart,
-  const float* pscale, const int* poffset, const int* plast, const float* px, const float* py,
-  const float* pz, const float* sp, const float* fp, float* ox, float* oy, float* oz,
-  std::size_t begin, std::size_t end)
+// The pieces of the table as plain scalars so that the loop below stays branch-free.
+struct KernelPieces
 {
-  const long long kb = static_cast<long long>(begin);
-  const long long ke = static_cast<long long>(end);
-#pragma omp simd
-  for (long long k = kb; k < ke; ++k)
+  float end0, end1;             // piece boundaries (2 where unused)
+  float start0, start1, start2; // piece starts in s
+  float scale0, scale1, scale2; // samples per unit s
+  float first0, first1, first2; // index of each piece's first sample
+  float span0, span1, span2;    // index of its last interval (samples - 2)
+};
+
+// Interpolates the table at each s of a block into SoA arrays (the table lookups are
+// gathers, kept out of the arithmetic loop so that the latter vectorises).
+constexpr int Block = 256;
+
+struct BlockMotions
+{
+  alignas(64) float w[Block], vx[Block], vy[Block], vz[Block];
+  alignas(64) float dw[Block], dx[Block], dy[Block], dz[Block];
+};
+
+void Interpolate(const float* table, const KernelPieces& pc, const float* sp, int n,
+  BlockMotions& m)
+{
+  for (int k = 0; k < n; ++k)
   {
     // The uniform piece holding s (at most three, split at the junction parameters).
     const float sk = sp[k];
-    const bool p1 = sk >= pend[0];
-    const bool p2 = sk >= pend[1];
-    const float start = p2 ? pstart[2] : (p1 ? pstart[1] : pstart[0]);
-    const float scale = p2 ? pscale[2] : (p1 ? pscale[1] : pscale[0]);
-    const int offset = p2 ? poffset[2] : (p1 ? poffset[1] : poffset[0]);
-    const int last = p2 ? plast[2] : (p1 ? plast[1] : plast[0]);
-    const float u = (sk - start) * scale;
-    int jl = static_cast<int>(u);
-    jl = jl < last - offset ? jl : last - offset - 1;
-    jl = jl > 0 ? jl : 0;
-    float a = u - static_cast<float>(jl);
-    a = a < 1.0f ? a : 1.0f;
+    float start = pc.start0, scale = pc.scale0, first = pc.first0, span = pc.span0;
+    if (sk >= pc.end1)
+    {
+      start = pc.start2;
+      scale = pc.scale2;
+      first = pc.first2;
+      span = pc.span2;
+    }
+    else if (sk >= pc.end0)
+    {
+      start = pc.start1;
+      scale = pc.scale1;
+      first = pc.first1;
+      span = pc.span1;
+    }
+    const float u = std::max((sk - start) * scale, 0.0f);
+    const float jl = std::min(static_cast<float>(static_cast<int>(u)), span);
+    const float a = std::min(u - jl, 1.0f);
     const float b = 1.0f - a;
-    const int j = offset + jl;
-    const int i0 = 8 * j;
-    const int i1 = i0 + 8;
-    float w = b * table[i0] + a * table[i1];
-    float vx = b * table[i0 + 1] + a * table[i1 + 1];
-    float vy = b * table[i0 + 2] + a * table[i1 + 2];
-    float vz = b * table[i0 + 3] + a * table[i1 + 3];
-    float dw = b * table[i0 + 4] + a * table[i1 + 4];
-    float dx = b * table[i0 + 5] + a * table[i1 + 5];
-    float dy = b * table[i0 + 6] + a * table[i1 + 6];
-    float dz = b * table[i0 + 7] + a * table[i1 + 7];
+    const float* m0 = table + 8 * static_cast<int>(first + jl);
+    const float* m1 = m0 + 8;
+    m.w[k] = b * m0[0] + a * m1[0];
+    m.vx[k] = b * m0[1] + a * m1[1];
+    m.vy[k] = b * m0[2] + a * m1[2];
+    m.vz[k] = b * m0[3] + a * m1[3];
+    m.dw[k] = b * m0[4] + a * m1[4];
+    m.dx[k] = b * m0[5] + a * m1[5];
+    m.dy[k] = b * m0[6] + a * m1[6];
+    m.dz[k] = b * m0[7] + a * m1[7];
+  }
+}
+
+BENDER_TARGET_CLONES
+void PowerAndApply(const BlockMotions& m, const float* px, const float* py, const float* pz,
+  const float* fp, float* ox, float* oy, float* oz, int n)
+{
+#pragma omp simd
+  for (int k = 0; k < n; ++k)
+  {
+    float w = m.w[k], vx = m.vx[k], vy = m.vy[k], vz = m.vz[k];
+    float dw = m.dw[k], dx = m.dx[k], dy = m.dy[k], dz = m.dz[k];
     // Renormalise (DLB) and make the dual part orthogonal to the real part.
     const float inv = 1.0f / std::sqrt(w * w + vx * vx + vy * vy + vz * vz);
     w *= inv;
@@ -189,8 +221,28 @@ void EvaluateKernel(const float* table, const float* pend, const float* pstart,
 void FastWarpKernel::Evaluate(const float* px, const float* py, const float* pz, const float* s,
   const float* f, float* ox, float* oy, float* oz, std::size_t begin, std::size_t end) const
 {
-  EvaluateKernel(this->Table.data(), this->End, this->Start, this->Scale, this->Offset,
-    this->Last, px, py, pz, s, f, ox, oy, oz, begin, end);
+  KernelPieces pc;
+  pc.end0 = this->End[0];
+  pc.end1 = this->End[1];
+  pc.start0 = this->Start[0];
+  pc.start1 = this->Start[1];
+  pc.start2 = this->Start[2];
+  pc.scale0 = this->Scale[0];
+  pc.scale1 = this->Scale[1];
+  pc.scale2 = this->Scale[2];
+  pc.first0 = static_cast<float>(this->Offset[0]);
+  pc.first1 = static_cast<float>(this->Offset[1]);
+  pc.first2 = static_cast<float>(this->Offset[2]);
+  pc.span0 = static_cast<float>(this->Last[0] - this->Offset[0] - 1);
+  pc.span1 = static_cast<float>(this->Last[1] - this->Offset[1] - 1);
+  pc.span2 = static_cast<float>(this->Last[2] - this->Offset[2] - 1);
+  BlockMotions m;
+  for (std::size_t b = begin; b < end; b += Block)
+  {
+    const int n = static_cast<int>(std::min<std::size_t>(Block, end - b));
+    Interpolate(this->Table.data(), pc, s + b, n, m);
+    PowerAndApply(m, px + b, py + b, pz + b, f + b, ox + b, oy + b, oz + b, n);
+  }
 }
 
 } // namespace bender

@@ -178,6 +178,40 @@ TEST_F(CliWarp, BadInputsGiveOneLineAndNoOutput)
   }
 }
 
+TEST_F(CliWarp, MixedPolygonsAreWarpedAndAPointCloudIsRefused)
+{
+  // Triangles and a quad: polygons pass through unchanged, points are warped.
+  const std::string mixed = this->Tmp("mixed.off");
+  {
+    std::ofstream o(mixed);
+    o << "OFF\n6 3 0\n0 0 0\n20 -3 0\n20 3 0\n30 -3 1\n30 3 1\n100 0 0\n"
+         "3 0 1 2\n4 1 3 4 2\n3 3 5 4\n";
+  }
+  const std::string out = this->Tmp("mixed_out.vtp");
+  const Result ok =
+    RunCli("warp " + mixed + " " + Data + "/conformance/bend90.bender.json " + out);
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  auto result = bender::ReadMesh(out);
+  ASSERT_EQ(result->GetNumberOfPolys(), 3);
+  ASSERT_EQ(result->GetNumberOfPoints(), 6);
+  double p[3];
+  result->GetPoint(3, p);
+  EXPECT_GT(std::hypot(p[0] - 30.0, p[1] + 3.0, p[2] - 1.0), 1.0) << "inside R, must move";
+  result->GetPoint(5, p);
+  EXPECT_EQ(p[0], 100.0);
+
+  const std::string cloud = this->Tmp("cloud.off");
+  {
+    std::ofstream o(cloud);
+    o << "OFF\n2 0 0\n0 0 0\n1 0 0\n";
+  }
+  const Result refused =
+    RunCli("warp " + cloud + " " + Data + "/conformance/bend90.bender.json " + this->Tmp("c.vtp"));
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.output.find("cloud.off"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(this->Tmp("c.vtp")));
+}
+
 TEST_F(CliWarp, NeverOverwritesItsInput)
 {
   const std::string copy = this->Tmp("tube.off");
