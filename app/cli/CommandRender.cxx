@@ -240,6 +240,16 @@ int RunRenderCommand(const std::vector<std::string>& args)
   camera->SetViewUp(up);
   renderer->ResetCamera();
 
+  // Debian's VTK renders through GLX: without an X server the render window would abort the
+  // process. Say so instead (under CI and on servers, run inside xvfb-run).
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    std::fprintf(stderr,
+      "bender-cli render: no display: this VTK renders through an X server; run under "
+      "xvfb-run (e.g. xvfb-run -a bender-cli render ...)\n");
+    return 1;
+  }
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetSize(width, height);

@@ -2,6 +2,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
+#include <vtkMath.h>
 #include <vtkPolyData.h>
 #include <vtkSMPThreadLocal.h>
 #include <vtkSMPTools.h>
@@ -76,6 +77,162 @@ bool TrianglesIntersect(const std::array<P3, 3>& t, const std::array<P3, 3>& u)
     }
   }
   return false;
+}
+
+// Space inversion (paper 3.8) turns a piece of surface inside out: the warp is locally
+// orientation-reversing, while a rigid motion, however large its rotation, is not. A triangle
+// counts as flipped when
+// - it lies on a fold: across one of its edges the two normals agreed before the warp
+//   (dihedral below 90 degrees) and oppose after it; a continuous warp that inverts space
+//   folds the surface along the border of the inverted region; or
+// - its normal after the warp opposes the image of its normal before under the local
+//   rotation, the best-fitting proper rotation (Kabsch) carrying the triangle and its
+//   edge-neighbours' opposite vertices from before to after (a mirrored, curved neighbourhood
+//   has no proper rotation fitting it). On a flat neighbourhood a mirror cannot be told from
+//   a half turn, so this second test only adds what the first misses on curved surfaces.
+vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
+  const std::vector<std::uint8_t>& usable, vtkPolyData* before, const std::vector<P3>& after)
+{
+  const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
+  // Undirected edge -> up to two triangles.
+  std::unordered_map<std::uint64_t, std::array<vtkIdType, 2>> edges;
+  edges.reserve(static_cast<std::size_t>(3 * nt));
+  auto key = [](std::int64_t a, std::int64_t b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) ^
+      static_cast<std::uint64_t>(std::max(a, b));
+  };
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    if (!usable[t])
+    {
+      continue;
+    }
+    for (int e = 0; e < 3; ++e)
+    {
+      auto it = edges.emplace(key(tris[3 * t + e], tris[3 * t + (e + 1) % 3]),
+        std::array<vtkIdType, 2>{ { -1, -1 } });
+      auto& slot = it.first->second;
+      (slot[0] < 0 ? slot[0] : slot[1]) = t;
+    }
+  }
+  std::vector<P3> pre(before->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < before->GetNumberOfPoints(); ++i)
+  {
+    before->GetPoint(i, pre[i].data());
+  }
+  auto normal = [&](const std::vector<P3>& x, vtkIdType t) {
+    const std::int64_t* v = &tris[3 * t];
+    return Cross(Sub(x[v[1]], x[v[0]]), Sub(x[v[2]], x[v[0]]));
+  };
+  std::vector<std::uint8_t> folded(static_cast<std::size_t>(nt), 0);
+  for (const auto& e : edges)
+  {
+    const vtkIdType t = e.second[0], u = e.second[1];
+    if (t < 0 || u < 0)
+    {
+      continue;
+    }
+    if (Dot(normal(pre, t), normal(pre, u)) > 0.0 && Dot(normal(after, t), normal(after, u)) < 0.0)
+    {
+      folded[t] = folded[u] = 1;
+    }
+  }
+  vtkIdType flipped = 0;
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    if (!usable[t])
+    {
+      continue;
+    }
+    if (folded[t])
+    {
+      ++flipped;
+      continue;
+    }
+    std::vector<std::int64_t> ids(tris.begin() + 3 * t, tris.begin() + 3 * t + 3);
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::int64_t a = tris[3 * t + e], b = tris[3 * t + (e + 1) % 3];
+      const auto& slot = edges[key(a, b)];
+      const vtkIdType u = slot[0] == t ? slot[1] : slot[0];
+      if (u < 0)
+      {
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::int64_t v = tris[3 * u + k];
+        if (v != a && v != b)
+        {
+          ids.push_back(v);
+        }
+      }
+    }
+    // Kabsch: H = sum (p - cp)(q - cq)^T, R = V diag(1, 1, det) U^T.
+    P3 cp{ 0, 0, 0 }, cq{ 0, 0, 0 };
+    for (std::int64_t v : ids)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        cp[c] += pre[v][c] / ids.size();
+        cq[c] += after[v][c] / ids.size();
+      }
+    }
+    double h[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+    for (std::int64_t v : ids)
+    {
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          h[r][c] += (pre[v][r] - cp[r]) * (after[v][c] - cq[c]);
+        }
+      }
+    }
+    double u[3][3], w[3], vt[3][3];
+    vtkMath::SingularValueDecomposition3x3(h, u, w, vt);
+    // vtkMath gives H = U W VT with proper rotations U and VT; when det H < 0 all of w are
+    // negative. Then H = (-U) |W| VT, and the best proper rotation (Kabsch) is
+    // V D (-U)^T with D = diag(1, 1, -1) on the smallest singular value.
+    double sign[3] = { 1.0, 1.0, 1.0 };
+    if (w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0)
+    {
+      int smallest = 0;
+      for (int k = 1; k < 3; ++k)
+      {
+        if (std::abs(w[k]) < std::abs(w[smallest]))
+        {
+          smallest = k;
+        }
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        sign[k] = k == smallest ? 1.0 : -1.0; // D times the -1 of -U
+      }
+    }
+    double rot[3][3]; // R = V S U^T maps before to after
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        rot[r][c] = vt[0][r] * sign[0] * u[c][0] + vt[1][r] * sign[1] * u[c][1] +
+          vt[2][r] * sign[2] * u[c][2];
+      }
+    }
+    const std::int64_t* tv = &tris[3 * t];
+    const P3 n0 = Cross(Sub(pre[tv[1]], pre[tv[0]]), Sub(pre[tv[2]], pre[tv[0]]));
+    const P3 n1 = Cross(Sub(after[tv[1]], after[tv[0]]), Sub(after[tv[2]], after[tv[0]]));
+    P3 rn0{ 0, 0, 0 };
+    for (int r = 0; r < 3; ++r)
+    {
+      rn0[r] = rot[r][0] * n0[0] + rot[r][1] * n0[1] + rot[r][2] * n0[2];
+    }
+    if (Dot(rn0, n1) < 0)
+    {
+      ++flipped;
+    }
+  }
+  return flipped;
 }
 
 struct UnionFind
@@ -674,25 +831,7 @@ MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshChec
     else
     {
       report.flipsChecked = true;
-      for (vtkIdType t = 0; t < nt; ++t)
-      {
-        if (!usable[t])
-        {
-          continue;
-        }
-        const std::int64_t* v = &tris[3 * t];
-        std::array<P3, 3> b;
-        for (int k = 0; k < 3; ++k)
-        {
-          before->GetPoint(v[k], b[k].data());
-        }
-        const P3 n0 = Cross(Sub(b[1], b[0]), Sub(b[2], b[0]));
-        const P3 n1 = Cross(Sub(pts[v[1]], pts[v[0]]), Sub(pts[v[2]], pts[v[0]]));
-        if (Dot(n0, n1) < 0)
-        {
-          ++report.flippedTriangles;
-        }
-      }
+      report.flippedTriangles = CountInvertedTriangles(tris, usable, before, pts);
     }
   }
 

@@ -57,7 +57,8 @@ struct MeshCheckReport
   MeshStatistic edgeLength;
   MeshStatistic minimumAngle; ///< per-triangle minimum angle, degrees
   /// With a mesh before the warp (same points and triangles in the same order): triangles
-  /// whose orientation flipped (normal before . normal after < 0: space inversion, 3.8).
+  /// whose orientation flipped relative to the local motion (on a fold, or against the
+  /// best-fitting local rotation: space inversion, paper 3.8; see BenderMeshCheck.cxx).
   bool flipsChecked = false;
   vtkIdType flippedTriangles = 0;
   std::string flipsNote; ///< why flips were not checked, when they were not

@@ -166,7 +166,7 @@ TEST(TrackerCliPipeline, ExecutableReplaysTheFixture)
   struct stat info{};
   if (::stat(BENDER_CLI_PATH, &info) != 0)
   {
-    GTEST_SKIP() << BENDER_CLI_PATH << " is not built";
+    GTEST_FAIL() << BENDER_CLI_PATH << " is not built";
   }
   const std::string command = std::string(BENDER_CLI_PATH) + " tracker --device replay:" + Fixture +
     " --count 3 2>/dev/null";
