@@ -82,9 +82,9 @@ bool TrianglesIntersect(const std::array<P3, 3>& t, const std::array<P3, 3>& u)
 // Space inversion (paper 3.8) turns a piece of surface inside out: the warp is locally
 // orientation-reversing, while a rigid motion, however large its rotation, is not. A triangle
 // counts as flipped when
-// - it lies on a fold: across one of its edges the two normals agreed before the warp
-//   (dihedral below 90 degrees) and oppose after it; a continuous warp that inverts space
-//   folds the surface along the border of the inverted region; or
+// - it lies on a fold: across one of its edges the two normals were within 60 degrees of each
+//   other before the warp and more than 120 degrees apart after it; a continuous warp that
+//   inverts space folds the surface along the border of the inverted region; or
 // - its normal after the warp opposes the image of its normal before under the local
 //   rotation, the best-fitting proper rotation (Kabsch) carrying the triangle and its
 //   edge-neighbours' opposite vertices from before to after (a mirrored, curved neighbourhood
@@ -132,7 +132,12 @@ vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
     {
       continue;
     }
-    if (Dot(normal(pre, t), normal(pre, u)) > 0.0 && Dot(normal(after, t), normal(after, u)) < 0.0)
+    // A fold turns the angle between neighbouring normals from small to nearly 180 degrees;
+    // a sharp but genuine bend of the surface does not come near that.
+    const P3 bt = normal(pre, t), bu = normal(pre, u), at = normal(after, t), au = normal(after, u);
+    const double nb = std::sqrt(Dot(bt, bt) * Dot(bu, bu));
+    const double na = std::sqrt(Dot(at, at) * Dot(au, au));
+    if (nb > 0.0 && na > 0.0 && Dot(bt, bu) > 0.5 * nb && Dot(at, au) < -0.5 * na)
     {
       folded[t] = folded[u] = 1;
     }

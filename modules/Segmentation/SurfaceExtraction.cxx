@@ -1,6 +1,5 @@
 #include "SurfaceExtraction.h"
 
-#include "ItkVtkBridge.h"
 #include "Private/ItkImage.h"
 
 #include <itkBinaryMask3DMeshSource.h>
@@ -9,15 +8,16 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkFlyingEdges3D.h>
+#include <vtkFloatArray.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataNormals.h>
 #include <vtkQuadricDecimation.h>
-#include <vtkStaticPointLocator.h>
+#include <vtkSMPTools.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
 #include <algorithm>
@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <memory>
 
 namespace bender
@@ -90,30 +91,53 @@ private:
 LabelMap CropWithBorder(const LabelMap& mask, std::array<long, 3>& offset)
 {
   const auto& size = mask.geometry.size;
+  const std::size_t nx = size[0];
+  // Bounding box per slice (slices in parallel), then reduced: {lo x, hi x, lo y, hi y}.
+  std::vector<std::array<long, 4>> slices(size[2], std::array<long, 4>{ { long(nx), -1, long(size[1]), -1 } });
+  vtkSMPTools::For(0, static_cast<vtkIdType>(size[2]), [&](vtkIdType kBegin, vtkIdType kEnd) {
+    for (std::size_t k = std::size_t(kBegin); k < std::size_t(kEnd); ++k)
+    {
+      std::array<long, 4>& box = slices[k];
+      for (std::size_t j = 0; j < size[1]; ++j)
+      {
+        const std::uint8_t* row = mask.voxels.data() + mask.geometry.LinearIndex(0, j, k);
+        // Most rows are empty: a branch-free (vectorised) OR over the row rejects them quickly.
+        std::uint8_t any = 0;
+        for (std::size_t i = 0; i < nx; ++i)
+        {
+          any |= row[i];
+        }
+        if (any == 0)
+        {
+          continue;
+        }
+        const std::uint8_t* first = std::find_if(row, row + nx, [](std::uint8_t v) { return v != 0; });
+        long last = long(nx) - 1;
+        while (row[last] == 0)
+        {
+          --last;
+        }
+        box[0] = std::min(box[0], long(first - row));
+        box[1] = std::max(box[1], last);
+        box[2] = std::min(box[2], long(j));
+        box[3] = std::max(box[3], long(j));
+      }
+    }
+  });
   long lo[3] = { long(size[0]), long(size[1]), long(size[2]) };
   long hi[3] = { -1, -1, -1 };
   for (std::size_t k = 0; k < size[2]; ++k)
   {
-    for (std::size_t j = 0; j < size[1]; ++j)
+    if (slices[k][1] < 0)
     {
-      const std::uint8_t* row = mask.voxels.data() + mask.geometry.LinearIndex(0, j, k);
-      const std::uint8_t* first = std::find_if(row, row + size[0], [](std::uint8_t v) { return v != 0; });
-      if (first == row + size[0])
-      {
-        continue;
-      }
-      long last = long(size[0]) - 1;
-      while (row[last] == 0)
-      {
-        --last;
-      }
-      lo[0] = std::min(lo[0], long(first - row));
-      hi[0] = std::max(hi[0], last);
-      lo[1] = std::min(lo[1], long(j));
-      hi[1] = std::max(hi[1], long(j));
-      lo[2] = std::min(lo[2], long(k));
-      hi[2] = std::max(hi[2], long(k));
+      continue;
     }
+    lo[0] = std::min(lo[0], slices[k][0]);
+    hi[0] = std::max(hi[0], slices[k][1]);
+    lo[1] = std::min(lo[1], slices[k][2]);
+    hi[1] = std::max(hi[1], slices[k][3]);
+    lo[2] = std::min(lo[2], long(k));
+    hi[2] = std::max(hi[2], long(k));
   }
   if (hi[0] < 0)
   {
@@ -127,22 +151,33 @@ LabelMap CropWithBorder(const LabelMap& mask, std::array<long, 3>& offset)
     local.geometry.size[c] = static_cast<std::size_t>(hi[c] - lo[c] + 3);
   }
   local.voxels.assign(local.geometry.VoxelCount(), 0);
-  for (long k = lo[2]; k <= hi[2]; ++k)
-  {
-    for (long j = lo[1]; j <= hi[1]; ++j)
+  vtkSMPTools::For(lo[2], hi[2] + 1, [&](vtkIdType kBegin, vtkIdType kEnd) {
+    for (long k = long(kBegin); k < long(kEnd); ++k)
     {
-      const std::uint8_t* src = mask.voxels.data() + mask.geometry.LinearIndex(std::size_t(lo[0]), std::size_t(j), std::size_t(k));
-      std::uint8_t* dst = local.voxels.data() +
-        local.geometry.LinearIndex(1, std::size_t(j - offset[1]), std::size_t(k - offset[2]));
-      std::transform(src, src + (hi[0] - lo[0] + 1), dst, [](std::uint8_t v) { return v ? 1 : 0; });
+      for (long j = lo[1]; j <= hi[1]; ++j)
+      {
+        const std::uint8_t* src =
+          mask.voxels.data() + mask.geometry.LinearIndex(std::size_t(lo[0]), std::size_t(j), std::size_t(k));
+        std::uint8_t* dst = local.voxels.data() +
+          local.geometry.LinearIndex(1, std::size_t(j - offset[1]), std::size_t(k - offset[2]));
+        std::transform(src, src + (hi[0] - lo[0] + 1), dst, [](std::uint8_t v) { return v ? 1 : 0; });
+      }
     }
-  }
+  });
   return local;
 }
 
 vtkSmartPointer<vtkPolyData> FlyingEdges(const LabelMap& local, const ProgressReporter& progress)
 {
-  vtkSmartPointer<vtkImageData> image = LabelMapToVtkImage(local);
+  // Wrap the local map's buffer (no copy); it outlives the filter, whose output does not refer
+  // to it. The local geometry is origin 0, identity direction.
+  vtkNew<vtkUnsignedCharArray> scalars;
+  scalars->SetArray(const_cast<std::uint8_t*>(local.voxels.data()), static_cast<vtkIdType>(local.voxels.size()), 1);
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(int(local.geometry.size[0]), int(local.geometry.size[1]), int(local.geometry.size[2]));
+  image->SetSpacing(local.geometry.spacing.data());
+  image->SetOrigin(0.0, 0.0, 0.0);
+  image->GetPointData()->SetScalars(scalars);
   vtkNew<vtkFlyingEdges3D> flyingEdges;
   VtkWatch watch(flyingEdges, progress, "marching cubes");
   flyingEdges->SetInputData(image);
@@ -276,16 +311,54 @@ vtkSmartPointer<vtkPolyData> KeepComponents(vtkPolyData* surface, const std::vec
   }
   else
   {
-    vtkNew<vtkStaticPointLocator> locator;
-    locator->SetDataSet(surface);
-    locator->BuildLocator();
+    // A few seeds: a linear scan for the nearest point beats building a locator.
+    vtkPoints* surfacePoints = surface->GetPoints();
     for (const Point3& seed : seeds)
     {
-      const vtkIdType nearest = locator->FindClosestPoint(seed.data());
+      vtkIdType nearest = -1;
+      double best = std::numeric_limits<double>::max();
+      for (vtkIdType i = 0; i < nPoints; ++i)
+      {
+        double x[3];
+        surfacePoints->GetPoint(i, x);
+        const double d = (x[0] - seed[0]) * (x[0] - seed[0]) + (x[1] - seed[1]) * (x[1] - seed[1]) +
+          (x[2] - seed[2]) * (x[2] - seed[2]);
+        if (d < best)
+        {
+          best = d;
+          nearest = i;
+        }
+      }
       if (nearest >= 0)
       {
         keep[std::size_t(FindRoot(parent, nearest))] = 1;
       }
+    }
+  }
+  // Usually every triangle is kept (one closed piece): return the surface unchanged.
+  bool keepAll = true;
+  for (polys->InitTraversal(); keepAll && polys->GetNextCell(npts, ids);)
+  {
+    keepAll = keep[std::size_t(FindRoot(parent, ids[0]))] != 0;
+  }
+  if (keepAll)
+  {
+    vtkIdType used = 0;
+    std::vector<char> isUsed(std::size_t(nPoints), 0);
+    for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+    {
+      for (vtkIdType v = 0; v < npts; ++v)
+      {
+        used += isUsed[std::size_t(ids[v])] ? 0 : 1;
+        isUsed[std::size_t(ids[v])] = 1;
+      }
+    }
+    if (used == nPoints)
+    {
+      auto output = vtkSmartPointer<vtkPolyData>::New();
+      output->SetPoints(surface->GetPoints());
+      output->SetPolys(polys);
+      return output;
     }
   }
   std::vector<vtkIdType> newId(std::size_t(nPoints), -1);
@@ -314,6 +387,228 @@ vtkSmartPointer<vtkPolyData> KeepComponents(vtkPolyData* surface, const std::vec
   auto output = vtkSmartPointer<vtkPolyData>::New();
   output->SetPoints(points);
   output->SetPolys(kept);
+  return output;
+}
+
+/// Chebyshev coefficients of the windowed-sinc low-pass filter of Taubin, Zhang and Golub
+/// ("Optimal surface smoothing as filter design", 1996) with a Hamming window, the pass band
+/// widened by the offset sigma (Newton search) so that the filter is 1 at the requested band,
+/// as vtkWindowedSincPolyDataFilter computes them.
+std::vector<double> WindowedSincCoefficients(int iterations, double passBand)
+{
+  const int n = iterations;
+  const double pi = 3.14159265358979323846;
+  const double theta = std::acos(1.0 - 0.5 * passBand);
+  std::vector<double> w(std::size_t(n) + 1), c(std::size_t(n) + 1), dc(std::size_t(n) + 1);
+  for (int i = 0; i <= n; ++i)
+  {
+    w[std::size_t(i)] = 0.54 + 0.46 * std::cos(double(i) * pi / double(n + 1));
+  }
+  double sigma = 0.0;
+  for (int step = 0; step < 500; ++step)
+  {
+    c[0] = w[0] * (theta + sigma) / pi;
+    for (int i = 1; i <= n; ++i)
+    {
+      c[std::size_t(i)] = 2.0 * w[std::size_t(i)] * std::sin(double(i) * (theta + sigma)) / (double(i) * pi);
+    }
+    // Coefficients of the derivative series.
+    dc[std::size_t(n)] = 0.0;
+    dc[std::size_t(n - 1)] = 0.0;
+    if (n > 1)
+    {
+      dc[std::size_t(n - 2)] = 2.0 * (n - 1) * c[std::size_t(n - 1)];
+    }
+    for (int i = n - 3; i >= 0; --i)
+    {
+      dc[std::size_t(i)] = dc[std::size_t(i + 2)] + 2.0 * (i + 1) * c[std::size_t(i + 1)];
+    }
+    double f = c[0];
+    double df = dc[0];
+    for (int i = 1; i <= n; ++i)
+    {
+      const double t = i == 1 ? 1.0 - 0.5 * passBand : std::cos(double(i) * theta);
+      f += c[std::size_t(i)] * t;
+      df += dc[std::size_t(i)] * t;
+    }
+    if (n <= 1 || std::fabs(f - 1.0) < 1e-3)
+    {
+      break;
+    }
+    sigma -= (f - 1.0) / df;
+  }
+  return c;
+}
+
+/// Windowed-sinc smoothing of a closed 2-manifold triangle surface (every edge shared by exactly
+/// two triangles): the same filter as vtkWindowedSincPolyDataFilter with normalised coordinates
+/// and no feature edges, where every vertex is "simple" and moves; the vertex loop of each
+/// iteration runs in parallel (vtkSMPTools) on a compact neighbour table. Returns null when the
+/// surface is not such a surface (the caller then uses VTK's filter).
+vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
+  vtkPolyData* surface, int iterations, double passBand, const ProgressReporter& progress)
+{
+  const std::size_t nPoints = static_cast<std::size_t>(surface->GetNumberOfPoints());
+  vtkCellArray* polys = surface->GetPolys();
+  if (nPoints == 0 || nPoints > std::numeric_limits<std::uint32_t>::max() || iterations < 2 ||
+    surface->GetNumberOfVerts() > 0 || surface->GetNumberOfLines() > 0 ||
+    surface->GetNumberOfStrips() > 0)
+  {
+    return nullptr;
+  }
+  // Neighbour table (CSR): every triangle adds its two other corners to each corner; on a closed
+  // 2-manifold each neighbour then appears exactly twice.
+  std::vector<std::size_t> start(nPoints + 1, 0);
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  {
+    if (npts != 3)
+    {
+      return nullptr;
+    }
+    for (int v = 0; v < 3; ++v)
+    {
+      start[std::size_t(ids[v]) + 1] += 2;
+    }
+  }
+  for (std::size_t i = 0; i < nPoints; ++i)
+  {
+    start[i + 1] += start[i];
+  }
+  std::vector<vtkIdType> raw(start[nPoints]);
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+    {
+      for (int v = 0; v < 3; ++v)
+      {
+        std::size_t& f = fill[std::size_t(ids[v])];
+        raw[f++] = ids[(v + 1) % 3];
+        raw[f++] = ids[(v + 2) % 3];
+      }
+    }
+  }
+  std::vector<std::size_t> first(nPoints + 1, 0);
+  std::vector<std::uint32_t> neighbours;
+  neighbours.reserve(raw.size() / 2);
+  for (std::size_t i = 0; i < nPoints; ++i)
+  {
+    auto a = raw.begin() + static_cast<std::ptrdiff_t>(start[i]);
+    auto b = raw.begin() + static_cast<std::ptrdiff_t>(start[i + 1]);
+    if (a == b)
+    {
+      return nullptr; // unused point
+    }
+    std::sort(a, b);
+    for (auto it = a; it != b; it += 2)
+    {
+      if (it + 1 == b || *(it + 1) != *it || (it + 2 != b && *(it + 2) == *it))
+      {
+        return nullptr; // boundary or non-manifold edge
+      }
+      neighbours.push_back(static_cast<std::uint32_t>(*it));
+    }
+    first[i + 1] = neighbours.size();
+  }
+  // Coordinates centred on the bounding box and scaled by its diagonal (NormalizeCoordinatesOn).
+  double bounds[6];
+  surface->GetBounds(bounds);
+  const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) };
+  const double length = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  if (!(length > 0.0))
+  {
+    return nullptr;
+  }
+  const std::vector<double> c = WindowedSincCoefficients(iterations, passBand);
+  // x[0], x[1], x[2]: the last three terms of the Chebyshev recursion; result: the filtered sum.
+  std::vector<double> x[3];
+  for (auto& v : x)
+  {
+    v.resize(3 * nPoints);
+  }
+  std::vector<double> result(3 * nPoints);
+  vtkPoints* points = surface->GetPoints();
+  for (std::size_t i = 0; i < nPoints; ++i)
+  {
+    double q[3];
+    points->GetPoint(vtkIdType(i), q);
+    for (int r = 0; r < 3; ++r)
+    {
+      x[0][3 * i + std::size_t(r)] = (q[r] - centre[r]) / length;
+    }
+  }
+  // Minus the umbrella Laplacian of `in` at point i.
+  const auto laplacian = [&](const std::vector<double>& in, std::size_t i, double d[3]) {
+    double sum[3] = { 0.0, 0.0, 0.0 };
+    const double* xi = in.data() + 3 * i;
+    for (std::size_t e = first[i]; e < first[i + 1]; ++e)
+    {
+      const double* xj = in.data() + 3 * std::size_t(neighbours[e]);
+      sum[0] += xj[0];
+      sum[1] += xj[1];
+      sum[2] += xj[2];
+    }
+    const double weight = 1.0 / double(first[i + 1] - first[i]);
+    for (int r = 0; r < 3; ++r)
+    {
+      d[r] = xi[r] - weight * sum[r];
+    }
+  };
+  vtkSMPTools::For(0, vtkIdType(nPoints), [&](vtkIdType begin, vtkIdType end) {
+    for (std::size_t i = std::size_t(begin); i < std::size_t(end); ++i)
+    {
+      double d[3];
+      laplacian(x[0], i, d);
+      for (int r = 0; r < 3; ++r)
+      {
+        const std::size_t k = 3 * i + std::size_t(r);
+        x[1][k] = x[0][k] - 0.5 * d[r];
+        result[k] = c[0] * x[0][k] + c[1] * x[1][k];
+      }
+    }
+  });
+  int zero = 0, one = 1, two = 2;
+  for (int iteration = 2; iteration <= iterations; ++iteration)
+  {
+    if (iteration % 5 == 0)
+    {
+      progress.Report("smoothing", double(iteration) / double(iterations));
+      progress.ThrowIfCancelled("smoothing");
+    }
+    const std::vector<double>& x0 = x[zero];
+    const std::vector<double>& x1 = x[one];
+    std::vector<double>& x2 = x[two];
+    const double ci = c[std::size_t(iteration)];
+    vtkSMPTools::For(0, vtkIdType(nPoints), [&](vtkIdType begin, vtkIdType end) {
+      for (std::size_t i = std::size_t(begin); i < std::size_t(end); ++i)
+      {
+        double d[3];
+        laplacian(x1, i, d);
+        for (int r = 0; r < 3; ++r)
+        {
+          const std::size_t k = 3 * i + std::size_t(r);
+          x2[k] = x1[k] - x0[k] + x1[k] - d[r];
+          result[k] += ci * x2[k];
+        }
+      }
+    });
+    zero = (zero + 1) % 3;
+    one = (one + 1) % 3;
+    two = (two + 1) % 3;
+  }
+  vtkNew<vtkPoints> smoothed;
+  smoothed->SetDataTypeToFloat();
+  smoothed->SetNumberOfPoints(vtkIdType(nPoints));
+  for (std::size_t i = 0; i < nPoints; ++i)
+  {
+    const double* q = result.data() + 3 * i;
+    smoothed->SetPoint(vtkIdType(i), q[0] * length + centre[0], q[1] * length + centre[1], q[2] * length + centre[2]);
+  }
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->SetPoints(smoothed);
+  output->SetPolys(polys);
   return output;
 }
 
@@ -361,10 +656,66 @@ double SignedVolume6(vtkPolyData* surface)
   return sum;
 }
 
+/// Point normals as vtkPolyDataNormals computes them without splitting or reorientation (the sum
+/// of the unit normals of the triangles around each point, normalised), in one linear pass;
+/// stored as the "Normals" float array.
+void ComputePointNormals(vtkPolyData* surface)
+{
+  const vtkIdType nPoints = surface->GetNumberOfPoints();
+  std::vector<double> sum(3 * std::size_t(nPoints), 0.0);
+  vtkPoints* points = surface->GetPoints();
+  vtkCellArray* polys = surface->GetPolys();
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  {
+    if (npts != 3)
+    {
+      continue;
+    }
+    double a[3], b[3], c[3];
+    points->GetPoint(ids[0], a);
+    points->GetPoint(ids[1], b);
+    points->GetPoint(ids[2], c);
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (length == 0.0)
+    {
+      continue;
+    }
+    for (vtkIdType corner = 0; corner < 3; ++corner)
+    {
+      double* s = sum.data() + 3 * std::size_t(ids[corner]);
+      for (int r = 0; r < 3; ++r)
+      {
+        s[r] += n[r] / length;
+      }
+    }
+  }
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(nPoints);
+  float* out = normals->GetPointer(0);
+  for (std::size_t i = 0; i < std::size_t(nPoints); ++i)
+  {
+    const double* s = sum.data() + 3 * i;
+    const double length = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    for (int r = 0; r < 3; ++r)
+    {
+      out[3 * i + std::size_t(r)] = length > 0.0 ? float(s[r] / length) : 0.0f;
+    }
+  }
+  surface->GetPointData()->SetNormals(normals);
+}
+
 void CountEdges(vtkPolyData* surface, std::size_t& boundary, std::size_t& nonManifold)
 {
-  std::vector<std::uint64_t> edges;
-  edges.reserve(static_cast<std::size_t>(3 * surface->GetNumberOfPolys()));
+  // Edges bucketed by their smaller vertex (counting sort, linear time), then counted per bucket.
+  const std::size_t nPoints = static_cast<std::size_t>(surface->GetNumberOfPoints());
+  std::vector<std::size_t> start(nPoints + 1, 0);
   vtkCellArray* polys = surface->GetPolys();
   vtkIdType npts = 0;
   const vtkIdType* ids = nullptr;
@@ -372,28 +723,42 @@ void CountEdges(vtkPolyData* surface, std::size_t& boundary, std::size_t& nonMan
   {
     for (vtkIdType e = 0; e < npts; ++e)
     {
-      std::uint64_t a = static_cast<std::uint64_t>(ids[e]);
-      std::uint64_t b = static_cast<std::uint64_t>(ids[(e + 1) % npts]);
-      if (a > b)
-      {
-        std::swap(a, b);
-      }
-      edges.push_back((a << 32) | b);
+      ++start[std::size_t(std::min(ids[e], ids[(e + 1) % npts])) + 1];
     }
   }
-  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < nPoints; ++i)
+  {
+    start[i + 1] += start[i];
+  }
+  std::vector<vtkIdType> other(start[nPoints]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  {
+    for (vtkIdType e = 0; e < npts; ++e)
+    {
+      const vtkIdType a = ids[e];
+      const vtkIdType b = ids[(e + 1) % npts];
+      other[fill[std::size_t(std::min(a, b))]++] = std::max(a, b);
+    }
+  }
   boundary = 0;
   nonManifold = 0;
-  for (std::size_t i = 0; i < edges.size();)
+  for (std::size_t v = 0; v < nPoints; ++v)
   {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i])
+    const auto first = other.begin() + static_cast<std::ptrdiff_t>(start[v]);
+    const auto last = other.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+    std::sort(first, last);
+    for (auto i = first; i != last;)
     {
-      ++j;
+      auto j = i;
+      while (j != last && *j == *i)
+      {
+        ++j;
+      }
+      boundary += (j - i == 1) ? 1 : 0;
+      nonManifold += (j - i > 2) ? 1 : 0;
+      i = j;
     }
-    boundary += (j - i == 1) ? 1 : 0;
-    nonManifold += (j - i > 2) ? 1 : 0;
-    i = j;
   }
 }
 
@@ -429,17 +794,26 @@ SurfaceResult Extract(const LabelMap& mask, const SurfaceParameters& p, const Pr
 
   if (p.smoothing > 0.0)
   {
-    vtkNew<vtkWindowedSincPolyDataFilter> smoother;
-    VtkWatch watch(smoother, progress, "smoothing");
-    smoother->SetInputData(surface);
-    smoother->SetNumberOfIterations(20);
-    smoother->SetPassBand(std::pow(10.0, -4.0 * p.smoothing));
-    smoother->BoundarySmoothingOff();
-    smoother->FeatureEdgeSmoothingOff();
-    smoother->NonManifoldSmoothingOn();
-    smoother->NormalizeCoordinatesOn();
-    smoother->Update();
-    surface = smoother->GetOutput();
+    const int iterations = 20;
+    const double passBand = std::pow(10.0, -4.0 * p.smoothing);
+    vtkSmartPointer<vtkPolyData> smoothed = SmoothClosedSurface(surface, iterations, passBand, progress);
+    if (!smoothed)
+    {
+      // Not a closed 2-manifold of triangles: VTK's filter, which classifies boundary and
+      // non-manifold vertices.
+      vtkNew<vtkWindowedSincPolyDataFilter> smoother;
+      VtkWatch watch(smoother, progress, "smoothing");
+      smoother->SetInputData(surface);
+      smoother->SetNumberOfIterations(iterations);
+      smoother->SetPassBand(passBand);
+      smoother->BoundarySmoothingOff();
+      smoother->FeatureEdgeSmoothingOff();
+      smoother->NonManifoldSmoothingOn();
+      smoother->NormalizeCoordinatesOn();
+      smoother->Update();
+      smoothed = smoother->GetOutput();
+    }
+    surface = smoothed;
     clock.Done("smoothing");
   }
 
@@ -471,16 +845,7 @@ SurfaceResult Extract(const LabelMap& mask, const SurfaceParameters& p, const Pr
   {
     ReverseTriangles(output);
   }
-  vtkNew<vtkPolyDataNormals> normals;
-  VtkWatch normalsWatch(normals, progress, "normals");
-  normals->SetInputData(output);
-  normals->SplittingOff();
-  normals->ConsistencyOff();
-  normals->AutoOrientNormalsOff();
-  normals->ComputeCellNormalsOff();
-  normals->ComputePointNormalsOn();
-  normals->Update();
-  output = normals->GetOutput();
+  ComputePointNormals(output);
   clock.Done("normals");
   CountEdges(output, result.boundaryEdges, result.nonManifoldEdges);
   result.surface = output;

@@ -7,7 +7,6 @@
 #include <itkBinaryMorphologicalClosingImageFilter.h>
 #include <itkBinaryThresholdImageFilter.h>
 #include <itkConnectedComponentImageFilter.h>
-#include <itkConnectedThresholdImageFilter.h>
 #include <itkExtractImageFilter.h>
 #include <itkGeodesicActiveContourLevelSetImageFilter.h>
 #include <itkGradientMagnitudeRecursiveGaussianImageFilter.h>
@@ -20,7 +19,10 @@
 #include <itkSymmetricSecondRankTensor.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 
 namespace bender
@@ -156,6 +158,260 @@ MaskImage::RegionType BoundingRegion(const MaskImage* mask, const std::array<lon
   return region;
 }
 
+
+/// Voxel index box [lo, hi] (inclusive); empty while hi < lo.
+struct VoxelBox
+{
+  std::array<long, 3> lo{ { 0, 0, 0 } };
+  std::array<long, 3> hi{ { -1, -1, -1 } };
+  bool Empty() const { return this->hi[0] < this->lo[0]; }
+};
+
+/// Face-connected scan-line flood fill on a raw buffer of `size` voxels, limited to `box`:
+/// starting from `seeds`, marks every voxel for which fillable(linear index) holds and that is
+/// face-connected to a seed through such voxels, by calling mark(linear index) (which must make
+/// fillable() false). Touches only the filled voxels and their neighbours, not the whole volume.
+/// Returns the bounding box of the marked voxels. Reports progress (fraction of the box marked)
+/// and honours cancellation about every million voxels.
+template <typename Fillable, typename Mark>
+VoxelBox ScanlineFill(const std::array<std::size_t, 3>& size, const VoxelBox& box,
+  std::vector<std::array<long, 3>> seeds, Fillable fillable, Mark mark, const ProgressReporter& progress,
+  const std::string& stage)
+{
+  VoxelBox filled;
+  filled.lo = box.hi;
+  filled.hi = box.lo;
+  for (int c = 0; c < 3; ++c)
+  {
+    --filled.hi[c];
+  }
+  const auto rowStart = [&size](long j, long k) {
+    return static_cast<std::size_t>(j) * size[0] + static_cast<std::size_t>(k) * size[0] * size[1];
+  };
+  const double boxVoxels = double(box.hi[0] - box.lo[0] + 1) * double(box.hi[1] - box.lo[1] + 1) *
+    double(box.hi[2] - box.lo[2] + 1);
+  std::size_t marked = 0;
+  std::size_t nextReport = 1u << 20;
+  progress.Report(stage, 0.0);
+  progress.ThrowIfCancelled(stage);
+  std::vector<std::array<long, 3>>& stack = seeds;
+  while (!stack.empty())
+  {
+    const std::array<long, 3> s = stack.back();
+    stack.pop_back();
+    const std::size_t row = rowStart(s[1], s[2]);
+    if (!fillable(row + std::size_t(s[0])))
+    {
+      continue;
+    }
+    long a = s[0];
+    long b = s[0];
+    while (a > box.lo[0] && fillable(row + std::size_t(a - 1)))
+    {
+      --a;
+    }
+    while (b < box.hi[0] && fillable(row + std::size_t(b + 1)))
+    {
+      ++b;
+    }
+    for (long x = a; x <= b; ++x)
+    {
+      mark(row + std::size_t(x));
+    }
+    marked += std::size_t(b - a + 1);
+    filled.lo[0] = std::min(filled.lo[0], a);
+    filled.hi[0] = std::max(filled.hi[0], b);
+    filled.lo[1] = std::min(filled.lo[1], s[1]);
+    filled.hi[1] = std::max(filled.hi[1], s[1]);
+    filled.lo[2] = std::min(filled.lo[2], s[2]);
+    filled.hi[2] = std::max(filled.hi[2], s[2]);
+    const long neighbours[4][2] = { { s[1] - 1, s[2] }, { s[1] + 1, s[2] }, { s[1], s[2] - 1 }, { s[1], s[2] + 1 } };
+    for (const auto& n : neighbours)
+    {
+      if (n[0] < box.lo[1] || n[0] > box.hi[1] || n[1] < box.lo[2] || n[1] > box.hi[2])
+      {
+        continue;
+      }
+      const std::size_t other = rowStart(n[0], n[1]);
+      bool inRun = false;
+      for (long x = a; x <= b; ++x)
+      {
+        if (fillable(other + std::size_t(x)))
+        {
+          if (!inRun)
+          {
+            stack.push_back({ { x, n[0], n[1] } });
+            inRun = true;
+          }
+        }
+        else
+        {
+          inRun = false;
+        }
+      }
+    }
+    if (marked >= nextReport)
+    {
+      nextReport = marked + (1u << 20);
+      progress.Report(stage, std::min(1.0, double(marked) / boxVoxels));
+      progress.ThrowIfCancelled(stage);
+    }
+  }
+  progress.Report(stage, 1.0);
+  return filled;
+}
+
+std::uint32_t FindRun(std::vector<std::uint32_t>& parent, std::uint32_t i)
+{
+  while (parent[i] != i)
+  {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+void UniteRuns(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b)
+{
+  a = FindRun(parent, a);
+  b = FindRun(parent, b);
+  if (a != b)
+  {
+    parent[std::max(a, b)] = std::min(a, b);
+  }
+}
+
+/// Fills the cavities of the 0/1 mask inside `box` in place: background voxels that are not
+/// face-connected to the box's faces through background become foreground. Same result as
+/// itk::BinaryFillholeImageFilter (FullyConnected off) on the box, but on runs instead of voxels:
+/// the background of every x-row of the box is cut into runs (an empty row is one run), runs of
+/// face-adjacent rows that overlap in x are joined (union-find), and the runs not joined to the
+/// box's faces are the holes. One read of the box; the background (most of the box) is never
+/// flood-filled voxel by voxel.
+void FillHolesInPlace(std::uint8_t* voxels, const std::array<std::size_t, 3>& size, const VoxelBox& box,
+  const ProgressReporter& progress)
+{
+  progress.Report("fill holes", 0.0);
+  progress.ThrowIfCancelled("fill holes");
+  const long nx = box.hi[0] - box.lo[0] + 1;
+  const long ny = box.hi[1] - box.lo[1] + 1;
+  const long nz = box.hi[2] - box.lo[2] + 1;
+  const auto rowPointer = [&](long j, long k) {
+    return voxels + std::size_t(box.lo[0]) +
+      size[0] * (std::size_t(box.lo[1] + j) + size[1] * std::size_t(box.lo[2] + k));
+  };
+  struct Run
+  {
+    std::uint32_t a, b; // box-local x, inclusive
+  };
+  std::vector<Run> runs;
+  std::vector<std::size_t> first(std::size_t(ny * nz) + 1, 0);
+  for (long k = 0; k < nz; ++k)
+  {
+    for (long j = 0; j < ny; ++j)
+    {
+      const std::uint8_t* row = rowPointer(j, k);
+      std::uint8_t any = 0;
+      for (long i = 0; i < nx; ++i)
+      {
+        any |= row[i];
+      }
+      if (any == 0)
+      {
+        runs.push_back({ 0, std::uint32_t(nx - 1) });
+      }
+      else
+      {
+        for (long i = 0; i < nx;)
+        {
+          while (i < nx && row[i] != 0)
+          {
+            ++i;
+          }
+          if (i == nx)
+          {
+            break;
+          }
+          const long a = i;
+          while (i < nx && row[i] == 0)
+          {
+            ++i;
+          }
+          runs.push_back({ std::uint32_t(a), std::uint32_t(i - 1) });
+        }
+      }
+      first[std::size_t(j + ny * k) + 1] = runs.size();
+    }
+  }
+  progress.ThrowIfCancelled("fill holes");
+  // Node runs.size() stands for the outside of the box.
+  const auto outside = static_cast<std::uint32_t>(runs.size());
+  std::vector<std::uint32_t> parent(runs.size() + 1);
+  for (std::size_t i = 0; i < parent.size(); ++i)
+  {
+    parent[i] = static_cast<std::uint32_t>(i);
+  }
+  const auto joinRows = [&](std::size_t r, std::size_t s) {
+    std::size_t p = first[r];
+    std::size_t q = first[s];
+    while (p < first[r + 1] && q < first[s + 1])
+    {
+      if (runs[p].a <= runs[q].b && runs[q].a <= runs[p].b)
+      {
+        UniteRuns(parent, std::uint32_t(p), std::uint32_t(q));
+      }
+      if (runs[p].b < runs[q].b)
+      {
+        ++p;
+      }
+      else
+      {
+        ++q;
+      }
+    }
+  };
+  for (long k = 0; k < nz; ++k)
+  {
+    for (long j = 0; j < ny; ++j)
+    {
+      const std::size_t r = std::size_t(j + ny * k);
+      const bool faceRow = j == 0 || j == ny - 1 || k == 0 || k == nz - 1;
+      for (std::size_t p = first[r]; p < first[r + 1]; ++p)
+      {
+        if (faceRow || runs[p].a == 0 || runs[p].b == std::uint32_t(nx - 1))
+        {
+          UniteRuns(parent, std::uint32_t(p), outside);
+        }
+      }
+      if (j > 0)
+      {
+        joinRows(r, r - 1);
+      }
+      if (k > 0)
+      {
+        joinRows(r, r - std::size_t(ny));
+      }
+    }
+  }
+  const std::uint32_t outsideRoot = FindRun(parent, outside);
+  for (long k = 0; k < nz; ++k)
+  {
+    for (long j = 0; j < ny; ++j)
+    {
+      const std::size_t r = std::size_t(j + ny * k);
+      for (std::size_t p = first[r]; p < first[r + 1]; ++p)
+      {
+        if (FindRun(parent, std::uint32_t(p)) != outsideRoot)
+        {
+          std::uint8_t* row = rowPointer(j, k);
+          std::fill(row + runs[p].a, row + runs[p].b + 1, std::uint8_t(1));
+        }
+      }
+    }
+  }
+  progress.Report("fill holes", 1.0);
+}
+
 MaskImage::Pointer RefineWithLevelSet(FloatImage* intensity, MaskImage* mask,
   const SegmentationParameters& p, const ProgressReporter& progress)
 {
@@ -233,16 +489,13 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
   }
   progress.ThrowIfCancelled("segmentation");
 
-  MaskImage::Pointer mask;
+  const ImageGeometry& g = volume.geometry;
+  LabelMap result;
+  result.geometry = g;
+  VoxelBox found;
   if (!p.seeds.empty())
   {
-    auto connected = itk::ConnectedThresholdImageFilter<FloatImage, MaskImage>::New();
-    connected->SetInput(source);
-    connected->SetLower(static_cast<float>(std::max<double>(lower, -std::numeric_limits<float>::max())));
-    connected->SetUpper(static_cast<float>(std::min<double>(upper, std::numeric_limits<float>::max())));
-    connected->SetReplaceValue(1);
-    connected->SetConnectivity(itk::ConnectedThresholdImageFilter<FloatImage, MaskImage>::FaceConnectivity);
-    const ImageGeometry& g = volume.geometry;
+    std::vector<std::array<long, 3>> seeds;
     for (const Point3& seed : p.seeds)
     {
       if (!g.ContainsPhysical(seed))
@@ -267,97 +520,127 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
             << " is outside [" << lower << ", " << (upper >= 1e30 ? std::string("inf") : std::to_string(upper)) << "]";
         throw SeedError(msg.str());
       }
-      connected->AddSeed(index);
+      seeds.push_back({ { index[0], index[1], index[2] } });
     }
-    detail::WatchFilter(connected, progress, "connected region");
-    connected->Update();
-    mask = connected->GetOutput();
-    mask->DisconnectPipeline();
+    // Seeded region growing (face connectivity, as itk::ConnectedThresholdImageFilter): a
+    // scan-line flood fill that touches only the region and its neighbours, not all voxels.
+    const float lo = static_cast<float>(std::max<double>(lower, -std::numeric_limits<float>::max()));
+    const float hi = static_cast<float>(std::min<double>(upper, std::numeric_limits<float>::max()));
+    const float* values = source->GetBufferPointer();
+    result.voxels.assign(g.VoxelCount(), 0);
+    std::uint8_t* out = result.voxels.data();
+    VoxelBox all;
+    for (int c = 0; c < 3; ++c)
+    {
+      all.lo[c] = 0;
+      all.hi[c] = static_cast<long>(g.size[c]) - 1;
+    }
+    found = ScanlineFill(
+      g.size, all, std::move(seeds),
+      [values, out, lo, hi](std::size_t i) { return out[i] == 0 && values[i] >= lo && values[i] <= hi; },
+      [out](std::size_t i) { out[i] = 1; }, progress, "connected region");
   }
   else
   {
-    mask = LargestComponent(source, lower, upper, progress);
+    MaskImage::Pointer mask = LargestComponent(source, lower, upper, progress);
+    const MaskImage::RegionType bounds = BoundingRegion(mask, { { 0, 0, 0 } });
+    for (unsigned c = 0; c < 3; ++c)
+    {
+      found.lo[c] = bounds.GetIndex(c);
+      found.hi[c] = bounds.GetIndex(c) + static_cast<long>(bounds.GetSize(c)) - 1;
+    }
+    const unsigned char* buffer = mask->GetBufferPointer();
+    result.voxels.assign(buffer, buffer + g.VoxelCount());
   }
+  source = nullptr;
   progress.ThrowIfCancelled("segmentation");
-
-  // Fill holes, closing and the level set run on the mask's bounding box only.
-  std::array<long, 3> pad{ { 2, 2, 2 } };
-  std::array<long, 3> closingRadius{ { 0, 0, 0 } };
-  for (int c = 0; c < 3; ++c)
-  {
-    if (p.closingRadius > 0.0)
-    {
-      closingRadius[c] = std::max(1L, std::lround(p.closingRadius / volume.geometry.spacing[c]));
-    }
-    pad[c] += closingRadius[c];
-    if (p.levelSetIterations > 0)
-    {
-      pad[c] += 3 + std::lround(2.0 * p.levelSetSigma / volume.geometry.spacing[c]);
-    }
-  }
-  const MaskImage::RegionType box = BoundingRegion(mask, pad);
-  if (box.GetNumberOfPixels() == 0)
+  if (found.Empty())
   {
     throw SegmentationError("segmentation is empty: no voxel in the " + quantity + " window");
   }
-  MaskImage::Pointer work = Crop<MaskImage>(mask, box);
 
-  if (p.closingRadius > 0.0)
+  // Fill holes, closing and the level set run on the region's bounding box (plus a margin) only.
+  std::array<long, 3> closingRadius{ { 0, 0, 0 } };
+  VoxelBox box;
+  for (int c = 0; c < 3; ++c)
   {
-    using Ball = itk::BinaryBallStructuringElement<unsigned char, 3>;
-    Ball ball;
-    Ball::SizeType radius;
-    for (unsigned c = 0; c < 3; ++c)
+    long pad = 2;
+    if (p.closingRadius > 0.0)
     {
-      radius[c] = static_cast<itk::SizeValueType>(closingRadius[c]);
+      closingRadius[c] = std::max(1L, std::lround(p.closingRadius / g.spacing[c]));
     }
-    ball.SetRadius(radius);
-    ball.CreateStructuringElement();
-    auto closing = itk::BinaryMorphologicalClosingImageFilter<MaskImage, MaskImage, Ball>::New();
-    closing->SetInput(work);
-    closing->SetKernel(ball);
-    closing->SetForegroundValue(1);
-    detail::WatchFilter(closing, progress, "closing");
-    closing->Update();
-    work = closing->GetOutput();
-    work->DisconnectPipeline();
+    pad += closingRadius[c];
+    if (p.levelSetIterations > 0)
+    {
+      pad += 3 + std::lround(2.0 * p.levelSetSigma / g.spacing[c]);
+    }
+    box.lo[c] = std::max(0L, found.lo[c] - pad);
+    box.hi[c] = std::min(static_cast<long>(g.size[c]) - 1, found.hi[c] + pad);
   }
-  if (p.levelSetIterations > 0)
+  MaskImage::RegionType region;
+  for (unsigned c = 0; c < 3; ++c)
   {
-    FloatImage::Pointer intensity = Crop<FloatImage>(input, box);
-    work = RefineWithLevelSet(intensity, work, p, progress);
+    region.SetIndex(c, box.lo[c]);
+    region.SetSize(c, static_cast<itk::SizeValueType>(box.hi[c] - box.lo[c] + 1));
   }
+
+  if (p.closingRadius > 0.0 || p.levelSetIterations > 0)
+  {
+    MaskImage::Pointer work = Crop<MaskImage>(detail::WrapLabelMap(result), region);
+    if (p.closingRadius > 0.0)
+    {
+      using Ball = itk::BinaryBallStructuringElement<unsigned char, 3>;
+      Ball ball;
+      Ball::SizeType radius;
+      for (unsigned c = 0; c < 3; ++c)
+      {
+        radius[c] = static_cast<itk::SizeValueType>(closingRadius[c]);
+      }
+      ball.SetRadius(radius);
+      ball.CreateStructuringElement();
+      auto closing = itk::BinaryMorphologicalClosingImageFilter<MaskImage, MaskImage, Ball>::New();
+      closing->SetInput(work);
+      closing->SetKernel(ball);
+      closing->SetForegroundValue(1);
+      detail::WatchFilter(closing, progress, "closing");
+      closing->Update();
+      work = closing->GetOutput();
+      work->DisconnectPipeline();
+    }
+    if (p.levelSetIterations > 0)
+    {
+      FloatImage::Pointer intensity = Crop<FloatImage>(input, region);
+      work = RefineWithLevelSet(intensity, work, p, progress);
+    }
+    // Back into the full-size map (everything outside the box is background).
+    const unsigned char* src = work->GetBufferPointer();
+    const long nx = box.hi[0] - box.lo[0] + 1;
+    for (long k = box.lo[2]; k <= box.hi[2]; ++k)
+    {
+      for (long j = box.lo[1]; j <= box.hi[1]; ++j, src += nx)
+      {
+        std::copy(src, src + nx,
+          result.voxels.begin() + static_cast<std::ptrdiff_t>(g.LinearIndex(std::size_t(box.lo[0]), std::size_t(j), std::size_t(k))));
+      }
+    }
+  }
+  progress.ThrowIfCancelled("segmentation");
   if (p.fillHoles)
   {
-    auto fill = itk::BinaryFillholeImageFilter<MaskImage>::New();
-    fill->SetInput(work);
-    fill->SetForegroundValue(1);
-    fill->SetFullyConnected(false);
-    detail::WatchFilter(fill, progress, "fill holes");
-    fill->Update();
-    work = fill->GetOutput();
-    work->DisconnectPipeline();
+    FillHolesInPlace(result.voxels.data(), g.size, box, progress);
   }
   progress.ThrowIfCancelled("segmentation");
 
-  LabelMap result;
-  result.geometry = volume.geometry;
-  result.voxels.assign(volume.geometry.VoxelCount(), 0);
-  const auto boxSize = box.GetSize();
-  const auto boxIndex = box.GetIndex();
-  const unsigned char* src = work->GetBufferPointer();
-  for (std::size_t k = 0; k < boxSize[2]; ++k)
+  bool any = false;
+  for (long k = box.lo[2]; k <= box.hi[2] && !any; ++k)
   {
-    for (std::size_t j = 0; j < boxSize[1]; ++j)
+    for (long j = box.lo[1]; j <= box.hi[1] && !any; ++j)
     {
-      const unsigned char* row = src + boxSize[0] * (j + boxSize[1] * k);
-      std::copy(row, row + boxSize[0],
-        result.voxels.begin() +
-          static_cast<std::ptrdiff_t>(result.geometry.LinearIndex(static_cast<std::size_t>(boxIndex[0]),
-            j + static_cast<std::size_t>(boxIndex[1]), k + static_cast<std::size_t>(boxIndex[2]))));
+      const std::uint8_t* row = result.voxels.data() + g.LinearIndex(std::size_t(box.lo[0]), std::size_t(j), std::size_t(k));
+      any = std::any_of(row, row + (box.hi[0] - box.lo[0] + 1), [](std::uint8_t v) { return v != 0; });
     }
   }
-  if (result.CountInside() == 0)
+  if (!any)
   {
     throw SegmentationError("segmentation is empty after refinement");
   }

@@ -1,4 +1,5 @@
-// Both extractors: closed, outward, accurate, in LPS for oblique and left-handed grids.
+// Both extractors: closed, outward, accurate, in LPS for oblique and left-handed grids; the
+// module's windowed-sinc smoothing against vtkWindowedSincPolyDataFilter.
 #include "SegmentationTestUtilities.h"
 
 #include "SegmentationErrors.h"
@@ -6,10 +7,14 @@
 #include "SurfaceMetrics.h"
 
 #include <vtkDataArray.h>
+#include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkWindowedSincPolyDataFilter.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 
 namespace
 {
@@ -172,6 +177,48 @@ TEST(SurfaceExtraction, DecimationReachesTheTargetAndKeepsTheShape)
   const bender::TriangleQuality quality = bender::MeasureTriangleQuality(result.surface);
   EXPECT_EQ(quality.triangles, std::size_t(result.surface->GetNumberOfPolys()));
   EXPECT_GT(quality.meanMinAngle, 20.0);
+}
+
+TEST(SurfaceExtraction, SmoothingMatchesVtkWindowedSinc)
+{
+  // Two touching balls of different sizes on an anisotropic grid: a closed surface with a neck.
+  bender::ImageGeometry g = bender_test::CubeGeometry(40, 0.5, { { 3.0, -2.0, 1.0 } });
+  g.spacing = { { 0.5, 0.45, 0.6 } };
+  const bender::LabelMap mask =
+    BallMask(g, { { { { 10.0, 7.0, 11.0 } }, 5.0 }, { { { 16.5, 9.0, 12.0 } }, 3.0 } });
+  for (double smoothing : { 0.25, 0.5, 1.0 })
+  {
+    bender::SurfaceParameters raw;
+    raw.smoothing = 0.0;
+    const bender::SurfaceResult unsmoothed = bender::ExtractSurface(mask, raw);
+    bender::SurfaceParameters p;
+    p.smoothing = smoothing;
+    const bender::SurfaceResult result = bender::ExtractSurface(mask, p);
+    ASSERT_EQ(result.surface->GetNumberOfPoints(), unsmoothed.surface->GetNumberOfPoints());
+    vtkNew<vtkWindowedSincPolyDataFilter> vtk;
+    vtk->SetInputData(unsmoothed.surface);
+    vtk->SetNumberOfIterations(20);
+    vtk->SetPassBand(std::pow(10.0, -4.0 * smoothing));
+    vtk->BoundarySmoothingOff();
+    vtk->FeatureEdgeSmoothingOff();
+    vtk->NonManifoldSmoothingOn();
+    vtk->NormalizeCoordinatesOn();
+    vtk->Update();
+    double worst = 0.0;
+    double moved = 0.0;
+    for (vtkIdType i = 0; i < result.surface->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3], c[3];
+      result.surface->GetPoint(i, a);
+      vtk->GetOutput()->GetPoint(i, b);
+      unsmoothed.surface->GetPoint(i, c);
+      worst = std::max(worst, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+      moved = std::max(moved, std::hypot(a[0] - c[0], a[1] - c[1], a[2] - c[2]));
+    }
+    EXPECT_LT(worst, 1e-4) << "smoothing " << smoothing;
+    EXPECT_GT(moved, 0.05) << "smoothing " << smoothing;
+    EXPECT_EQ(result.boundaryEdges, 0u);
+  }
 }
 
 TEST(SurfaceExtraction, BadParametersAndCancellation)

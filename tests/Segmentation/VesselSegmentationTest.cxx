@@ -1,11 +1,16 @@
 // Both segmentation methods on synthetic volumes: seeded components, hole filling, closing,
-// seeds outside or in background, progress and cancellation.
+// seeds outside or in background, progress and cancellation; the scan-line region growing and
+// run-based hole filling against a plain voxel-by-voxel reference on random volumes.
 #include "SegmentationTestUtilities.h"
 
 #include "SegmentationErrors.h"
 #include "VesselSegmentation.h"
 
+#include <algorithm>
+#include <array>
 #include <atomic>
+#include <deque>
+#include <random>
 
 namespace
 {
@@ -177,6 +182,136 @@ TEST(VesselSegmentation, ReportsProgressAndHonoursCancellation)
   p.method = bender::SegmentationMethod::Vesselness;
   cancel = false;
   EXPECT_THROW(bender::SegmentVessels(TwoBalls(), p, progress), bender::SegmentationCancelled);
+}
+
+/// Reference: breadth-first region growing from the seeds (face connectivity), then hole filling
+/// on the bounding box grown by 2 voxels (clipped): background not face-connected to the box's
+/// faces becomes foreground. What itk::ConnectedThresholdImageFilter + BinaryFillholeImageFilter did.
+std::vector<std::uint8_t> ReferenceSegmentation(const bender::Volume& v, float lower, const std::vector<std::array<long, 3>>& seeds)
+{
+  const auto& g = v.geometry;
+  const long n[3] = { long(g.size[0]), long(g.size[1]), long(g.size[2]) };
+  const auto at = [&](long i, long j, long k) { return std::size_t(i + n[0] * (j + n[1] * k)); };
+  std::vector<std::uint8_t> mask(g.VoxelCount(), 0);
+  const auto grow = [&](std::deque<std::array<long, 3>> queue, const std::array<long, 3>& lo,
+                      const std::array<long, 3>& hi, auto fillable, std::uint8_t value) {
+    while (!queue.empty())
+    {
+      const auto c = queue.front();
+      queue.pop_front();
+      if (!fillable(at(c[0], c[1], c[2])))
+      {
+        continue;
+      }
+      mask[at(c[0], c[1], c[2])] = value;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        for (long step : { -1L, 1L })
+        {
+          auto d = c;
+          d[std::size_t(axis)] += step;
+          if (d[std::size_t(axis)] >= lo[std::size_t(axis)] && d[std::size_t(axis)] <= hi[std::size_t(axis)])
+          {
+            queue.push_back(d);
+          }
+        }
+      }
+    }
+  };
+  const std::array<long, 3> all{ { n[0] - 1, n[1] - 1, n[2] - 1 } };
+  grow(std::deque<std::array<long, 3>>(seeds.begin(), seeds.end()), { { 0, 0, 0 } }, all,
+    [&](std::size_t i) { return mask[i] == 0 && v.voxels[i] >= lower; }, 1);
+  std::array<long, 3> lo{ { n[0], n[1], n[2] } };
+  std::array<long, 3> hi{ { -1, -1, -1 } };
+  for (long k = 0; k < n[2]; ++k)
+    for (long j = 0; j < n[1]; ++j)
+      for (long i = 0; i < n[0]; ++i)
+        if (mask[at(i, j, k)])
+        {
+          const long c[3] = { i, j, k };
+          for (int a = 0; a < 3; ++a)
+          {
+            lo[std::size_t(a)] = std::min(lo[std::size_t(a)], c[a]);
+            hi[std::size_t(a)] = std::max(hi[std::size_t(a)], c[a]);
+          }
+        }
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[std::size_t(a)] = std::max(0L, lo[std::size_t(a)] - 2);
+    hi[std::size_t(a)] = std::min(n[a] - 1, hi[std::size_t(a)] + 2);
+  }
+  std::deque<std::array<long, 3>> faces;
+  for (long k = lo[2]; k <= hi[2]; ++k)
+    for (long j = lo[1]; j <= hi[1]; ++j)
+      for (long i = lo[0]; i <= hi[0]; ++i)
+        if (i == lo[0] || i == hi[0] || j == lo[1] || j == hi[1] || k == lo[2] || k == hi[2])
+        {
+          faces.push_back({ { i, j, k } });
+        }
+  grow(std::move(faces), lo, hi, [&](std::size_t i) { return mask[i] == 0; }, 2);
+  for (long k = lo[2]; k <= hi[2]; ++k)
+    for (long j = lo[1]; j <= hi[1]; ++j)
+      for (long i = lo[0]; i <= hi[0]; ++i)
+      {
+        std::uint8_t& m = mask[at(i, j, k)];
+        m = m == 2 ? 0 : 1;
+      }
+  return mask;
+}
+
+TEST(VesselSegmentation, RegionGrowingAndHoleFillingMatchAVoxelByVoxelReference)
+{
+  // Random volumes thresholded near the percolation point: many branches, cavities, tunnels,
+  // and a region that reaches the volume's faces.
+  std::mt19937 random(7);
+  std::size_t filledHoles = 0;
+  for (int trial = 0; trial < 6; ++trial)
+  {
+    bender::ImageGeometry g;
+    g.size = { { std::size_t(20 + 7 * trial), std::size_t(31 - 2 * trial), std::size_t(17 + 3 * trial) } };
+    g.spacing = { { 0.5, 0.6, 0.7 } };
+    bender::Volume v;
+    v.geometry = g;
+    std::uniform_real_distribution<float> uniform(0.0f, 100.0f);
+    v.voxels.resize(g.VoxelCount());
+    for (float& x : v.voxels)
+    {
+      x = uniform(random);
+    }
+    const float lower = trial % 2 == 0 ? 62.0f : 55.0f;
+    std::vector<std::array<long, 3>> seeds;
+    bender::SegmentationParameters p;
+    p.lower = lower;
+    for (int s = 0; s < 1 + trial % 3; ++s)
+    {
+      // Choose seeds in the window.
+      for (;;)
+      {
+        const std::array<long, 3> c{ { long(random() % g.size[0]), long(random() % g.size[1]), long(random() % g.size[2]) } };
+        if (v.voxels[g.LinearIndex(std::size_t(c[0]), std::size_t(c[1]), std::size_t(c[2]))] >= lower)
+        {
+          seeds.push_back(c);
+          p.seeds.push_back(g.IndexToPhysical({ { double(c[0]), double(c[1]), double(c[2]) } }));
+          break;
+        }
+      }
+    }
+    const bender::LabelMap mask = bender::SegmentVessels(v, p);
+    const std::vector<std::uint8_t> expected = ReferenceSegmentation(v, lower, seeds);
+    ASSERT_EQ(mask.voxels.size(), expected.size());
+    std::size_t differ = 0;
+    std::size_t inside = 0;
+    for (std::size_t i = 0; i < expected.size(); ++i)
+    {
+      differ += mask.voxels[i] != expected[i] ? 1 : 0;
+      inside += expected[i];
+    }
+    EXPECT_EQ(differ, 0u) << "trial " << trial << ": " << inside << " voxels inside";
+    EXPECT_GT(inside, 20u) << "trial " << trial;
+    p.fillHoles = false;
+    filledHoles += inside - bender::SegmentVessels(v, p).CountInside();
+  }
+  EXPECT_GT(filledHoles, 0u) << "the random volumes should have cavities";
 }
 
 /// A bright tube of radius 1.2 mm along x and a ball of radius 5 mm.
