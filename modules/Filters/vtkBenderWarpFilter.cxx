@@ -15,6 +15,7 @@
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -331,6 +332,15 @@ int vtkBenderWarpFilter::RequestData(
     cache.S.clear();
     cache.F.clear();
     cache.Origin = this->Spec.initial.start.position;
+    vtkDataArray* dataArray = source->GetData();
+    const std::size_t expected = static_cast<std::size_t>(
+      std::count(bound.begin(), bound.end(), std::uint8_t(1)));
+    cache.Ids.reserve(expected);
+    cache.SingleIds.reserve(expected);
+    for (auto* v : { &cache.Px, &cache.Py, &cache.Pz, &cache.S, &cache.F })
+    {
+      v->reserve(expected);
+    }
     for (vtkIdType i = 0; i < n; ++i)
     {
       if (!bound[i])
@@ -345,7 +355,7 @@ int vtkBenderWarpFilter::RequestData(
         continue;
       }
       double p[3];
-      source->GetPoint(i, p);
+      dataArray->GetTuple(i, p);
       cache.SingleIds.push_back(i);
       cache.Px.push_back(static_cast<float>(p[0] - cache.Origin.x));
       cache.Py.push_back(static_cast<float>(p[1] - cache.Origin.y));

@@ -28,9 +28,22 @@ bool NearestOnArc(const Arc& arc, const Vec3& p, double& u, Vec3& q)
   {
     return false;
   }
-  const double phi = std::clamp(std::atan2(y, x), 0.0, arc.angle);
+  const double raw = std::atan2(y, x);
+  const double phi = std::clamp(raw, 0.0, arc.angle);
   u = arc.angle > 0.0 ? phi / arc.angle : 0.0;
-  q = arc.PointAt(u);
+  if (phi != raw)
+  {
+    q = arc.PointAt(u); // clamped by rounding at an end of the arc
+    return true;
+  }
+  // Q = Ps + r sin(phi) Ts + r (1 - cos(phi)) Np with cos and sin read off (x, y): no
+  // trigonometry, and r (1 - cos) = r sin^2 / (1 + cos) keeps nearly straight arcs exact.
+  const double rho = std::hypot(x, y);
+  const double c = x / rho;
+  const double sn = y / rho;
+  const double r = arc.radius;
+  const double lift = c > 0.0 ? r * sn * sn / (1.0 + c) : r * (1.0 - c);
+  q = arc.start + arc.tangent * (r * sn) + arc.toCentre * lift;
   return true;
 }
 } // namespace

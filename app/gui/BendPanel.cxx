@@ -1,0 +1,167 @@
+#include "BendPanel.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QLabel>
+#include <QPushButton>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+BendPanel::BendPanel(QWidget* parent)
+  : QWidget(parent)
+{
+  auto* layout = new QVBoxLayout(this);
+  auto* form = new QFormLayout;
+  layout->addLayout(form);
+
+  this->Radius = new QDoubleSpinBox(this);
+  this->Radius->setObjectName("radius");
+  this->Radius->setRange(0.01, 1000.0);
+  this->Radius->setDecimals(2);
+  this->Radius->setSuffix(" mm");
+  this->Radius->setToolTip("Radius R of the region of influence around the initial wire");
+  form->addRow("Radius R", this->Radius);
+  this->MinimumRadius = new QLabel("r_min: shown while grabbed", this);
+  this->MinimumRadius->setToolTip("Smallest arc radius of the initial wire: R >= r_min risks "
+                                  "space inversion (paper 3.8)");
+  this->MinimumRadius->setObjectName("minimumRadius");
+  this->MinimumRadius->setWordWrap(true);
+  form->addRow("", this->MinimumRadius);
+
+  this->Decay = new QComboBox(this);
+  this->Decay->setObjectName("decay");
+  this->Decay->addItems({ "Bell", "Plateau" });
+  form->addRow("Decay", this->Decay);
+  this->Plateau = new QDoubleSpinBox(this);
+  this->Plateau->setObjectName("plateau");
+  this->Plateau->setRange(0.0, 0.95);
+  this->Plateau->setSingleStep(0.05);
+  form->addRow("Plateau width", this->Plateau);
+  this->ReverseScrews = new QCheckBox("Reverse screws (paper 3.8)", this);
+  this->ReverseScrews->setObjectName("reverseScrews");
+  this->ReverseScrews->setEnabled(false);
+  this->ReverseScrews->setToolTip("Enabled when the screws flipped during the bend");
+  form->addRow("", this->ReverseScrews);
+  this->Subdivide = new QCheckBox("Subdivide at release", this);
+  this->Subdivide->setObjectName("subdivide");
+  form->addRow("", this->Subdivide);
+  this->Tolerance = new QDoubleSpinBox(this);
+  this->Tolerance->setObjectName("tolerance");
+  this->Tolerance->setRange(0.001, 10.0);
+  this->Tolerance->setDecimals(3);
+  this->Tolerance->setSuffix(" mm");
+  form->addRow("Subdivision tolerance", this->Tolerance);
+
+  this->PlaceButton = new QPushButton("Place ribbon on surface (P)", this);
+  this->PlaceButton->setObjectName("placeRibbon");
+  this->PlaceButton->setToolTip("Then click on the vessel: a straight ribbon is laid along it");
+  layout->addWidget(this->PlaceButton);
+  this->GrabButton = new QPushButton("Grab (G, or hold Space)", this);
+  this->GrabButton->setObjectName("grab");
+  layout->addWidget(this->GrabButton);
+  this->CancelButton = new QPushButton("Cancel bend (Esc)", this);
+  this->CancelButton->setObjectName("cancelBend");
+  layout->addWidget(this->CancelButton);
+  this->State = new QLabel(this);
+  this->State->setObjectName("bendState");
+  this->State->setWordWrap(true);
+  layout->addWidget(this->State);
+  layout->addStretch(1);
+
+  this->setParameters(bender::WarpParameters{});
+  auto changed = [this]() {
+    if (!this->Updating)
+    {
+      this->Plateau->setEnabled(this->Decay->currentIndex() == 1);
+      this->Tolerance->setEnabled(this->Subdivide->isChecked());
+      emit this->parametersChanged();
+    }
+  };
+  connect(this->Radius, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, changed);
+  connect(this->Decay, QOverload<int>::of(&QComboBox::currentIndexChanged), this, changed);
+  connect(this->Plateau, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, changed);
+  connect(this->ReverseScrews, &QCheckBox::toggled, this, changed);
+  connect(this->Subdivide, &QCheckBox::toggled, this, changed);
+  connect(this->Tolerance, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, changed);
+  connect(this->PlaceButton, &QPushButton::clicked, this, &BendPanel::placeRibbonRequested);
+  connect(this->GrabButton, &QPushButton::clicked, this, &BendPanel::grabToggled);
+  connect(this->CancelButton, &QPushButton::clicked, this, &BendPanel::cancelRequested);
+}
+
+bender::WarpParameters BendPanel::parameters() const
+{
+  bender::WarpParameters p;
+  p.radius = this->Radius->value();
+  p.decay.shape = this->Decay->currentIndex() == 1 ? bender::DecayShape::Plateau
+                                                   : bender::DecayShape::Bell;
+  p.decay.plateau = this->Plateau->value();
+  p.reverseScrews = this->ReverseScrews->isChecked();
+  p.subdivide = this->Subdivide->isChecked();
+  p.subdivisionTolerance = this->Tolerance->value();
+  return p;
+}
+
+void BendPanel::setParameters(const bender::WarpParameters& p)
+{
+  this->Updating = true;
+  this->Radius->setValue(p.radius);
+  this->Decay->setCurrentIndex(p.decay.shape == bender::DecayShape::Plateau ? 1 : 0);
+  this->Plateau->setValue(p.decay.plateau);
+  this->Plateau->setEnabled(p.decay.shape == bender::DecayShape::Plateau);
+  this->ReverseScrews->setChecked(p.reverseScrews);
+  this->Subdivide->setChecked(p.subdivide);
+  this->Tolerance->setValue(p.subdivisionTolerance);
+  this->Tolerance->setEnabled(p.subdivide);
+  this->Updating = false;
+}
+
+void BendPanel::showState(const bender::BenderSession& session)
+{
+  const bool grabbed = session.GetState() == bender::GrabState::Grabbed;
+  this->GrabButton->setText(grabbed ? "Release (G)" : "Grab (G, or hold Space)");
+  this->GrabButton->setEnabled(session.HasSurface());
+  this->CancelButton->setEnabled(grabbed);
+  this->PlaceButton->setEnabled(session.HasSurface() && !grabbed);
+  // The toggle is offered once a flip occurred, and stays so that it can be turned back off.
+  this->ReverseScrews->setEnabled(
+    (grabbed && session.GetFlipOccurred()) || this->ReverseScrews->isChecked());
+  if (grabbed)
+  {
+    const double rmin = session.GetInitialMinimumRadius();
+    // A straight wire has an infinite r_min; a nearly straight one an absurdly large one.
+    QString text = (std::isfinite(rmin) && rmin < 1e6)
+      ? QString("r_min = %1 mm").arg(rmin, 0, 'f', 2)
+      : QString("r_min: none (straight wire)");
+    if (session.GetSpaceInversionRisk())
+    {
+      text += "\nWarning: " + QString::fromStdString(session.GetSpaceInversionWarning());
+      this->MinimumRadius->setStyleSheet("color: #d33;");
+    }
+    else
+    {
+      this->MinimumRadius->setStyleSheet("");
+    }
+    this->MinimumRadius->setText(text);
+  }
+  QString state;
+  switch (session.GetState())
+  {
+    case bender::GrabState::Idle:
+      state = session.HasSurface() ? "Idle: place the ribbon, then grab" : "Load or segment a surface";
+      break;
+    case bender::GrabState::Grabbed:
+      state = QString("Grabbed: %1 points bound; drag the handles").arg(session.GetNumberOfBoundPoints());
+      if (!session.GetLiveProblem().empty())
+      {
+        state += QString("\nNot applied: ") + QString::fromStdString(session.GetLiveProblem());
+      }
+      break;
+    case bender::GrabState::Released:
+      state = QString("Released: %1 warps committed").arg(session.GetHistoryPosition());
+      break;
+  }
+  this->State->setText(state);
+}

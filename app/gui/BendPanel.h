@@ -1,0 +1,52 @@
+#ifndef BendPanel_h
+#define BendPanel_h
+
+#include "BenderSession.h"
+
+#include <QWidget>
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QPushButton;
+class QSpinBox;
+
+/// The Bend panel: region of influence R (with r_min and the space-inversion warning), decay
+/// bell/plateau and plateau width, the screw-direction toggle of paper 3.8 (enabled when a flip
+/// occurred), adaptive subdivision at release, and the gesture buttons.
+class BendPanel : public QWidget
+{
+  Q_OBJECT
+public:
+  explicit BendPanel(QWidget* parent = nullptr);
+
+  bender::WarpParameters parameters() const;
+  void setParameters(const bender::WarpParameters& parameters);
+  /// Refreshes the live information (r_min, risk, flip, state) from the session.
+  void showState(const bender::BenderSession& session);
+
+  QPushButton* grabButton() const { return this->GrabButton; }
+
+signals:
+  void parametersChanged();
+  void placeRibbonRequested();
+  void grabToggled();
+  void cancelRequested();
+
+private:
+  QDoubleSpinBox* Radius;
+  QLabel* MinimumRadius;
+  QComboBox* Decay;
+  QDoubleSpinBox* Plateau;
+  QCheckBox* ReverseScrews;
+  QCheckBox* Subdivide;
+  QDoubleSpinBox* Tolerance;
+  QPushButton* PlaceButton;
+  QPushButton* GrabButton;
+  QPushButton* CancelButton;
+  QLabel* State;
+  bool Updating = false;
+};
+
+#endif

@@ -1,0 +1,197 @@
+#ifndef bender_BenderSession_h
+#define bender_BenderSession_h
+
+#include "BenderMeshCheck.h"
+#include "LogicMessage.h"
+#include "SurfaceExport.h"
+#include "TwistUnwrapper.h"
+#include "WarpHistory.h"
+#include "WarpPlan.h"
+
+#include "vtkBenderWarpFilter.h"
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bender
+{
+
+/// Where the session is in the bend gesture.
+enum class GrabState
+{
+  Idle,     ///< nothing held (no warp yet, or after undo/cancel)
+  Grabbed,  ///< the initial ribbon is captured and bound; the surface follows the final ribbon
+  Released  ///< the last gesture was committed as a warp; a new grab may start
+};
+
+/// The parameters of the next warp, set from the Bend panel.
+struct WarpParameters
+{
+  double radius = 10.0; ///< R, model units, > 0
+  DecaySpec decay;
+  bool reverseScrews = false;
+  /// Adaptive subdivision at release (spec 7); tolerance in model units, > 0.
+  bool subdivide = false;
+  double subdivisionTolerance = 0.05;
+  int subdivisionMaxPasses = 8;
+};
+
+/// The application state of Bender without Qt: the loaded surface, the grab / release state
+/// machine that drives vtkBenderWarpFilter (Precision Table while dragging, Exact at release),
+/// the undo history of committed warps, the plan, autosave and recovery, checks and export.
+///
+/// Every public operation returns false (or nothing) on failure and never throws: the problem
+/// is added to Messages() as one sentence naming the input, and the callback set with
+/// SetMessageCallback is called. Coordinates are those of the surface (LPS mm for segmented
+/// vessels). Not thread-safe: call from one thread (a GUI runs heavy reads in a worker with
+/// ReadMesh and hands the result to SetSurface).
+class BenderSession
+{
+public:
+  BenderSession();
+  ~BenderSession();
+  BenderSession(const BenderSession&) = delete;
+  BenderSession& operator=(const BenderSession&) = delete;
+
+  ///@{ Data
+  /// Reads a mesh (stl, obj, ply, vtp, vtk, off) and makes it the session's surface, dropping
+  /// the history. On failure the previous surface stays.
+  bool LoadSurface(const std::string& path);
+  /// Makes `surface` (deep-copied) the session's surface. `name` is for messages;
+  /// `sourcePath` is the file it came from, empty for a surface made here (segmentation).
+  bool SetSurface(vtkPolyData* surface, const std::string& name, const std::string& sourcePath = {});
+  bool HasSurface() const { return !this->History.Empty(); }
+  /// The committed surface (after the current history step); owned by the session.
+  vtkPolyData* GetSurface() const { return this->History.Current(); }
+  /// The surface before any warp.
+  vtkPolyData* GetOriginalSurface() const { return this->History.Original(); }
+  /// A stable object for rendering: the live warp while grabbed, else the committed surface.
+  vtkPolyData* GetDisplaySurface() const;
+  const std::string& GetSourcePath() const { return this->SourcePath; }
+  const std::string& GetSurfaceName() const { return this->SurfaceName; }
+  ///@}
+
+  ///@{ Warp parameters (take effect at the next grab; radius and decay also while grabbed)
+  bool SetParameters(const WarpParameters& parameters);
+  const WarpParameters& GetParameters() const { return this->Parameters; }
+  ///@}
+
+  ///@{ The gesture
+  GrabState GetState() const { return this->State; }
+  /// Captures `initial` (extraTurns set to 0) and binds the surface. Refused for an invalid
+  /// ribbon (spec convention 11), without a surface, or while already grabbed.
+  bool Grab(const RibbonSpec& initial);
+  /// Moves the final ribbon (twist unwrapped, convention 4) and warps the display surface live
+  /// (Precision Table). An invalid ribbon or warp is not applied: the last valid one stays and
+  /// GetLiveProblem() says why (no message per move). Returns whether it was applied.
+  bool MoveFinal(const RibbonSpec& final);
+  /// Commits the last valid final ribbon: exact warp (or adaptive subdivision when enabled),
+  /// a new undo step, the plan grows, autosave. A release without motion records nothing.
+  bool Release();
+  /// Abandons the live warp (device failure, Escape): the committed surface stays.
+  void CancelGrab(const std::string& reason);
+  const RibbonSpec& GetInitialRibbon() const { return this->Live.initial; }
+  const RibbonSpec& GetFinalRibbon() const { return this->Live.final; }
+  /// Why the last MoveFinal was not applied; empty when it was.
+  const std::string& GetLiveProblem() const { return this->LiveProblem; }
+  /// Live information for the Bend panel: r_min of the initial wire, the space-inversion risk
+  /// (R >= r_min of either wire) and whether the screws flipped (paper 3.8 toggle).
+  double GetInitialMinimumRadius() const { return this->InitialMinimumRadius; }
+  bool GetSpaceInversionRisk() const { return this->SpaceInversionRisk; }
+  bool GetFlipOccurred() const { return this->FlipOccurred; }
+  /// The sentence describing the space-inversion risk of the live warp; empty when none.
+  const std::string& GetSpaceInversionWarning() const { return this->InversionWarning; }
+  /// Points inside the region of influence of the current grab.
+  long long GetNumberOfBoundPoints() const;
+  ///@}
+
+  ///@{ History (exact coordinates restored)
+  bool CanUndo() const { return this->State != GrabState::Grabbed && this->History.CanUndo(); }
+  bool CanRedo() const { return this->State != GrabState::Grabbed && this->History.CanRedo(); }
+  bool Undo();
+  bool Redo();
+  std::size_t GetHistoryPosition() const { return this->History.Position(); }
+  ///@}
+
+  ///@{ Plan
+  /// The committed warps (up to the current history step).
+  WarpPlan GetPlan() const;
+  bool SavePlan(const std::string& path);
+  /// Reads a plan and replays it onto the current surface (all warps or none).
+  bool LoadPlan(const std::string& path);
+  /// Applies every warp of `plan` in order, each as one undo step; all or nothing.
+  bool ReplayPlan(const WarpPlan& plan, const std::string& name);
+  /// Applies one warp (exact, with its subdivision if any) as one undo step.
+  bool ApplyWarp(const WarpSpec& warp);
+  ///@}
+
+  ///@{ Check and export
+  /// The report shown before writing (see CheckForExport).
+  MeshCheckReport CheckSurface() const;
+  /// Writes the committed surface (atomic). Refuses to overwrite the source file.
+  bool Export(const std::string& path, const ExportOptions& options = {});
+  ///@}
+
+  ///@{ Autosave and recovery
+  /// Where to autosave (empty: off). Saved after each change of the surface or the history.
+  void SetAutosavePath(const std::string& path);
+  const std::string& GetAutosavePath() const { return this->AutosavePath; }
+  bool Autosave();
+  /// Removes the autosave files (a clean exit).
+  void DiscardAutosave();
+  /// Loads the source of a session file and replays its plan.
+  bool Recover(const std::string& sessionPath);
+  ///@}
+
+  ///@{ Messages for the GUI
+  const std::vector<LogicMessage>& GetMessages() const { return this->Messages; }
+  void ClearMessages() { this->Messages.clear(); }
+  void SetMessageCallback(std::function<void(const LogicMessage&)> callback);
+  /// Called after the display surface, state or history changed.
+  void SetChangeCallback(std::function<void()> callback);
+  /// Adds a message from a collaborator (tracker session, GUI worker results).
+  void AddMessage(MessageSeverity severity, const std::string& text) { this->Report(severity, text); }
+  ///@}
+
+private:
+  void Report(MessageSeverity severity, const std::string& text);
+  void Changed();
+  void ShowCommitted();
+  bool ApplyExact(const WarpSpec& warp, vtkPolyData* input, vtkSmartPointer<vtkPolyData>& output,
+    std::string& problem) const;
+  void UpdateLiveInformation();
+
+  WarpHistory History;
+  WarpParameters Parameters;
+  GrabState State = GrabState::Idle;
+  WarpSpec Live;
+  TwistUnwrapper Unwrapper;
+  std::string LiveProblem;
+  double InitialMinimumRadius = 0.0;
+  bool SpaceInversionRisk = false;
+  bool FlipOccurred = false;
+  bool WarnedInversion = false;
+  std::string InversionWarning;
+
+  vtkNew<vtkBenderWarpFilter> LiveFilter;
+  vtkNew<vtkPolyData> Display;
+
+  std::string SourcePath;
+  std::string SurfaceName;
+  std::string AutosavePath;
+  std::string AutosaveSourcePath;
+
+  std::vector<LogicMessage> Messages;
+  std::function<void(const LogicMessage&)> MessageCallback;
+  std::function<void()> ChangeCallback;
+};
+
+} // namespace bender
+
+#endif

@@ -1,0 +1,50 @@
+#ifndef bender_DemoPipeline_h
+#define bender_DemoPipeline_h
+
+#include "Progress.h"
+#include "Volume.h"
+
+#include <vtkSmartPointer.h>
+
+#include <string>
+
+class vtkPolyData;
+
+namespace bender
+{
+
+/// Where the built-in demo's files are: the source tree's data folder (compiled in), or the
+/// folder named by the environment variable BENDER_DATA_DIR (which holds external/ and demo/).
+std::string DemoDataDirectory();
+/// data/external/aneurysm_data.stl: the branching cerebral artery with an aneurysm.
+std::string DemoVesselPath();
+/// data/demo/demo.bender.json: the demo plan, bending one branch of that vessel.
+std::string DemoPlanPath();
+
+struct DemoOptions
+{
+  /// Voxel size of the MRA-like phantom, mm; range [0.3, 2]. Default 0.5: about 1.6 M voxels.
+  double spacing = 0.5;
+  /// Smoothing knob of the surface extraction, [0, 1].
+  double smoothing = 0.5;
+};
+
+/// The demo's result: the MRA-like volume, its segmentation and the lumen surface (LPS mm).
+struct DemoVessel
+{
+  Volume volume;
+  LabelMap mask;
+  vtkSmartPointer<vtkPolyData> surface;
+  std::string summary; ///< one line for the user
+};
+
+/// The built-in demo: makes the MRA-like phantom of the aneurysm vessel, segments its lumen
+/// (threshold at mid-intensity from the phantom's seed) and extracts the surface. Runs on the
+/// calling thread (a GUI calls it from a worker). Throws MeshIOError (missing vessel file),
+/// the segmentation module's errors, SegmentationCancelled.
+DemoVessel SegmentDemoVessel(
+  const std::string& vesselPath, const DemoOptions& options = {}, const ProgressReporter& progress = {});
+
+} // namespace bender
+
+#endif

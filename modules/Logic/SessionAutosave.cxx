@@ -1,0 +1,106 @@
+#include "SessionAutosave.h"
+
+#include "WarpPlanIO.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+namespace bender
+{
+
+namespace
+{
+std::string Name(const std::string& path)
+{
+  return std::filesystem::path(path).filename().string();
+}
+}
+
+void WriteSessionFile(const SessionSnapshot& snapshot, const std::string& path)
+{
+  nlohmann::json root;
+  root["format"] = "bender-session";
+  root["version"] = 1;
+  root["source"] = snapshot.sourcePath;
+  root["frame"] = snapshot.frame;
+  root["plan"] = nlohmann::json::parse(SerializeWarpPlan(snapshot.plan));
+
+  const std::filesystem::path target(path);
+  std::error_code ec;
+  if (target.has_parent_path())
+  {
+    std::filesystem::create_directories(target.parent_path(), ec);
+  }
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << root.dump(2) << '\n';
+    out.flush();
+    if (!out)
+    {
+      std::filesystem::remove(temporary, ec);
+      throw SessionFileError(Name(path) + ": cannot write the session file");
+    }
+  }
+  std::filesystem::rename(temporary, target, ec);
+  if (ec)
+  {
+    std::filesystem::remove(temporary, ec);
+    throw SessionFileError(Name(path) + ": cannot replace the session file: " + ec.message());
+  }
+}
+
+SessionSnapshot ReadSessionFile(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    throw SessionFileError(Name(path) + ": cannot be opened for reading");
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  nlohmann::json root;
+  try
+  {
+    root = nlohmann::json::parse(buffer.str());
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    throw SessionFileError(Name(path) + ": not valid JSON (" + e.what() + ")");
+  }
+  if (!root.is_object() || root.value("format", std::string()) != "bender-session")
+  {
+    throw SessionFileError(Name(path) + ": format: not a bender-session file");
+  }
+  if (!root.contains("version") || !root["version"].is_number_integer() || root["version"] != 1)
+  {
+    throw SessionFileError(Name(path) + ": version: unknown session file version");
+  }
+  if (!root.contains("source") || !root["source"].is_string())
+  {
+    throw SessionFileError(Name(path) + ": source: missing or not a string");
+  }
+  if (!root.contains("plan") || !root["plan"].is_object())
+  {
+    throw SessionFileError(Name(path) + ": plan: missing or not an object");
+  }
+  SessionSnapshot snapshot;
+  snapshot.sourcePath = root["source"].get<std::string>();
+  snapshot.frame = root.value("frame", std::string("LPS"));
+  try
+  {
+    snapshot.plan = ParseWarpPlan(root["plan"].dump(), Name(path) + ": plan");
+  }
+  catch (const WarpPlanError& e)
+  {
+    throw SessionFileError(e.what());
+  }
+  return snapshot;
+}
+
+} // namespace bender

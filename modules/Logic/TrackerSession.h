@@ -1,0 +1,83 @@
+#ifndef bender_TrackerSession_h
+#define bender_TrackerSession_h
+
+#include "RibbonEndMapping.h"
+#include "TrackerCalibration.h"
+#include "TrackerDeviceFactory.h"
+#include "TrackerStatistics.h"
+#include "TwoHandRibbonInput.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace bender
+{
+
+class BenderSession;
+
+/// Bending with trackers: a tracker device (Fastrak over USB or serial, a replayed recording,
+/// the simulator) and the two-hand mapping drive a BenderSession. The stylus button grabs and
+/// releases; while grabbed the final ribbon follows the hands. When the device fails mid-warp
+/// (disconnected, read error, end of a replay) the live warp is cancelled, the last committed
+/// shape stays and the session gets a warning message.
+///
+/// Not thread-safe: Poll() is called from the thread that owns the session (a GUI timer at the
+/// display rate); the device's own reader thread only fills its pose store.
+class TrackerSession
+{
+public:
+  explicit TrackerSession(BenderSession& session);
+  ~TrackerSession();
+  TrackerSession(const TrackerSession&) = delete;
+  TrackerSession& operator=(const TrackerSession&) = delete;
+
+  /// Opens and starts the device named by `deviceSpec` (usb, usb:N, serial:PATH[@BAUD],
+  /// replay:FILE, sim). False with a message naming the device on failure.
+  bool Connect(const std::string& deviceSpec, const TrackerDeviceOptions& options = {},
+    const HandMapping& hands = {}, const TrackerCalibration& calibration = {});
+  /// Same with a device made by the caller (tests, custom devices); takes ownership.
+  bool Connect(std::unique_ptr<TrackerDevice> device, const HandMapping& hands = {},
+    const TrackerCalibration& calibration = {});
+  /// Stops and closes; a live warp is cancelled.
+  void Disconnect();
+  bool IsConnected() const { return this->Device != nullptr; }
+
+  /// What one Poll did.
+  struct PollResult
+  {
+    bool moved = false;    ///< the final ribbon was moved (while grabbed)
+    bool grabbed = false;  ///< a grab started
+    bool released = false; ///< a warp was committed
+    bool cancelled = false;
+    bool ended = false;    ///< the device stopped (failure or end of a replay); disconnected
+  };
+  /// Takes the device's latest poses and events and drives the session.
+  PollResult Poll();
+
+  /// The ribbon the hands hold now (model space), if both hands have been seen.
+  std::optional<RibbonSpec> CurrentRibbon() const;
+  /// The clutch: the ribbon stays while the hands move freely (re-anchors on release).
+  void SetClutch(bool engaged);
+  bool ClutchEngaged() const { return this->Input && this->Input->ClutchEngaged(); }
+  /// The calibration in use (identity when not connected).
+  TrackerCalibration GetCalibration() const;
+  /// Replaces the calibration (alignment and motion scale); refused while grabbing.
+  bool SetCalibration(const TrackerCalibration& calibration);
+
+  /// Device name and per-station rates for the Trackers panel.
+  std::string StatusText() const;
+  TrackerStatistics Statistics() const;
+
+private:
+  void Fail(const std::string& reason);
+
+  BenderSession& Session;
+  std::unique_ptr<TrackerDevice> Device;
+  std::unique_ptr<TwoHandRibbonInput> Input;
+  std::string DeviceName;
+};
+
+} // namespace bender
+
+#endif

@@ -1,0 +1,391 @@
+// The application state machine: grab, live moves, release, undo/redo with exact coordinates,
+// plan save/load/replay, export, autosave and recovery, and bad input turned into messages.
+#include "BenderSession.h"
+#include "LogicTestUtilities.h"
+#include "MeshIO.h"
+#include "WarpPlanIO.h"
+
+#include <vtkPolyData.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace bender;
+using bender::test::MakeTube;
+using bender::test::MaxDifference;
+using bender::test::StraightRibbon;
+
+namespace
+{
+
+// The end of the ribbon swung by `degrees` about +z around the start, tangent following.
+RibbonSpec Bent(const RibbonSpec& straight, double degrees)
+{
+  const double a = degrees * 3.14159265358979323846 / 180.0;
+  RibbonSpec bent = straight;
+  const Vec3 arm = straight.end.position - straight.start.position;
+  bent.end.position = straight.start.position + Rotate({ 0, 0, 1 }, a, arm);
+  bent.end.tangent = Rotate({ 0, 0, 1 }, a, straight.end.tangent);
+  return bent;
+}
+
+bool HasMessage(const BenderSession& session, MessageSeverity severity, const std::string& part)
+{
+  for (const auto& message : session.GetMessages())
+  {
+    if (message.severity == severity && message.text.find(part) != std::string::npos)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+class BenderSessionTest : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Tube = MakeTube(0, 60, 3);
+    ASSERT_TRUE(this->Session.SetSurface(this->Tube, "tube"));
+    WarpParameters parameters;
+    parameters.radius = 6.0;
+    ASSERT_TRUE(this->Session.SetParameters(parameters));
+  }
+
+  // One grab - several moves - release gesture bending the tube's middle.
+  void Bend(double degrees)
+  {
+    const RibbonSpec initial = StraightRibbon(20, 40);
+    ASSERT_TRUE(this->Session.Grab(initial));
+    for (int step = 1; step <= 4; ++step)
+    {
+      ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, degrees * step / 4.0)));
+    }
+    ASSERT_TRUE(this->Session.Release());
+  }
+
+  BenderSession Session;
+  vtkSmartPointer<vtkPolyData> Tube;
+};
+
+}
+
+TEST_F(BenderSessionTest, GrabMoveReleaseMovesOnlyInsideTheRegionOfInfluence)
+{
+  EXPECT_EQ(this->Session.GetState(), GrabState::Idle);
+  const RibbonSpec initial = StraightRibbon(20, 40);
+  ASSERT_TRUE(this->Session.Grab(initial));
+  EXPECT_EQ(this->Session.GetState(), GrabState::Grabbed);
+  EXPECT_GT(this->Session.GetNumberOfBoundPoints(), 0);
+  EXPECT_FALSE(this->Session.CanUndo());
+
+  ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 30)));
+  // The live display moved, the committed surface did not.
+  EXPECT_GT(MaxDifference(this->Session.GetDisplaySurface(), this->Tube), 1.0);
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), this->Tube), 0.0);
+
+  ASSERT_TRUE(this->Session.Release());
+  EXPECT_EQ(this->Session.GetState(), GrabState::Released);
+  EXPECT_EQ(this->Session.GetHistoryPosition(), 1u);
+  ASSERT_EQ(this->Session.GetPlan().warps.size(), 1u);
+
+  vtkPolyData* after = this->Session.GetSurface();
+  ASSERT_EQ(after->GetNumberOfPoints(), this->Tube->GetNumberOfPoints());
+  int movedInside = 0;
+  for (vtkIdType i = 0; i < after->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    this->Tube->GetPoint(i, p);
+    after->GetPoint(i, q);
+    const double moved = std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]);
+    const double d = test::DistanceToWire(initial, { p[0], p[1], p[2] });
+    if (d >= 6.0 * (1 + 1e-6))
+    {
+      ASSERT_EQ(moved, 0.0) << "point " << i << " at distance " << d << " moved";
+    }
+    else if (moved > 1e-3)
+    {
+      ++movedInside;
+    }
+  }
+  EXPECT_GT(movedInside, 100);
+  // The committed shape is the exact warp, the display shows it.
+  EXPECT_EQ(MaxDifference(this->Session.GetDisplaySurface(), after), 0.0);
+}
+
+TEST_F(BenderSessionTest, UndoAndRedoRestoreExactCoordinates)
+{
+  this->Bend(40);
+  vtkNew<vtkPolyData> afterFirst;
+  afterFirst->DeepCopy(this->Session.GetSurface());
+  this->Bend(-25);
+  vtkNew<vtkPolyData> afterSecond;
+  afterSecond->DeepCopy(this->Session.GetSurface());
+  EXPECT_GT(MaxDifference(afterFirst, afterSecond), 0.1);
+
+  ASSERT_TRUE(this->Session.Undo());
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), afterFirst), 0.0);
+  EXPECT_EQ(MaxDifference(this->Session.GetDisplaySurface(), afterFirst), 0.0);
+  ASSERT_TRUE(this->Session.Undo());
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), this->Tube), 0.0);
+  EXPECT_FALSE(this->Session.Undo());
+  EXPECT_EQ(this->Session.GetPlan().warps.size(), 0u);
+
+  ASSERT_TRUE(this->Session.Redo());
+  ASSERT_TRUE(this->Session.Redo());
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), afterSecond), 0.0);
+  EXPECT_FALSE(this->Session.Redo());
+  EXPECT_EQ(this->Session.GetPlan().warps.size(), 2u);
+
+  // A new warp after an undo drops the redo step.
+  ASSERT_TRUE(this->Session.Undo());
+  this->Bend(10);
+  EXPECT_FALSE(this->Session.CanRedo());
+  EXPECT_EQ(this->Session.GetPlan().warps.size(), 2u);
+}
+
+TEST_F(BenderSessionTest, UndoIsRefusedWhileGrabbed)
+{
+  this->Bend(30);
+  ASSERT_TRUE(this->Session.Grab(StraightRibbon(5, 15)));
+  EXPECT_FALSE(this->Session.CanUndo());
+  EXPECT_FALSE(this->Session.Undo());
+  EXPECT_TRUE(HasMessage(this->Session, MessageSeverity::Error, "release or cancel"));
+  this->Session.CancelGrab("test");
+  EXPECT_EQ(this->Session.GetState(), GrabState::Idle);
+  EXPECT_TRUE(this->Session.Undo());
+}
+
+TEST_F(BenderSessionTest, InvalidRibbonsAreNeverApplied)
+{
+  RibbonSpec coincident = StraightRibbon(20, 20);
+  EXPECT_FALSE(this->Session.Grab(coincident));
+  EXPECT_EQ(this->Session.GetState(), GrabState::Idle);
+  EXPECT_TRUE(HasMessage(this->Session, MessageSeverity::Error, "Grab refused"));
+
+  const RibbonSpec initial = StraightRibbon(20, 40);
+  ASSERT_TRUE(this->Session.Grab(initial));
+  ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 20)));
+  vtkNew<vtkPolyData> lastValid;
+  lastValid->DeepCopy(this->Session.GetDisplaySurface());
+
+  RibbonSpec collapsed = initial;
+  collapsed.end.position = collapsed.start.position;
+  EXPECT_FALSE(this->Session.MoveFinal(collapsed));
+  EXPECT_FALSE(this->Session.GetLiveProblem().empty());
+  EXPECT_EQ(MaxDifference(this->Session.GetDisplaySurface(), lastValid), 0.0);
+
+  RibbonSpec notFinite = initial;
+  notFinite.end.position.x = std::nan("");
+  EXPECT_FALSE(this->Session.MoveFinal(notFinite));
+  EXPECT_EQ(MaxDifference(this->Session.GetDisplaySurface(), lastValid), 0.0);
+
+  // The release commits the last valid ribbon.
+  ASSERT_TRUE(this->Session.Release());
+  EXPECT_LT(MaxDifference(this->Session.GetSurface(), lastValid), 1e-4);
+}
+
+TEST_F(BenderSessionTest, TwistIsUnwrappedAcrossHalfTurns)
+{
+  const RibbonSpec initial = StraightRibbon(20, 40);
+  ASSERT_TRUE(this->Session.Grab(initial));
+  // Roll the end normal by 270 degrees in 10-degree steps.
+  for (int degrees = 10; degrees <= 270; degrees += 10)
+  {
+    RibbonSpec rolled = initial;
+    rolled.end.normal = Rotate({ 1, 0, 0 }, degrees * 3.14159265358979323846 / 180.0, { 0, 0, 1 });
+    ASSERT_TRUE(this->Session.MoveFinal(rolled)) << degrees << ": " << this->Session.GetLiveProblem();
+  }
+  EXPECT_EQ(this->Session.GetFinalRibbon().extraTurns, 1);
+  ASSERT_TRUE(this->Session.Release());
+  EXPECT_EQ(this->Session.GetPlan().warps[0].final.extraTurns, 1);
+  EXPECT_EQ(this->Session.GetPlan().warps[0].initial.extraTurns, 0);
+}
+
+TEST_F(BenderSessionTest, ReleaseWithoutMotionRecordsNothing)
+{
+  ASSERT_TRUE(this->Session.Grab(StraightRibbon(20, 40)));
+  ASSERT_TRUE(this->Session.Release());
+  EXPECT_EQ(this->Session.GetHistoryPosition(), 0u);
+  EXPECT_FALSE(this->Session.Release());
+}
+
+TEST_F(BenderSessionTest, SubdivisionAtReleaseRefinesTheBend)
+{
+  WarpParameters parameters = this->Session.GetParameters();
+  parameters.subdivide = true;
+  parameters.subdivisionTolerance = 0.01;
+  ASSERT_TRUE(this->Session.SetParameters(parameters));
+  this->Bend(60);
+  EXPECT_GT(this->Session.GetSurface()->GetNumberOfPolys(), this->Tube->GetNumberOfPolys());
+  ASSERT_TRUE(this->Session.GetPlan().warps[0].subdivision.has_value());
+  ASSERT_TRUE(this->Session.Undo());
+  EXPECT_EQ(this->Session.GetSurface()->GetNumberOfPolys(), this->Tube->GetNumberOfPolys());
+}
+
+TEST_F(BenderSessionTest, BadParametersAreRefused)
+{
+  WarpParameters parameters;
+  parameters.radius = -1;
+  EXPECT_FALSE(this->Session.SetParameters(parameters));
+  parameters.radius = 5;
+  parameters.decay.plateau = 2;
+  EXPECT_FALSE(this->Session.SetParameters(parameters));
+  EXPECT_EQ(this->Session.GetParameters().radius, 6.0);
+}
+
+TEST_F(BenderSessionTest, PlanSaveLoadReplayGivesTheSameSurface)
+{
+  this->Bend(35);
+  this->Bend(-20);
+  vtkNew<vtkPolyData> bent;
+  bent->DeepCopy(this->Session.GetSurface());
+  const std::string folder = test::TemporaryFolder("plan");
+  const std::string planPath = folder + "/plan.bender.json";
+  ASSERT_TRUE(this->Session.SavePlan(planPath));
+  EXPECT_EQ(ReadWarpPlan(planPath).warps.size(), 2u);
+
+  BenderSession other;
+  ASSERT_TRUE(other.SetSurface(this->Tube, "tube"));
+  ASSERT_TRUE(other.LoadPlan(planPath));
+  EXPECT_EQ(other.GetHistoryPosition(), 2u);
+  EXPECT_LE(MaxDifference(other.GetSurface(), bent), 1e-12);
+  // Each replayed warp is an undo step.
+  ASSERT_TRUE(other.Undo());
+  ASSERT_TRUE(other.Undo());
+  EXPECT_EQ(MaxDifference(other.GetSurface(), this->Tube), 0.0);
+}
+
+TEST_F(BenderSessionTest, ReplayIsAllOrNothing)
+{
+  WarpPlan plan;
+  WarpSpec good;
+  good.initial = StraightRibbon(20, 40);
+  good.final = Bent(good.initial, 30);
+  good.radius = 6;
+  WarpSpec bad = good;
+  bad.final.end.position = bad.final.start.position;
+  plan.warps = { good, bad };
+  EXPECT_FALSE(this->Session.ReplayPlan(plan, "bad.bender.json"));
+  EXPECT_TRUE(HasMessage(this->Session, MessageSeverity::Error, "bad.bender.json: warps[1]"));
+  EXPECT_EQ(this->Session.GetHistoryPosition(), 0u);
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), this->Tube), 0.0);
+}
+
+TEST_F(BenderSessionTest, CorruptFilesGiveMessagesAndKeepTheSurface)
+{
+  const std::string folder = test::TemporaryFolder("corrupt");
+  {
+    std::ofstream out(folder + "/broken.stl");
+    out << "solid broken\nfacet normal 0 0 1\n outer loop\n vertex 0 0\n";
+  }
+  EXPECT_FALSE(this->Session.LoadSurface(folder + "/broken.stl"));
+  EXPECT_TRUE(HasMessage(this->Session, MessageSeverity::Error, "broken.stl"));
+  EXPECT_FALSE(this->Session.LoadSurface(folder + "/missing.vtp"));
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), this->Tube), 0.0);
+
+  {
+    std::ofstream out(folder + "/broken.bender.json");
+    out << "{\"format\": \"bender-warps\", \"version\": 7, \"warps\": []}";
+  }
+  EXPECT_FALSE(this->Session.LoadPlan(folder + "/broken.bender.json"));
+  EXPECT_TRUE(HasMessage(this->Session, MessageSeverity::Error, "broken.bender.json"));
+}
+
+TEST_F(BenderSessionTest, ExportWritesACheckedFileAndNeverTheSource)
+{
+  this->Bend(30);
+  const MeshCheckReport report = this->Session.CheckSurface();
+  EXPECT_EQ(report.triangles, this->Tube->GetNumberOfPolys());
+  EXPECT_TRUE(report.flipsChecked);
+  EXPECT_EQ(report.flippedTriangles, 0);
+  EXPECT_EQ(report.nonManifoldEdges, 0);
+
+  const std::string folder = test::TemporaryFolder("export");
+  for (const char* name : { "bent.stl", "bent.vtp", "bent.ply", "bent.obj" })
+  {
+    ASSERT_TRUE(this->Session.Export(folder + "/" + name)) << name;
+    auto back = ReadMesh(folder + "/" + name);
+    EXPECT_EQ(back->GetNumberOfPolys(), this->Tube->GetNumberOfPolys()) << name;
+  }
+  ExportOptions ascii;
+  ascii.stlEncoding = StlEncoding::Ascii;
+  ASSERT_TRUE(this->Session.Export(folder + "/ascii.stl", ascii));
+  std::ifstream in(folder + "/ascii.stl");
+  std::string first;
+  std::getline(in, first);
+  EXPECT_NE(first.find("LPS"), std::string::npos) << first;
+
+  // The loaded source is never overwritten.
+  BenderSession fromFile;
+  WriteMesh(this->Tube, folder + "/source.vtp");
+  ASSERT_TRUE(fromFile.LoadSurface(folder + "/source.vtp"));
+  EXPECT_FALSE(fromFile.Export(folder + "/source.vtp"));
+  EXPECT_TRUE(HasMessage(fromFile, MessageSeverity::Error, "refusing to overwrite"));
+  EXPECT_FALSE(fromFile.Export(folder + "/no-such-folder/x.stl"));
+}
+
+TEST_F(BenderSessionTest, AutosaveRecoversAfterACrash)
+{
+  const std::string folder = test::TemporaryFolder("autosave");
+  const std::string autosave = folder + "/autosave.bender-session.json";
+  vtkNew<vtkPolyData> bent;
+  {
+    // A session made from memory (a segmented surface): its source is kept beside the file.
+    BenderSession crashed;
+    crashed.SetAutosavePath(autosave);
+    ASSERT_TRUE(crashed.SetSurface(this->Tube, "segmented"));
+    WarpParameters parameters;
+    parameters.radius = 6;
+    crashed.SetParameters(parameters);
+    const RibbonSpec initial = StraightRibbon(20, 40);
+    ASSERT_TRUE(crashed.Grab(initial));
+    ASSERT_TRUE(crashed.MoveFinal(Bent(initial, 45)));
+    ASSERT_TRUE(crashed.Release());
+    bent->DeepCopy(crashed.GetSurface());
+    ASSERT_TRUE(std::filesystem::exists(autosave));
+    // No DiscardAutosave: the process "crashes" here.
+  }
+  BenderSession recovered;
+  recovered.SetAutosavePath(autosave);
+  ASSERT_TRUE(recovered.Recover(autosave));
+  EXPECT_EQ(recovered.GetHistoryPosition(), 1u);
+  EXPECT_LE(MaxDifference(recovered.GetSurface(), bent), 1e-12);
+  ASSERT_TRUE(recovered.Undo());
+  EXPECT_EQ(MaxDifference(recovered.GetSurface(), this->Tube), 0.0);
+  recovered.DiscardAutosave();
+  EXPECT_FALSE(std::filesystem::exists(autosave));
+
+  // A broken session file gives a message, not a crash.
+  {
+    std::ofstream out(folder + "/bad.json");
+    out << "{\"format\": \"bender-session\", \"version\": 1}";
+  }
+  BenderSession bad;
+  EXPECT_FALSE(bad.Recover(folder + "/bad.json"));
+  EXPECT_TRUE(HasMessage(bad, MessageSeverity::Error, "source"));
+}
+
+TEST_F(BenderSessionTest, SpaceInversionRiskIsReportedAndRadiusChangesRebind)
+{
+  const RibbonSpec initial = StraightRibbon(20, 40);
+  ASSERT_TRUE(this->Session.Grab(initial));
+  EXPECT_FALSE(this->Session.GetSpaceInversionRisk());
+  const long long boundAt6 = this->Session.GetNumberOfBoundPoints();
+  // A sharp final bend: its wire's r_min falls below R.
+  ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 150)));
+  EXPECT_TRUE(this->Session.GetSpaceInversionRisk());
+  EXPECT_FALSE(this->Session.GetSpaceInversionWarning().empty());
+  EXPECT_TRUE(HasMessage(this->Session, MessageSeverity::Warning, ""));
+  // A larger R while grabbed rebinds at once: more points inside the region.
+  WarpParameters parameters = this->Session.GetParameters();
+  parameters.radius = 12;
+  ASSERT_TRUE(this->Session.SetParameters(parameters));
+  EXPECT_GT(this->Session.GetNumberOfBoundPoints(), boundAt6);
+  ASSERT_TRUE(this->Session.Release());
+  EXPECT_EQ(this->Session.GetPlan().warps[0].radius, 12.0);
+}

@@ -1,0 +1,105 @@
+#include "LogicTestUtilities.h"
+
+#include "Ribbon.h"
+
+#include <vtkCellArray.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+namespace bender
+{
+namespace test
+{
+
+vtkSmartPointer<vtkPolyData> MakeTube(double x0, double x1, double radius, int rings, int sides)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  const double pi = 3.14159265358979323846;
+  for (int r = 0; r < rings; ++r)
+  {
+    const double x = x0 + (x1 - x0) * r / (rings - 1);
+    for (int k = 0; k < sides; ++k)
+    {
+      const double a = 2.0 * pi * k / sides;
+      points->InsertNextPoint(x, radius * std::cos(a), radius * std::sin(a));
+    }
+  }
+  auto triangles = vtkSmartPointer<vtkCellArray>::New();
+  for (int r = 0; r + 1 < rings; ++r)
+  {
+    for (int k = 0; k < sides; ++k)
+    {
+      const vtkIdType a = r * sides + k;
+      const vtkIdType b = r * sides + (k + 1) % sides;
+      const vtkIdType c = a + sides;
+      const vtkIdType d = b + sides;
+      const vtkIdType t1[3] = { a, b, d };
+      const vtkIdType t2[3] = { a, d, c };
+      triangles->InsertNextCell(3, t1);
+      triangles->InsertNextCell(3, t2);
+    }
+  }
+  auto tube = vtkSmartPointer<vtkPolyData>::New();
+  tube->SetPoints(points);
+  tube->SetPolys(triangles);
+  return tube;
+}
+
+RibbonSpec StraightRibbon(double a, double b)
+{
+  RibbonSpec ribbon;
+  ribbon.start.position = { a, 0, 0 };
+  ribbon.end.position = { b, 0, 0 };
+  ribbon.start.tangent = ribbon.end.tangent = { 1, 0, 0 };
+  ribbon.start.normal = ribbon.end.normal = { 0, 0, 1 };
+  return ribbon;
+}
+
+double MaxDifference(vtkPolyData* a, vtkPolyData* b)
+{
+  if (!a || !b || a->GetNumberOfPoints() != b->GetNumberOfPoints())
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    for (int c = 0; c < 3; ++c)
+    {
+      worst = std::max(worst, std::abs(p[c] - q[c]));
+    }
+  }
+  return worst;
+}
+
+double DistanceToWire(const RibbonSpec& ribbon, const Vec3& p)
+{
+  const Ribbon wire(ribbon);
+  double best = std::numeric_limits<double>::infinity();
+  const int samples = 4000;
+  for (int i = 0; i <= samples; ++i)
+  {
+    best = std::min(best, Distance(p, wire.Wire().PointAt(double(i) / samples)));
+  }
+  return best;
+}
+
+std::string TemporaryFolder(const std::string& name)
+{
+  const auto folder = std::filesystem::temp_directory_path() / ("bender-logic-" + name);
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder.string();
+}
+
+} // namespace test
+} // namespace bender

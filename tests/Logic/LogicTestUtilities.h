@@ -1,0 +1,38 @@
+#ifndef bender_LogicTestUtilities_h
+#define bender_LogicTestUtilities_h
+
+#include "WarpPlan.h"
+
+#include <vtkSmartPointer.h>
+
+#include <string>
+
+class vtkPolyData;
+
+namespace bender
+{
+namespace test
+{
+
+/// A closed-side open-ended tube along +x: `rings` rings of `sides` points, radius `radius`,
+/// from x0 to x1, triangulated. Double points.
+vtkSmartPointer<vtkPolyData> MakeTube(
+  double x0, double x1, double radius, int rings = 81, int sides = 32);
+
+/// A straight ribbon along +x from (a,0,0) to (b,0,0), normal +z.
+RibbonSpec StraightRibbon(double a, double b);
+
+/// Largest coordinate difference between two surfaces of the same points; infinity when the
+/// point counts differ.
+double MaxDifference(vtkPolyData* a, vtkPolyData* b);
+
+/// Distance from p to the wire of `ribbon` (dense sampling).
+double DistanceToWire(const RibbonSpec& ribbon, const Vec3& p);
+
+/// A fresh empty folder under the system temporary folder.
+std::string TemporaryFolder(const std::string& name);
+
+} // namespace test
+} // namespace bender
+
+#endif

@@ -1,0 +1,474 @@
+// The application as a user drives it: the real main window loads the demo, places the
+// ribbon, grabs, drags a handle with a recorded event log, releases; undo/redo, plan
+// save/load/replay, export checked by bender-cli, a screenshot, a replayed tracker recording,
+// and a corrupt file dropped on the window. Run under Xvfb (QT_QPA_PLATFORM=xcb).
+#include "BendPanel.h"
+#include "MainWindow.h"
+#include "MeshIO.h"
+#include "Ribbon.h"
+#include "SliceViews.h"
+#include "TrackersPanel.h"
+#include "VolumeIO.h"
+#include "WarpPlanIO.h"
+#include "vtkBenderRibbonRepresentation.h"
+#include "vtkBenderRibbonWidget.h"
+
+#include <QApplication>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QPushButton>
+#include <QFile>
+#include <QLabel>
+#include <QMimeData>
+#include <QProcess>
+#include <QSignalSpy>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QtTest>
+
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkInteractorEventRecorder.h>
+#include <vtkInteractorObserver.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace
+{
+
+double MaxDifference(vtkPolyData* a, vtkPolyData* b)
+{
+  if (!a || !b || a->GetNumberOfPoints() != b->GetNumberOfPoints())
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(p[c] - q[c]));
+  }
+  return worst;
+}
+
+vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* surface)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(surface);
+  return copy;
+}
+
+// A tube along x, radius r, from x0 to x1 (the simulated hands hold (-100,0,0)-(100,0,0)).
+vtkSmartPointer<vtkPolyData> Tube(double x0, double x1, double r)
+{
+  const int rings = 121, sides = 24;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < sides; ++k)
+    {
+      const double a = 2 * 3.14159265358979 * k / sides;
+      points->InsertNextPoint(x0 + (x1 - x0) * i / (rings - 1), r * std::cos(a), r * std::sin(a));
+    }
+  vtkNew<vtkCellArray> cells;
+  for (int i = 0; i + 1 < rings; ++i)
+    for (int k = 0; k < sides; ++k)
+    {
+      const vtkIdType a = i * sides + k, b = i * sides + (k + 1) % sides;
+      const vtkIdType t1[3] = { a, b, b + sides }, t2[3] = { a, b + sides, a + sides };
+      cells->InsertNextCell(3, t1);
+      cells->InsertNextCell(3, t2);
+    }
+  auto tube = vtkSmartPointer<vtkPolyData>::New();
+  tube->SetPoints(points);
+  tube->SetPolys(cells);
+  return tube;
+}
+
+double DistanceToWire(const bender::RibbonSpec& ribbon, const double p[3])
+{
+  const bender::Ribbon wire(ribbon);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= 2000; ++i)
+  {
+    best = std::min(best, bender::Distance({ p[0], p[1], p[2] }, wire.Wire().PointAt(i / 2000.0)));
+  }
+  return best;
+}
+
+}
+
+class BenderAppTest : public QObject
+{
+  Q_OBJECT
+
+private:
+  QTemporaryDir Folder;
+  std::unique_ptr<MainWindow> Window;
+  vtkSmartPointer<vtkPolyData> Segmented;
+  vtkSmartPointer<vtkPolyData> AfterFirstBend;
+
+  QString artefact(const QString& name)
+  {
+    QDir().mkpath(BENDER_ARTIFACT_DIR);
+    return QString(BENDER_ARTIFACT_DIR) + "/" + name;
+  }
+
+private slots:
+  void initTestCase()
+  {
+    QVERIFY(this->Folder.isValid());
+    MainWindowOptions options;
+    options.autosavePath = this->Folder.filePath("autosave.bender-session.json");
+    options.offerRecovery = false;
+    options.interactive = false;
+    this->Window = std::make_unique<MainWindow>(options);
+    this->Window->resize(1280, 900);
+    this->Window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));
+    this->Window->activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(this->Window.get()));
+  }
+
+  void cleanupTestCase()
+  {
+    this->Window->close();
+    this->Window.reset();
+  }
+
+  void cancelStopsTheWorkAndChangesNothing()
+  {
+    QSignalSpy finished(this->Window.get(), &MainWindow::workFinished);
+    this->Window->startDemo();
+    QVERIFY(this->Window->isBusy());
+    auto* cancel = this->Window->findChild<QPushButton*>("cancelWork");
+    QVERIFY(cancel && cancel->isVisible());
+    QTest::mouseClick(cancel, Qt::LeftButton);
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    QCOMPARE(finished.count(), 1);
+    QCOMPARE(finished.first().first().toBool(), false);
+    QVERIFY(!this->Window->session().HasSurface());
+    QVERIFY(!cancel->isVisible());
+  }
+
+  void demoSegmentsAndPlacesTheRibbon()
+  {
+    QSignalSpy finished(this->Window.get(), &MainWindow::workFinished);
+    this->Window->startDemo();
+    QVERIFY(this->Window->isBusy());
+    QVERIFY(this->Window->waitUntilIdle(180000));
+    QCOMPARE(finished.count(), 1);
+    QCOMPARE(finished.first().first().toBool(), true);
+    bender::BenderSession& session = this->Window->session();
+    QVERIFY(session.HasSurface());
+    QVERIFY(session.GetSurface()->GetNumberOfPolys() > 10000);
+    QVERIFY(this->Window->ribbonWidget()->GetEnabled());
+    const bender::WarpPlan plan = bender::ReadWarpPlan(bender::DemoPlanPath());
+    const auto& ribbon = this->Window->ribbonWidget()->GetRibbonRepresentation()->GetRibbon();
+    QCOMPARE(ribbon.start.position.x, plan.warps[0].initial.start.position.x);
+    QCOMPARE(session.GetParameters().radius, plan.warps[0].radius);
+    QVERIFY(this->Window->findChild<SliceViews*>()->isVisible());
+    QVERIFY2(this->Window->statusLabel()->text().contains("press G"),
+      qPrintable(this->Window->statusLabel()->text()));
+    this->Segmented = Copy(session.GetSurface());
+  }
+
+  void grabDragReleaseMovesOnlyInsideR()
+  {
+    bender::BenderSession& session = this->Window->session();
+    auto* rep = this->Window->ribbonWidget()->GetRibbonRepresentation();
+    const bender::RibbonSpec initial = rep->GetRibbon();
+    QVERIFY(this->Window->grab());
+    QCOMPARE(session.GetState(), bender::GrabState::Grabbed);
+
+    // Drag the end handle 80 pixels across the view with a recorded event log.
+    this->Window->render();
+    double world[3], display[3];
+    rep->GetHandlePosition(vtkBenderRibbonRepresentation::EndPosition, world);
+    vtkInteractorObserver::ComputeWorldToDisplay(
+      this->Window->renderer(), world[0], world[1], world[2], display);
+    const int x = static_cast<int>(std::lround(display[0]));
+    const int y = static_cast<int>(std::lround(display[1]));
+    std::ostringstream log;
+    log << "# StreamVersion 1.2\n";
+    log << "MouseMoveEvent " << x << " " << y << " 0 0 0 0 0\n";
+    log << "LeftButtonPressEvent " << x << " " << y << " 0 0 0 0 0\n";
+    for (int step = 1; step <= 8; ++step)
+      log << "MouseMoveEvent " << x + 10 * step << " " << y << " 0 0 0 0 0\n";
+    log << "LeftButtonReleaseEvent " << x + 80 << " " << y << " 0 0 0 0 0\n";
+    vtkNew<vtkInteractorEventRecorder> recorder;
+    recorder->SetInteractor(this->Window->renderer()->GetRenderWindow()->GetInteractor());
+    recorder->ReadFromInputStringOn();
+    recorder->SetInputString(log.str().c_str());
+    recorder->Play();
+    recorder->Off();
+
+    const bender::RibbonSpec moved = rep->GetRibbon();
+    QVERIFY(bender::Distance(moved.end.position, initial.end.position) > 1.0);
+    QVERIFY(session.GetLiveProblem().empty());
+    // The live display follows; the committed surface has not changed yet.
+    QVERIFY(MaxDifference(session.GetDisplaySurface(), this->Segmented) > 0.5);
+    QCOMPARE(MaxDifference(session.GetSurface(), this->Segmented), 0.0);
+
+    QVERIFY(this->Window->release());
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
+    vtkPolyData* after = session.GetSurface();
+    QCOMPARE(after->GetNumberOfPoints(), this->Segmented->GetNumberOfPoints());
+    const double radius = session.GetParameters().radius;
+    int movedInside = 0;
+    for (vtkIdType i = 0; i < after->GetNumberOfPoints(); i += 1)
+    {
+      double p[3], q[3];
+      this->Segmented->GetPoint(i, p);
+      after->GetPoint(i, q);
+      const double change = std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]);
+      if (change == 0.0)
+        continue;
+      // Every moved point lies inside the region of influence of the initial wire.
+      QVERIFY2(DistanceToWire(initial, p) < radius * (1 + 1e-9), qPrintable(QString("point %1").arg(i)));
+      ++movedInside;
+    }
+    QVERIFY(movedInside > 100);
+    this->AfterFirstBend = Copy(after);
+    this->Window->saveScreenshot(this->artefact("bender-after-bend.png"));
+  }
+
+  void undoRedoRestoreExactCoordinates()
+  {
+    bender::BenderSession& session = this->Window->session();
+    // The shortcuts, as typed on the 3D view.
+    this->Window->view()->setFocus();
+    QTest::keyClick(this->Window->view(), Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(0));
+    QCOMPARE(MaxDifference(session.GetSurface(), this->Segmented), 0.0);
+    QCOMPARE(MaxDifference(session.GetDisplaySurface(), this->Segmented), 0.0);
+    QTest::keyClick(this->Window->view(), Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
+    QCOMPARE(MaxDifference(session.GetSurface(), this->AfterFirstBend), 0.0);
+  }
+
+  void planSaveLoadReplayGivesTheSameSurface()
+  {
+    bender::BenderSession& session = this->Window->session();
+    const QString plan = this->Folder.filePath("gui.bender.json");
+    QVERIFY(session.SavePlan(plan.toStdString()));
+    QVERIFY(session.Undo());
+    QCOMPARE(MaxDifference(session.GetSurface(), this->Segmented), 0.0);
+    QVERIFY(this->Window->openFile(plan));
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
+    QVERIFY(MaxDifference(session.GetSurface(), this->AfterFirstBend) <= 1e-9);
+  }
+
+  void exportIsAcceptedByTheCheckCommand()
+  {
+    const QString stl = this->Folder.filePath("bent.stl");
+    QVERIFY(this->Window->exportSurface(stl, false));
+    QVERIFY(QFileInfo(stl).size() > 84);
+    QProcess check;
+    check.start(BENDER_CLI_PATH, { "check", stl });
+    QVERIFY(check.waitForFinished(120000));
+    const QString output = QString::fromLocal8Bit(check.readAllStandardOutput());
+    QVERIFY2(check.exitCode() == 0, qPrintable(output + check.readAllStandardError()));
+    QVERIFY(output.contains("clean"));
+    // The frame and unit are written into the file header.
+    QFile file(stl);
+    QVERIFY(file.open(QIODevice::ReadOnly));
+    QVERIFY(file.read(80).contains("LPS"));
+  }
+
+  void screenshotIsNotBlank()
+  {
+    this->Window->render();
+    const QString path = this->artefact("bender-window.png");
+    QVERIFY(this->Window->saveScreenshot(path));
+    QImage image(path);
+    QVERIFY(!image.isNull());
+    QVERIFY(image.width() >= 800);
+    std::set<QRgb> colours;
+    for (int y = 0; y < image.height(); y += 4)
+      for (int x = 0; x < image.width(); x += 4)
+        colours.insert(image.pixel(x, y));
+    QVERIFY2(colours.size() > 200, qPrintable(QString("%1 colours").arg(colours.size())));
+    // The 3D view itself shows the vessel: its reddish pixels.
+    const QString viewPath = this->artefact("bender-view.png");
+    QVERIFY(this->Window->saveViewScreenshot(viewPath));
+    QImage view(viewPath);
+    int red = 0;
+    for (int y = 0; y < view.height(); y += 2)
+      for (int x = 0; x < view.width(); x += 2)
+      {
+        const QColor c = view.pixelColor(x, y);
+        red += (c.red() > 120 && c.red() > c.green() + 40) ? 1 : 0;
+      }
+    QVERIFY2(red > 500, qPrintable(QString("%1 vessel pixels").arg(red)));
+  }
+
+  void corruptFileDroppedGivesAMessage()
+  {
+    bender::BenderSession& session = this->Window->session();
+    const std::size_t position = session.GetHistoryPosition();
+    const QString broken = this->Folder.filePath("broken.stl");
+    {
+      QFile file(broken);
+      QVERIFY(file.open(QIODevice::WriteOnly));
+      file.write("solid x\nfacet normal 0 0 1\n outer loop\n vertex 1 2\n");
+    }
+    QMimeData mime;
+    mime.setUrls({ QUrl::fromLocalFile(broken) });
+    // As the window system delivers a drop: enter, then drop, on the window's central area.
+    QWidget* target = this->Window->centralWidget();
+    QDragEnterEvent enter(QPoint(100, 100), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(QPointF(100, 100), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &drop);
+    QVERIFY(this->Window->waitUntilIdle(30000));
+    QString log;
+    for (const auto& message : session.GetMessages())
+      log += QString::fromStdString(message.text) + "\n";
+    QVERIFY2(this->Window->statusLabel()->text().contains("broken.stl"), qPrintable(log));
+    QVERIFY(session.HasSurface());
+    QCOMPARE(session.GetHistoryPosition(), position);
+
+    const QString unknown = this->Folder.filePath("notes.xyz");
+    QFile(unknown).open(QIODevice::WriteOnly);
+    QVERIFY(!this->Window->openFile(unknown));
+    QVERIFY(this->Window->statusLabel()->text().contains("unknown file type"));
+    const QString badPlan = this->Folder.filePath("bad.bender.json");
+    {
+      QFile file(badPlan);
+      QVERIFY(file.open(QIODevice::WriteOnly));
+      file.write("{ not json");
+    }
+    QVERIFY(!this->Window->openFile(badPlan));
+    QVERIFY(this->Window->statusLabel()->text().contains("bad.bender.json"));
+  }
+
+  void volumeOpensAndSegmentsFromTheSegmentPanel()
+  {
+    // The demo's MRA-like volume written as NRRD, opened and segmented through the panel.
+    bender::DemoVessel demo = bender::SegmentDemoVessel(bender::DemoVesselPath());
+    const QString nrrd = this->Folder.filePath("mra.nrrd");
+    bender::WriteVolume(demo.volume, nrrd.toStdString());
+    QVERIFY(this->Window->openFile(nrrd));
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    QVERIFY(this->Window->findChild<SliceViews*>()->hasVolume());
+    QVERIFY(this->Window->statusLabel()->text().contains("mra.nrrd"));
+    auto* lumen = this->Window->findChild<QDoubleSpinBox*>("lumenThreshold");
+    QVERIFY(lumen);
+    lumen->setValue(250.0);
+    auto* segment = this->Window->findChild<QPushButton*>("segmentButton");
+    QVERIFY(segment);
+    segment->click();
+    QVERIFY(this->Window->waitUntilIdle(120000));
+    bender::BenderSession& session = this->Window->session();
+    QCOMPARE(session.GetSurfaceName(), std::string("segmented vessel"));
+    // The same lumen as the demo's segmentation, within a few percent of its triangles.
+    const double ratio = double(session.GetSurface()->GetNumberOfPolys()) / demo.surface->GetNumberOfPolys();
+    QVERIFY2(ratio > 0.9 && ratio < 1.1, qPrintable(QString::number(ratio)));
+  }
+
+  void replayedTrackerRecordingGrabsBendsAndReleases()
+  {
+    // A tube held by the recorded hands: (-100,0,0) to (100,0,0) at rest.
+    const QString tube = this->Folder.filePath("tube.vtp");
+    bender::WriteMesh(Tube(-150, 150, 10), tube.toStdString());
+    QVERIFY(this->Window->openFile(tube));
+    QVERIFY(this->Window->waitUntilIdle(30000));
+    bender::BenderSession& session = this->Window->session();
+    QCOMPARE(session.GetSurfaceName(), std::string("tube.vtp"));
+    auto original = Copy(session.GetSurface());
+    bender::WarpParameters parameters = session.GetParameters();
+    parameters.radius = 30;
+    this->Window->bendPanel()->setParameters(parameters);
+    QVERIFY(session.SetParameters(parameters));
+
+    this->Window->trackersPanel()->setDeviceSpec(
+      QString("replay:%1/tracking/two-hands.fastrak").arg(BENDER_TEST_DATA_DIR));
+    this->Window->trackersPanel()->setMotionScale(1.0);
+    QVERIFY(this->Window->connectTrackers());
+    bool sawGrab = false;
+    QElapsedTimer timer;
+    timer.start();
+    while (session.GetMessages().size() > 0 && timer.elapsed() < 20000)
+    {
+      QTest::qWait(20);
+      sawGrab |= session.GetState() == bender::GrabState::Grabbed;
+      if (!this->Window->trackers().IsConnected())
+        break;
+    }
+    QVERIFY(!this->Window->trackers().IsConnected());
+    QVERIFY(sawGrab);
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
+    QVERIFY(MaxDifference(session.GetSurface(), original) > 5.0);
+    // Seen from the side: the recorded hands arched the tube upwards and twisted it.
+    this->Window->renderer()->GetActiveCamera()->Elevation(-75);
+    this->Window->renderer()->GetActiveCamera()->OrthogonalizeViewUp();
+    this->Window->renderer()->ResetCamera();
+    this->Window->saveScreenshot(this->artefact("bender-tracker-bend.png"));
+  }
+
+  void placeRibbonByClickingOnTheVessel()
+  {
+    // Back to the straight tube; P, then a click on its wall at x = 120: a straight ribbon
+    // along the tube's axis, R from the local radius (10 mm).
+    QVERIFY(this->Window->session().Undo());
+    this->Window->renderer()->GetActiveCamera()->SetPosition(120, 0, 200);
+    this->Window->renderer()->GetActiveCamera()->SetFocalPoint(120, 0, 0);
+    this->Window->renderer()->GetActiveCamera()->SetViewUp(0, 1, 0);
+    this->Window->renderer()->ResetCameraClippingRange();
+    this->Window->render();
+    this->Window->view()->setFocus();
+    QTest::keyClick(this->Window->view(), Qt::Key_P);
+    QVERIFY(this->Window->isPlacingRibbon());
+    double display[3];
+    vtkInteractorObserver::ComputeWorldToDisplay(this->Window->renderer(), 120, 0, 10, display);
+    const int x = static_cast<int>(std::lround(display[0]));
+    const int y = static_cast<int>(std::lround(display[1]));
+    std::ostringstream log;
+    log << "# StreamVersion 1.2\n";
+    log << "LeftButtonPressEvent " << x << " " << y << " 0 0 0 0 0\n";
+    log << "LeftButtonReleaseEvent " << x << " " << y << " 0 0 0 0 0\n";
+    vtkNew<vtkInteractorEventRecorder> recorder;
+    recorder->SetInteractor(this->Window->renderer()->GetRenderWindow()->GetInteractor());
+    recorder->ReadFromInputStringOn();
+    recorder->SetInputString(log.str().c_str());
+    recorder->Play();
+    recorder->Off();
+    QVERIFY(!this->Window->isPlacingRibbon());
+    const auto ribbon = this->Window->ribbonWidget()->GetRibbonRepresentation()->GetRibbon();
+    const bender::Vec3 middle = 0.5 * (ribbon.start.position + ribbon.end.position);
+    QVERIFY2(std::abs(middle.y) < 1.5 && std::abs(middle.z) < 1.5,
+      qPrintable(QString("%1 %2 %3").arg(middle.x).arg(middle.y).arg(middle.z)));
+    QVERIFY2(std::abs(middle.x - 120) < 3, qPrintable(QString::number(middle.x)));
+    const bender::Vec3 axis = bender::Normalized(ribbon.end.position - ribbon.start.position);
+    QVERIFY(std::abs(axis.x) > 0.98);
+    QVERIFY(std::abs(this->Window->session().GetParameters().radius - 22.0) < 3.0);
+    QVERIFY(this->Window->grab());
+    this->Window->session().CancelGrab("test");
+  }
+};
+
+int main(int argc, char** argv)
+{
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication application(argc, argv);
+  QCoreApplication::setOrganizationName("BenderTests");
+  QCoreApplication::setApplicationName("BenderAppTest");
+  BenderAppTest test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "BenderAppTest.moc"
