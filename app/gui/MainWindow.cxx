@@ -17,6 +17,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
@@ -315,7 +316,19 @@ void MainWindow::buildPanels()
   this->FormatCombo = new QComboBox(exportPanel);
   this->FormatCombo->addItems({ "STL (binary)", "STL (ASCII)", "VTP", "PLY", "OBJ" });
   exportForm->addRow("Format", this->FormatCombo);
-  exportForm->addRow("Frame and unit", new QLabel("LPS, millimetres (stated in the file header)"));
+  this->CapCheck = new QCheckBox("Cap the open vessel ends (inlets and outlets)", exportPanel);
+  this->CapCheck->setObjectName("capCheck");
+  exportForm->addRow("Caps", this->CapCheck);
+  this->PatchesCombo = new QComboBox(exportPanel);
+  this->PatchesCombo->setObjectName("patchesCombo");
+  this->PatchesCombo->addItems(
+    { "One surface", "Named solids per patch (ASCII, snappyHexMesh)", "One STL file per patch" });
+  exportForm->addRow("STL patches", this->PatchesCombo);
+  this->FrameCombo = new QComboBox(exportPanel);
+  this->FrameCombo->setObjectName("frameCombo");
+  this->FrameCombo->addItems({ "LPS (DICOM, ITK)", "RAS (Slicer, NIfTI)" });
+  exportForm->addRow("Frame", this->FrameCombo);
+  exportForm->addRow("Unit", new QLabel("millimetres (frame and unit stated in the file header)"));
   auto* checkButton = new QPushButton("Check the surface", exportPanel);
   auto* exportButton = new QPushButton("Export... (Ctrl+E)", exportPanel);
   this->CheckReport = new QPlainTextEdit(exportPanel);
@@ -879,6 +892,12 @@ bool MainWindow::exportSurface(const QString& path, bool proceedOnProblems)
   options.stlEncoding = (lower.endsWith(".stl") && this->FormatCombo->currentIndex() == 1)
     ? bender::StlEncoding::Ascii
     : bender::StlEncoding::Binary;
+  options.cap = this->CapCheck->isChecked();
+  options.patches = this->PatchesCombo->currentIndex() == 1
+    ? bender::StlPatchMode::Solids
+    : (this->PatchesCombo->currentIndex() == 2 ? bender::StlPatchMode::Files
+                                                : bender::StlPatchMode::Single);
+  options.frame = this->FrameCombo->currentIndex() == 1 ? "RAS" : "LPS";
   const bool ok = this->Session.Export(path.toStdString(), options);
   if (ok)
   {

@@ -19,6 +19,7 @@
 class BendPanel;
 class QAction;
 class QDoubleSpinBox;
+class QCheckBox;
 class QComboBox;
 class QLabel;
 class QMenu;
@@ -173,6 +174,9 @@ private:
   QDoubleSpinBox* SmoothingSpin = nullptr;
   QComboBox* MethodCombo = nullptr;
   QComboBox* FormatCombo = nullptr;
+  QComboBox* PatchesCombo = nullptr;
+  QComboBox* FrameCombo = nullptr;
+  QCheckBox* CapCheck = nullptr;
   QPlainTextEdit* CheckReport = nullptr;
   QLabel* DataInfo = nullptr;
   QLabel* StatusText = nullptr;

@@ -557,17 +557,23 @@ bool BenderSession::Export(const std::string& path, const ExportOptions& options
       FileName(path) + ": refusing to overwrite the input surface; choose another file");
     return false;
   }
+  std::vector<std::string> written;
   try
   {
-    ExportSurface(this->History.Current(), path, options);
+    written = ExportSurface(this->History.Current(), path, options);
   }
   catch (const std::exception& e)
   {
     this->Report(MessageSeverity::Error, std::string("Export failed: ") + e.what());
     return false;
   }
+  std::string names;
+  for (const std::string& file : written)
+  {
+    names += (names.empty() ? "" : ", ") + FileName(file);
+  }
   this->Report(MessageSeverity::Info,
-    "Exported " + FileName(path) + " (frame " + options.frame + ", unit " + options.unit + ")");
+    "Exported " + names + " (frame " + options.frame + ", unit " + options.unit + ")");
   return true;
 }
 

@@ -2,9 +2,11 @@
 #define bender_SurfaceExport_h
 
 #include "BenderMeshCheck.h"
+#include "BenderStlExport.h"
 #include "MeshIO.h"
 
 #include <string>
+#include <vector>
 
 class vtkPolyData;
 
@@ -16,10 +18,16 @@ namespace bender
 struct ExportOptions
 {
   StlEncoding stlEncoding = StlEncoding::Binary;
-  /// Coordinate frame and unit of the surface, stated in the file header where the format has
-  /// one and in the messages: segmented vessels are LPS millimetres.
+  /// Coordinate frame and unit of the exported coordinates, stated in the file header where the
+  /// format has one and in the messages. The surface is LPS millimetres; "RAS" negates x and y.
   std::string frame = "LPS";
   std::string unit = "mm";
+  /// Close the planar-ish open ends (vessel inlets and outlets) with flat caps, labelled in the
+  /// "PatchId" cell array (wall 0, caps 1..n; kept in .vtp).
+  bool cap = false;
+  /// For .stl: one file of the whole surface (Single; binary or ASCII per stlEncoding), one
+  /// ASCII file with a named solid per patch (Solids), or one file per patch (Files).
+  StlPatchMode patches = StlPatchMode::Single;
 };
 
 /// "bender: frame LPS, unit mm" (the header written into STL/OBJ/PLY files).
@@ -30,8 +38,11 @@ std::string ExportHeader(const ExportOptions& options);
 /// `before` with another topology (after subdivision) is ignored for flips.
 MeshCheckReport CheckForExport(vtkPolyData* surface, vtkPolyData* before);
 
-/// Writes atomically through bender::WriteMesh. Throws MeshIOError naming the file.
-void ExportSurface(vtkPolyData* surface, const std::string& path, const ExportOptions& options);
+/// Writes atomically (through bender::WriteMesh, or bender::ExportStl for patches). Returns the
+/// files written. Throws MeshIOError or StlExportError naming the file, or std::runtime_error
+/// when capping fails.
+std::vector<std::string> ExportSurface(
+  vtkPolyData* surface, const std::string& path, const ExportOptions& options);
 
 } // namespace bender
 

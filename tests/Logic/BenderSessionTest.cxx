@@ -5,6 +5,7 @@
 #include "MeshIO.h"
 #include "WarpPlanIO.h"
 
+#include <vtkCellData.h>
 #include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 using namespace bender;
 using bender::test::MakeTube;
@@ -327,6 +329,58 @@ TEST_F(BenderSessionTest, ExportWritesACheckedFileAndNeverTheSource)
   EXPECT_FALSE(fromFile.Export(folder + "/source.vtp"));
   EXPECT_TRUE(HasMessage(fromFile, MessageSeverity::Error, "refusing to overwrite"));
   EXPECT_FALSE(fromFile.Export(folder + "/no-such-folder/x.stl"));
+}
+
+TEST_F(BenderSessionTest, ExportCapsTheOpenEndsIntoNamedPatchesForCfd)
+{
+  this->Bend(30);
+  const std::string folder = test::TemporaryFolder("export-cfd");
+  ExportOptions cfd;
+  cfd.cap = true;
+  cfd.patches = StlPatchMode::Solids;
+  ASSERT_TRUE(this->Session.Export(folder + "/vessel.stl", cfd));
+  std::ifstream in(folder + "/vessel.stl");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* solid : { "solid wall", "solid cap_1", "solid cap_2" })
+  {
+    EXPECT_NE(text.find(solid), std::string::npos) << solid;
+  }
+  EXPECT_EQ(text.find("solid cap_3"), std::string::npos) << "the tube has two open ends";
+
+  // The labelled VTP reassembles into a closed, consistently oriented surface.
+  ExportOptions vtp;
+  vtp.cap = true;
+  ASSERT_TRUE(this->Session.Export(folder + "/vessel.vtp", vtp));
+  auto capped = ReadMesh(folder + "/vessel.vtp");
+  ASSERT_NE(capped->GetCellData()->GetArray("PatchId"), nullptr);
+  MeshCheckOptions closed;
+  closed.requireClosed = true;
+  const MeshCheckReport report = CheckMesh(capped, nullptr, closed);
+  EXPECT_TRUE(report.Clean()) << FormatReportText(report, "vessel.vtp");
+  EXPECT_GT(report.volume, 0.0);
+
+  // One file per patch, and RAS coordinates (x and y negated).
+  ExportOptions files;
+  files.cap = true;
+  files.patches = StlPatchMode::Files;
+  ASSERT_TRUE(this->Session.Export(folder + "/parts.stl", files));
+  int parts = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+  {
+    parts += entry.path().filename().string().rfind("parts_", 0) == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(parts, 3);
+  ExportOptions ras;
+  ras.frame = "RAS";
+  ASSERT_TRUE(this->Session.Export(folder + "/ras.vtp", ras));
+  auto lps = this->Session.GetSurface();
+  auto back = ReadMesh(folder + "/ras.vtp");
+  double a[3], b[3];
+  lps->GetPoint(5, a);
+  back->GetPoint(5, b);
+  EXPECT_DOUBLE_EQ(b[0], -a[0]);
+  EXPECT_DOUBLE_EQ(b[1], -a[1]);
+  EXPECT_DOUBLE_EQ(b[2], a[2]);
 }
 
 TEST_F(BenderSessionTest, AutosaveRecoversAfterACrash)
