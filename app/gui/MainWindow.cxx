@@ -14,6 +14,8 @@
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
+#include <algorithm>
+#include <array>
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
@@ -102,11 +104,6 @@ bool IsVolume(const QString& path)
     }
   }
   return false;
-}
-
-bender::Vec3 Midpoint(const bender::RibbonSpec& ribbon)
-{
-  return 0.5 * (ribbon.start.position + ribbon.end.position);
 }
 
 }
@@ -1030,18 +1027,7 @@ void MainWindow::pollTrackers()
 
 void MainWindow::alignTrackers()
 {
-  const auto hands = this->Trackers->CurrentRibbon();
-  if (!hands)
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Error, "Align: both hands must be seen first");
-    return;
-  }
-  bender::TrackerCalibration calibration = this->Trackers->GetCalibration();
-  calibration.Translate(Midpoint(this->RibbonWidget->GetRibbonRepresentation()->GetRibbon()) - Midpoint(*hands));
-  if (this->Trackers->SetCalibration(calibration))
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Info, "Trackers aligned to the ribbon");
-  }
+  this->Trackers->AlignTo(this->RibbonWidget->GetRibbonRepresentation()->GetRibbon());
 }
 
 void MainWindow::offerRecovery()

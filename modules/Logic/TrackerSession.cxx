@@ -3,6 +3,8 @@
 #include "BenderSession.h"
 #include "TrackerDevice.h"
 
+#include <algorithm>
+#include <array>
 #include <exception>
 #include <iomanip>
 #include <sstream>
@@ -223,6 +225,44 @@ std::string TrackerSession::StatusText() const
     out << ", clutch engaged";
   }
   return out.str();
+}
+
+bool TrackerSession::AlignTo(const RibbonSpec& target)
+{
+  const std::optional<RibbonSpec> hands = this->CurrentRibbon();
+  if (!hands)
+  {
+    this->Session.AddMessage(MessageSeverity::Error, "Align: both hands must be seen first");
+    return false;
+  }
+  auto landmarks = [](const RibbonSpec& r) {
+    const double arm = std::max(1.0, 0.5 * Distance(r.start.position, r.end.position));
+    const Vec3 t = Normalized(r.start.tangent);
+    const Vec3 n = Normalized(r.start.normal - t * Dot(r.start.normal, t));
+    return std::array<Vec3, 3>{ { r.start.position, r.end.position, r.start.position + n * arm } };
+  };
+  const TrackerCalibration current = this->GetCalibration();
+  try
+  {
+    const TrackerCalibration align =
+      TrackerCalibration::FromThreePoints(landmarks(*hands), landmarks(target), 1.0);
+    // align(current(x)) = Ra (Rc s x + tc) + ta
+    const TrackerCalibration composed(align.Rotation() * current.Rotation(),
+      align.MapPoint(current.Translation()), current.MotionScale());
+    if (!this->SetCalibration(composed))
+    {
+      return false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    this->Session.AddMessage(MessageSeverity::Error,
+      std::string("Align: ") + e.what() + " (hold the hands apart, as the ribbon's ends)");
+    return false;
+  }
+  this->Session.AddMessage(
+    MessageSeverity::Info, "Trackers aligned to the ribbon (position and orientation)");
+  return true;
 }
 
 } // namespace bender

@@ -64,6 +64,12 @@ public:
   TrackerCalibration GetCalibration() const;
   /// Replaces the calibration (alignment and motion scale); refused while grabbing.
   bool SetCalibration(const TrackerCalibration& calibration);
+  /// Rigid alignment of the hands to a ribbon in model space (e.g. the one on screen): the
+  /// left hand onto the ribbon's start, the direction to the right hand onto the ribbon's
+  /// direction, the left hand's normal onto the start normal; composed with the calibration
+  /// in use, the motion scale kept. False (with a message) when the hands are not both seen,
+  /// are too close together, or a grab is under way.
+  bool AlignTo(const RibbonSpec& target);
 
   /// Device name and per-station rates for the Trackers panel.
   std::string StatusText() const;

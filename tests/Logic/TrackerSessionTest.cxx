@@ -136,3 +136,41 @@ TEST(TrackerSession, ReplayedRecordingGrabsBendsAndReleases)
   EXPECT_NEAR(warp.initial.start.position.x, -100.0, 1.0);
   EXPECT_NEAR(warp.initial.end.position.x, 100.0, 1.0);
 }
+
+TEST(TrackerSession, AlignCarriesTheHandsOntoTheRibbonOnScreen)
+{
+  auto tube = test::MakeTube(-150, 150, 10, 121, 24);
+  BenderSession session;
+  ASSERT_TRUE(session.SetSurface(tube, "tube"));
+  TrackerSession trackers(session);
+  EXPECT_FALSE(trackers.AlignTo(RibbonSpec{})); // no hands yet
+  ASSERT_TRUE(trackers.Connect(Simulator(5.6)));
+  std::optional<RibbonSpec> hands;
+  for (int i = 0; i < 400 && !hands; ++i)
+  {
+    trackers.Poll();
+    hands = trackers.CurrentRibbon();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(hands);
+  // A target ribbon turned by 90 degrees about z and moved: after the alignment the hands
+  // hold it (start exactly, the direction of the end exactly, the start normal).
+  RibbonSpec target;
+  target.start = { { 10, 20, 30 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  const double length = Distance(hands->start.position, hands->end.position);
+  target.end = { { 10, 20 + length, 30 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  ASSERT_TRUE(trackers.AlignTo(target));
+  // The new calibration takes effect from the next poses.
+  std::optional<RibbonSpec> aligned;
+  for (int i = 0; i < 400 && !aligned; ++i)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    trackers.Poll();
+    aligned = trackers.CurrentRibbon();
+  }
+  ASSERT_TRUE(aligned);
+  // The simulator's hands keep moving slowly: compare within a few millimetres.
+  EXPECT_LT(Distance(aligned->start.position, target.start.position), 5.0);
+  const Vec3 direction = Normalized(aligned->end.position - aligned->start.position);
+  EXPECT_GT(Dot(direction, Vec3{ 0, 1, 0 }), 0.99);
+}
