@@ -213,6 +213,14 @@ int RunExportCommand(const std::vector<std::string>& args)
   {
     if (ext == ".stl")
     {
+      // With one file per patch the names derive from OUT: none may be the input.
+      for (const std::string& planned : bender::PlannedStlPaths(mesh, outPath, options))
+      {
+        if (bender::SameFile(inPath, planned))
+        {
+          return Fail(planned + ": refusing to overwrite the input file; choose another output");
+        }
+      }
       written = bender::ExportStl(mesh, outPath, options);
     }
     else if (ext == ".vtp")

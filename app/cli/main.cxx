@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -64,7 +66,22 @@ int main(int argc, char** argv)
   {
     if (name == c.name)
     {
-      return c.run(std::vector<std::string>(argv + 2, argv + argc));
+      // Commands report their own errors; this catches what escapes them (such as running out
+      // of memory on an absurd parameter) so that the tool never aborts.
+      try
+      {
+        return c.run(std::vector<std::string>(argv + 2, argv + argc));
+      }
+      catch (const std::bad_alloc&)
+      {
+        std::fprintf(stderr, "bender-cli %s: out of memory (check the parameters: a tolerance "
+                             "or size too small or too large?)\n", c.name);
+      }
+      catch (const std::exception& e)
+      {
+        std::fprintf(stderr, "bender-cli %s: %s\n", c.name, e.what());
+      }
+      return 1;
     }
   }
   std::fprintf(stderr, "bender-cli: unknown command '%s' (see bender-cli --help)\n", name.c_str());

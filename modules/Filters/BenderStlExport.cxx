@@ -160,13 +160,57 @@ std::vector<std::string> PatchNames(vtkPolyData* mesh)
     mesh ? mesh->GetCellData()->GetArray(vtkBenderCapFilter::PatchIdArrayName()) : nullptr;
   if (ids && ids->GetNumberOfTuples() > 0)
   {
-    const int maxId = static_cast<int>(ids->GetRange(0)[1]);
+    const double* range = ids->GetRange(0);
+    if (!std::isfinite(range[0]) || !std::isfinite(range[1]) || range[0] < 0.0 ||
+      range[1] > static_cast<double>(mesh->GetNumberOfCells()))
+    {
+      throw StlExportError("the PatchId cell array holds values outside [0, number of cells]");
+    }
+    const int maxId = static_cast<int>(range[1]);
     for (int k = 1; k <= maxId; ++k)
     {
       names.push_back("cap_" + std::to_string(k));
     }
   }
   return names;
+}
+
+namespace
+{
+std::string StlStem(const std::string& path)
+{
+  std::string stem = path;
+  if (stem.size() > 4 &&
+    (stem.compare(stem.size() - 4, 4, ".stl") == 0 || stem.compare(stem.size() - 4, 4, ".STL") == 0))
+  {
+    stem.resize(stem.size() - 4);
+  }
+  return stem;
+}
+} // namespace
+
+std::vector<std::string> PlannedStlPaths(
+  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options)
+{
+  if (options.patches != StlPatchMode::Files)
+  {
+    return { path };
+  }
+  std::vector<std::string> names;
+  try
+  {
+    names = PatchNames(mesh);
+  }
+  catch (const StlExportError& e)
+  {
+    throw StlExportError(DisplayName(path) + ": " + e.what());
+  }
+  std::vector<std::string> paths;
+  for (const std::string& name : names)
+  {
+    paths.push_back(StlStem(path) + "_" + name + ".stl");
+  }
+  return paths;
 }
 
 std::vector<std::string> ExportStl(
@@ -176,10 +220,11 @@ std::vector<std::string> ExportStl(
   {
     throw StlExportError(DisplayName(path) + ": no mesh to export");
   }
-  const std::vector<std::string> names = PatchNames(mesh);
+  std::vector<std::string> names;
   std::vector<std::vector<Facet>> facets;
   try
   {
+    names = PatchNames(mesh);
     facets = Facets(mesh, options.frame,
       options.patches == StlPatchMode::Single ? 1 : names.size());
   }
@@ -215,12 +260,7 @@ std::vector<std::string> ExportStl(
       break;
     case StlPatchMode::Files:
     {
-      std::string stem = path;
-      if (stem.size() > 4 && (stem.compare(stem.size() - 4, 4, ".stl") == 0 ||
-                               stem.compare(stem.size() - 4, 4, ".STL") == 0))
-      {
-        stem.resize(stem.size() - 4);
-      }
+      const std::string stem = StlStem(path);
       for (std::size_t k = 0; k < names.size(); ++k)
       {
         if (facets[k].empty())

@@ -41,7 +41,14 @@ struct StlExportOptions
 };
 
 /// Patch names in order of PatchId: "wall", "cap_1", ... Without a PatchId array: "wall".
+/// Throws StlExportError when PatchId holds non-finite, negative or absurd values (more
+/// patches than cells).
 std::vector<std::string> PatchNames(vtkPolyData* mesh);
+
+/// The files ExportStl would write for these arguments (one, or one per non-empty patch), so
+/// that callers can refuse to overwrite an input before anything is written.
+std::vector<std::string> PlannedStlPaths(
+  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options);
 
 /// Writes mesh (triangles; polygons fanned) as STL. Every file states the frame and unit in
 /// its header ("bender export: frame LPS, unit mm"). Each file is written atomically (a

@@ -26,6 +26,9 @@ vtkStandardNewMacro(vtkBenderAdaptiveSubdivisionFilter);
 
 namespace
 {
+// About 50 million triangles: a few GB of memory for the subdivided surface and its data.
+constexpr vtkIdType MaximumPoints = 25000000;
+
 using Triangle = std::array<vtkIdType, 3>;
 
 // Undirected edge key (min, max); meshes stay below 2^32 points.
@@ -330,9 +333,11 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
         }
       }
       const vtkIdType id = static_cast<vtkIdType>(x.size() / 3);
-      if (id >= (vtkIdType(1) << 31))
+      // Each split vertex adds about two triangles: stop long before memory runs out.
+      if (id >= MaximumPoints)
       {
-        return fail("subdivision would exceed 2^31 points; raise the tolerance");
+        return fail("subdivision would exceed " + std::to_string(MaximumPoints) +
+          " points (the tolerance is too small for this warp); raise the tolerance");
       }
       x.insert(x.end(), &midX[3 * k], &midX[3 * k] + 3);
       y.insert(y.end(), &midY[3 * k], &midY[3 * k] + 3);

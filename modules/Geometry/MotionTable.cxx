@@ -6,53 +6,16 @@
 namespace bender
 {
 
-MotionTable::MotionTable(const RibbonWarp& warp, int samples)
+MotionTable::MotionTable(const RibbonWarp& warp)
+  : Data(warp.MotionTable())
+  , Grid(warp.Grid())
 {
-  std::vector<double> knots = { 0.0, warp.Initial().Wire().JunctionParameter(),
-    warp.Final().Wire().JunctionParameter(), 1.0 };
-  std::sort(knots.begin(), knots.end());
-  // Drop knots closer than one sample spacing to the previous one: such a piece would be too
-  // short to matter and would cost a sample budget of its own.
-  const double minPiece = 1.0 / std::max(samples, 2);
-  std::vector<double> kept = { 0.0 };
-  for (std::size_t i = 1; i + 1 < knots.size(); ++i)
-  {
-    if (knots[i] - kept.back() >= minPiece && 1.0 - knots[i] >= minPiece)
-    {
-      kept.push_back(knots[i]);
-    }
-  }
-  kept.push_back(1.0);
-  int offset = 0;
-  for (std::size_t k = 0; k + 1 < kept.size(); ++k)
-  {
-    Piece p;
-    p.start = kept[k];
-    p.end = kept[k + 1];
-    const double length = p.end - p.start;
-    const int n = std::max(2, static_cast<int>(std::ceil(length * (samples - 1))) + 1);
-    p.scale = (n - 1) / length;
-    p.offset = offset;
-    p.last = offset + n - 1;
-    for (int j = 0; j < n; ++j)
-    {
-      const double s = j + 1 == n ? p.end : p.start + j / p.scale;
-      this->Data.push_back(warp.MotionAt(s));
-    }
-    offset += n;
-    this->Parts.push_back(p);
-  }
 }
 
 DualQuaternion MotionTable::At(double s) const
 {
   s = std::clamp(s, 0.0, 1.0);
-  std::size_t k = 0;
-  while (k + 1 < this->Parts.size() && s >= this->Parts[k].end)
-  {
-    ++k;
-  }
-  const Piece& p = this->Parts[k];
+  const Piece& p = this->Grid.PieceOf(s);
   const double u = (s - p.start) * p.scale;
   const int j = std::min(p.offset + static_cast<int>(u), p.last - 1);
   const double a = std::clamp(u - (j - p.offset), 0.0, 1.0);

@@ -8,36 +8,27 @@
 namespace bender
 {
 
-/// The lifted relative motions of a warp sampled along s for fast interpolation (spec 9(b)).
-/// The motion is smooth in s except where either wire passes its junction (the curvature
-/// jumps there), so the samples are uniform on each of the (at most three) pieces between
-/// s = 0, the two junction parameters and s = 1: linear interpolation is then second order
-/// everywhere, with no first-order error at the junctions.
+/// Linear interpolation of a warp's lifted relative motions along s (spec 9(b)). The samples
+/// are the warp's sign table, uniform on each of the (at most three) pieces between s = 0, the
+/// two junction parameters and s = 1 (the curvature jumps at the junctions), so interpolation
+/// is second order everywhere. Refers to the warp's data: the warp must outlive it.
 class MotionTable
 {
 public:
-  /// A uniform piece [start, start + length] sampled at indices [offset, last].
-  struct Piece
-  {
-    double start = 0.0;
-    double end = 1.0;
-    double scale = 0.0; ///< (samples - 1) / length
-    int offset = 0;
-    int last = 0; ///< index of the piece's final sample
-  };
+  using Piece = SampleGrid::Piece;
 
-  /// About `samples` samples in all (at least 2 per piece).
-  MotionTable(const RibbonWarp& warp, int samples = 2048);
+  /// The warp's own lifted sign table (RibbonWarp::Grid, MotionTable): nothing is recomputed.
+  explicit MotionTable(const RibbonWarp& warp);
 
   /// The motion at s by linear blending of the neighbouring samples, renormalised (DLB).
   DualQuaternion At(double s) const;
 
   const std::vector<DualQuaternion>& Samples() const { return this->Data; }
-  const std::vector<Piece>& Pieces() const { return this->Parts; }
+  const std::vector<Piece>& Pieces() const { return this->Grid.pieces; }
 
 private:
-  std::vector<DualQuaternion> Data;
-  std::vector<Piece> Parts;
+  const std::vector<DualQuaternion>& Data;
+  const SampleGrid& Grid;
 };
 
 } // namespace bender

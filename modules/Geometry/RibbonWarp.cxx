@@ -36,6 +36,61 @@ std::string Fixed(double v, int digits)
 }
 } // namespace
 
+SampleGrid SampleGrid::Build(double knot1, double knot2, int samples)
+{
+  SampleGrid grid;
+  std::vector<double> knots = { knot1, knot2 };
+  std::sort(knots.begin(), knots.end());
+  // A piece shorter than one spacing would cost samples of its own and gain nothing.
+  const double minPiece = 1.0 / std::max(samples, 2);
+  std::vector<double> kept = { 0.0 };
+  for (double k : knots)
+  {
+    if (k - kept.back() >= minPiece && 1.0 - k >= minPiece)
+    {
+      kept.push_back(k);
+    }
+  }
+  kept.push_back(1.0);
+  int offset = 0;
+  for (std::size_t k = 0; k + 1 < kept.size(); ++k)
+  {
+    Piece p;
+    p.start = kept[k];
+    p.end = kept[k + 1];
+    const double length = p.end - p.start;
+    const int n = std::max(2, static_cast<int>(std::ceil(length * (samples - 1))) + 1);
+    p.scale = (n - 1) / length;
+    p.offset = offset;
+    p.last = offset + n - 1;
+    for (int j = 0; j < n; ++j)
+    {
+      grid.s.push_back(j + 1 == n ? p.end : p.start + j / p.scale);
+    }
+    offset += n;
+    grid.pieces.push_back(p);
+  }
+  return grid;
+}
+
+const SampleGrid::Piece& SampleGrid::PieceOf(double s) const
+{
+  std::size_t k = 0;
+  while (k + 1 < this->pieces.size() && s >= this->pieces[k].end)
+  {
+    ++k;
+  }
+  return this->pieces[k];
+}
+
+int SampleGrid::Nearest(double s) const
+{
+  s = std::clamp(s, 0.0, 1.0);
+  const Piece& p = this->PieceOf(s);
+  const int j = p.offset + static_cast<int>(std::lround((s - p.start) * p.scale));
+  return std::clamp(j, p.offset, p.last);
+}
+
 RibbonWarp::RibbonWarp(const WarpSpec& spec, const WarpOptions& options)
   : Input(spec)
   , Opts(options)
@@ -84,7 +139,7 @@ RibbonWarp::RibbonWarp(const WarpSpec& spec, const WarpOptions& options)
     const double beta = 2.0 * std::atan2(Norm(q.Vector()), q.w);
     if (beta > MaxTurn)
     {
-      const double s = static_cast<double>(j) / (n - 1);
+      const double s = this->Samples.s[j];
       throw InvalidWarpError("",
         "the ribbon turns more than 340 degrees relative to where it was grabbed (at s = " +
           Fixed(s, 2) + "); release and grab again to go further");
@@ -112,12 +167,15 @@ Quaternion RibbonWarp::RelativeRotation(const Frame& c, const Frame& cp)
 bool RibbonWarp::TryBuildSignTable(int samples)
 {
   const double cos45 = std::sqrt(0.5);
-  this->Lifted.assign(samples, Quaternion{});
-  this->Table.assign(samples, DualQuaternion{});
+  this->Samples = SampleGrid::Build(this->InitialRibbon.Wire().JunctionParameter(),
+    this->FinalRibbon.Wire().JunctionParameter(), samples);
+  const int count = static_cast<int>(this->Samples.s.size());
+  this->Lifted.assign(count, Quaternion{});
+  this->Table.assign(count, DualQuaternion{});
   this->AnyFlip = false;
-  for (int j = 0; j < samples; ++j)
+  for (int j = 0; j < count; ++j)
   {
-    const double s = static_cast<double>(j) / (samples - 1);
+    const double s = this->Samples.s[j];
     const Frame c = this->InitialRibbon.FrameAt(s);
     const Frame cp = this->FinalRibbon.FrameAt(s);
     Quaternion q = RelativeRotation(c, cp);
@@ -197,8 +255,7 @@ DualQuaternion RibbonWarp::MotionAt(double s) const
   const Frame c = this->InitialRibbon.FrameAt(s);
   const Frame cp = this->FinalRibbon.FrameAt(s);
   Quaternion q = RelativeRotation(c, cp);
-  const int n = static_cast<int>(this->Lifted.size());
-  const int j = static_cast<int>(std::lround(s * (n - 1)));
+  const int j = this->Samples.Nearest(s);
   if (Dot4(this->Lifted[j], q) < 0.0)
   {
     q = -q;

@@ -12,6 +12,32 @@
 namespace bender
 {
 
+/// Samples of s in [0, 1], uniform on each piece between 0, the junction parameters of the two
+/// wires and 1 (the relative motion is smooth in s except at the junctions, where the
+/// curvature jumps, so linear interpolation between these samples is second order everywhere).
+struct SampleGrid
+{
+  struct Piece
+  {
+    double start = 0.0;
+    double end = 1.0;
+    double scale = 0.0; ///< (samples - 1) / length
+    int offset = 0;     ///< index of the piece's first sample
+    int last = 0;       ///< index of the piece's last sample
+  };
+
+  std::vector<Piece> pieces;
+  std::vector<double> s;
+
+  /// About `samples` samples in all (at least 2 per piece); knots closer than one spacing to a
+  /// neighbour are dropped.
+  static SampleGrid Build(double knot1, double knot2, int samples);
+  /// The piece holding s (clamped to [0, 1]).
+  const Piece& PieceOf(double s) const;
+  /// The sample nearest to s.
+  int Nearest(double s) const;
+};
+
 /// How points with two projections inside the region of influence are warped (spec 6).
 enum class BlendMode
 {
@@ -73,14 +99,17 @@ public:
   /// Same, with the projections given (as found by ProjectOntoWire on the initial wire).
   Vec3 Apply(const Vec3& p, const WireProjections& projections) const;
 
-  /// The lifted dual quaternions sampled at s_j = j / (n - 1), for fast table evaluation.
+  /// The lifted relative motions at the samples of Grid(), for fast table evaluation.
   const std::vector<DualQuaternion>& MotionTable() const { return this->Table; }
+  /// The samples of s of the sign table (piecewise uniform, split at both junctions).
+  const SampleGrid& Grid() const { return this->Samples; }
 
 private:
   WarpSpec Input;
   WarpOptions Opts;
   Ribbon InitialRibbon;
   Ribbon FinalRibbon;
+  SampleGrid Samples;
   std::vector<Quaternion> Lifted; // lifted rotation quaternions on the sign table
   std::vector<DualQuaternion> Table;
   bool AnyFlip = false;

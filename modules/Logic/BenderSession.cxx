@@ -557,10 +557,12 @@ bool BenderSession::Export(const std::string& path, const ExportOptions& options
       FileName(path) + ": refusing to overwrite the input surface; choose another file");
     return false;
   }
+  ExportOptions guarded = options;
+  guarded.protectedPath = this->SourcePath;
   std::vector<std::string> written;
   try
   {
-    written = ExportSurface(this->History.Current(), path, options);
+    written = ExportSurface(this->History.Current(), path, guarded);
   }
   catch (const std::exception& e)
   {
@@ -652,14 +654,19 @@ bool BenderSession::Recover(const std::string& sessionPath)
   }
   // Recovering from our own autosave: keep the source copy, it is the only one.
   const bool ownCopy = snapshot.sourcePath == AbsolutePath(this->AutosavePath + ".source.vtp");
-  if (!this->SetSurface(source, FileName(snapshot.sourcePath), ownCopy ? std::string() : snapshot.sourcePath))
+  // No autosave until the replay has succeeded: loading the surface would otherwise overwrite
+  // the session being recovered with an empty plan, and a failed replay would lose it.
+  const std::string autosavePath = this->AutosavePath;
+  this->AutosavePath.clear();
+  const bool recovered =
+    this->SetSurface(source, FileName(snapshot.sourcePath), ownCopy ? std::string() : snapshot.sourcePath) &&
+    this->ReplayPlan(snapshot.plan, FileName(sessionPath));
+  this->AutosavePath = autosavePath;
+  if (!recovered)
   {
     return false;
   }
-  if (!this->ReplayPlan(snapshot.plan, FileName(sessionPath)))
-  {
-    return false;
-  }
+  this->Autosave();
   this->Report(MessageSeverity::Info,
     "Recovered the session: " + std::to_string(snapshot.plan.warps.size()) + " warps");
   return true;

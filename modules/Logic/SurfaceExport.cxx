@@ -69,6 +69,16 @@ std::vector<std::string> ExportSurface(
     {
       stlOptions.patches = StlPatchMode::Solids; // ASCII of the whole surface: named solids
     }
+    if (!options.protectedPath.empty())
+    {
+      for (const std::string& planned : PlannedStlPaths(mesh, path, stlOptions))
+      {
+        if (SameFile(planned, options.protectedPath))
+        {
+          throw MeshIOError(planned + ": refusing to overwrite the input surface");
+        }
+      }
+    }
     return ExportStl(mesh, path, stlOptions);
   }
   if (options.frame == "RAS")

@@ -28,6 +28,9 @@ struct ExportOptions
   /// For .stl: one file of the whole surface (Single; binary or ASCII per stlEncoding), one
   /// ASCII file with a named solid per patch (Solids), or one file per patch (Files).
   StlPatchMode patches = StlPatchMode::Single;
+  /// A file that must never be written (the user's input surface): with one file per patch
+  /// the names derive from the output path, and none of them may be this file.
+  std::string protectedPath;
 };
 
 /// "bender: frame LPS, unit mm" (the header written into STL/OBJ/PLY files).

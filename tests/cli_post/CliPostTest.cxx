@@ -214,6 +214,14 @@ TEST_F(CliExport, NeverOverwritesTheInput)
   // The same file through another path.
   EXPECT_NE(Run("export " + Q(Tmp("t.stl")) + " -o " + Q(Tmp("./t.stl"))).status, 0);
   EXPECT_EQ(ReadText(Tmp("t.stl")), before);
+  // One file per patch: OUT_wall.stl must not be the input either.
+  ASSERT_EQ(Run("export " + Q(Tmp("t.stl")) + " -o " + Q(Tmp("v_wall.stl")) + " --quiet").status, 0);
+  const std::string wall = ReadText(Tmp("v_wall.stl"));
+  const Result files =
+    Run("export " + Q(Tmp("v_wall.stl")) + " -o " + Q(Tmp("v.stl")) + " --patches files");
+  EXPECT_EQ(files.status, 1) << files.errors;
+  EXPECT_NE(files.errors.find("overwrite"), std::string::npos) << files.errors;
+  EXPECT_EQ(ReadText(Tmp("v_wall.stl")), wall);
 }
 
 TEST_F(CliExport, AtomicNoTemporaryLeftOnFailure)
