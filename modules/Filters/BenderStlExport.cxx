@@ -68,6 +68,13 @@ std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh, StlFrame frame, std::s
   // Triangles come from polygons then strips; PatchId is per cell, one triangle per cell for
   // the triangle meshes the cap filter writes.
   const bool perTriangle = ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(tris.size() / 3);
+  if (ids && !perTriangle && patches > 1)
+  {
+    // Labels of polygons or strips cannot be split per patch here: say so rather than put
+    // every facet in the wall (the inlets and outlets would vanish from the CFD case).
+    throw StlExportError("the PatchId labels are not one per triangle (the surface has polygons, "
+                         "strips, lines or vertices): triangulate it before exporting patches");
+  }
   std::vector<std::vector<Facet>> out(patches);
   const double sign = frame == StlFrame::RAS ? -1.0 : 1.0;
   for (std::size_t t = 0; t < tris.size(); t += 3)

@@ -13,6 +13,7 @@
 #include <csignal>
 #include <cstdio>
 #include <ostream>
+#include <sys/stat.h>
 
 namespace bender
 {
@@ -243,6 +244,19 @@ int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::
   const bool live =
     spec.kind == TrackerDeviceSpec::Kind::Usb || spec.kind == TrackerDeviceSpec::Kind::Serial;
   const bool simulated = spec.kind == TrackerDeviceSpec::Kind::Simulator;
+
+  // Recording over the file being replayed would truncate it before it is read.
+  if (spec.kind == TrackerDeviceSpec::Kind::Replay && !options.recordPath.empty())
+  {
+    struct stat a{}, b{};
+    if (::stat(spec.path.c_str(), &a) == 0 && ::stat(options.recordPath.c_str(), &b) == 0 &&
+      a.st_dev == b.st_dev && a.st_ino == b.st_ino)
+    {
+      err << "bender-cli tracker: " << options.recordPath
+          << ": refusing to record over the recording being replayed\n";
+      return 1;
+    }
+  }
 
   SignalGuard signals;
   std::unique_ptr<TrackerDevice> device;

@@ -128,6 +128,14 @@ TEST(TrackerCli, BadRecordingsFailWithAMessage)
   const CliResult serial = RunCli({ "--device", "serial:" + dir.File("ttyNothing") });
   EXPECT_EQ(serial.status, 1);
   EXPECT_NE(serial.err.find("no such port"), std::string::npos) << serial.err;
+  // Recording over the recording being replayed would truncate it: refused, file untouched.
+  const std::string copy = dir.File("copy.fastrak");
+  std::ofstream(copy, std::ios::binary) << std::string(1000, '0');
+  const CliResult same = RunCli({ "--device", "replay:" + copy, "--record", copy });
+  EXPECT_EQ(same.status, 1);
+  EXPECT_NE(same.err.find("refusing to record over"), std::string::npos) << same.err;
+  std::ifstream back(copy, std::ios::binary | std::ios::ate);
+  EXPECT_EQ(static_cast<long>(back.tellg()), 1000L);
 }
 
 TEST(TrackerCli, AsciiReplay)
