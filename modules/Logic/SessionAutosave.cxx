@@ -1,5 +1,6 @@
 #include "SessionAutosave.h"
 
+#include "FileUtilities.h"
 #include "WarpPlanIO.h"
 
 #include <nlohmann/json.hpp>
@@ -36,22 +37,27 @@ void WriteSessionFile(const SessionSnapshot& snapshot, const std::string& path)
   {
     std::filesystem::create_directories(target.parent_path(), ec);
   }
-  const std::string temporary = path + ".tmp";
+  // The project's atomic write: a unique temporary file, flushed to disk, then renamed, so a
+  // crash or a second instance never leaves a truncated session file.
+  const std::string text = root.dump(2) + "\n";
+  std::string problem;
+  const bool written = io_detail::AtomicWrite(
+    path,
+    [&text](const std::string& temporary, std::string& why) {
+      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+      out << text;
+      out.flush();
+      if (!out)
+      {
+        why = "cannot write the session file";
+        return false;
+      }
+      return true;
+    },
+    problem);
+  if (!written)
   {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << root.dump(2) << '\n';
-    out.flush();
-    if (!out)
-    {
-      std::filesystem::remove(temporary, ec);
-      throw SessionFileError(Name(path) + ": cannot write the session file");
-    }
-  }
-  std::filesystem::rename(temporary, target, ec);
-  if (ec)
-  {
-    std::filesystem::remove(temporary, ec);
-    throw SessionFileError(Name(path) + ": cannot replace the session file: " + ec.message());
+    throw SessionFileError(Name(path) + ": " + problem);
   }
 }
 
