@@ -36,6 +36,8 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 
+#include "LogicTestUtilities.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -45,23 +47,7 @@
 namespace
 {
 
-double MaxDifference(vtkPolyData* a, vtkPolyData* b)
-{
-  if (!a || !b || a->GetNumberOfPoints() != b->GetNumberOfPoints())
-  {
-    return std::numeric_limits<double>::infinity();
-  }
-  double worst = 0.0;
-  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
-  {
-    double p[3], q[3];
-    a->GetPoint(i, p);
-    b->GetPoint(i, q);
-    for (int c = 0; c < 3; ++c)
-      worst = std::max(worst, std::abs(p[c] - q[c]));
-  }
-  return worst;
-}
+using bender::test::MaxDifference;
 
 vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* surface)
 {

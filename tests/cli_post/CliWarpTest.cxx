@@ -4,75 +4,36 @@
 #include "RibbonWarp.h"
 #include "WarpPlanIO.h"
 
-#include <gtest/gtest.h>
+#include "CliPostTestUtilities.h"
 
 #include <vtkPolyData.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
 namespace
 {
-const std::string Cli = BENDER_CLI_PATH;
-const std::string Data = BENDER_TEST_DATA_DIR;
-const std::string External = BENDER_EXTERNAL_DATA_DIR;
+using clitest::Cli;
+using clitest::Data;
+using clitest::External;
+using clitest::Result;
 
-struct Result
-{
-  int status = -1;
-  std::string output; // stdout and stderr together
-};
-
-Result RunCli(const std::string& args)
-{
-  Result r;
-  const std::string cmd = Cli + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p)
-  {
-    return r;
-  }
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), p))
-  {
-    r.output += buf.data();
-  }
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-class CliWarp : public ::testing::Test
+class CliWarp : public clitest::ScratchTest
 {
 protected:
-  void SetUp() override
+  // stdout and stderr together: the messages are checked wherever they go.
+  Result RunCli(const std::string& args) const
   {
-    this->Dir = fs::temp_directory_path() /
-      ("bender-cli-test-" + std::to_string(::getpid()) + "-" +
-        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(this->Dir);
+    Result r = this->Run(args);
+    r.output += r.errors;
+    return r;
   }
-  void TearDown() override { fs::remove_all(this->Dir); }
-  std::string Tmp(const std::string& name) const { return (this->Dir / name).string(); }
   // Files left in the scratch folder (a failed command must leave none).
-  int FileCount() const
-  {
-    int n = 0;
-    for (const auto& e : fs::directory_iterator(this->Dir))
-    {
-      (void)e;
-      ++n;
-    }
-    return n;
-  }
-  fs::path Dir;
+  int FileCount() const { return static_cast<int>(this->Files().size()); }
 };
 
 TEST_F(CliWarp, HelpAndUsage)
@@ -117,7 +78,7 @@ TEST_F(CliWarp, WarpsTheCowLocallyWithoutNaN)
 {
   const std::string cow = External + "/cow.off";
   ASSERT_TRUE(fs::exists(cow)) << cow << " missing: run scripts/fetch-data";
-  const std::string plan = Data + "/cli/cow_bend.bender.json";
+  const std::string plan = Data + "/cli_warp/cow_bend.bender.json";
   // PLY keeps the vertex order (STL would weld the cow's duplicate vertex).
   const std::string out = this->Tmp("cow_warped.ply");
   const Result ok = RunCli("warp " + cow + " " + plan + " " + out);
@@ -163,9 +124,9 @@ TEST_F(CliWarp, BadInputsGiveOneLineAndNoOutput)
   const std::string out = this->Tmp("out.stl");
   const Case cases[] = {
     { "warp " + this->Tmp("missing.off") + " " + plan + " " + out, "missing.off" },
-    { "warp " + Data + "/cli/truncated.stl " + plan + " " + out, "truncated.stl" },
+    { "warp " + Data + "/cli_warp/truncated.stl " + plan + " " + out, "truncated.stl" },
     { "warp " + tube + " " + this->Tmp("missing.bender.json") + " " + out, "missing.bender.json" },
-    { "warp " + tube + " " + Data + "/cli/coincident.bender.json " + out, "warps[0].final" },
+    { "warp " + tube + " " + Data + "/cli_warp/coincident.bender.json " + out, "warps[0].final" },
     { "warp " + tube + " " + plan + " " + this->Tmp("out.xyz"), "out.xyz" },
   };
   for (const Case& c : cases)
