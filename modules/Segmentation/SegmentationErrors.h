@@ -1,6 +1,8 @@
 #ifndef bender_SegmentationErrors_h
 #define bender_SegmentationErrors_h
 
+#include "BenderErrors.h"
+
 #include <stdexcept>
 #include <string>
 
@@ -10,10 +12,10 @@ namespace bender
 /// Base of every error thrown by the segmentation module. what() is one line that names the
 /// input and the problem; ITK and VTK errors are caught inside the module and rethrown as one of
 /// these.
-class SegmentationError : public std::runtime_error
+class SegmentationError : public Error
 {
 public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// A volume that cannot be read: missing or truncated file, unknown format or pixel type,
@@ -45,12 +47,9 @@ public:
   using SegmentationError::SegmentationError;
 };
 
-/// The caller set the cancel flag; nothing was produced.
-class SegmentationCancelled : public SegmentationError
-{
-public:
-  using SegmentationError::SegmentationError;
-};
+/// The caller set the cancel flag; nothing was produced. The app-wide bender::Cancelled of
+/// bender_core (Progress.h), under its historical name.
+using SegmentationCancelled = Cancelled;
 
 } // namespace bender
 

@@ -2,6 +2,7 @@
 #define bender_SurfaceExtraction_h
 
 #include "Progress.h"
+#include "SegmentationErrors.h"
 #include "Volume.h"
 
 #include <vtkSmartPointer.h>

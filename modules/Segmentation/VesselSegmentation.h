@@ -2,6 +2,7 @@
 #define bender_VesselSegmentation_h
 
 #include "Progress.h"
+#include "SegmentationErrors.h"
 #include "Volume.h"
 
 #include <limits>

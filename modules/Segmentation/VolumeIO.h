@@ -2,6 +2,7 @@
 #define bender_VolumeIO_h
 
 #include "Progress.h"
+#include "SegmentationErrors.h"
 #include "Volume.h"
 
 #include <string>

@@ -5,6 +5,7 @@
 // Not included by any public header.
 
 #include "Progress.h"
+#include "SegmentationErrors.h"
 #include "Volume.h"
 
 #include <itkCommand.h>

@@ -1,0 +1,76 @@
+#ifndef bender_ApplyPlan_h
+#define bender_ApplyPlan_h
+
+#include "Progress.h"
+#include "WarpBinding.h"
+#include "WarpPlan.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <string>
+#include <vector>
+
+namespace bender
+{
+
+/// Options of ApplyWarp / ApplyPlan.
+struct ApplyPlanOptions
+{
+  /// Screw evaluation: Exact (the normative result, the default) or Table.
+  WarpPrecision precision = WarpPrecision::Exact;
+  /// Name of the plan in messages ("gallery.bender.json"); empty: "plan".
+  std::string planName;
+  /// Progress ("warp 1 of 3", fraction) and cancellation (checked between warps).
+  ProgressReporter progress;
+};
+
+/// What one warp did.
+struct WarpStepInfo
+{
+  /// Points of the input inside the region of influence (R), -1 when the warp was subdivided
+  /// (the subdivision filter does not count them).
+  long long boundPoints = -1;
+  long long inputPoints = 0;
+  bool flipOccurred = false;     ///< the screw continuity lift was used (paper 3.8)
+  std::string warning;           ///< the space-inversion warning, empty when none
+  bool subdivided = false;       ///< the WarpSpec carried a subdivision object
+  double tolerance = 0.0;        ///< subdivision tolerance (when subdivided)
+  int passesRun = 0;             ///< subdivision passes that split edges
+  bool converged = true;         ///< false when subdivision stopped at maxPasses
+  long long trianglesBefore = 0; ///< polygons + strips of the input
+  long long trianglesAfter = 0;  ///< polygons of the output
+};
+
+/// The surface after each warp of a plan.
+struct ApplyPlanResult
+{
+  /// steps[i] is the surface after warps[0..i]; new objects, points always double.
+  std::vector<vtkSmartPointer<vtkPolyData>> steps;
+  std::vector<WarpStepInfo> info;
+  /// The final surface (the input itself, deep-copied, for an empty plan).
+  vtkSmartPointer<vtkPolyData> output;
+};
+
+/// THE rule for applying a warp, used by bender-cli, BenderSession, the tests and the
+/// benchmarks: the warp is validated (spec convention 11), then
+///  - with `warp.subdivision` present: vtkBenderAdaptiveSubdivisionFilter alone (it performs
+///    the exact warp itself and refines; maxPasses 0 warps and triangulates without refining);
+///  - otherwise: vtkBenderWarpFilter.
+/// The input is not modified. Output points are always double.
+/// Throws InputError ("<plan>: warps[i]: <problem>") for an invalid warp or a failed filter,
+/// Cancelled when options.progress.cancel is set.
+vtkSmartPointer<vtkPolyData> ApplyWarp(vtkPolyData* input,
+  const WarpSpec& warp,
+  const ApplyPlanOptions& options = {},
+  WarpStepInfo* info = nullptr);
+
+/// Applies every warp of `plan` in order (all or nothing: on error nothing is returned).
+/// Throws InputError naming the plan and the warp, Cancelled.
+ApplyPlanResult ApplyPlan(vtkPolyData* input,
+  const WarpPlan& plan,
+  const ApplyPlanOptions& options = {});
+
+} // namespace bender
+
+#endif
