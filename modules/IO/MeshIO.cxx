@@ -1,6 +1,7 @@
 #include "MeshIO.h"
 
 #include "FileUtilities.h"
+#include "InputValidation.h"
 #include "OffFormat.h"
 #include "PlyValidation.h"
 
@@ -38,6 +39,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <vector>
@@ -59,22 +62,35 @@ using io_detail::DisplayName;
 // (readers quote it), no control or binary bytes (readers quote garbage), at most 200 bytes.
 std::string Tidy(const std::string& path, std::string message)
 {
+  if (message.empty())
+  {
+    return message;
+  }
+  // The display name may be the path itself (a bare file name) or contain it: search on
+  // after each replacement, never at the same spot again.
+  const std::string display = DisplayName(path);
   for (std::size_t at = message.find(path); !path.empty() && at != std::string::npos;
-       at = message.find(path, at))
+       at = message.find(path, at + display.size()))
   {
-    message.replace(at, path.size(), DisplayName(path));
+    message.replace(at, path.size(), display);
   }
-  std::string tidy;
-  for (const char c : message)
+  return io_detail::CleanMessage(message, 200);
+}
+
+// The whole file, for the pre-validators (the size was checked against the budget).
+std::string ReadAll(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
   {
-    const auto u = static_cast<unsigned char>(c);
-    tidy += (u < 32 || u >= 127) ? '?' : c;
+    Fail(path, "cannot be opened for reading");
   }
-  if (tidy.size() > 200)
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad())
   {
-    tidy = tidy.substr(0, 197) + "...";
+    Fail(path, "cannot read the file");
   }
-  return tidy;
+  return data;
 }
 
 // VTK's "ERROR: In file, line N\nvtkClass (0x...): text\n\n" reduced to "text".
@@ -376,8 +392,16 @@ vtkSmartPointer<vtkPolyData> ReadStl(const std::string& path, std::uintmax_t siz
             << (size - 84) / 50 << ")";
         Fail(path, msg.str());
       }
-      // Longer than announced: some exporters pad binary STL files; the announced triangles
-      // are all there.
+      // Longer than announced: some exporters pad binary STL files by a few bytes; more than
+      // one record's worth is not padding (vtkSTLReader would read the extra bytes as
+      // triangles: 2 GB of zeros became 43 million of them).
+      if (size - expected >= 50)
+      {
+        std::ostringstream msg;
+        msg << "binary STL longer than its header says (" << triangles << " triangles, "
+            << size - expected << " extra bytes)";
+        Fail(path, msg.str());
+      }
       binary = true;
     }
   }
@@ -483,6 +507,14 @@ vtkSmartPointer<vtkPolyData> ReadPly(const std::string& path)
 
 vtkSmartPointer<vtkPolyData> ReadVtp(const std::string& path)
 {
+  // vtkXMLReader divides by the header word size it reads and allocates what the counts say.
+  {
+    std::string problem;
+    if (!io_detail::CheckVtkXml(ReadAll(path), "PolyData", io_detail::MaxMeshFileBytes * 4, problem))
+    {
+      Fail(path, problem);
+    }
+  }
   VtkMessageGuard guard;
   vtkNew<vtkXMLPolyDataReader> reader;
   guard.Watch(reader);
@@ -496,22 +528,16 @@ vtkSmartPointer<vtkPolyData> ReadVtp(const std::string& path)
 
 vtkSmartPointer<vtkPolyData> ReadLegacyVtk(const std::string& path)
 {
-  VtkMessageGuard guard;
-  // A version line VTK cannot parse makes it read a 5.1 file's OFFSETS block as legacy cells
-  // and crash: require "# vtk DataFile Version <major>.<minor>" first.
+  // vtkDataReader trusts the counts it reads (a short or non-numeric POLYGONS section, or
+  // 5.1 offsets out of range, crash it or the cell code after it): walk the whole file first.
   {
-    std::ifstream in(path, std::ios::binary);
-    std::string line;
-    std::getline(in, line);
-    int major = -1, minor = -1;
-    char dot = 0;
-    std::istringstream version(line.size() > 22 ? line.substr(22) : std::string());
-    if (line.rfind("# vtk DataFile Version ", 0) != 0 || !(version >> major >> dot >> minor) ||
-      dot != '.' || major < 1 || minor < 0)
+    std::string problem;
+    if (!io_detail::CheckLegacyVtk(ReadAll(path), problem))
     {
-      Fail(path, "not a legacy VTK file (the first line is not \"# vtk DataFile Version x.y\")");
+      Fail(path, problem);
     }
   }
+  VtkMessageGuard guard;
   vtkNew<vtkPolyDataReader> reader;
   guard.Watch(reader);
   reader->SetFileName(path.c_str());
@@ -585,7 +611,7 @@ bool RunWriter(Writer* writer, std::string& problem)
   const int ok = writer->Write();
   if (!ok || guard.HasError() || writer->GetErrorCode() != 0)
   {
-    problem = guard.Message();
+    problem = guard.Message().empty() ? std::string() : io_detail::CleanMessage(guard.Message());
     if (problem.empty())
     {
       problem = std::string("write error (") +
@@ -605,6 +631,11 @@ static vtkSmartPointer<vtkPolyData> ReadMeshUnchecked(const std::string& path)
   if (!io_detail::CheckReadableFile(path, size, problem))
   {
     Fail(path, problem);
+  }
+  if (size > io_detail::MaxMeshFileBytes)
+  {
+    Fail(path, "larger than the " + std::to_string(io_detail::MaxMeshFileBytes >> 20) +
+        " MiB limit for mesh files (" + std::to_string(size >> 20) + " MiB)");
   }
   const std::string ext = io_detail::LowerExtension(path);
   vtkSmartPointer<vtkPolyData> mesh;
@@ -690,6 +721,26 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
     }
   }
   const std::string ext = io_detail::LowerExtension(path);
+  // STL, OBJ and PLY store single precision: a coordinate beyond the float range would be
+  // written as inf.
+  if (ext == ".stl" || ext == ".obj" || ext == ".ply")
+  {
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      mesh->GetPoint(i, p);
+      for (const double c : p)
+      {
+        if (std::fabs(c) > static_cast<double>(std::numeric_limits<float>::max()))
+        {
+          std::ostringstream msg;
+          msg << "refusing to write point " << i << ": coordinate " << c
+              << " is beyond the single-precision range of " << ext << " files";
+          Fail(path, msg.str());
+        }
+      }
+    }
+  }
 
   std::function<bool(const std::string&, std::string&)> produce;
   if (ext == ".stl")

@@ -1,5 +1,7 @@
 #include "PlyValidation.h"
 
+#include "InputValidation.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cstring>
@@ -16,6 +18,9 @@ namespace io_detail
 
 namespace
 {
+
+// vtkPLY reads lines with fgets into a 4096-byte buffer.
+constexpr std::size_t MaxPlyLine = 4000;
 
 struct Property
 {
@@ -45,8 +50,8 @@ int TypeSize(const std::string& type)
   {
     return 2;
   }
-  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" ||
-    type == "float" || type == "float32")
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
+    type == "float32")
   {
     return 4;
   }
@@ -123,6 +128,11 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
     }
     data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
+  return CheckPlyBytes(data, problem);
+}
+
+bool CheckPlyBytes(const std::string& data, std::string& problem)
+{
 
   // Header: text lines up to "end_header".
   std::size_t pos = 0;
@@ -137,6 +147,12 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
     if (end == std::string::npos)
     {
       problem = "PLY header without \"end_header\"";
+      return false;
+    }
+    if (end - pos >= MaxPlyLine)
+    {
+      problem = "PLY header line " + std::to_string(lineNumber + 1) + " is longer than " +
+        std::to_string(MaxPlyLine) + " bytes";
       return false;
     }
     std::string line = data.substr(pos, end - pos);
@@ -203,8 +219,8 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
         property.size = TypeSize(itemType);
         property.itemSigned = IsSignedType(itemType);
         property.itemInteger = IsIntegerType(itemType);
-        property.isFaceIndices = elements.back().name == "face" &&
-          property.name == "vertex_indices";
+        property.isFaceIndices =
+          elements.back().name == "face" && property.name == "vertex_indices";
         if (property.isFaceIndices && !property.itemInteger)
         {
           problem = where + "face indices of type \"" + itemType + "\"";
@@ -253,7 +269,8 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
   std::int64_t vertexCount = 0;
   for (const Element& element : elements)
   {
-    auto has = [&](const char* name, bool list) {
+    auto has = [&](const char* name, bool list)
+    {
       for (const Property& property : element.properties)
       {
         if (property.name == name && property.isList == list)
@@ -285,7 +302,8 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
     problem = "PLY file without a \"vertex\" element";
     return false;
   }
-  auto badIndex = [&](const Element& element, std::uint64_t r, std::int64_t index) {
+  auto badIndex = [&](const Element& element, std::uint64_t r, std::int64_t index)
+  {
     problem = "PLY " + Where(element, r) + ": vertex index " + std::to_string(index) +
       " out of range (the file has " + std::to_string(vertexCount) + " vertices)";
     return false;
@@ -293,21 +311,55 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
 
   if (format == "ascii")
   {
-    // Every record consumes at least one token, so this loop ends within the file.
-    const char* cursor = data.data() + pos;
-    const char* const last = data.data() + data.size();
-    auto nextToken = [&](std::string_view& token) {
-      while (cursor < last && std::strchr(" \t\r\n\f\v", *cursor) && *cursor != '\0')
+    // vtkPLY reads one record per line, with fgets into a 4096-byte buffer: a record split over
+    // two lines, two records on one line or a longer line crash it. Check exactly that.
+    std::size_t lineStart = pos;
+    std::size_t bodyLine = lineNumber;
+    std::string_view line;
+    const char* cursor = nullptr;
+    const char* last = nullptr;
+    auto nextLine = [&]()
+    {
+      if (lineStart >= data.size())
+      {
+        return false;
+      }
+      std::size_t end = data.find('\n', lineStart);
+      if (end == std::string::npos)
+      {
+        end = data.size();
+      }
+      line = std::string_view(data).substr(lineStart, end - lineStart);
+      lineStart = end + 1;
+      ++bodyLine;
+      cursor = line.data();
+      last = line.data() + line.size();
+      return true;
+    };
+    auto nextToken = [&](std::string_view& token)
+    {
+      while (cursor < last && std::strchr(" \t\r\f\v", *cursor) && *cursor != '\0')
       {
         ++cursor;
       }
       const char* start = cursor;
-      while (cursor < last && !std::strchr(" \t\r\n\f\v", *cursor))
+      while (cursor < last && !std::strchr(" \t\r\f\v", *cursor))
       {
         ++cursor;
       }
       token = std::string_view(start, static_cast<std::size_t>(cursor - start));
       return !token.empty();
+    };
+    auto lineProblem = [&](const Element& element, std::uint64_t r, const std::string& what)
+    {
+      if (what.find("ends early") != std::string::npos && lineStart >= data.size())
+      {
+        problem = "truncated ASCII PLY (" + Where(element, r) + " is incomplete)";
+        return false;
+      }
+      problem = "malformed ASCII PLY line " + std::to_string(bodyLine) + " (" + Where(element, r) +
+        ": " + what + ")";
+      return false;
     };
     std::string_view token;
     for (const Element& element : elements)
@@ -318,12 +370,21 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
       }
       for (std::uint64_t r = 0; r < element.count; ++r)
       {
+        if (!nextLine())
+        {
+          problem = "truncated ASCII PLY (" + Where(element, r) + " is missing)";
+          return false;
+        }
+        if (line.size() >= MaxPlyLine)
+        {
+          return lineProblem(
+            element, r, "line longer than " + std::to_string(MaxPlyLine) + " bytes");
+        }
         for (const Property& property : element.properties)
         {
           if (!nextToken(token))
           {
-            problem = "truncated ASCII PLY (" + Where(element, r) + " is missing)";
-            return false;
+            return lineProblem(element, r, "the record ends early (one record per line)");
           }
           if (property.isList)
           {
@@ -331,24 +392,22 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
             const auto result = std::from_chars(token.data(), token.data() + token.size(), count);
             if (result.ec != std::errc() || result.ptr != token.data() + token.size() || count < 0)
             {
-              problem = "malformed ASCII PLY (" + Where(element, r) + ": bad list length)";
-              return false;
+              return lineProblem(element, r, "bad list length");
             }
             for (long long k = 0; k < count; ++k)
             {
               if (!nextToken(token))
               {
-                problem = "truncated ASCII PLY (" + Where(element, r) + " is incomplete)";
-                return false;
+                return lineProblem(element, r, "the list ends early (one record per line)");
               }
               if (property.isFaceIndices)
               {
                 long long index = -1;
-                const auto parsed = std::from_chars(token.data(), token.data() + token.size(), index);
+                const auto parsed =
+                  std::from_chars(token.data(), token.data() + token.size(), index);
                 if (parsed.ec != std::errc() || parsed.ptr != token.data() + token.size())
                 {
-                  problem = "malformed ASCII PLY (" + Where(element, r) + ": bad vertex index)";
-                  return false;
+                  return lineProblem(element, r, "bad vertex index");
                 }
                 if (index < 0 || index >= vertexCount)
                 {
@@ -357,6 +416,25 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
               }
             }
           }
+          else
+          {
+            double value = 0;
+            const char* begin = token.data();
+            if (*begin == '+')
+            {
+              ++begin;
+            }
+            const auto parsed = std::from_chars(begin, token.data() + token.size(), value);
+            if ((parsed.ec != std::errc() && parsed.ec != std::errc::result_out_of_range) ||
+              parsed.ptr != token.data() + token.size())
+            {
+              return lineProblem(element, r, "\"" + QuoteBytes(token) + "\" is not a number");
+            }
+          }
+        }
+        if (nextToken(token))
+        {
+          return lineProblem(element, r, "more values than the record has (one record per line)");
         }
       }
     }
@@ -422,8 +500,8 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
           {
             for (std::int64_t k = 0; k < count; ++k)
             {
-              const std::int64_t index = DecodeInteger(bytes + at + k * property.size,
-                property.size, property.itemSigned, bigEndian);
+              const std::int64_t index = DecodeInteger(
+                bytes + at + k * property.size, property.size, property.itemSigned, bigEndian);
               if (index < 0 || index >= vertexCount)
               {
                 return badIndex(element, r, index);

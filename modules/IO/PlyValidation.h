@@ -19,6 +19,10 @@ namespace io_detail
 /// of the file)", "unknown property type \"float128\"", ...).
 bool CheckPlyStructure(const std::string& path, std::string& problem);
 
+/// The same check on the file's bytes (for the fuzz harness). ASCII bodies must hold one
+/// record per line (as vtkPLY reads them), every line shorter than 4000 bytes.
+bool CheckPlyBytes(const std::string& data, std::string& problem);
+
 } // namespace io_detail
 } // namespace bender
 

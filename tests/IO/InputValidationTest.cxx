@@ -1,0 +1,292 @@
+// Regression tests for issue 13 (input that cannot hurt): each input below crashed, hung or
+// was silently accepted before the pre-validators in modules/IO/InputValidation.cxx and
+// PlyValidation.cxx. Every reader must answer one line naming the file.
+
+#include "InputValidation.h"
+#include "MeshIO.h"
+#include "PlyValidation.h"
+
+#include "IOTestUtilities.h"
+
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using bender::MeshIOError;
+using bender::ReadMesh;
+using bender::WriteMesh;
+using bender_test::ReadText;
+using bender_test::TempDir;
+using bender_test::TestData;
+using bender_test::WriteText;
+
+namespace
+{
+
+std::string ReadError(const std::string& path)
+{
+  try
+  {
+    ReadMesh(path);
+  }
+  catch (const MeshIOError& e)
+  {
+    return e.what();
+  }
+  ADD_FAILURE() << path << " was accepted";
+  return {};
+}
+
+void ExpectRefused(const std::string& path, const std::string& expected)
+{
+  SCOPED_TRACE(path);
+  ::testing::internal::CaptureStderr();
+  const std::string message = ReadError(path);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(message.rfind(fs::path(path).filename().string() + ": ", 0), 0u) << message;
+  EXPECT_NE(message.find(expected), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
+  EXPECT_EQ(err, "");
+}
+
+vtkSmartPointer<vtkPolyData> Triangle(double scale = 1.0)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(scale, 0, 0);
+  points->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType t[3] = { 0, 1, 2 };
+  polys->InsertNextCell(3, t);
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  return mesh;
+}
+
+const char* const LegacyHead = "# vtk DataFile Version 3.0\ntest\nASCII\nDATASET POLYDATA\n"
+                               "POINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
+const char* const Legacy51Head = "# vtk DataFile Version 5.1\ntest\nASCII\nDATASET POLYDATA\n"
+                                 "POINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
+
+} // namespace
+
+// Before: Tidy() replaced the bare path by the identical display name and found it again at
+// the same spot, forever.
+TEST(InputValidation, BareFileNameInAVtkErrorDoesNotHang)
+{
+  TempDir dir;
+  WriteText(
+    dir / "truncated.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0");
+  const fs::path previous = fs::current_path();
+  fs::current_path(dir.path());
+  const std::string message = ReadError("truncated.stl");
+  fs::current_path(previous);
+  EXPECT_EQ(message.rfind("truncated.stl: ", 0), 0u) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+// Before: SIGSEGV inside vtkDataReader.
+TEST(InputValidation, LegacyVtkShortOrNonNumericPolygons)
+{
+  TempDir dir;
+  WriteText(dir / "short.vtk", std::string(LegacyHead) + "POLYGONS 2 8\n3 0 1 2\n3 0\n");
+  ExpectRefused(dir / "short.vtk", "truncated data");
+  WriteText(dir / "word.vtk", std::string(LegacyHead) + "POLYGONS 1 4\n3 0 x 2\n");
+  ExpectRefused(dir / "word.vtk", "\"x\" is not an integer");
+  WriteText(dir / "count.vtk", std::string(LegacyHead) + "POLYGONS 1 4\n9 0 1 2\n");
+  ExpectRefused(dir / "count.vtk", "cell 0 has 9 points");
+  WriteText(
+    dir / "huge.vtk", std::string(LegacyHead) + "POLYGONS 1000000000 4000000000\n3 0 1 2\n");
+  ExpectRefused(dir / "huge.vtk", "truncated data");
+  WriteText(dir / "points.vtk",
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0\n");
+  ExpectRefused(dir / "points.vtk", "truncated data");
+  WriteText(dir / "keyword.vtk", std::string(LegacyHead) + "POLYGONZ 1 4\n3 0 1 2\n");
+  ExpectRefused(dir / "keyword.vtk", "unknown keyword \"POLYGONZ\"");
+}
+
+// Before: out-of-bounds read in the triangle collection (offsets out of range), or triangles
+// from stray memory (decreasing offsets).
+TEST(InputValidation, LegacyVtk51OffsetsOutOfRangeOrDecreasing)
+{
+  TempDir dir;
+  const std::string conn = "CONNECTIVITY vtktypeint64\n0 1 2\n";
+  WriteText(dir / "range.vtk",
+    std::string(Legacy51Head) + "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 30\n" + conn);
+  ExpectRefused(dir / "range.vtk", "offset 1 is 30");
+  WriteText(dir / "down.vtk",
+    std::string(Legacy51Head) + "POLYGONS 3 3\nOFFSETS vtktypeint64\n0 3 1\n" + conn);
+  ExpectRefused(dir / "down.vtk", "must not decrease");
+  WriteText(dir / "start.vtk",
+    std::string(Legacy51Head) + "POLYGONS 2 3\nOFFSETS vtktypeint64\n1 3\n" + conn);
+  ExpectRefused(dir / "start.vtk", "must be 0");
+  WriteText(dir / "id.vtk",
+    std::string(Legacy51Head) +
+      "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1 5\n");
+  ExpectRefused(dir / "id.vtk", "refers to point 5");
+  // The same file with valid offsets reads.
+  WriteText(dir / "good.vtk",
+    std::string(Legacy51Head) + "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 3\n" + conn);
+  EXPECT_EQ(ReadMesh(dir / "good.vtk")->GetNumberOfPolys(), 1);
+}
+
+// Binary legacy files written by the project: every prefix is refused without a crash.
+TEST(InputValidation, LegacyVtkBinaryPrefixesAreRefused)
+{
+  TempDir dir;
+  WriteMesh(Triangle(), dir / "whole.vtk");
+  const std::string bytes = ReadText(dir / "whole.vtk");
+  std::string problem;
+  ASSERT_TRUE(bender::io_detail::CheckLegacyVtk(bytes, problem)) << problem;
+  for (std::size_t n = 0; n + 1 < bytes.size(); ++n)
+  {
+    // Trailing blank lines are not data: a prefix that only lacks them may pass.
+    if (bytes.find_first_not_of(" \n", n) == std::string::npos)
+    {
+      break;
+    }
+    const std::string prefix = bytes.substr(0, n);
+    if (bender::io_detail::CheckLegacyVtk(prefix, problem))
+    {
+      // Sections are not counted: a prefix that ends between two sections is a valid file
+      // with fewer sections, and must read consistently (all 3 points, at most the triangle).
+      WriteText(dir / "prefix.vtk", prefix);
+      const auto mesh = ReadMesh(dir / "prefix.vtk");
+      EXPECT_EQ(mesh->GetNumberOfPoints(), 3) << n;
+      EXPECT_LE(mesh->GetNumberOfPolys(), 1) << n;
+    }
+  }
+}
+
+// Before: the validator read tokens across lines; vtkPLY reads one record per line of at most
+// 4096 bytes and crashed (SIGSEGV, invalid free, abort).
+TEST(InputValidation, AsciiPlyRecordsMustBeOneLineEach)
+{
+  TempDir dir;
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\n"
+                             "property list uchar int vertex_indices\nend_header\n";
+  WriteText(dir / "split.ply", header + "0 0\n0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  ExpectRefused(dir / "split.ply", "one record per line");
+  WriteText(dir / "joined.ply", header + "0 0 0 1 0 0\n0 1 0\n3 0 1 2\n");
+  ExpectRefused(dir / "joined.ply", "one record per line");
+  WriteText(dir / "long.ply",
+    "ply\nformat ascii 1.0\ncomment " + std::string(5000, 'c') +
+      "\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n");
+  ExpectRefused(dir / "long.ply", "longer than 4000 bytes");
+  WriteText(
+    dir / "spaces.ply", header + "0 0 0" + std::string(5000, ' ') + "\n1 0 0\n0 1 0\n3 0 1 2\n");
+  ExpectRefused(dir / "spaces.ply", "longer than 4000 bytes");
+  WriteText(dir / "good.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(ReadMesh(dir / "good.ply")->GetNumberOfPolys(), 1);
+}
+
+// Before: SIGFPE in vtkXMLReader (a damaged header_type), 7.8 GB of memory for a component
+// count of 10^9.
+TEST(InputValidation, VtpDamagedHeaderTypeAndHugeComponentCount)
+{
+  TempDir dir;
+  WriteMesh(Triangle(), dir / "ok.vtp");
+  const std::string bytes = ReadText(dir / "ok.vtp");
+  const std::size_t at = bytes.find("header_type=\"UInt64\"");
+  ASSERT_NE(at, std::string::npos);
+  std::string damaged = bytes;
+  damaged.erase(at + 18, 1); // "UInt6"
+  WriteText(dir / "damaged.vtp", damaged);
+  ExpectRefused(dir / "damaged.vtp", "header_type \"UInt6\"");
+
+  const std::string huge =
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+    "byte_order=\"LittleEndian\">\n<PolyData>\n<Piece NumberOfPoints=\"3\" "
+    "NumberOfPolys=\"0\">\n<PointData>\n<DataArray type=\"Float64\" Name=\"a\" "
+    "NumberOfComponents=\"1000000000\" format=\"ascii\">0</DataArray>\n"
+    "</PointData>\n<Points>\n<DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+    "format=\"ascii\">0 0 0 1 0 0 0 1 0</DataArray>\n</Points>\n</Piece>\n"
+    "</PolyData>\n</VTKFile>\n";
+  WriteText(dir / "huge.vtp", huge);
+  ExpectRefused(dir / "huge.vtp", "NumberOfComponents=\"1000000000\"");
+
+  WriteText(dir / "cut.vtp", bytes.substr(0, bytes.size() - 30));
+  ExpectRefused(dir / "cut.vtp", "truncated VTK XML file");
+}
+
+// Before: a binary STL longer than its count was accepted and its extra bytes read as
+// triangles; a 2 GB file took minutes and gigabytes.
+TEST(InputValidation, OversizedMeshFilesAreRefusedUpFront)
+{
+  TempDir dir;
+  std::string stl(84 + 50 + 5000, '\0');
+  stl[80] = 1;
+  WriteText(dir / "padded.stl", stl);
+  ExpectRefused(dir / "padded.stl", "longer than its header says");
+
+  for (const char* name : { "zeros.stl", "zeros.off", "zeros.obj", "zeros.vtk", "zeros.ply" })
+  {
+    const std::string path = dir / name;
+    {
+      std::ofstream out(path, std::ios::binary);
+    }
+    fs::resize_file(path, (std::uintmax_t(2) << 30)); // sparse: no disk space used
+    ExpectRefused(path, "limit for mesh files");
+  }
+}
+
+// Before: 1e39 passed the double check and became inf in the single-precision formats.
+TEST(InputValidation, CoordinatesBeyondFloatRangeAreNotWrittenAsInf)
+{
+  TempDir dir;
+  const auto mesh = Triangle(1e39);
+  for (const char* name : { "big.stl", "big.ply", "big.obj" })
+  {
+    try
+    {
+      WriteMesh(mesh, dir / name);
+      ADD_FAILURE() << name << " written";
+    }
+    catch (const MeshIOError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("single-precision range"), std::string::npos)
+        << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir / name));
+  }
+  // Double-precision formats keep it.
+  WriteMesh(mesh, dir / "big.vtp");
+  EXPECT_EQ(ReadMesh(dir / "big.vtp")->GetPoint(1)[0], 1e39);
+}
+
+TEST(InputValidation, MessageCleanerGivesOneSafeLine)
+{
+  using bender::io_detail::CleanMessage;
+  EXPECT_EQ(CleanMessage("ERROR: In ./IO/XML/vtkXMLReader.cxx, line 521\n"
+                         "vtkXMLPolyDataReader (0x55d0c3a0): Error parsing XML\n\n"),
+    "Error parsing XML");
+  EXPECT_EQ(
+    CleanMessage("\x1b[1;31mITK ERROR: MetaImageIO(0x55d0c3a0): File cannot be read\x1b[0m"),
+    "File cannot be read");
+  EXPECT_EQ(CleanMessage("itk::ERROR: NrrdImageIO(0x1234): ReadImageInformation: "
+                         "[nrrd] nrrdLoad: trouble\n[nrrd] _nrrdRead: bad size"),
+    "ReadImageInformation: trouble; bad size");
+  EXPECT_EQ(CleanMessage("a\x07"
+                         "b\x1b]0;title\x07"
+                         "c\x7f"),
+    "a\\x07bc\\x7f");
+  EXPECT_EQ(CleanMessage(""), "unknown error");
+  const std::string longText(1000, 'x');
+  EXPECT_EQ(CleanMessage(longText).size(), 200u);
+  EXPECT_EQ(bender::io_detail::QuoteBytes(std::string("ab\0\xff", 4)), "ab\\x00\\xff");
+}
