@@ -1,17 +1,73 @@
 #include "RecordingTransport.h"
 
+#include "ReplayTransport.h"
+#include "TrackingErrors.h"
+
+#include <filesystem>
+#include <system_error>
+
 namespace bender
 {
 
+namespace
+{
+
+// Same existing file, or the same path once made absolute and normalised.
+bool SamePath(const std::string& a, const std::string& b)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec))
+  {
+    const bool same = fs::equivalent(a, b, ec);
+    if (!ec)
+    {
+      return same;
+    }
+  }
+  const fs::path na = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  std::error_code ec2;
+  const fs::path nb = fs::weakly_canonical(fs::absolute(b, ec2), ec2);
+  return !ec && !ec2 && na == nb;
+}
+
+// The recorder truncates FILE and FILE.timestamps on creation: refuse before that when either
+// is a file of the replay being recorded (the replayed recording or its timestamps sidecar).
+std::unique_ptr<Transport> RefuseRecordingOverInput(std::unique_ptr<Transport> inner,
+  const std::string& path)
+{
+  if (const auto* replay = dynamic_cast<const ReplayTransport*>(inner.get()))
+  {
+    const std::string inputs[] = { replay->FilePath(),
+      StreamRecorder::SidecarPath(replay->FilePath()) };
+    const std::string outputs[] = { path, StreamRecorder::SidecarPath(path) };
+    for (const std::string& output : outputs)
+    {
+      for (const std::string& input : inputs)
+      {
+        if (SamePath(output, input))
+        {
+          throw RecordingError("recording " + path + ": would overwrite " + input +
+            ", a file of the replay being recorded");
+        }
+      }
+    }
+  }
+  return inner;
+}
+
+} // namespace
+
 RecordingTransport::RecordingTransport(std::unique_ptr<Transport> inner, const std::string& path)
-  : Inner(std::move(inner))
+  : Inner(RefuseRecordingOverInput(std::move(inner), path))
   , Recorder(path)
   , Start(std::chrono::steady_clock::now())
 {
 }
 
-std::size_t RecordingTransport::Read(
-  std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout)
+std::size_t RecordingTransport::Read(std::uint8_t* buffer,
+  std::size_t capacity,
+  std::chrono::milliseconds timeout)
 {
   const std::size_t n = this->Inner->Read(buffer, capacity, timeout);
   if (n > 0)

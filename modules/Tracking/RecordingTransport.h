@@ -17,12 +17,15 @@ namespace bender
 class RecordingTransport : public Transport
 {
 public:
-  /// Throws RecordingError when the files cannot be created.
+  /// Throws RecordingError when the files cannot be created, or, before creating anything,
+  /// when `inner` is a ReplayTransport and FILE or FILE.timestamps is the replayed recording
+  /// or its timestamps sidecar (the recorder would truncate its own input).
   RecordingTransport(std::unique_ptr<Transport> inner, const std::string& path);
 
   std::string Name() const override { return this->Inner->Name(); }
-  std::size_t Read(
-    std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout) override;
+  std::size_t Read(std::uint8_t* buffer,
+    std::size_t capacity,
+    std::chrono::milliseconds timeout) override;
   void Write(const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout) override
   {
     this->Inner->Write(data, size, timeout);

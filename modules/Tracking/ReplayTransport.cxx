@@ -4,8 +4,9 @@
 #include "TrackingErrors.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cerrno>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -18,7 +19,44 @@ namespace bender
 namespace
 {
 constexpr std::size_t MaxRecordingBytes = std::size_t(1) << 30;
+// A sidecar has one short line per chunk of at least one byte.
+constexpr std::size_t MaxSidecarBytes = std::size_t(1) << 28;
+constexpr std::size_t MaxSidecarLine = 256;
+// Recorded times are seconds since the recording started: a year is beyond any session.
+constexpr double MaxRecordedSeconds = 366.0 * 24 * 3600;
+
+// A file's bytes fit for a one-line message: printable ASCII, the rest as \xNN, cut short.
+std::string Quote(const std::string& bytes, std::size_t maxLength = 60)
+{
+  static const char* const hex = "0123456789abcdef";
+  std::string quoted;
+  for (const char c : bytes)
+  {
+    const auto u = static_cast<unsigned char>(c);
+    if (quoted.size() >= maxLength)
+    {
+      quoted += "...";
+      break;
+    }
+    if (u >= 32 && u < 127 && u != '\\')
+    {
+      quoted += c;
+    }
+    else
+    {
+      quoted += std::string("\\x") + hex[u >> 4] + hex[u & 15];
+    }
+  }
+  return quoted;
 }
+
+std::string Seconds(double t)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", t);
+  return text;
+}
+} // namespace
 
 ReplayTransport::ReplayTransport(const std::string& path)
   : ReplayTransport(path, Options{})
@@ -33,7 +71,9 @@ ReplayTransport::ReplayTransport(const std::string& path, const Options& options
   {
     throw TrackingConfigurationError("replay " + path + ": chunk size and byte rate must be > 0");
   }
-  struct stat info{};
+  struct stat info
+  {
+  };
   if (::stat(path.c_str(), &info) != 0)
   {
     throw RecordingError("replay " + path + ": cannot open (" + std::strerror(errno) + ")");
@@ -59,6 +99,14 @@ ReplayTransport::ReplayTransport(const std::string& path, const Options& options
   const std::string sidecar = StreamRecorder::SidecarPath(path);
   if (::stat(sidecar.c_str(), &info) == 0)
   {
+    if (!S_ISREG(info.st_mode))
+    {
+      throw RecordingError("replay " + sidecar + ": not a regular file");
+    }
+    if (std::size_t(info.st_size) > MaxSidecarBytes)
+    {
+      throw RecordingError("replay " + sidecar + ": larger than 256 MiB, not a timestamps file?");
+    }
     this->LoadSidecar(sidecar);
   }
   else
@@ -85,6 +133,11 @@ void ReplayTransport::LoadSidecar(const std::string& sidecar)
   while (std::getline(in, line))
   {
     ++number;
+    if (line.size() > MaxSidecarLine)
+    {
+      throw RecordingError("replay " + sidecar + " line " + std::to_string(number) +
+        ": longer than " + std::to_string(MaxSidecarLine) + " bytes");
+    }
     if (line.empty() || line[0] == '#')
     {
       continue;
@@ -97,17 +150,24 @@ void ReplayTransport::LoadSidecar(const std::string& sidecar)
     const std::string where = "replay " + sidecar + " line " + std::to_string(number);
     if (!(fields >> offset >> size >> time) || (fields >> extra))
     {
-      throw RecordingError(where + ": expected 'OFFSET SIZE SECONDS', got '" + line + "'");
+      throw RecordingError(where + ": expected 'OFFSET SIZE SECONDS', got '" + Quote(line) + "'");
     }
-    if (offset != expected || size == 0 || offset + size > this->Bytes.size())
+    // Compare without adding: offset + size wraps around for a forged size.
+    if (offset != expected || size == 0 || offset > this->Bytes.size() ||
+      size > this->Bytes.size() - offset)
     {
       throw RecordingError(where + ": chunk " + std::to_string(offset) + "+" +
         std::to_string(size) + " does not follow on from byte " + std::to_string(expected) +
         " within the " + std::to_string(this->Bytes.size()) + "-byte recording");
     }
-    if (!std::isfinite(time) || time < previous)
+    if (!std::isfinite(time) || std::fabs(time) > MaxRecordedSeconds)
     {
-      throw RecordingError(where + ": time " + std::to_string(time) + " goes backwards");
+      throw RecordingError(
+        where + ": time " + Seconds(time) + " s is out of range (at most a year from the start)");
+    }
+    if (time < previous)
+    {
+      throw RecordingError(where + ": time " + Seconds(time) + " goes backwards");
     }
     this->Chunks.push_back({ std::size_t(offset), std::size_t(size), time });
     expected = std::size_t(offset + size);
@@ -121,8 +181,9 @@ void ReplayTransport::LoadSidecar(const std::string& sidecar)
   this->Timestamped = true;
 }
 
-std::size_t ReplayTransport::Read(
-  std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout)
+std::size_t ReplayTransport::Read(std::uint8_t* buffer,
+  std::size_t capacity,
+  std::chrono::milliseconds timeout)
 {
   if (this->Closed)
   {
@@ -139,8 +200,9 @@ std::size_t ReplayTransport::Read(
     if (!this->Started)
     {
       this->Started = true;
-      this->StartTime = now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-        std::chrono::duration<double>(chunk.time));
+      this->StartTime = now -
+        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(chunk.time));
     }
     const auto due = this->StartTime +
       std::chrono::duration_cast<std::chrono::steady_clock::duration>(

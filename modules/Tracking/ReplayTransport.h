@@ -35,8 +35,9 @@ public:
   ReplayTransport(const std::string& path, const Options& options);
 
   std::string Name() const override { return "replay " + this->Path; }
-  std::size_t Read(
-    std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout) override;
+  std::size_t Read(std::uint8_t* buffer,
+    std::size_t capacity,
+    std::chrono::milliseconds timeout) override;
   void Write(const std::uint8_t*, std::size_t, std::chrono::milliseconds) override {}
   void Flush() override {}
   void Close() override { this->Closed = true; }
@@ -44,6 +45,8 @@ public:
   std::optional<double> RecordedTime() const override { return this->LastTime; }
 
   bool HasTimestamps() const { return this->Timestamped; }
+  /// The recording being replayed (its sidecar is StreamRecorder::SidecarPath of it).
+  const std::string& FilePath() const { return this->Path; }
   std::size_t Size() const { return this->Bytes.size(); }
 
 private:

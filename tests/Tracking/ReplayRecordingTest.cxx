@@ -17,8 +17,8 @@ namespace
 {
 
 const std::string FixturePath = std::string(BENDER_TEST_DATA_DIR) + "/tracking/two-hands.fastrak";
-constexpr double FixtureRate = 10.0;   // samples per second per station
-constexpr int FixtureSamples = 61;     // 0..6 s
+constexpr double FixtureRate = 10.0;     // samples per second per station
+constexpr int FixtureSamples = 61;       // 0..6 s
 constexpr std::size_t FixtureChunk = 64; // bytes per USB-like packet
 
 std::string ReadText(const std::string& path)
@@ -43,7 +43,8 @@ void GenerateFixture(const std::string& path)
   {
     for (int station : { 1, 2 })
     {
-      const Bytes r = EncodeFastrakRecord(script.PoseAt(station, k / FixtureRate), FastrakFormat::Binary);
+      const Bytes r =
+        EncodeFastrakRecord(script.PoseAt(station, k / FixtureRate), FastrakFormat::Binary);
       stream.insert(stream.end(), r.begin(), r.end());
       recordTime.push_back(k / FixtureRate);
     }
@@ -56,7 +57,8 @@ void GenerateFixture(const std::string& path)
   }
 }
 
-std::vector<TrackerPose> DrainUntilEnd(TrackerDevice& device, std::vector<TrackerEvent>* eventsOut = nullptr)
+std::vector<TrackerPose> DrainUntilEnd(TrackerDevice& device,
+  std::vector<TrackerEvent>* eventsOut = nullptr)
 {
   std::vector<TrackerPose> poses;
   std::vector<TrackerEvent> events;
@@ -160,8 +162,12 @@ TEST(Replay, RecordThenReplayGivesTheSamePosesAndTimes)
   live.configure = false;
   std::vector<TrackerPose> recorded;
   {
-    FastrakDevice device("scripted",
-      [shared, file] { return std::make_unique<RecordingTransport>(std::make_unique<ScriptedTransport>(shared), file); },
+    FastrakDevice device(
+      "scripted",
+      [shared, file] {
+        return std::make_unique<RecordingTransport>(
+          std::make_unique<ScriptedTransport>(shared), file);
+      },
       live);
     device.EnablePoseQueue(64, false);
     device.Open();
@@ -187,11 +193,13 @@ TEST(Replay, RecordThenReplayGivesTheSamePosesAndTimes)
   Bytes expectedFile = { 0x13, '0' };
   expectedFile.insert(expectedFile.end(), stream.begin(), stream.end());
   const std::string raw = ReadText(file);
-  EXPECT_EQ(Bytes(raw.begin(), raw.end()), expectedFile) << "the recording is not the bytes as received";
+  EXPECT_EQ(Bytes(raw.begin(), raw.end()), expectedFile)
+    << "the recording is not the bytes as received";
 
   FastrakOptions replayOptions;
   replayOptions.configure = false;
-  FastrakDevice replay("replay", [file] { return std::make_unique<ReplayTransport>(file); }, replayOptions);
+  FastrakDevice replay(
+    "replay", [file] { return std::make_unique<ReplayTransport>(file); }, replayOptions);
   replay.EnablePoseQueue(64, true);
   replay.Open();
   replay.Start();
@@ -251,7 +259,8 @@ TEST(Replay, RealtimeFollowsTheRecordedTimes)
   {
     total += replay.Read(buffer, sizeof buffer, std::chrono::milliseconds(20));
   }
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double elapsed =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(total, stream.size());
   EXPECT_GE(elapsed, 0.14);
   EXPECT_LT(elapsed, 2.0);
@@ -260,7 +269,8 @@ TEST(Replay, RealtimeFollowsTheRecordedTimes)
 TEST(Replay, BadRecordingsAreReportedWithTheirName)
 {
   ScratchDir dir;
-  const auto expectError = [](const std::string& file, const std::string& needle) {
+  const auto expectError = [](const std::string& file, const std::string& needle)
+  {
     try
     {
       ReplayTransport replay(file);
@@ -285,6 +295,59 @@ TEST(Replay, BadRecordingsAreReportedWithTheirName)
   WriteText(file + ".timestamps", "0 fifty 0.1\n");
   expectError(file, "OFFSET SIZE SECONDS");
   expectError(dir.File(""), "not a regular file");
+}
+
+// Issue 13: a forged SIZE made offset + size wrap around 64 bits and pass the range check
+// (heap over-read, SIGSEGV); 1e300 seconds printed 300 digits; raw bytes were echoed.
+TEST(Replay, ForgedSidecarsAreRefusedInOneLine)
+{
+  ScratchDir dir;
+  const auto expectError = [](const std::string& file, const std::string& needle)
+  {
+    try
+    {
+      ReplayTransport replay(file);
+      ADD_FAILURE() << "accepted " << file;
+    }
+    catch (const RecordingError& e)
+    {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(needle), std::string::npos) << message;
+      EXPECT_LT(message.size(), 300u) << message;
+      EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
+    }
+  };
+  const std::string file = dir.File("data.fastrak");
+  WriteText(file, std::string(100, 'x'));
+  WriteText(file + ".timestamps", "0 50 0.1\n50 18446744073709551570 0.2\n");
+  expectError(file, "does not follow on");
+  WriteText(file + ".timestamps", "0 50 0.1\n50 50 1e300\n");
+  expectError(file, "time 1e+300 s is out of range");
+  WriteText(file + ".timestamps", "0 50 \x1b[31mred\n");
+  expectError(file, "\\x1b[31mred");
+  WriteText(file + ".timestamps", "0 100 0.1" + std::string(1000, ' ') + "\n");
+  expectError(file, "longer than 256 bytes");
+}
+
+// Issue 13: "--record F.timestamps" while replaying F truncated the replay's own sidecar.
+TEST(Replay, RecordingRefusesToOverwriteTheReplayedFiles)
+{
+  ScratchDir dir;
+  const std::string file = dir.File("in.fastrak");
+  GenerateFixture(file);
+  const std::string sidecar = ReadText(file + ".timestamps");
+  const std::string data = ReadText(file);
+  for (const std::string& target : { file + ".timestamps", file, dir.File("./in.fastrak") })
+  {
+    EXPECT_THROW(
+      RecordingTransport(std::make_unique<ReplayTransport>(file), target), RecordingError)
+      << target;
+  }
+  EXPECT_EQ(ReadText(file + ".timestamps"), sidecar);
+  EXPECT_EQ(ReadText(file), data);
+  // Another name records as before.
+  RecordingTransport ok(std::make_unique<ReplayTransport>(file), dir.File("copy.fastrak"));
+  EXPECT_TRUE(std::filesystem::exists(dir.File("copy.fastrak.timestamps")));
 }
 
 TEST(Replay, RecorderRefusesAnUnwritablePath)
