@@ -1,7 +1,11 @@
 #ifndef bender_BenderMeshCheck_h
 #define bender_BenderMeshCheck_h
 
+#include "MeshTopology.h"
+
 #include <vtkType.h>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstdint>
 #include <string>
@@ -40,20 +44,20 @@ struct MeshCheckReport
   vtkIdType points = 0;    ///< points of the mesh
   vtkIdType triangles = 0; ///< triangles after fanning polygons / converting strips
   vtkIdType unusedPoints = 0;
-  vtkIdType components = 0;  ///< edge-connected components of triangles
+  vtkIdType components = 0; ///< edge-connected components of triangles
   vtkIdType boundaryEdges = 0;
   std::vector<vtkIdType> boundaryLoops; ///< edges of each boundary loop (open vessel ends)
   vtkIdType nonManifoldEdges = 0;       ///< edges with 3 or more triangles
   vtkIdType nonManifoldVertices = 0;    ///< vertices whose triangles form 2+ separate fans
-  vtkIdType inconsistentEdges = 0; ///< manifold edges traversed the same way by both triangles
-  vtkIdType degenerateTriangles = 0;   ///< repeated vertex or area <= 1e-14 * diagonal^2
-  vtkIdType selfIntersections = 0;     ///< intersecting pairs of triangles sharing no vertex
+  vtkIdType inconsistentEdges = 0;      ///< manifold edges traversed the same way by both triangles
+  vtkIdType degenerateTriangles = 0;    ///< repeated vertex or area <= 1e-14 * diagonal^2
+  vtkIdType selfIntersections = 0;      ///< intersecting pairs of triangles sharing no vertex
   std::vector<std::pair<vtkIdType, vtkIdType>> intersectingPairs; ///< examples (triangle ids)
   bool selfIntersectionsChecked = false;
-  bool closed = false;   ///< no boundary and no non-manifold edge
-  double area = 0.0;     ///< total area
-  double volume = 0.0;   ///< enclosed volume (signed: < 0 when the triangles face inwards);
-                         ///< only meaningful when closed
+  bool closed = false; ///< no boundary and no non-manifold edge
+  double area = 0.0;   ///< total area
+  double volume = 0.0; ///< enclosed volume (signed: < 0 when the triangles face inwards);
+                       ///< only meaningful when closed
   MeshStatistic edgeLength;
   MeshStatistic minimumAngle; ///< per-triangle minimum angle, degrees
   /// With a mesh before the warp (same points and triangles in the same order): triangles
@@ -72,13 +76,17 @@ struct MeshCheckReport
 /// Checks a surface. `before` (optional) is the same surface before a warp, for flips.
 /// Never throws on empty, non-manifold or NaN-containing meshes (NaN points are counted and
 /// reported, and the geometric measures skip the triangles that use them).
-MeshCheckReport CheckMesh(
-  vtkPolyData* mesh, vtkPolyData* before = nullptr, const MeshCheckOptions& options = {});
+MeshCheckReport CheckMesh(vtkPolyData* mesh,
+  vtkPolyData* before = nullptr,
+  const MeshCheckOptions& options = {});
 
-/// Triangles of a polydata (polygons fanned, strips converted), as 3 ids each.
-std::vector<std::int64_t> CollectTriangles(vtkPolyData* mesh);
+/// The report as a JSON object: "mesh" (name), "clean", the counts, "boundaryLoops" (edges of
+/// each loop), "selfIntersections", "volume" and "flippedTriangles" (null when not checked or
+/// not closed), "edgeLength" and "minimumAngleDegrees" ({min, mean[, max]}), "problems".
+nlohmann::ordered_json ToJson(const MeshCheckReport& report, const std::string& name);
 
-/// The report as human-readable lines, and as a JSON object (one line per member).
+/// The report as human-readable lines, and as ToJson's text (two-space indent, one member
+/// per line, ending with a newline).
 std::string FormatReportText(const MeshCheckReport& report, const std::string& name);
 std::string FormatReportJson(const MeshCheckReport& report, const std::string& name);
 

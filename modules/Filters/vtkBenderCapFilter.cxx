@@ -1,6 +1,6 @@
 #include "vtkBenderCapFilter.h"
 
-#include "BenderMeshCheck.h"
+#include "MeshTopology.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -22,75 +22,9 @@
 
 vtkStandardNewMacro(vtkBenderCapFilter);
 
-namespace
-{
-// Directed boundary loops: each boundary edge (a -> b) as its only triangle traverses it.
-// Only closed chains through vertices with one outgoing boundary edge are returned.
-std::vector<std::vector<vtkIdType>> BoundaryLoops(
-  const std::vector<std::int64_t>& tris, int& broken)
-{
-  std::map<std::pair<std::int64_t, std::int64_t>, int> count; // undirected edge -> uses
-  for (std::size_t t = 0; t < tris.size(); t += 3)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::int64_t a = tris[t + k], b = tris[t + (k + 1) % 3];
-      ++count[{ std::min(a, b), std::max(a, b) }];
-    }
-  }
-  std::multimap<vtkIdType, vtkIdType> next;
-  for (std::size_t t = 0; t < tris.size(); t += 3)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::int64_t a = tris[t + k], b = tris[t + (k + 1) % 3];
-      if (a != b && count[{ std::min(a, b), std::max(a, b) }] == 1)
-      {
-        next.emplace(a, b);
-      }
-    }
-  }
-  std::vector<std::vector<vtkIdType>> loops;
-  broken = 0;
-  while (!next.empty())
-  {
-    auto it = next.begin();
-    const vtkIdType start = it->first;
-    std::vector<vtkIdType> loop{ start };
-    vtkIdType current = it->second;
-    next.erase(it);
-    bool closed = true;
-    while (current != start)
-    {
-      if (next.count(current) != 1)
-      {
-        closed = false;
-        auto more = next.find(current);
-        if (more == next.end())
-        {
-          break;
-        }
-      }
-      auto step = next.find(current);
-      loop.push_back(current);
-      current = step->second;
-      next.erase(step);
-    }
-    if (closed && loop.size() >= 3)
-    {
-      loops.push_back(loop);
-    }
-    else
-    {
-      ++broken;
-    }
-  }
-  return loops;
-}
-} // namespace
-
-int vtkBenderCapFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkBenderCapFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
@@ -132,14 +66,30 @@ int vtkBenderCapFilter::RequestData(
     }
   }
 
+  // Directed boundary loops: each boundary edge (a -> b) as its only triangle runs it. Only
+  // closed loops of at least 3 vertices are capped; the others are counted as skipped.
+  std::vector<std::vector<vtkIdType>> loops;
   int broken = 0;
-  std::vector<std::vector<vtkIdType>> loops = BoundaryLoops(tris, broken);
+  for (const bender::BoundaryChain& chain : bender::BoundaryLoops(tris, n0))
+  {
+    if (chain.closed && chain.vertices.size() >= 3)
+    {
+      loops.emplace_back(chain.vertices.begin(), chain.vertices.end());
+    }
+    else
+    {
+      ++broken;
+    }
+  }
   this->NumberOfSkippedLoops = broken;
-  std::sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) {
-    return a.size() != b.size() ? a.size() > b.size()
-                                : *std::min_element(a.begin(), a.end()) <
-        *std::min_element(b.begin(), b.end());
-  });
+  std::sort(loops.begin(),
+    loops.end(),
+    [](const auto& a, const auto& b)
+    {
+      return a.size() != b.size()
+        ? a.size() > b.size()
+        : *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
+    });
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -189,7 +139,8 @@ int vtkBenderCapFilter::RequestData(
           cov[a][b] += (x[v][a] - c[a]) * (x[v][b] - c[b]);
         }
       }
-      diameter = std::max(diameter, 2.0 * std::sqrt(vtkMath::Distance2BetweenPoints(x[v].data(), c)));
+      diameter =
+        std::max(diameter, 2.0 * std::sqrt(vtkMath::Distance2BetweenPoints(x[v].data(), c)));
     }
     double* rows[3] = { cov[0], cov[1], cov[2] };
     double eigen[3], vec0[3], vec1[3], vec2[3];

@@ -3,27 +3,20 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace bender
 {
 
-/// Base of the errors thrown by the geometry core.
+/// Base of the errors thrown by the geometry core for input it cannot use. field() is the
+/// part of the warp the problem belongs to, relative to the warp: "initial", "final",
+/// "initial.end.tangent", "radius", ... (empty when it concerns the whole input); problem() is
+/// the human description without the field; what() is "field: problem".
 class GeometryError : public std::invalid_argument
 {
 public:
-  using std::invalid_argument::invalid_argument;
-};
-
-/// A ribbon (its two end frames) that defines no usable wire: non-finite input,
-/// coincident ends, a cusp, or the unstable near-parallel case (spec convention 11).
-/// field() is the part of the warp the problem belongs to, relative to the warp:
-/// "initial", "final", "initial.end.tangent", ... (empty when it concerns the whole warp);
-/// problem() is the human description without the field.
-class InvalidRibbonError : public GeometryError
-{
-public:
-  InvalidRibbonError(std::string field, std::string problem)
-    : GeometryError(field.empty() ? problem : field + ": " + problem)
+  GeometryError(std::string field, std::string problem)
+    : std::invalid_argument(field.empty() ? problem : field + ": " + problem)
     , Field(std::move(field))
     , Problem(std::move(problem))
   {
@@ -36,12 +29,22 @@ private:
   std::string Problem;
 };
 
-/// A warp whose two ribbons are each valid but together mean nothing: a turn of more
-/// than 340 degrees relative to the grab (spec 4.4), or absurd parameters (R <= 0, ...).
-class InvalidWarpError : public InvalidRibbonError
+/// A ribbon (its two end frames) that defines no usable wire: non-finite input,
+/// coincident ends, a cusp, or the unstable near-parallel case (spec convention 11).
+class InvalidRibbonError : public GeometryError
 {
 public:
-  using InvalidRibbonError::InvalidRibbonError;
+  using GeometryError::GeometryError;
+};
+
+/// A warp whose ribbons may each be valid but whose whole makes no sense: a turn of more
+/// than 340 degrees relative to the grab (spec 4.4), or parameters out of range (radius
+/// <= 0, decay plateau outside [0, 0.95]). Not an InvalidRibbonError: catch GeometryError
+/// for both.
+class InvalidWarpError : public GeometryError
+{
+public:
+  using GeometryError::GeometryError;
 };
 
 } // namespace bender

@@ -97,12 +97,12 @@ RibbonWarp::RibbonWarp(const WarpSpec& spec, const WarpOptions& options)
 {
   if (!std::isfinite(spec.radius) || !(spec.radius > 0.0))
   {
-    throw InvalidRibbonError("radius", "must be a finite number > 0");
+    throw InvalidWarpError("radius", "must be a finite number > 0");
   }
   if (spec.decay.shape == DecayShape::Plateau &&
     !(spec.decay.plateau >= 0.0 && spec.decay.plateau <= 0.95))
   {
-    throw InvalidRibbonError("decay.plateau", "must be in [0, 0.95]");
+    throw InvalidWarpError("decay.plateau", "must be in [0, 0.95]");
   }
   this->InitialRibbon = BuildRibbon(spec.initial, "initial");
   this->FinalRibbon = BuildRibbon(spec.final, "final");

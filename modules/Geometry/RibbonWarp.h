@@ -62,9 +62,11 @@ struct WarpOptions
 class RibbonWarp
 {
 public:
-  /// Validates and builds. Throws InvalidRibbonError whose field() is relative to the warp
-  /// ("initial.start.tangent", "final", "radius", "decay.plateau", ...) or InvalidWarpError
-  /// for a warp that turns more than 340 degrees relative to its grab.
+  /// Validates and builds. Throws InvalidRibbonError for an unusable ribbon and
+  /// InvalidWarpError for parameters out of range (radius, decay.plateau) or a warp that turns
+  /// more than 340 degrees relative to its grab; field() is relative to the warp
+  /// ("initial.start.tangent", "final", "radius", "decay.plateau", ...). Both are
+  /// GeometryError.
   explicit RibbonWarp(const WarpSpec& spec, const WarpOptions& options = {});
 
   /// Throws exactly as the constructor would; returns normally for a valid warp.

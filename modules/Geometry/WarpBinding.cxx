@@ -25,7 +25,7 @@ WarpBinding::WarpBinding(const WarpSpec& spec, BlendMode blend)
 {
   if (!std::isfinite(spec.radius) || !(spec.radius > 0.0))
   {
-    throw InvalidRibbonError("radius", "must be a finite number > 0");
+    throw InvalidWarpError("radius", "must be a finite number > 0");
   }
   try
   {

@@ -27,7 +27,8 @@ struct BoundPoint
 class WarpBinding
 {
 public:
-  /// Throws InvalidRibbonError as RibbonWarp does for the initial ribbon and parameters.
+  /// Throws InvalidRibbonError (initial ribbon) and InvalidWarpError (radius) as RibbonWarp
+  /// does.
   WarpBinding(const WarpSpec& spec, BlendMode blend);
 
   /// True when a warp with this spec and mode can reuse this binding (same initial ribbon,

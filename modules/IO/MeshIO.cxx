@@ -838,7 +838,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   }
 
   std::string problem;
-  if (!io_detail::AtomicWrite(path, produce, problem))
+  if (!AtomicWrite(path, produce, problem))
   {
     Fail(path, problem);
   }

@@ -259,7 +259,8 @@ private:
   {
     const json& object = this->Object(value, path);
     WarpSpec warp;
-    warp.initial = this->ParseRibbon(this->Required(object, "initial", path), Join(path, "initial"));
+    warp.initial =
+      this->ParseRibbon(this->Required(object, "initial", path), Join(path, "initial"));
     warp.final = this->ParseRibbon(this->Required(object, "final", path), Join(path, "final"));
     warp.radius = this->Number(this->Required(object, "radius", path), Join(path, "radius"));
     if (!(warp.radius > 0.0))
@@ -306,7 +307,8 @@ private:
     {
       if (!reverse->is_boolean())
       {
-        this->Fail(Join(path, "reverseScrews"), "expected true or false, found " + Describe(*reverse));
+        this->Fail(
+          Join(path, "reverseScrews"), "expected true or false, found " + Describe(*reverse));
       }
       warp.reverseScrews = reverse->get<bool>();
     }
@@ -327,8 +329,9 @@ private:
       }
       warp.subdivision = spec;
     }
-    static const std::set<std::string> known{ "initial", "final", "radius", "decay",
-      "reverseScrews", "subdivision" };
+    static const std::set<std::string> known{
+      "initial", "final", "radius", "decay", "reverseScrews", "subdivision"
+    };
     for (const auto& [key, member] : object.items())
     {
       if (!known.count(key))
@@ -368,155 +371,190 @@ std::string NumberText(double value)
   return text;
 }
 
-class PlanWriter
+// Builds the JSON object of a plan; every failure names the JSON path of the field.
+class PlanBuilder
 {
 public:
-  explicit PlanWriter(std::string source)
+  explicit PlanBuilder(std::string source)
     : Source(std::move(source))
   {
   }
 
-  std::string Write(const WarpPlan& plan)
+  json Build(const WarpPlan& plan) const
   {
-    this->Out = "{\n";
-    this->Out += "  \"format\": \"" + std::string(FormatName) + "\",\n";
-    this->Out += "  \"version\": " + std::to_string(KnownVersion) + ",\n";
-    this->Out += "  \"units\": " + json(plan.units).dump() + ",\n";
-    if (plan.warps.empty())
+    json document;
+    document["format"] = FormatName;
+    document["version"] = KnownVersion;
+    document["units"] = plan.units;
+    document["warps"] = json::array();
+    for (std::size_t i = 0; i < plan.warps.size(); ++i)
     {
-      this->Out += "  \"warps\": []";
+      document["warps"].push_back(this->Warp(plan.warps[i], "warps[" + std::to_string(i) + "]"));
     }
-    else
-    {
-      this->Out += "  \"warps\": [\n";
-      for (std::size_t i = 0; i < plan.warps.size(); ++i)
-      {
-        this->WriteWarp(plan.warps[i], "warps[" + std::to_string(i) + "]");
-        this->Out += i + 1 < plan.warps.size() ? ",\n" : "\n";
-      }
-      this->Out += "  ]";
-    }
-    this->WriteExtra(plan.extraFields, { "format", "version", "units", "warps" }, "  ");
-    this->Out += "\n}\n";
-    return this->Out;
+    this->AddExtra(document, plan.extraFields, "");
+    return document;
   }
 
 private:
   std::string Source;
-  std::string Out;
 
   [[noreturn]] void Fail(const std::string& path, const std::string& problem) const
   {
     throw WarpPlanError(this->Source + ": " + path + ": " + problem);
   }
 
-  std::string Number(double value, const std::string& path) const
+  json Number(double value, const std::string& path) const
   {
     if (!std::isfinite(value))
     {
       this->Fail(path, "not a finite number (JSON cannot hold it)");
     }
-    return NumberText(value);
+    return value;
   }
 
-  std::string Vector(const Vec3& v, const std::string& path) const
+  json Vector(const Vec3& v, const std::string& path) const
   {
-    return "[" + this->Number(v.x, path + "[0]") + ", " + this->Number(v.y, path + "[1]") + ", " +
-      this->Number(v.z, path + "[2]") + "]";
+    return json::array({ this->Number(v.x, path + "[0]"),
+      this->Number(v.y, path + "[1]"),
+      this->Number(v.z, path + "[2]") });
   }
 
-  void WriteEnd(const char* name, const RibbonEnd& end, const std::string& path)
+  json End(const RibbonEnd& end, const std::string& path) const
   {
-    const std::string p = path + "." + name;
-    this->Out += std::string("        \"") + name + "\": { \"position\": " +
-      this->Vector(end.position, p + ".position") +
-      ", \"tangent\": " + this->Vector(end.tangent, p + ".tangent") +
-      ", \"normal\": " + this->Vector(end.normal, p + ".normal") + " }";
+    json object;
+    object["position"] = this->Vector(end.position, path + ".position");
+    object["tangent"] = this->Vector(end.tangent, path + ".tangent");
+    object["normal"] = this->Vector(end.normal, path + ".normal");
+    return object;
   }
 
-  void WriteRibbon(const char* name, const RibbonSpec& ribbon, const std::string& path)
+  json Ribbon(const RibbonSpec& ribbon, const std::string& path) const
   {
-    const std::string p = path + "." + name;
-    this->Out += std::string("      \"") + name + "\": {\n";
-    this->WriteEnd("start", ribbon.start, p);
-    this->Out += ",\n";
-    this->WriteEnd("end", ribbon.end, p);
-    this->Out += ",\n        \"extraTurns\": " + std::to_string(ribbon.extraTurns) + "\n      }";
+    json object;
+    object["start"] = this->End(ribbon.start, path + ".start");
+    object["end"] = this->End(ribbon.end, path + ".end");
+    object["extraTurns"] = ribbon.extraTurns;
+    return object;
   }
 
-  void WriteWarp(const WarpSpec& warp, const std::string& path)
+  json Warp(const WarpSpec& warp, const std::string& path) const
   {
-    this->Out += "    {\n";
-    this->WriteRibbon("initial", warp.initial, path);
-    this->Out += ",\n";
-    this->WriteRibbon("final", warp.final, path);
-    this->Out += ",\n      \"radius\": " + this->Number(warp.radius, path + ".radius");
-    this->Out += ",\n      \"decay\": { \"shape\": \"";
-    this->Out += warp.decay.shape == DecayShape::Plateau ? "plateau" : "bell";
-    this->Out += "\", \"plateau\": " + this->Number(warp.decay.plateau, path + ".decay.plateau") + " }";
-    this->Out += ",\n      \"reverseScrews\": ";
-    this->Out += warp.reverseScrews ? "true" : "false";
+    json object;
+    object["initial"] = this->Ribbon(warp.initial, path + ".initial");
+    object["final"] = this->Ribbon(warp.final, path + ".final");
+    object["radius"] = this->Number(warp.radius, path + ".radius");
+    json decay;
+    decay["shape"] = warp.decay.shape == DecayShape::Plateau ? "plateau" : "bell";
+    decay["plateau"] = this->Number(warp.decay.plateau, path + ".decay.plateau");
+    object["decay"] = decay;
+    object["reverseScrews"] = warp.reverseScrews;
     if (warp.subdivision)
     {
-      this->Out += ",\n      \"subdivision\": { \"tolerance\": " +
-        this->Number(warp.subdivision->tolerance, path + ".subdivision.tolerance") +
-        ", \"maxPasses\": " + std::to_string(warp.subdivision->maxPasses) + " }";
+      json subdivision;
+      subdivision["tolerance"] =
+        this->Number(warp.subdivision->tolerance, path + ".subdivision.tolerance");
+      subdivision["maxPasses"] = warp.subdivision->maxPasses;
+      object["subdivision"] = subdivision;
     }
-    this->WriteExtra(warp.extraFields,
-      { "initial", "final", "radius", "decay", "reverseScrews", "subdivision" }, "      ",
-      path + ".");
-    this->Out += "\n    }";
+    this->AddExtra(object, warp.extraFields, path + ".");
+    return object;
   }
 
-  void WriteExtra(const std::map<std::string, std::string>& extra,
-    const std::set<std::string>& known, const std::string& indent, const std::string& prefix = "")
+  // Unknown fields kept as JSON text by the parser go back after the known ones.
+  void AddExtra(json& object,
+    const std::map<std::string, std::string>& extra,
+    const std::string& prefix) const
   {
     for (const auto& [key, text] : extra)
     {
-      if (known.count(key))
+      if (object.contains(key) || key == "subdivision")
       {
         this->Fail(prefix + key, "an extra field may not have the name of a known field");
       }
-      json value;
       try
       {
-        value = json::parse(text);
+        object[key] = json::parse(text);
       }
       catch (const json::parse_error& e)
       {
-        this->Fail(prefix + key, "extra field is not valid JSON (" + ParseErrorText(e.what()) + ")");
+        this->Fail(
+          prefix + key, "extra field is not valid JSON (" + ParseErrorText(e.what()) + ")");
       }
-      this->Out += ",\n" + indent + json(key).dump() + ": " + value.dump();
     }
   }
 };
 
-} // namespace
-
-WarpPlan ParseWarpPlan(const std::string& jsonText, const std::string& sourceName)
+// True for a value that is printed on one line: a scalar, or an array or object none of
+// whose members is an object (ribbon ends, decay, vectors).
+bool Flat(const json& value)
 {
-  const std::string source = sourceName.empty() ? "plan" : sourceName;
-  json document;
-  try
+  if (!value.is_structured())
   {
-    document = json::parse(jsonText, [](int depth, json::parse_event_t, json&) {
-      if (depth > MaxDepth)
-      {
-        throw TooDeep{};
-      }
-      return true;
-    });
+    return true;
   }
-  catch (const TooDeep&)
+  for (const json& member : value)
   {
-    throw WarpPlanError(source + ": JSON nested more than " + std::to_string(MaxDepth) + " levels deep");
+    if (member.is_object() || (member.is_array() && !Flat(member)))
+    {
+      return false;
+    }
   }
-  catch (const json::exception& e)
-  {
-    // parse_error (with its line and column), or out_of_range for a number such as 1e999.
-    throw WarpPlanError(source + ": malformed JSON: " + ParseErrorText(e.what()));
-  }
+  return true;
+}
 
+// The plan file's layout: one member per line, short objects and vectors on one line,
+// numbers as the shortest text that reads back as the same double.
+void Print(const json& value, const std::string& indent, std::string& out)
+{
+  if (value.is_number_float())
+  {
+    out += NumberText(value.get<double>());
+    return;
+  }
+  if (!value.is_structured())
+  {
+    out += value.dump();
+    return;
+  }
+  const bool object = value.is_object();
+  if (value.empty())
+  {
+    out += object ? "{}" : "[]";
+    return;
+  }
+  const bool flat = Flat(value);
+  out += object ? (flat ? "{ " : "{\n") : (flat ? "[" : "[\n");
+  const std::string inner = indent + "  ";
+  bool first = true;
+  for (auto it = value.begin(); it != value.end(); ++it)
+  {
+    if (!first)
+    {
+      out += flat ? ", " : ",\n";
+    }
+    first = false;
+    if (!flat)
+    {
+      out += inner;
+    }
+    if (object)
+    {
+      out += json(it.key()).dump() + ": ";
+    }
+    Print(*it, inner, out);
+  }
+  if (flat)
+  {
+    out += object ? " }" : "]";
+  }
+  else
+  {
+    out += "\n" + indent + (object ? "}" : "]");
+  }
+}
+
+WarpPlan ParseAndValidate(const json& document, const std::string& source)
+{
   const PlanParser parser(source);
   WarpPlan plan = parser.Parse(document);
 
@@ -529,16 +567,44 @@ WarpPlan ParseWarpPlan(const std::string& jsonText, const std::string& sourceNam
     {
       RibbonWarp::Validate(plan.warps[i]);
     }
-    catch (const InvalidRibbonError& e)
+    catch (const GeometryError& e)
     {
       parser.Fail(e.field().empty() ? path : path + "." + e.field(), e.problem());
     }
-    catch (const GeometryError& e)
-    {
-      parser.Fail(path, e.what());
-    }
   }
   return plan;
+}
+
+} // namespace
+
+WarpPlan ParseWarpPlan(const std::string& jsonText, const std::string& sourceName)
+{
+  const std::string source = sourceName.empty() ? "plan" : sourceName;
+  json document;
+  try
+  {
+    document = json::parse(jsonText,
+      [](int depth, json::parse_event_t, json&)
+      {
+        if (depth > MaxDepth)
+        {
+          throw TooDeep{};
+        }
+        return true;
+      });
+  }
+  catch (const TooDeep&)
+  {
+    throw WarpPlanError(
+      source + ": JSON nested more than " + std::to_string(MaxDepth) + " levels deep");
+  }
+  catch (const json::exception& e)
+  {
+    // parse_error (with its line and column), or out_of_range for a number such as 1e999.
+    throw WarpPlanError(source + ": malformed JSON: " + ParseErrorText(e.what()));
+  }
+
+  return ParseAndValidate(document, source);
 }
 
 WarpPlan ReadWarpPlan(const std::string& path)
@@ -563,30 +629,31 @@ WarpPlan ReadWarpPlan(const std::string& path)
   return ParseWarpPlan(text, name);
 }
 
+nlohmann::ordered_json WarpPlanToJson(const WarpPlan& plan, const std::string& sourceName)
+{
+  return PlanBuilder(sourceName.empty() ? "plan" : sourceName).Build(plan);
+}
+
+WarpPlan WarpPlanFromJson(const nlohmann::ordered_json& document, const std::string& sourceName)
+{
+  return ParseAndValidate(document, sourceName.empty() ? "plan" : sourceName);
+}
+
 std::string SerializeWarpPlan(const WarpPlan& plan)
 {
-  return PlanWriter("plan").Write(plan);
+  std::string text;
+  Print(WarpPlanToJson(plan), "", text);
+  return text + "\n";
 }
 
 void WriteWarpPlan(const WarpPlan& plan, const std::string& path)
 {
   const std::string name = io_detail::DisplayName(path);
-  const std::string text = PlanWriter(name).Write(plan);
+  std::string text;
+  Print(WarpPlanToJson(plan, name), "", text);
+  text += "\n";
   std::string problem;
-  const bool ok = io_detail::AtomicWrite(
-    path,
-    [&](const std::string& temp, std::string& failure) {
-      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-      out << text;
-      out.flush();
-      if (!out)
-      {
-        failure = "write failed (disk full?)";
-        return false;
-      }
-      return true;
-    },
-    problem);
+  const bool ok = AtomicWriteText(path, text, problem);
   if (!ok)
   {
     throw WarpPlanError(name + ": " + problem);

@@ -3,6 +3,8 @@
 
 #include "WarpPlan.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <stdexcept>
 #include <string>
 
@@ -37,6 +39,12 @@ WarpPlan ReadWarpPlan(const std::string& path);
 /// ...") for a non-finite number (JSON cannot hold it), an extra field that is not valid JSON
 /// or that has the name of a known field. Does not run the geometry validation.
 std::string SerializeWarpPlan(const WarpPlan& plan);
+/// The plan as its JSON object (the members SerializeWarpPlan writes, in the same order), for
+/// documents that embed a plan (the session autosave). Throws WarpPlanError as
+/// SerializeWarpPlan does, prefixed with sourceName ("plan" when empty).
+nlohmann::ordered_json WarpPlanToJson(const WarpPlan& plan, const std::string& sourceName = "");
+/// Validates a plan given as a JSON object, as ParseWarpPlan does its text.
+WarpPlan WarpPlanFromJson(const nlohmann::ordered_json& document, const std::string& sourceName);
 /// Writes a plan atomically (temporary file flushed to disk, then renamed over path; nothing
 /// changes at path on failure). Throws WarpPlanError naming the file's base name.
 void WriteWarpPlan(const WarpPlan& plan, const std::string& path);

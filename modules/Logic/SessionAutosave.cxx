@@ -1,6 +1,6 @@
 #include "SessionAutosave.h"
 
-#include "FileUtilities.h"
+#include "AtomicFile.h"
 #include "WarpPlanIO.h"
 
 #include <nlohmann/json.hpp>
@@ -24,12 +24,19 @@ std::string Name(const std::string& path)
 
 void WriteSessionFile(const SessionSnapshot& snapshot, const std::string& path)
 {
-  nlohmann::json root;
+  nlohmann::ordered_json root;
   root["format"] = "bender-session";
   root["version"] = 1;
   root["source"] = snapshot.sourcePath;
   root["frame"] = snapshot.frame;
-  root["plan"] = nlohmann::json::parse(SerializeWarpPlan(snapshot.plan));
+  try
+  {
+    root["plan"] = WarpPlanToJson(snapshot.plan, Name(path) + ": plan");
+  }
+  catch (const WarpPlanError& e)
+  {
+    throw SessionFileError(e.what());
+  }
 
   const std::filesystem::path target(path);
   std::error_code ec;
@@ -41,20 +48,7 @@ void WriteSessionFile(const SessionSnapshot& snapshot, const std::string& path)
   // crash or a second instance never leaves a truncated session file.
   const std::string text = root.dump(2) + "\n";
   std::string problem;
-  const bool written = io_detail::AtomicWrite(
-    path,
-    [&text](const std::string& temporary, std::string& why) {
-      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-      out << text;
-      out.flush();
-      if (!out)
-      {
-        why = "cannot write the session file";
-        return false;
-      }
-      return true;
-    },
-    problem);
+  const bool written = AtomicWriteText(path, text, problem);
   if (!written)
   {
     throw SessionFileError(Name(path) + ": " + problem);
@@ -70,10 +64,23 @@ SessionSnapshot ReadSessionFile(const std::string& path)
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
-  nlohmann::json root;
+  nlohmann::ordered_json root;
   try
   {
-    root = nlohmann::json::parse(buffer.str());
+    // Nesting deeper than any session needs is refused before it can exhaust the stack.
+    root = nlohmann::ordered_json::parse(buffer.str(),
+      [](int depth, nlohmann::ordered_json::parse_event_t, nlohmann::ordered_json&)
+      {
+        if (depth > 128)
+        {
+          throw SessionFileError("JSON nested more than 128 levels deep");
+        }
+        return true;
+      });
+  }
+  catch (const SessionFileError& e)
+  {
+    throw SessionFileError(Name(path) + ": " + e.what());
   }
   catch (const nlohmann::json::exception& e)
   {
@@ -100,7 +107,7 @@ SessionSnapshot ReadSessionFile(const std::string& path)
   snapshot.frame = root.value("frame", std::string("LPS"));
   try
   {
-    snapshot.plan = ParseWarpPlan(root["plan"].dump(), Name(path) + ": plan");
+    snapshot.plan = WarpPlanFromJson(root["plan"], Name(path) + ": plan");
   }
   catch (const WarpPlanError& e)
   {

@@ -6,6 +6,7 @@
 
 #include "BenderMeshCheck.h"
 #include "RibbonWarp.h"
+#include "VtkErrorWatch.h"
 
 #include <gtest/gtest.h>
 
@@ -53,8 +54,8 @@ bender::WarpSpec Stretch()
   return w;
 }
 
-vtkSmartPointer<vtkPolyData> Plane(double x0, double y0, double x1, double y1, double z, int nx,
-  int ny)
+vtkSmartPointer<vtkPolyData>
+Plane(double x0, double y0, double x1, double y1, double z, int nx, int ny)
 {
   vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin(x0, y0, z);
@@ -82,8 +83,11 @@ vtkSmartPointer<vtkPolyData> Sphere(double cx, int resolution)
   return sphere->GetOutput();
 }
 
-vtkSmartPointer<vtkPolyData> Subdivide(vtkPolyData* in, const bender::WarpSpec& w, double tol,
-  int passes, vtkBenderAdaptiveSubdivisionFilter* keep = nullptr)
+vtkSmartPointer<vtkPolyData> Subdivide(vtkPolyData* in,
+  const bender::WarpSpec& w,
+  double tol,
+  int passes,
+  vtkBenderAdaptiveSubdivisionFilter* keep = nullptr)
 {
   vtkNew<vtkBenderAdaptiveSubdivisionFilter> f;
   vtkBenderAdaptiveSubdivisionFilter* filter = keep ? keep : f.Get();
@@ -92,7 +96,9 @@ vtkSmartPointer<vtkPolyData> Subdivide(vtkPolyData* in, const bender::WarpSpec& 
   filter->SetTolerance(tol);
   filter->SetMaxPasses(passes);
   filter->KeepInitialPositionsOn();
+  bendertest::VtkErrorWatch errors(filter);
   filter->Update();
+  EXPECT_TRUE(errors.ExpectNone());
   EXPECT_EQ(filter->GetLastError(), "");
   vtkSmartPointer<vtkPolyData> out = vtkSmartPointer<vtkPolyData>::New();
   out->ShallowCopy(filter->GetOutput());
@@ -123,14 +129,17 @@ double Length(const Vec3& v)
 // Largest distance between the piecewise-linear surface and the exact warp of the surface,
 // sampled at edge midpoints (and triangle centroids with centroids = true). With
 // initial == nullptr the vertices' initial positions are read from the InitialPosition array.
-double MaxDeviation(
-  vtkPolyData* warped, const bender::RibbonWarp& warp, vtkPolyData* initial, bool centroids)
+double MaxDeviation(vtkPolyData* warped,
+  const bender::RibbonWarp& warp,
+  vtkPolyData* initial,
+  bool centroids)
 {
   const std::vector<std::int64_t> tris = bender::CollectTriangles(warped);
   double worst = 0.0;
   auto x = [&](vtkIdType i) { return initial ? Point(initial, i) : Initial(warped, i); };
-  const double samples[4][3] = { { 0.5, 0.5, 0 }, { 0, 0.5, 0.5 }, { 0.5, 0, 0.5 },
-    { 1.0 / 3, 1.0 / 3, 1.0 / 3 } };
+  const double samples[4][3] = {
+    { 0.5, 0.5, 0 }, { 0, 0.5, 0.5 }, { 0.5, 0, 0.5 }, { 1.0 / 3, 1.0 / 3, 1.0 / 3 }
+  };
   for (std::size_t t = 0; t < tris.size(); t += 3)
   {
     for (const auto& s : samples)
@@ -297,8 +306,12 @@ TEST_F(AdaptiveSubdivision, Fig11PlaneStretchedFollowsTheExactWarp)
   std::printf("Fig. 11: %lld -> %lld triangles in %d passes, max deviation at edge midpoints "
               "%.4g -> %.4g, at midpoints and centroids %.4g (tolerance %g)\n",
     static_cast<long long>(plane->GetNumberOfPolys()),
-    static_cast<long long>(out->GetNumberOfPolys()), filter->GetNumberOfPassesRun(), before,
-    after, afterCentroids, tol);
+    static_cast<long long>(out->GetNumberOfPolys()),
+    filter->GetNumberOfPassesRun(),
+    before,
+    after,
+    afterCentroids,
+    tol);
 }
 
 // Point data is interpolated linearly at new vertices, normals are dropped, cell data follows
@@ -391,10 +404,12 @@ TEST_F(AdaptiveSubdivision, EmptyNaNAndBadTolerance)
 {
   vtkNew<vtkPolyData> empty;
   vtkNew<vtkBenderAdaptiveSubdivisionFilter> filter;
+  bendertest::VtkErrorWatch errors(filter);
   filter->SetInputData(empty);
   filter->SetWarp(Bend(4.0));
   filter->Update();
   EXPECT_EQ(filter->GetLastError(), "");
+  EXPECT_TRUE(errors.ExpectNone()); // an empty input is not an error
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 
   auto plane = Plane(0, 0, 1, 1, 0, 2, 2);
@@ -402,12 +417,14 @@ TEST_F(AdaptiveSubdivision, EmptyNaNAndBadTolerance)
   filter->SetInputData(plane);
   filter->Update();
   EXPECT_NE(filter->GetLastError().find("non-finite"), std::string::npos);
+  EXPECT_TRUE(errors.ExpectError("non-finite"));
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 
   filter->SetInputData(Plane(0, 0, 1, 1, 0, 2, 2));
   filter->SetTolerance(0.0);
   filter->Update();
   EXPECT_NE(filter->GetLastError().find("tolerance"), std::string::npos);
+  EXPECT_TRUE(errors.ExpectError("tolerance"));
 
   bender::WarpSpec bad = Bend(4.0);
   bad.radius = -1;
@@ -415,6 +432,7 @@ TEST_F(AdaptiveSubdivision, EmptyNaNAndBadTolerance)
   filter->SetTolerance(1e-3);
   filter->Update();
   EXPECT_NE(filter->GetLastError().find("invalid warp"), std::string::npos);
+  EXPECT_TRUE(errors.ExpectError("invalid warp"));
 }
 
 // The plan form: WarpSpec::subdivision sets tolerance and passes; maxPasses 0 only warps.

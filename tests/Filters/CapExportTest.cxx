@@ -4,10 +4,12 @@
 
 #include "BenderMeshCheck.h"
 #include "BenderStlExport.h"
+#include "VtkErrorWatch.h"
 #include "vtkBenderCapFilter.h"
 
 #include <gtest/gtest.h>
 
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCleanPolyData.h>
 #include <vtkCylinderSource.h>
@@ -17,7 +19,6 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkTriangleFilter.h>
-#include <vtkCellArray.h>
 
 #include <cmath>
 #include <cstdio>
@@ -148,8 +149,10 @@ TEST_F(CapExport, OpenTubeGetsTwoLabelledCaps)
   ASSERT_EQ(open.boundaryLoops.size(), 2u);
   ASSERT_EQ(open.inconsistentEdges, 0);
   vtkNew<vtkBenderCapFilter> cap;
+  bendertest::VtkErrorWatch errors(cap);
   cap->SetInputData(tube);
   cap->Update();
+  EXPECT_TRUE(errors.ExpectNone());
   EXPECT_EQ(cap->GetNumberOfCaps(), 2);
   EXPECT_EQ(cap->GetNumberOfSkippedLoops(), 0);
   vtkPolyData* closed = cap->GetOutput();
@@ -189,8 +192,10 @@ TEST_F(CapExport, NonPlanarLoopIsLeftOpen)
     }
   }
   vtkNew<vtkBenderCapFilter> cap;
+  bendertest::VtkErrorWatch errors(cap);
   cap->SetInputData(tube);
   cap->Update();
+  EXPECT_TRUE(errors.ExpectNone()); // a skipped loop is counted, not an error
   EXPECT_EQ(cap->GetNumberOfCaps(), 1);
   EXPECT_EQ(cap->GetNumberOfSkippedLoops(), 1);
 }
@@ -278,11 +283,13 @@ TEST_F(CapExport, ErrorsLeaveNothingBehind)
   {
     EXPECT_NE(std::string(e.what()).find("nan.stl: "), std::string::npos) << e.what();
   }
-  EXPECT_THROW(bender::ExportStl(OpenTube(), "/nonexistent-folder/x.stl", {}),
-    bender::StlExportError);
+  EXPECT_THROW(
+    bender::ExportStl(OpenTube(), "/nonexistent-folder/x.stl", {}), bender::StlExportError);
   EXPECT_EQ(rmdir(dir.c_str()), 0); // empty: no temporary or partial file left
   vtkNew<vtkBenderCapFilter> cap;
+  bendertest::VtkErrorWatch errors(cap);
   cap->SetInputData(tube);
   cap->Update();
   EXPECT_NE(cap->GetLastError().find("non-finite"), std::string::npos);
+  EXPECT_TRUE(errors.ExpectError("non-finite"));
 }

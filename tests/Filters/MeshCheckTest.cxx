@@ -4,16 +4,20 @@
 #include "BenderMeshCheck.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
+#include <vtkCleanPolyData.h>
 #include <vtkCubeSource.h>
+#include <vtkCylinderSource.h>
+#include <vtkIntersectionPolyDataFilter.h>
 #include <vtkNew.h>
 #include <vtkPlaneSource.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSphereSource.h>
 #include <vtkTriangleFilter.h>
-#include <vtkCleanPolyData.h>
 
 #include <chrono>
 #include <cmath>
@@ -52,7 +56,8 @@ vtkSmartPointer<vtkPolyData> Mesh(const std::vector<std::array<double, 3>>& poin
 
 // A closed tetrahedron, outward-facing, with vertex offset `o` along x.
 void AddTetra(std::vector<std::array<double, 3>>& points,
-  std::vector<std::array<vtkIdType, 3>>& tris, double o)
+  std::vector<std::array<vtkIdType, 3>>& tris,
+  double o)
 {
   const vtkIdType b = static_cast<vtkIdType>(points.size());
   points.push_back({ o, 0, 0 });
@@ -268,3 +273,103 @@ TEST(MeshCheck, MillionTrianglesInSeconds)
   EXPECT_LT(s, 30.0);
   std::printf("check of %lld triangles: %.2f s\n", static_cast<long long>(r.triangles), s);
 }
+
+namespace
+{
+// The JSON report is the report: every count and measure reads back with its value, and
+// what was not measured is null.
+TEST(MeshCheck, JsonReportHoldsTheReport)
+{
+  auto tube = vtkSmartPointer<vtkPolyData>::New();
+  {
+    vtkNew<vtkCylinderSource> cylinder;
+    cylinder->SetResolution(16);
+    cylinder->CappingOff();
+    vtkNew<vtkTriangleFilter> tri;
+    tri->SetInputConnection(cylinder->GetOutputPort());
+    tri->Update();
+    tube->ShallowCopy(tri->GetOutput());
+  }
+  const auto r = bender::CheckMesh(tube);
+  const nlohmann::ordered_json j = bender::ToJson(r, "tube \"1\".stl");
+  EXPECT_EQ(j["mesh"], "tube \"1\".stl");
+  EXPECT_EQ(j["clean"], r.Clean());
+  EXPECT_EQ(j["triangles"], r.triangles);
+  EXPECT_EQ(j["components"], 1);
+  EXPECT_EQ(j["boundaryLoops"], nlohmann::ordered_json::array({ 16, 16 }));
+  EXPECT_EQ(j["closed"], false);
+  EXPECT_TRUE(j["volume"].is_null());           // not closed
+  EXPECT_TRUE(j["flippedTriangles"].is_null()); // no mesh before
+  EXPECT_EQ(j["selfIntersections"], 0);
+  EXPECT_DOUBLE_EQ(j["area"].get<double>(), r.area);
+  EXPECT_DOUBLE_EQ(j["edgeLength"]["max"].get<double>(), r.edgeLength.max);
+  EXPECT_EQ(j["problems"].size(), r.problems.size());
+  // The text form is the same object.
+  EXPECT_EQ(nlohmann::ordered_json::parse(bender::FormatReportJson(r, "tube \"1\".stl")), j);
+}
+} // namespace
+
+namespace
+{
+// The locator only proposes candidate pairs: every intersecting pair is found, none is
+// invented. Reference: all pairs of triangles sharing no vertex, tested with VTK's own
+// triangle-triangle test (vtkIntersectionPolyDataFilter), on two spheres crossing at a
+// generic position and a sphere with a dent pushed through its far side.
+TEST(MeshCheck, SelfIntersectionPairsMatchAnAllPairsSearch)
+{
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(Sphere(1.0, 18));
+  vtkNew<vtkSphereSource> second;
+  second->SetRadius(0.8);
+  second->SetCenter(0.9, 0.13, 0.07);
+  second->SetThetaResolution(15);
+  second->SetPhiResolution(13);
+  append->AddInputConnection(second->GetOutputPort());
+  append->Update();
+  vtkPolyData* mesh = append->GetOutput();
+
+  bender::MeshCheckOptions options;
+  options.maxExamples = 1000000;
+  const auto r = bender::CheckMesh(mesh, nullptr, options);
+  ASSERT_TRUE(r.selfIntersectionsChecked);
+
+  const std::vector<std::int64_t> tris = bender::CollectTriangles(mesh);
+  std::vector<std::pair<vtkIdType, vtkIdType>> expected;
+  for (std::size_t i = 0; i < tris.size() / 3; ++i)
+  {
+    for (std::size_t j = i + 1; j < tris.size() / 3; ++j)
+    {
+      bool shared = false;
+      for (int a = 0; a < 3; ++a)
+      {
+        for (int b = 0; b < 3; ++b)
+        {
+          shared = shared || tris[3 * i + a] == tris[3 * j + b];
+        }
+      }
+      if (shared)
+      {
+        continue;
+      }
+      double p[6][3];
+      for (int k = 0; k < 3; ++k)
+      {
+        mesh->GetPoint(tris[3 * i + k], p[k]);
+        mesh->GetPoint(tris[3 * j + k], p[3 + k]);
+      }
+      int coplanar = 0;
+      double x0[3], x1[3];
+      double surface[2] = { 0, 0 };
+      if (vtkIntersectionPolyDataFilter::TriangleTriangleIntersection(
+            p[0], p[1], p[2], p[3], p[4], p[5], coplanar, x0, x1, surface, 1e-12) &&
+        !coplanar)
+      {
+        expected.emplace_back(static_cast<vtkIdType>(i), static_cast<vtkIdType>(j));
+      }
+    }
+  }
+  ASSERT_GT(expected.size(), 20u);
+  EXPECT_EQ(r.selfIntersections, static_cast<vtkIdType>(expected.size()));
+  EXPECT_EQ(r.intersectingPairs, expected);
+}
+} // namespace

@@ -30,7 +30,7 @@ TEST(FastWarpKernel, AgreesWithTheExactWarpWithinOneHundredThousandthOfTheScene)
     {
       warp.reset(new bender::RibbonWarp(spec));
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
       continue; // e.g. a random pair turning more than 340 degrees
     }

@@ -145,7 +145,7 @@ TEST(Screw, LiftedScrewsOfRibbonWarpsMapInitialFramesToFinalFrames)
         EXPECT_EQ(sc.flipped, m.real.w < 0);
       }
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
     }
   }
@@ -434,7 +434,7 @@ TEST(ScrewLift, CurvedRibbonsCrossingHalfATurnStayContinuous)
         prev = sc;
       }
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
     }
   }
@@ -486,7 +486,7 @@ TEST(ScrewLift, HalfTurnAtTheStartIsDecidedInTheStartFrame)
           1e-9 * 20);
       }
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
     }
   }
@@ -532,7 +532,7 @@ TEST(ScrewLift, ReverseScrewsGivesTheTwin)
       }
       EXPECT_GT(differ, 0.1);
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
     }
   }

@@ -62,7 +62,7 @@ std::unique_ptr<RibbonWarp> RandomWarp(std::mt19937_64& rng, double move = 4.0, 
       o.blend = blend;
       return std::make_unique<RibbonWarp>(w, o);
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
     }
   }
@@ -228,7 +228,7 @@ TEST(Warp, IdentityWhenTheRibbonDoesNotMove)
     {
       warp = std::make_unique<RibbonWarp>(w);
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
       continue;
     }
@@ -299,7 +299,7 @@ TEST(Warp, RigidMotionOfTheRibbon)
       }
       ASSERT_LT(maxDist, 0.9 * w.radius);
     }
-    catch (const bender::InvalidRibbonError&)
+    catch (const bender::GeometryError&)
     {
       continue;
     }
@@ -803,7 +803,7 @@ TEST(Warp, NeverWritesANaN)
       {
         warp = std::make_unique<RibbonWarp>(w, o);
       }
-      catch (const bender::InvalidRibbonError&)
+      catch (const bender::GeometryError&)
       {
         continue;
       }
@@ -901,7 +901,7 @@ TEST(Warp, InvalidParametersAreRejected)
       RibbonWarp warp(w);
       ADD_FAILURE() << "R=" << R << " accepted";
     }
-    catch (const bender::InvalidRibbonError& e)
+    catch (const bender::InvalidWarpError& e)
     {
       EXPECT_EQ(e.field(), "radius");
     }
@@ -916,7 +916,7 @@ TEST(Warp, InvalidParametersAreRejected)
       RibbonWarp warp(w);
       ADD_FAILURE() << "plateau=" << p << " accepted";
     }
-    catch (const bender::InvalidRibbonError& e)
+    catch (const bender::InvalidWarpError& e)
     {
       EXPECT_EQ(e.field(), "decay.plateau");
     }

@@ -217,8 +217,9 @@ TEST(WarpPlanIO, DefaultsApplyToAbsentFields)
   warp.erase("subdivision");
   warp["initial"].erase("extraTurns");
   warp["final"].erase("extraTurns");
-  const json document = { { "format", "bender-warps" }, { "version", 1 },
-    { "warps", json::array({ warp }) } };
+  const json document = {
+    { "format", "bender-warps" }, { "version", 1 }, { "warps", json::array({ warp }) }
+  };
   const WarpPlan plan = ParseWarpPlan(document.dump(), Source);
   EXPECT_EQ(plan.units, "mm");
   ASSERT_EQ(plan.warps.size(), 1u);
@@ -230,8 +231,9 @@ TEST(WarpPlanIO, DefaultsApplyToAbsentFields)
 
   json withSubdivision = warp;
   withSubdivision["subdivision"] = { { "tolerance", 0.1 } };
-  const json second = { { "format", "bender-warps" }, { "version", 1 },
-    { "warps", json::array({ withSubdivision }) } };
+  const json second = {
+    { "format", "bender-warps" }, { "version", 1 }, { "warps", json::array({ withSubdivision }) }
+  };
   EXPECT_EQ(ParseWarpPlan(second.dump(), Source).warps[0].subdivision->maxPasses, 8);
 
   const WarpPlan empty =
@@ -261,7 +263,8 @@ TEST(WarpPlanIO, RoundTripIsExactAndKeepsUnknownFields)
   // Stable: writing what was read gives the same text, and reading it the same fields,
   // members in their original order.
   EXPECT_EQ(SerializeWarpPlan(back), text);
-  EXPECT_EQ(ParseWarpPlan(SerializeWarpPlan(back), Source).warps[0].extraFields, back.warps[0].extraFields);
+  EXPECT_EQ(
+    ParseWarpPlan(SerializeWarpPlan(back), Source).warps[0].extraFields, back.warps[0].extraFields);
   EXPECT_EQ(back.warps[0].extraFields.at("createdAt"),
     "{\"iso\":\"2024-05-01T10:00:00Z\",\"by\":[1,2.5,null]}");
   // The text is JSON with the documented layout.
@@ -272,6 +275,28 @@ TEST(WarpPlanIO, RoundTripIsExactAndKeepsUnknownFields)
   EXPECT_EQ(document["application"]["version"][2], 0);
   EXPECT_EQ(document["note"], "made by a test \u00e9");
   EXPECT_FALSE(document["warps"][1].contains("subdivision"));
+}
+
+// The JSON object form (for documents that embed a plan, such as the session autosave) is
+// the file's object, and reads back exactly without going through text.
+TEST(WarpPlanIO, JsonObjectFormIsTheFilesObject)
+{
+  const WarpPlan plan = AwkwardPlan();
+  const nlohmann::ordered_json object = bender::WarpPlanToJson(plan);
+  EXPECT_EQ(object, nlohmann::ordered_json::parse(SerializeWarpPlan(plan)));
+  EXPECT_EQ(object.begin().key(), "format"); // members in the file's order
+  ExpectSamePlan(plan, bender::WarpPlanFromJson(object, Source));
+
+  nlohmann::ordered_json bad = object;
+  bad["warps"][0]["radius"] = -2.0;
+  const std::string message = ErrorOf([&] { bender::WarpPlanFromJson(bad, "session.json: plan"); });
+  EXPECT_EQ(message.rfind("session.json: plan: warps[0].radius: ", 0), 0u) << message;
+
+  WarpPlan infinite = plan;
+  infinite.warps[0].radius = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(ErrorOf([&] { bender::WarpPlanToJson(infinite, "s.json"); })
+              .rfind("s.json: warps[0].radius: ", 0),
+    0u);
 }
 
 TEST(WarpPlanIO, UnknownFieldsInAFileAreKeptAndWrittenBack)
@@ -318,7 +343,8 @@ TEST(WarpPlanIO, FileRoundTripIsAtomic)
   EXPECT_EQ(bender_test::ReadText(path), before);
   EXPECT_EQ(dir.Entries(), std::set<std::string>{ "plan.bender.json" });
 
-  const std::string message = ErrorOf([&] { bender::WriteWarpPlan(plan, dir / "no/folder/p.json"); });
+  const std::string message =
+    ErrorOf([&] { bender::WriteWarpPlan(plan, dir / "no/folder/p.json"); });
   EXPECT_EQ(message.rfind("p.json: folder ", 0), 0u) << message;
 }
 
@@ -331,7 +357,9 @@ TEST(WarpPlanIO, SerialiseRefusesWhatJsonCannotHold)
 
   plan = AwkwardPlan();
   plan.warps[1].extraFields["broken"] = "{not json";
-  EXPECT_EQ(ErrorOf([&] { SerializeWarpPlan(plan); }).rfind("plan: warps[1].broken: extra field is not valid JSON", 0), 0u);
+  EXPECT_EQ(ErrorOf([&] { SerializeWarpPlan(plan); })
+              .rfind("plan: warps[1].broken: extra field is not valid JSON", 0),
+    0u);
 
   plan = AwkwardPlan();
   plan.extraFields["warps"] = "[]";
@@ -362,13 +390,17 @@ TEST(WarpPlanIORejects, FileProblems)
 
 TEST(WarpPlanIORejects, MalformedJsonWithItsPosition)
 {
-  const std::string text = "{\n  \"format\": \"bender-warps\",\n  \"version\": 1\n  \"warps\": []\n}";
+  const std::string text =
+    "{\n  \"format\": \"bender-warps\",\n  \"version\": 1\n  \"warps\": []\n}";
   const std::string message = ParseError(text);
-  EXPECT_EQ(message.rfind("plan.bender.json: malformed JSON: parse error at line 4, column ", 0), 0u)
+  EXPECT_EQ(
+    message.rfind("plan.bender.json: malformed JSON: parse error at line 4, column ", 0), 0u)
     << message;
   EXPECT_EQ(message.find('\n'), std::string::npos);
   EXPECT_EQ(ParseError("").rfind("plan.bender.json: malformed JSON: ", 0), 0u);
-  EXPECT_EQ(ParseError("{\"format\": \"bender-warps\", ").rfind("plan.bender.json: malformed JSON: ", 0), 0u);
+  EXPECT_EQ(
+    ParseError("{\"format\": \"bender-warps\", ").rfind("plan.bender.json: malformed JSON: ", 0),
+    0u);
   EXPECT_EQ(ParseError(std::string(10000, '[') + std::string(10000, ']')),
     "plan.bender.json: JSON nested more than 64 levels deep");
   // The source name is given by the caller; an empty one still gives a prefix.
@@ -387,12 +419,16 @@ TEST(WarpPlanIORejects, EveryRuleNamesItsField)
   const std::vector<Case> cases = {
     // Top level.
     { [](json& p) { p.erase("format"); }, "format: missing" },
-    { [](json& p) { p["format"] = "bender-warp"; }, "format: expected \"bender-warps\", found \"bender-warp\"" },
+    { [](json& p) { p["format"] = "bender-warp"; },
+      "format: expected \"bender-warps\", found \"bender-warp\"" },
     { [](json& p) { p["format"] = 1; }, "format: expected the string \"bender-warps\", found 1" },
     { [](json& p) { p.erase("version"); }, "version: missing" },
-    { [](json& p) { p["version"] = 2; }, "version: unsupported version 2 (this reader knows version 1)" },
-    { [](json& p) { p["version"] = 0; }, "version: unsupported version 0 (this reader knows version 1)" },
-    { [](json& p) { p["version"] = 1.5; }, "version: unsupported version 1.5 (this reader knows version 1)" },
+    { [](json& p) { p["version"] = 2; },
+      "version: unsupported version 2 (this reader knows version 1)" },
+    { [](json& p) { p["version"] = 0; },
+      "version: unsupported version 0 (this reader knows version 1)" },
+    { [](json& p) { p["version"] = 1.5; },
+      "version: unsupported version 1.5 (this reader knows version 1)" },
     { [](json& p) { p["version"] = "1"; }, "version: expected an integer, found a string \"1\"" },
     { [](json& p) { p["units"] = 5; }, "units: expected a string, found 5" },
     { [](json& p) { p.erase("warps"); }, "warps: missing" },
@@ -401,31 +437,52 @@ TEST(WarpPlanIORejects, EveryRuleNamesItsField)
     { [&](json& p) { at(p, 1) = 5; }, "warps[1]: expected an object, found 5" },
     // Ribbons and ends.
     { [&](json& p) { at(p, 0).erase("initial"); }, "warps[0].initial: missing" },
-    { [&](json& p) { at(p, 0)["final"] = json::array(); }, "warps[0].final: expected an object, found an array" },
+    { [&](json& p) { at(p, 0)["final"] = json::array(); },
+      "warps[0].final: expected an object, found an array" },
     { [&](json& p) { at(p, 1)["final"].erase("end"); }, "warps[1].final.end: missing" },
-    { [&](json& p) { at(p, 1)["final"]["start"] = "here"; }, "warps[1].final.start: expected an object, found a string \"here\"" },
-    { [&](json& p) { at(p, 2)["initial"]["start"].erase("position"); }, "warps[2].initial.start.position: missing" },
-    { [&](json& p) { at(p, 2)["initial"]["start"]["position"] = { 0, 0 }; },
+    { [&](json& p) { at(p, 1)["final"]["start"] = "here"; },
+      "warps[1].final.start: expected an object, found a string \"here\"" },
+    { [&](json& p) { at(p, 2)["initial"]["start"].erase("position"); },
+      "warps[2].initial.start.position: missing" },
+    { [&](json& p) {
+       at(p, 2)["initial"]["start"]["position"] = { 0, 0 };
+     },
       "warps[2].initial.start.position: expected an array of 3 numbers, found an array of 2" },
-    { [&](json& p) { at(p, 2)["initial"]["start"]["position"] = { 0, 0, 0, 0 }; },
+    { [&](json& p) {
+       at(p, 2)["initial"]["start"]["position"] = { 0, 0, 0, 0 };
+     },
       "warps[2].initial.start.position: expected an array of 3 numbers, found an array of 4" },
     { [&](json& p) { at(p, 2)["initial"]["start"]["position"] = 0; },
       "warps[2].initial.start.position: expected an array of 3 numbers, found 0" },
-    { [&](json& p) { at(p, 2)["initial"]["end"]["position"] = { 0, "a", 0 }; },
+    { [&](json& p) {
+       at(p, 2)["initial"]["end"]["position"] = { 0, "a", 0 };
+     },
       "warps[2].initial.end.position[1]: expected a number, found a string \"a\"" },
-    { [&](json& p) { at(p, 2)["initial"]["end"]["position"] = { 0, nullptr, 0 }; },
+    { [&](json& p) {
+       at(p, 2)["initial"]["end"]["position"] = { 0, nullptr, 0 };
+     },
       "warps[2].initial.end.position[1]: expected a number, found null" },
-    { [&](json& p) { at(p, 2)["final"]["end"]["tangent"] = { 0, 0, 0 }; },
+    { [&](json& p) {
+       at(p, 2)["final"]["end"]["tangent"] = { 0, 0, 0 };
+     },
       "warps[2].final.end.tangent: zero vector" },
-    { [&](json& p) { at(p, 0)["initial"]["start"]["tangent"] = { true, 0, 0 }; },
+    { [&](json& p) {
+       at(p, 0)["initial"]["start"]["tangent"] = { true, 0, 0 };
+     },
       "warps[0].initial.start.tangent[0]: expected a number, found true" },
     { [&](json& p) { at(p, 0)["initial"]["start"].erase("normal"); },
       "warps[0].initial.start.normal: missing" },
-    { [&](json& p) { at(p, 0)["initial"]["start"]["normal"] = { 0, 0, 0 }; },
+    { [&](json& p) {
+       at(p, 0)["initial"]["start"]["normal"] = { 0, 0, 0 };
+     },
       "warps[0].initial.start.normal: zero vector" },
-    { [&](json& p) { at(p, 0)["final"]["end"]["normal"] = { 0, -3, 0 }; },
+    { [&](json& p) {
+       at(p, 0)["final"]["end"]["normal"] = { 0, -3, 0 };
+     },
       "warps[0].final.end.normal: parallel to the tangent" },
-    { [&](json& p) { at(p, 0)["final"]["end"]["normal"] = { 1e-10, 1, 0 }; },
+    { [&](json& p) {
+       at(p, 0)["final"]["end"]["normal"] = { 1e-10, 1, 0 };
+     },
       "warps[0].final.end.normal: parallel to the tangent" },
     { [&](json& p) { at(p, 0)["final"]["extraTurns"] = 1.5; },
       "warps[0].final.extraTurns: expected an integer, found 1.5" },
@@ -439,8 +496,10 @@ TEST(WarpPlanIORejects, EveryRuleNamesItsField)
     { [&](json& p) { at(p, 1).erase("radius"); }, "warps[1].radius: missing" },
     { [&](json& p) { at(p, 1)["radius"] = 0; }, "warps[1].radius: must be > 0 (found 0.0)" },
     { [&](json& p) { at(p, 1)["radius"] = -2.5; }, "warps[1].radius: must be > 0 (found -2.5)" },
-    { [&](json& p) { at(p, 1)["radius"] = "12"; }, "warps[1].radius: expected a number, found a string \"12\"" },
-    { [&](json& p) { at(p, 1)["decay"] = "bell"; }, "warps[1].decay: expected an object, found a string \"bell\"" },
+    { [&](json& p) { at(p, 1)["radius"] = "12"; },
+      "warps[1].radius: expected a number, found a string \"12\"" },
+    { [&](json& p) { at(p, 1)["decay"] = "bell"; },
+      "warps[1].decay: expected an object, found a string \"bell\"" },
     { [&](json& p) { at(p, 1)["decay"]["shape"] = "cubic"; },
       "warps[1].decay.shape: expected \"bell\" or \"plateau\", found \"cubic\"" },
     { [&](json& p) { at(p, 1)["decay"]["shape"] = 2; },
@@ -453,9 +512,12 @@ TEST(WarpPlanIORejects, EveryRuleNamesItsField)
       "warps[1].decay.plateau: expected a number, found false" },
     { [&](json& p) { at(p, 1)["reverseScrews"] = "yes"; },
       "warps[1].reverseScrews: expected true or false, found a string \"yes\"" },
-    { [&](json& p) { at(p, 1)["reverseScrews"] = 1; }, "warps[1].reverseScrews: expected true or false, found 1" },
-    { [&](json& p) { at(p, 2)["subdivision"] = 5; }, "warps[2].subdivision: expected an object, found 5" },
-    { [&](json& p) { at(p, 2)["subdivision"].erase("tolerance"); }, "warps[2].subdivision.tolerance: missing" },
+    { [&](json& p) { at(p, 1)["reverseScrews"] = 1; },
+      "warps[1].reverseScrews: expected true or false, found 1" },
+    { [&](json& p) { at(p, 2)["subdivision"] = 5; },
+      "warps[2].subdivision: expected an object, found 5" },
+    { [&](json& p) { at(p, 2)["subdivision"].erase("tolerance"); },
+      "warps[2].subdivision.tolerance: missing" },
     { [&](json& p) { at(p, 2)["subdivision"]["tolerance"] = 0; },
       "warps[2].subdivision.tolerance: must be > 0 (found 0.0)" },
     { [&](json& p) { at(p, 2)["subdivision"]["tolerance"] = -1e-3; },
@@ -486,11 +548,13 @@ TEST(WarpPlanIORejects, NonFiniteNumbersInTheText)
 TEST(WarpPlanIORejects, LimitsThatAreAccepted)
 {
   // The edges of each range are valid.
-  for (const auto& change : std::vector<std::function<void(json&)>>{
-         [](json& p) { p["warps"][0]["decay"]["plateau"] = 0.95; },
+  for (const auto& change : std::vector<std::function<void(json&)>>{ [](json& p)
+         { p["warps"][0]["decay"]["plateau"] = 0.95; },
          [](json& p) { p["warps"][0]["decay"]["plateau"] = 0; },
          [](json& p) { p["warps"][0]["subdivision"]["maxPasses"] = 0; },
-         [](json& p) { p["warps"][0]["final"]["end"]["normal"] = { 1e-8, 1, 1e-3 }; },
+         [](json& p) {
+           p["warps"][0]["final"]["end"]["normal"] = { 1e-8, 1, 1e-3 };
+         },
          [](json& p) { p["units"] = "m"; },
          [](json& p) { p["warps"] = json::array(); } })
   {

@@ -1,55 +1,28 @@
 #include "BenderStlExport.h"
 
-#include "BenderMeshCheck.h"
+#include "AtomicFile.h"
+#include "FileUtilities.h"
+#include "MeshTopology.h"
 #include "vtkBenderCapFilter.h"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <functional>
-#include <unistd.h>
+#include <memory>
 
 namespace bender
 {
 namespace
 {
-std::string DisplayName(const std::string& path)
-{
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-// Writes through a temporary file in the target's folder, then renames it over the target.
-void AtomicWrite(const std::string& path, const std::function<bool(std::FILE*)>& produce)
-{
-  std::string tmpl = path + ".tmp.XXXXXX";
-  std::vector<char> name(tmpl.begin(), tmpl.end());
-  name.push_back('\0');
-  const int fd = mkstemp(name.data());
-  if (fd < 0)
-  {
-    throw StlExportError(DisplayName(path) + ": cannot create a file there: " + std::strerror(errno));
-  }
-  std::FILE* f = fdopen(fd, "wb");
-  const std::string tmp(name.data());
-  // mkstemp creates the file 0600; give it the usual permissions of a written mesh.
-  const bool ok = f && fchmod(fd, 0644) == 0 && produce(f) && std::fflush(f) == 0 && fsync(fd) == 0;
-  const bool closed = f ? std::fclose(f) == 0 : (close(fd), false);
-  if (!ok || !closed || std::rename(tmp.c_str(), path.c_str()) != 0)
-  {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    throw StlExportError(DisplayName(path) + ": write failed: " + why);
-  }
-}
+using io_detail::DisplayName;
 
 struct Facet
 {
@@ -67,7 +40,8 @@ std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh, StlFrame frame, std::s
   vtkDataArray* ids = mesh->GetCellData()->GetArray(vtkBenderCapFilter::PatchIdArrayName());
   // Triangles come from polygons then strips; PatchId is per cell, one triangle per cell for
   // the triangle meshes the cap filter writes.
-  const bool perTriangle = ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(tris.size() / 3);
+  const bool perTriangle =
+    ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(tris.size() / 3);
   if (ids && !perTriangle && patches > 1)
   {
     // Labels of polygons or strips cannot be split per patch here: say so rather than put
@@ -95,7 +69,9 @@ std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh, StlFrame frame, std::s
     }
     const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
     const double w[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
-    double n[3] = { u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0] };
+    double n[3] = {
+      u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]
+    };
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     Facet f;
     for (int a = 0; a < 3; ++a)
@@ -117,10 +93,40 @@ std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh, StlFrame frame, std::s
   return out;
 }
 
+// A producer for the atomic write: opens the temporary file and runs write on it.
+FileProducer Producer(std::function<bool(std::FILE*)> write)
+{
+  return [write = std::move(write)](const std::string& temp, std::string& problem)
+  {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(temp.c_str(), "wb"), &std::fclose);
+    if (!f)
+    {
+      problem = std::string("cannot create a file there (") + std::strerror(errno) + ")";
+      return false;
+    }
+    if (!write(f.get()) || std::fflush(f.get()) != 0 || std::fclose(f.release()) != 0)
+    {
+      problem = std::string("write failed (") + std::strerror(errno) + ")";
+      return false;
+    }
+    return true;
+  };
+}
+
+// Writes every file of the export or none (the patches of one case belong together).
+void WriteAll(const std::vector<AtomicFile>& files)
+{
+  std::string problem;
+  if (!AtomicWriteAll(files, problem))
+  {
+    throw StlExportError(problem);
+  }
+}
+
 std::string Header(const StlExportOptions& options)
 {
-  return std::string("bender export: frame ") +
-    (options.frame == StlFrame::LPS ? "LPS" : "RAS") + ", unit " + options.unit;
+  return std::string("bender export: frame ") + (options.frame == StlFrame::LPS ? "LPS" : "RAS") +
+    ", unit " + options.unit;
 }
 
 bool WriteBinary(std::FILE* f, const std::string& header, const std::vector<Facet>& facets)
@@ -143,13 +149,18 @@ bool WriteBinary(std::FILE* f, const std::string& header, const std::vector<Face
   return ok;
 }
 
-bool WriteSolid(std::FILE* f, const std::string& name, const std::string& endNote,
+bool WriteSolid(std::FILE* f,
+  const std::string& name,
+  const std::string& endNote,
   const std::vector<Facet>& facets)
 {
   bool ok = std::fprintf(f, "solid %s\n", name.c_str()) > 0;
   for (const Facet& facet : facets)
   {
-    ok = ok && std::fprintf(f, "  facet normal %.9g %.9g %.9g\n    outer loop\n", facet.n[0], facet.n[1], facet.n[2]) > 0;
+    ok = ok &&
+      std::fprintf(
+        f, "  facet normal %.9g %.9g %.9g\n    outer loop\n", facet.n[0], facet.n[1], facet.n[2]) >
+        0;
     for (const auto& v : facet.v)
     {
       ok = ok && std::fprintf(f, "      vertex %.9g %.9g %.9g\n", v[0], v[1], v[2]) > 0;
@@ -188,7 +199,8 @@ std::string StlStem(const std::string& path)
 {
   std::string stem = path;
   if (stem.size() > 4 &&
-    (stem.compare(stem.size() - 4, 4, ".stl") == 0 || stem.compare(stem.size() - 4, 4, ".STL") == 0))
+    (stem.compare(stem.size() - 4, 4, ".stl") == 0 ||
+      stem.compare(stem.size() - 4, 4, ".STL") == 0))
   {
     stem.resize(stem.size() - 4);
   }
@@ -196,8 +208,9 @@ std::string StlStem(const std::string& path)
 }
 } // namespace
 
-std::vector<std::string> PlannedStlPaths(
-  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options)
+std::vector<std::string> PlannedStlPaths(vtkPolyData* mesh,
+  const std::string& path,
+  const StlExportOptions& options)
 {
   if (options.patches != StlPatchMode::Files)
   {
@@ -220,8 +233,9 @@ std::vector<std::string> PlannedStlPaths(
   return paths;
 }
 
-std::vector<std::string> ExportStl(
-  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options)
+std::vector<std::string> ExportStl(vtkPolyData* mesh,
+  const std::string& path,
+  const StlExportOptions& options)
 {
   if (!mesh)
   {
@@ -232,8 +246,8 @@ std::vector<std::string> ExportStl(
   try
   {
     names = PatchNames(mesh);
-    facets = Facets(mesh, options.frame,
-      options.patches == StlPatchMode::Single ? 1 : names.size());
+    facets =
+      Facets(mesh, options.frame, options.patches == StlPatchMode::Single ? 1 : names.size());
   }
   catch (const StlExportError& e)
   {
@@ -244,30 +258,36 @@ std::vector<std::string> ExportStl(
   switch (options.patches)
   {
     case StlPatchMode::Single:
-      AtomicWrite(path, [&](std::FILE* f) { return WriteBinary(f, header, facets[0]); });
+      WriteAll(
+        { { path, Producer([&](std::FILE* f) { return WriteBinary(f, header, facets[0]); }) } });
       written.push_back(path);
       break;
     case StlPatchMode::Solids:
-      AtomicWrite(path, [&](std::FILE* f) {
-        // ASCII STL has no comment: the header follows the first solid's name on its
-        // endsolid line, which readers ignore (OpenFOAM would fold it into the patch name
-        // on the solid line).
-        bool ok = true;
-        for (std::size_t k = 0; k < names.size(); ++k)
-        {
-          if (facets[k].empty())
+      WriteAll({ { path,
+        Producer(
+          [&](std::FILE* f)
           {
-            continue;
-          }
-          ok = ok && WriteSolid(f, names[k], k == 0 ? "  " + header : std::string(), facets[k]);
-        }
-        return ok;
-      });
+            // ASCII STL has no comment: the header follows the first solid's name on its
+            // endsolid line, which readers ignore (OpenFOAM would fold it into the patch name
+            // on the solid line).
+            bool ok = true;
+            for (std::size_t k = 0; k < names.size(); ++k)
+            {
+              if (facets[k].empty())
+              {
+                continue;
+              }
+              ok = ok && WriteSolid(f, names[k], k == 0 ? "  " + header : std::string(), facets[k]);
+            }
+            return ok;
+          }) } });
       written.push_back(path);
       break;
     case StlPatchMode::Files:
     {
+      // All patches or none: a case with the wall but without its inlets is worse than none.
       const std::string stem = StlStem(path);
+      std::vector<AtomicFile> files;
       for (std::size_t k = 0; k < names.size(); ++k)
       {
         if (facets[k].empty())
@@ -275,9 +295,14 @@ std::vector<std::string> ExportStl(
           continue;
         }
         const std::string file = stem + "_" + names[k] + ".stl";
-        AtomicWrite(file, [&](std::FILE* f) { return WriteBinary(f, header + ", patch " + names[k], facets[k]); });
+        const std::string fileHeader = header + ", patch " + names[k];
+        const std::vector<Facet>& patch = facets[k];
+        files.push_back({ file,
+          Producer(
+            [fileHeader, &patch](std::FILE* f) { return WriteBinary(f, fileHeader, patch); }) });
         written.push_back(file);
       }
+      WriteAll(files);
       break;
     }
   }

@@ -1,6 +1,8 @@
 #ifndef bender_BenderStlExport_h
 #define bender_BenderStlExport_h
 
+// The STL writer of bender_io for CFD-ready exports (patches, frame and unit in the header).
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,15 +49,18 @@ std::vector<std::string> PatchNames(vtkPolyData* mesh);
 
 /// The files ExportStl would write for these arguments (one, or one per non-empty patch), so
 /// that callers can refuse to overwrite an input before anything is written.
-std::vector<std::string> PlannedStlPaths(
-  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options);
+std::vector<std::string> PlannedStlPaths(vtkPolyData* mesh,
+  const std::string& path,
+  const StlExportOptions& options);
 
 /// Writes mesh (triangles; polygons fanned) as STL. Every file states the frame and unit in
-/// its header ("bender export: frame LPS, unit mm"). Each file is written atomically (a
-/// temporary file in the same folder, then renamed). Returns the paths written. Throws
-/// StlExportError (non-finite coordinates, no triangles, unwritable folder).
-std::vector<std::string> ExportStl(
-  vtkPolyData* mesh, const std::string& path, const StlExportOptions& options);
+/// its header ("bender export: frame LPS, unit mm"). The files are written all-or-nothing
+/// through AtomicWriteAll (AtomicFile.h): with StlPatchMode::Files either every patch file is
+/// replaced or none is. Returns the paths written. Throws StlExportError (non-finite
+/// coordinates, no triangles, unwritable folder), what() starting with a file's base name.
+std::vector<std::string> ExportStl(vtkPolyData* mesh,
+  const std::string& path,
+  const StlExportOptions& options);
 
 } // namespace bender
 
