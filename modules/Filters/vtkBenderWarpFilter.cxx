@@ -22,7 +22,8 @@
 
 vtkStandardNewMacro(vtkBenderWarpFilter);
 
-// The per-grab state: which points are inside the region of influence and their projections.
+// The per-grab state: which points are inside the region of influence, their projections and
+// the interactive kernel's data layout (modules/Geometry).
 struct vtkBenderWarpFilter::BindingCache
 {
   std::unique_ptr<bender::WarpBinding> Binding;
@@ -30,19 +31,12 @@ struct vtkBenderWarpFilter::BindingCache
   vtkMTimeType PointsTime = 0;
   vtkIdType NumberOfPoints = 0;
   std::vector<bender::BoundPoint> Records;
-  std::vector<std::int64_t> Ids;
-  // The interactive (Table) path: points with one projection in SoA float relative to Origin,
-  // evaluated by the vectorised kernel; points with two projections by the scalar evaluator.
-  bender::Vec3 Origin;
-  std::vector<std::int64_t> SingleIds;
-  std::vector<float> Px, Py, Pz, S, F;
-  std::vector<float> Ox, Oy, Oz;
-  std::vector<std::int64_t> PairIds;
+  bender::FastWarpLayout Layout;
 };
 
 namespace
 {
-template <typename T>
+template<typename T>
 struct BindWorker
 {
   const bender::WarpBinding& Binding;
@@ -51,12 +45,15 @@ struct BindWorker
   std::uint8_t* Bound;
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    this->Binding.BindRange(this->Xyz, static_cast<std::size_t>(begin),
-      static_cast<std::size_t>(end), this->Records, this->Bound);
+    this->Binding.BindRange(this->Xyz,
+      static_cast<std::size_t>(begin),
+      static_cast<std::size_t>(end),
+      this->Records,
+      this->Bound);
   }
 };
 
-template <typename T>
+template<typename T>
 struct FiniteCheckWorker
 {
   const T* Xyz;
@@ -74,7 +71,7 @@ struct FiniteCheckWorker
   }
 };
 
-template <typename T>
+template<typename T>
 struct CopyWorker
 {
   const T* In;
@@ -85,7 +82,7 @@ struct CopyWorker
   }
 };
 
-template <typename T>
+template<typename T>
 struct EvaluateWorker
 {
   const bender::WarpEvaluator& Evaluator;
@@ -96,8 +93,12 @@ struct EvaluateWorker
   vtkSMPThreadLocal<vtkIdType> Bad;
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    this->Evaluator.EvaluateRange(this->In, this->Out, this->Records, this->Ids,
-      static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
+    this->Evaluator.EvaluateRange(this->In,
+      this->Out,
+      this->Records,
+      this->Ids,
+      static_cast<std::size_t>(begin),
+      static_cast<std::size_t>(end));
     vtkIdType& bad = this->Bad.Local();
     for (vtkIdType k = begin; k < end; ++k)
     {
@@ -110,37 +111,22 @@ struct EvaluateWorker
   }
 };
 
-// The vectorised kernel for one-projection points, then a scatter into the output array.
-template <typename T>
+// The vectorised kernel for one-projection points, written into the output array.
+template<typename T>
 struct FastWorker
 {
   const bender::FastWarpKernel& Kernel;
-  const float *Px, *Py, *Pz, *S, *F;
-  float *Ox, *Oy, *Oz;
-  const std::int64_t* Ids;
-  bender::Vec3 Origin;
+  const bender::FastWarpLayout& Layout;
   T* Out;
   vtkSMPThreadLocal<vtkIdType> Bad;
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    this->Kernel.Evaluate(this->Px, this->Py, this->Pz, this->S, this->F, this->Ox, this->Oy,
-      this->Oz, static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
-    vtkIdType& bad = this->Bad.Local();
-    for (vtkIdType k = begin; k < end; ++k)
-    {
-      T* o = this->Out + 3 * this->Ids[k];
-      o[0] = static_cast<T>(this->Origin.x + this->Ox[k]);
-      o[1] = static_cast<T>(this->Origin.y + this->Oy[k]);
-      o[2] = static_cast<T>(this->Origin.z + this->Oz[k]);
-      if (!std::isfinite(o[0]) || !std::isfinite(o[1]) || !std::isfinite(o[2]))
-      {
-        ++bad;
-      }
-    }
+    this->Bad.Local() += static_cast<vtkIdType>(this->Layout.EvaluateSingles(
+      this->Kernel, this->Out, static_cast<std::size_t>(begin), static_cast<std::size_t>(end)));
   }
 };
 
-template <typename T>
+template<typename T>
 vtkIdType SumLocal(vtkSMPThreadLocal<T>& local)
 {
   vtkIdType sum = 0;
@@ -152,7 +138,7 @@ vtkIdType SumLocal(vtkSMPThreadLocal<T>& local)
 }
 
 // Runs f(const T* in) on the typed pointer of float or double points.
-template <typename F>
+template<typename F>
 bool WithTypedPoints(vtkDataArray* data, F&& f)
 {
   if (auto* fa = vtkFloatArray::FastDownCast(data))
@@ -183,18 +169,31 @@ vtkBenderWarpFilter::~vtkBenderWarpFilter() = default;
 void vtkBenderWarpFilter::SetWarp(const bender::WarpSpec& spec)
 {
   this->Spec = spec;
+  this->Prepared.reset();
+  this->Modified();
+}
+
+void vtkBenderWarpFilter::SetPreparedWarp(std::shared_ptr<const bender::RibbonWarp> warp)
+{
+  if (warp)
+  {
+    this->Spec = warp->Spec();
+  }
+  this->Prepared = std::move(warp);
   this->Modified();
 }
 
 void vtkBenderWarpFilter::SetInitialRibbon(const bender::RibbonSpec& ribbon)
 {
   this->Spec.initial = ribbon;
+  this->Prepared.reset();
   this->Modified();
 }
 
 void vtkBenderWarpFilter::SetFinalRibbon(const bender::RibbonSpec& ribbon)
 {
   this->Spec.final = ribbon;
+  this->Prepared.reset();
   this->Modified();
 }
 
@@ -203,6 +202,7 @@ void vtkBenderWarpFilter::SetRadius(double r)
   if (this->Spec.radius != r)
   {
     this->Spec.radius = r;
+    this->Prepared.reset();
     this->Modified();
   }
 }
@@ -210,6 +210,7 @@ void vtkBenderWarpFilter::SetRadius(double r)
 void vtkBenderWarpFilter::SetDecay(const bender::DecaySpec& decay)
 {
   this->Spec.decay = decay;
+  this->Prepared.reset();
   this->Modified();
 }
 
@@ -218,6 +219,7 @@ void vtkBenderWarpFilter::SetReverseScrews(bool reverse)
   if (this->Spec.reverseScrews != reverse)
   {
     this->Spec.reverseScrews = reverse;
+    this->Prepared.reset();
     this->Modified();
   }
 }
@@ -242,11 +244,12 @@ void vtkBenderWarpFilter::SetPrecision(bender::WarpPrecision precision)
 
 vtkIdType vtkBenderWarpFilter::GetNumberOfBoundPoints() const
 {
-  return static_cast<vtkIdType>(this->Cache->Ids.size());
+  return static_cast<vtkIdType>(this->Cache->Layout.BoundIds().size());
 }
 
-int vtkBenderWarpFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkBenderWarpFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
@@ -260,28 +263,34 @@ int vtkBenderWarpFilter::RequestData(
   }
   vtkPoints* inPts = input->GetPoints();
   const vtkIdType n = inPts ? inPts->GetNumberOfPoints() : 0;
-  if (n == 0)
+  if (n == 0 || this->PassThrough)
   {
-    // An empty surface is not an error: nothing to warp.
+    // An empty surface is not an error: nothing to warp. Passing through shares the input's
+    // points and arrays (no copy).
     output->CopyStructure(input);
     output->GetPointData()->PassData(input->GetPointData());
     output->GetCellData()->PassData(input->GetCellData());
     return 1;
   }
 
-  // Validate the whole warp before touching anything (convention 11).
-  std::unique_ptr<bender::RibbonWarp> warp;
-  try
+  // The warp: the prepared one (validated by the caller, shared) or built and validated here
+  // before touching anything (convention 11).
+  std::shared_ptr<const bender::RibbonWarp> warp = this->Prepared;
+  if (!warp || warp->Options().blend != this->Blend)
   {
-    bender::WarpOptions options;
-    options.blend = this->Blend;
-    warp.reset(new bender::RibbonWarp(this->Spec, options));
-  }
-  catch (const bender::InvalidRibbonError& e)
-  {
-    this->LastError = std::string("invalid warp: ") + e.what();
-    vtkErrorMacro(<< this->LastError);
-    return 0;
+    try
+    {
+      bender::WarpOptions options;
+      options.blend = this->Blend;
+      warp = std::make_shared<const bender::RibbonWarp>(this->Spec, options);
+      ++this->WarpBuildCount;
+    }
+    catch (const bender::GeometryError& e)
+    {
+      this->LastError = std::string("invalid warp: ") + e.what();
+      vtkErrorMacro(<< this->LastError);
+      return 0;
+    }
   }
 
   // Work in float or double as the input does; other point types are converted to double.
@@ -301,14 +310,16 @@ int vtkBenderWarpFilter::RequestData(
   if (rebind)
   {
     cache.Binding.reset();
-    cache.Ids.clear();
+    cache.Layout.Clear();
     vtkIdType bad = 0;
-    WithTypedPoints(source->GetData(), [&](auto xyz) {
-      using T = std::remove_const_t<std::remove_pointer_t<decltype(xyz)>>;
-      FiniteCheckWorker<T> check{ xyz, {} };
-      vtkSMPTools::For(0, n, check);
-      bad = SumLocal(check.Bad);
-    });
+    WithTypedPoints(source->GetData(),
+      [&](auto xyz)
+      {
+        using T = std::remove_const_t<std::remove_pointer_t<decltype(xyz)>>;
+        FiniteCheckWorker<T> check{ xyz, {} };
+        vtkSMPTools::For(0, n, check);
+        bad = SumLocal(check.Bad);
+      });
     if (bad > 0)
     {
       this->LastError = "the input surface has " + std::to_string(bad) +
@@ -319,97 +330,85 @@ int vtkBenderWarpFilter::RequestData(
     cache.Binding.reset(new bender::WarpBinding(this->Spec, this->Blend));
     cache.Records.resize(static_cast<std::size_t>(n));
     std::vector<std::uint8_t> bound(static_cast<std::size_t>(n));
-    WithTypedPoints(source->GetData(), [&](auto xyz) {
-      using T = std::remove_const_t<std::remove_pointer_t<decltype(xyz)>>;
-      BindWorker<T> worker{ *cache.Binding, xyz, cache.Records.data(), bound.data() };
-      vtkSMPTools::For(0, n, worker);
-    });
-    cache.SingleIds.clear();
-    cache.PairIds.clear();
-    cache.Px.clear();
-    cache.Py.clear();
-    cache.Pz.clear();
-    cache.S.clear();
-    cache.F.clear();
-    cache.Origin = this->Spec.initial.start.position;
-    vtkDataArray* dataArray = source->GetData();
-    const std::size_t expected = static_cast<std::size_t>(
-      std::count(bound.begin(), bound.end(), std::uint8_t(1)));
-    cache.Ids.reserve(expected);
-    cache.SingleIds.reserve(expected);
-    for (auto* v : { &cache.Px, &cache.Py, &cache.Pz, &cache.S, &cache.F })
-    {
-      v->reserve(expected);
-    }
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      if (!bound[i])
+    WithTypedPoints(source->GetData(),
+      [&](auto xyz)
       {
-        continue;
-      }
-      cache.Ids.push_back(i);
-      const bender::BoundPoint& rec = cache.Records[i];
-      if (rec.lambda0 < 1.0)
-      {
-        cache.PairIds.push_back(i);
-        continue;
-      }
-      double p[3];
-      dataArray->GetTuple(i, p);
-      cache.SingleIds.push_back(i);
-      cache.Px.push_back(static_cast<float>(p[0] - cache.Origin.x));
-      cache.Py.push_back(static_cast<float>(p[1] - cache.Origin.y));
-      cache.Pz.push_back(static_cast<float>(p[2] - cache.Origin.z));
-      cache.S.push_back(static_cast<float>(rec.s0));
-      cache.F.push_back(static_cast<float>(rec.f));
-    }
-    cache.Ox.resize(cache.SingleIds.size());
-    cache.Oy.resize(cache.SingleIds.size());
-    cache.Oz.resize(cache.SingleIds.size());
+        using T = std::remove_const_t<std::remove_pointer_t<decltype(xyz)>>;
+        BindWorker<T> worker{ *cache.Binding, xyz, cache.Records.data(), bound.data() };
+        vtkSMPTools::For(0, n, worker);
+        cache.Layout.Build(xyz,
+          static_cast<std::size_t>(n),
+          cache.Records.data(),
+          bound.data(),
+          this->Spec.initial.start.position);
+      });
     cache.Points = inPts;
     cache.PointsTime = inPts->GetMTime();
     cache.NumberOfPoints = n;
     ++this->BindingCount;
   }
 
-  vtkNew<vtkPoints> outPts;
-  outPts->SetDataType(source->GetDataType());
-  outPts->SetNumberOfPoints(n);
+  // The output points are kept from one update to the next while nobody else holds them: the
+  // points outside the region of influence are then already in place and a move writes only
+  // the bound points. They are (re)filled from the input after a rebind or a new allocation.
+  const bool reuse = this->OutputPoints &&
+    this->OutputPoints->GetDataType() == source->GetDataType() &&
+    this->OutputPoints->GetNumberOfPoints() == n &&
+    this->OutputPoints->GetReferenceCount() <= (output->GetPoints() == this->OutputPoints ? 2 : 1);
+  if (!reuse)
+  {
+    this->OutputPoints = vtkSmartPointer<vtkPoints>::New();
+    this->OutputPoints->SetDataType(source->GetDataType());
+    this->OutputPoints->SetNumberOfPoints(n);
+  }
+  const bool fill = !reuse || rebind || this->FilledForBinding != this->BindingCount;
   const bender::WarpEvaluator evaluator(*warp, this->Precision);
+  const bender::FastWarpLayout& layout = cache.Layout;
   vtkIdType bad = 0;
-  WithTypedPoints(source->GetData(), [&](auto xyz) {
-    using T = std::remove_const_t<std::remove_pointer_t<decltype(xyz)>>;
-    T* out = static_cast<T*>(outPts->GetData()->GetVoidPointer(0));
-    CopyWorker<T> copy{ xyz, out };
-    vtkSMPTools::For(0, n, copy);
-    if (this->Precision == bender::WarpPrecision::Exact)
+  WithTypedPoints(source->GetData(),
+    [&](auto xyz)
     {
-      EvaluateWorker<T> eval{ evaluator, xyz, out, cache.Records.data(), cache.Ids.data(), {} };
-      vtkSMPTools::For(0, static_cast<vtkIdType>(cache.Ids.size()), eval);
-      bad = SumLocal(eval.Bad);
-      return;
-    }
-    bender::FastWarpKernel kernel;
-    kernel.SetMotion(*evaluator.GetMotionTable(), cache.Origin);
-    FastWorker<T> fast{ kernel, cache.Px.data(), cache.Py.data(), cache.Pz.data(),
-      cache.S.data(), cache.F.data(), cache.Ox.data(), cache.Oy.data(), cache.Oz.data(),
-      cache.SingleIds.data(), cache.Origin, out, {} };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(cache.SingleIds.size()), fast);
-    EvaluateWorker<T> pairs{ evaluator, xyz, out, cache.Records.data(), cache.PairIds.data(),
-      {} };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(cache.PairIds.size()), pairs);
-    bad = SumLocal(fast.Bad) + SumLocal(pairs.Bad);
-  });
+      using T = std::remove_const_t<std::remove_pointer_t<decltype(xyz)>>;
+      T* out = static_cast<T*>(this->OutputPoints->GetData()->GetVoidPointer(0));
+      if (fill)
+      {
+        CopyWorker<T> copy{ xyz, out };
+        vtkSMPTools::For(0, n, copy);
+        ++this->PointsCopyCount;
+      }
+      if (this->Precision == bender::WarpPrecision::Exact)
+      {
+        EvaluateWorker<T> eval{
+          evaluator, xyz, out, cache.Records.data(), layout.BoundIds().data(), {}
+        };
+        vtkSMPTools::For(0, static_cast<vtkIdType>(layout.BoundIds().size()), eval);
+        bad = SumLocal(eval.Bad);
+        return;
+      }
+      bender::FastWarpKernel kernel;
+      kernel.SetMotion(*evaluator.GetMotionTable(), layout.Origin());
+      FastWorker<T> fast{ kernel, layout, out, {} };
+      vtkSMPTools::For(0, static_cast<vtkIdType>(layout.SingleIds().size()), fast);
+      EvaluateWorker<T> pairs{
+        evaluator, xyz, out, cache.Records.data(), layout.PairIds().data(), {}
+      };
+      vtkSMPTools::For(0, static_cast<vtkIdType>(layout.PairIds().size()), pairs);
+      bad = SumLocal(fast.Bad) + SumLocal(pairs.Bad);
+    });
+  this->OutputPoints->Modified();
   if (bad > 0)
   {
     // Cannot happen for a valid warp; never hand a NaN downstream if it does.
+    this->FilledForBinding = -1;
+    this->OutputPoints = nullptr;
     this->LastError = "the warp produced " + std::to_string(bad) + " non-finite points";
     vtkErrorMacro(<< this->LastError);
     return 0;
   }
+  this->FilledForBinding = this->BindingCount;
 
   output->CopyStructure(input);
-  output->SetPoints(outPts);
+  output->SetPoints(this->OutputPoints);
   output->GetPointData()->PassData(input->GetPointData());
   output->GetCellData()->PassData(input->GetCellData());
   // Normals are stale after a warp: remove them (recompute downstream).
@@ -427,14 +426,18 @@ void vtkBenderWarpFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Radius: " << this->Spec.radius << "\n";
-  os << indent << "Decay: "
-     << (this->Spec.decay.shape == bender::DecayShape::Bell ? "bell" : "plateau") << " "
-     << this->Spec.decay.plateau << "\n";
+  os << indent
+     << "Decay: " << (this->Spec.decay.shape == bender::DecayShape::Bell ? "bell" : "plateau")
+     << " " << this->Spec.decay.plateau << "\n";
   os << indent << "ReverseScrews: " << this->Spec.reverseScrews << "\n";
   os << indent << "BlendMode: "
      << (this->Blend == bender::BlendMode::TwoProjections ? "TwoProjections" : "SingleProjection")
      << "\n";
-  os << indent << "Precision: "
-     << (this->Precision == bender::WarpPrecision::Exact ? "Exact" : "Table") << "\n";
+  os << indent
+     << "Precision: " << (this->Precision == bender::WarpPrecision::Exact ? "Exact" : "Table")
+     << "\n";
+  os << indent << "PassThrough: " << this->PassThrough << "\n";
   os << indent << "BindingCount: " << this->BindingCount << "\n";
+  os << indent << "WarpBuildCount: " << this->WarpBuildCount << "\n";
+  os << indent << "PointsCopyCount: " << this->PointsCopyCount << "\n";
 }

@@ -19,6 +19,13 @@
  * are unchanged. Moving only the final ribbon then re-runs the evaluation alone, which is what
  * an interactive drag does (see GetBindingCount).
  *
+ * Interactive use (a drag): the caller validates each move by building the bender::RibbonWarp
+ * once and hands it over with SetPreparedWarp (shared, not rebuilt here). The output points
+ * are kept between updates while nobody else holds them, so that a move writes only the
+ * points inside the region of influence; the input is never copied per move (see
+ * GetPointsCopyCount and GetWarpBuildCount). With PassThrough on (nothing grabbed), the output
+ * shares the input's points and arrays.
+ *
  * Output: same topology, point and cell data passed; point and cell normals removed (stale
  * after a warp: recompute downstream). Float points stay float, double stay double.
  *
@@ -37,10 +44,13 @@
 
 #include "vtkBenderFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h"
 
 #include "RibbonWarp.h"
 #include "WarpBinding.h"
 #include "WarpPlan.h"
+
+class vtkPoints;
 
 #include <memory>
 #include <string>
@@ -60,6 +70,37 @@ public:
    */
   void SetWarp(const bender::WarpSpec& spec);
   const bender::WarpSpec& GetWarp() const { return this->Spec; }
+  ///@}
+
+  ///@{
+  /**
+   * A warp already built and validated by the caller (its spec becomes the filter's). The
+   * filter uses it as is instead of building its own; any later change of a ribbon, the
+   * radius, the decay or the screws drops it. Used when it was built with the filter's
+   * blend mode, else the filter builds its own.
+   */
+  void SetPreparedWarp(std::shared_ptr<const bender::RibbonWarp> warp);
+  const std::shared_ptr<const bender::RibbonWarp>& GetPreparedWarp() const
+  {
+    return this->Prepared;
+  }
+  ///@}
+
+  ///@{
+  /**
+   * Pass the input through unchanged (shared points, no warp, no binding). For a live
+   * pipeline whose warp is off while nothing is grabbed. Default off.
+   */
+  void SetPassThrough(bool passThrough)
+  {
+    if (this->PassThrough != passThrough)
+    {
+      this->PassThrough = passThrough;
+      this->Modified();
+    }
+  }
+  bool GetPassThrough() const { return this->PassThrough; }
+  vtkBooleanMacro(PassThrough, bool);
   ///@}
 
   ///@{
@@ -118,6 +159,11 @@ public:
   vtkIdType GetNumberOfBoundPoints() const;
   /** How many times the binding was (re)computed: for tests and benchmarks. */
   vtkIdType GetBindingCount() const { return this->BindingCount; }
+  /** How many times the filter built a RibbonWarp itself (not counting prepared ones). */
+  vtkIdType GetWarpBuildCount() const { return this->WarpBuildCount; }
+  /** How many times all input points were copied into the output points (after a (re)bind or a
+   * new output array; not per move). */
+  vtkIdType GetPointsCopyCount() const { return this->PointsCopyCount; }
 
 protected:
   vtkBenderWarpFilter();
@@ -132,6 +178,12 @@ private:
   struct BindingCache;
 
   bender::WarpSpec Spec;
+  std::shared_ptr<const bender::RibbonWarp> Prepared;
+  bool PassThrough = false;
+  vtkSmartPointer<vtkPoints> OutputPoints;
+  vtkIdType FilledForBinding = -1;
+  vtkIdType WarpBuildCount = 0;
+  vtkIdType PointsCopyCount = 0;
   bender::BlendMode Blend = bender::BlendMode::TwoProjections;
   bender::WarpPrecision Precision = bender::WarpPrecision::Exact;
   std::unique_ptr<BindingCache> Cache;

@@ -85,9 +85,10 @@ BENDER_ALWAYS_INLINE void SinCos(float phi, float& s, float& c)
   const float x2 = x * x;
   const float sx = x *
     (1.0f +
-      x2 * (-1.0f / 6.0f +
-             x2 * (1.0f / 120.0f +
-                    x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f - x2 / 39916800.0f)))));
+      x2 *
+        (-1.0f / 6.0f +
+          x2 *
+            (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f - x2 / 39916800.0f)))));
   const float cx = 1.0f +
     x2 *
       (-0.5f +
@@ -124,7 +125,10 @@ struct BlockMotions
   alignas(64) float dw[Block], dx[Block], dy[Block], dz[Block];
 };
 
-void Interpolate(const float* table, const KernelPieces& pc, const float* sp, int n,
+void Interpolate(const float* table,
+  const KernelPieces& pc,
+  const float* sp,
+  int n,
   BlockMotions& m)
 {
   for (int k = 0; k < n; ++k)
@@ -164,8 +168,15 @@ void Interpolate(const float* table, const KernelPieces& pc, const float* sp, in
 }
 
 BENDER_TARGET_CLONES
-void PowerAndApply(const BlockMotions& m, const float* px, const float* py, const float* pz,
-  const float* fp, float* ox, float* oy, float* oz, int n)
+void PowerAndApply(const BlockMotions& m,
+  const float* px,
+  const float* py,
+  const float* pz,
+  const float* fp,
+  float* ox,
+  float* oy,
+  float* oz,
+  int n)
 {
 #pragma omp simd
   for (int k = 0; k < n; ++k)
@@ -218,8 +229,16 @@ void PowerAndApply(const BlockMotions& m, const float* px, const float* py, cons
 }
 } // namespace
 
-void FastWarpKernel::Evaluate(const float* px, const float* py, const float* pz, const float* s,
-  const float* f, float* ox, float* oy, float* oz, std::size_t begin, std::size_t end) const
+void FastWarpKernel::Evaluate(const float* px,
+  const float* py,
+  const float* pz,
+  const float* s,
+  const float* f,
+  float* ox,
+  float* oy,
+  float* oz,
+  std::size_t begin,
+  std::size_t end) const
 {
   KernelPieces pc;
   pc.end0 = this->End[0];
@@ -244,5 +263,112 @@ void FastWarpKernel::Evaluate(const float* px, const float* py, const float* pz,
     PowerAndApply(m, px + b, py + b, pz + b, f + b, ox + b, oy + b, oz + b, n);
   }
 }
+
+void FastWarpLayout::Clear()
+{
+  for (auto* v : { &this->Ids, &this->Singles, &this->Pairs })
+  {
+    v->clear();
+  }
+  for (auto* v :
+    { &this->Px, &this->Py, &this->Pz, &this->S, &this->F, &this->Ox, &this->Oy, &this->Oz })
+  {
+    v->clear();
+  }
+}
+
+template<typename T>
+void FastWarpLayout::Build(const T* xyz,
+  std::size_t n,
+  const BoundPoint* records,
+  const std::uint8_t* bound,
+  const Vec3& origin)
+{
+  this->Clear();
+  this->Center = origin;
+  const std::size_t expected =
+    static_cast<std::size_t>(std::count(bound, bound + n, std::uint8_t(1)));
+  this->Ids.reserve(expected);
+  this->Singles.reserve(expected);
+  for (auto* v : { &this->Px, &this->Py, &this->Pz, &this->S, &this->F })
+  {
+    v->reserve(expected);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!bound[i])
+    {
+      continue;
+    }
+    const auto id = static_cast<std::int64_t>(i);
+    this->Ids.push_back(id);
+    const BoundPoint& rec = records[i];
+    if (rec.lambda0 < 1.0)
+    {
+      this->Pairs.push_back(id);
+      continue;
+    }
+    const T* p = xyz + 3 * i;
+    this->Singles.push_back(id);
+    this->Px.push_back(static_cast<float>(static_cast<double>(p[0]) - origin.x));
+    this->Py.push_back(static_cast<float>(static_cast<double>(p[1]) - origin.y));
+    this->Pz.push_back(static_cast<float>(static_cast<double>(p[2]) - origin.z));
+    this->S.push_back(static_cast<float>(rec.s0));
+    this->F.push_back(static_cast<float>(rec.f));
+  }
+  this->Ox.resize(this->Singles.size());
+  this->Oy.resize(this->Singles.size());
+  this->Oz.resize(this->Singles.size());
+}
+
+template<typename T>
+std::size_t FastWarpLayout::EvaluateSingles(const FastWarpKernel& kernel,
+  T* out,
+  std::size_t begin,
+  std::size_t end) const
+{
+  kernel.Evaluate(this->Px.data(),
+    this->Py.data(),
+    this->Pz.data(),
+    this->S.data(),
+    this->F.data(),
+    this->Ox.data(),
+    this->Oy.data(),
+    this->Oz.data(),
+    begin,
+    end);
+  std::size_t bad = 0;
+  for (std::size_t k = begin; k < end; ++k)
+  {
+    T* o = out + 3 * this->Singles[k];
+    o[0] = static_cast<T>(this->Center.x + this->Ox[k]);
+    o[1] = static_cast<T>(this->Center.y + this->Oy[k]);
+    o[2] = static_cast<T>(this->Center.z + this->Oz[k]);
+    if (!std::isfinite(o[0]) || !std::isfinite(o[1]) || !std::isfinite(o[2]))
+    {
+      ++bad;
+    }
+  }
+  return bad;
+}
+
+template void FastWarpLayout::Build<float>(const float*,
+  std::size_t,
+  const BoundPoint*,
+  const std::uint8_t*,
+  const Vec3&);
+template void FastWarpLayout::Build<double>(const double*,
+  std::size_t,
+  const BoundPoint*,
+  const std::uint8_t*,
+  const Vec3&);
+template std::size_t FastWarpLayout::EvaluateSingles<float>(const FastWarpKernel&,
+  float*,
+  std::size_t,
+  std::size_t) const;
+template std::size_t FastWarpLayout::EvaluateSingles<double>(const FastWarpKernel&,
+  double*,
+  std::size_t,
+  std::size_t) const;
 
 } // namespace bender

@@ -2,8 +2,10 @@
 #define bender_FastWarpKernel_h
 
 #include "MotionTable.h"
+#include "WarpBinding.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace bender
@@ -23,8 +25,16 @@ public:
 
   /// For k in [begin, end): (ox, oy, oz)[k] = warp of (px, py, pz)[k] (relative to the origin)
   /// with projection parameter s[k] and weight f[k]. Safe to call concurrently.
-  void Evaluate(const float* px, const float* py, const float* pz, const float* s,
-    const float* f, float* ox, float* oy, float* oz, std::size_t begin, std::size_t end) const;
+  void Evaluate(const float* px,
+    const float* py,
+    const float* pz,
+    const float* s,
+    const float* f,
+    float* ox,
+    float* oy,
+    float* oz,
+    std::size_t begin,
+    std::size_t end) const;
 
 private:
   std::vector<float> Table; // 8 floats per sample: real (w, x, y, z), dual (w, x, y, z)
@@ -34,6 +44,47 @@ private:
   float Scale[3] = { 0.0f, 0.0f, 0.0f };
   int Offset[3] = { 0, 0, 0 };
   int Last[3] = { 0, 0, 0 };
+};
+
+/// The data layout of the interactive path for one binding (built once per grab): the bound
+/// points split into those with one projection, stored as float structure-of-arrays relative to
+/// an origin for FastWarpKernel, and those with two projections (lambda0 < 1), which the exact
+/// evaluator handles. Scratch arrays for the kernel's output are kept here, so that a move
+/// allocates nothing.
+class FastWarpLayout
+{
+public:
+  /// Lays out the points of `xyz` (n points, x y z interleaved) whose `bound` flag is set, with
+  /// their `records`, relative to `origin` (a point near the wire).
+  template<typename T>
+  void Build(const T* xyz,
+    std::size_t n,
+    const BoundPoint* records,
+    const std::uint8_t* bound,
+    const Vec3& origin);
+  void Clear();
+
+  const Vec3& Origin() const { return this->Center; }
+  /// Every bound point, in increasing order.
+  const std::vector<std::int64_t>& BoundIds() const { return this->Ids; }
+  /// The bound points with one projection (kernel path) and with two (exact evaluator).
+  const std::vector<std::int64_t>& SingleIds() const { return this->Singles; }
+  const std::vector<std::int64_t>& PairIds() const { return this->Pairs; }
+
+  /// Evaluates the one-projection points k in [begin, end) of SingleIds() with `kernel` (set on
+  /// Origin()) and writes them into `out` (n points, interleaved) at their ids. Returns how many
+  /// results were not finite. Safe to call concurrently on disjoint ranges.
+  template<typename T>
+  std::size_t EvaluateSingles(const FastWarpKernel& kernel,
+    T* out,
+    std::size_t begin,
+    std::size_t end) const;
+
+private:
+  Vec3 Center;
+  std::vector<std::int64_t> Ids, Singles, Pairs;
+  std::vector<float> Px, Py, Pz, S, F;
+  mutable std::vector<float> Ox, Oy, Oz;
 };
 
 } // namespace bender

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <vtkCellData.h>
+#include <vtkCylinderSource.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
@@ -20,9 +21,9 @@
 #include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
 #include <vtkTriangleFilter.h>
-#include <vtkCylinderSource.h>
 
 #include <cmath>
+#include <memory>
 
 namespace
 {
@@ -209,8 +210,8 @@ TEST(WarpFilter, KeepsBindingWhileOnlyTheFinalRibbonMoves)
   double worst = 0.0;
   for (vtkIdType i = 0; i < tube->GetNumberOfPoints(); ++i)
   {
-    worst = std::max(worst,
-      bender::Distance(exact.Apply(PointOf(tube, i)), PointOf(filter->GetOutput(), i)));
+    worst = std::max(
+      worst, bender::Distance(exact.Apply(PointOf(tube, i)), PointOf(filter->GetOutput(), i)));
   }
   EXPECT_LT(worst, 50.0 * 1e-5);
   // A new radius, a moved initial ribbon or new input points force a new binding.
@@ -331,3 +332,73 @@ TEST(WarpFilter, ReportsSpaceInversionRiskAndFlip)
 }
 
 } // namespace
+
+// A drag hands the filter a warp built (and validated) once by the caller; the filter uses it
+// as is, keeps its output points, writes only the bound points per move, and equals a filter
+// that recomputes everything.
+TEST(WarpFilter, PreparedWarpIsUsedAsIsAndAMoveCopiesNoSurface)
+{
+  auto tube = Tube(VTK_DOUBLE);
+  vtkPoints* inputPoints = tube->GetPoints();
+  const vtkMTimeType inputTime = inputPoints->GetMTime();
+  bender::WarpSpec spec = Bend90();
+  spec.final = spec.initial;
+  vtkNew<vtkBenderWarpFilter> filter;
+  filter->SetPrecision(bender::WarpPrecision::Table);
+  filter->SetInputData(tube);
+  filter->SetPreparedWarp(std::make_shared<const bender::RibbonWarp>(spec));
+  filter->Update();
+  ASSERT_TRUE(filter->GetLastError().empty()) << filter->GetLastError();
+  vtkPoints* outputPoints = filter->GetOutput()->GetPoints();
+  EXPECT_EQ(filter->GetPointsCopyCount(), 1);
+  for (int step = 1; step <= 6; ++step)
+  {
+    spec.final.end.position = { 40.0 - 2.0 * step, 3.0 * step, 0 };
+    spec.final.end.tangent = bender::Normalized(Vec3{ 1.0, 0.15 * step, 0 });
+    filter->SetPreparedWarp(std::make_shared<const bender::RibbonWarp>(spec));
+    filter->Update();
+    ASSERT_TRUE(filter->GetLastError().empty()) << filter->GetLastError();
+    EXPECT_EQ(filter->GetOutput()->GetPoints(), outputPoints);
+
+    vtkNew<vtkBenderWarpFilter> fresh;
+    fresh->SetPrecision(bender::WarpPrecision::Table);
+    fresh->SetInputData(tube);
+    fresh->SetWarp(spec);
+    fresh->Update();
+    double worst = 0.0;
+    for (vtkIdType i = 0; i < tube->GetNumberOfPoints(); ++i)
+    {
+      worst = std::max(
+        worst, bender::Distance(PointOf(filter->GetOutput(), i), PointOf(fresh->GetOutput(), i)));
+    }
+    EXPECT_EQ(worst, 0.0) << "step " << step;
+    EXPECT_EQ(fresh->GetWarpBuildCount(), 1);
+  }
+  EXPECT_EQ(filter->GetWarpBuildCount(), 0);
+  EXPECT_EQ(filter->GetBindingCount(), 1);
+  EXPECT_EQ(filter->GetPointsCopyCount(), 1);
+  EXPECT_EQ(tube->GetPoints(), inputPoints);
+  EXPECT_EQ(inputPoints->GetMTime(), inputTime);
+
+  // Somebody holding the output points gets a new array at the next update (their copy keeps
+  // the previous shape).
+  vtkSmartPointer<vtkPoints> held = filter->GetOutput()->GetPoints();
+  const Vec3 before = PointOf(filter->GetOutput(), 4000);
+  spec.final.end.position = { 20, 25, 0 };
+  filter->SetPreparedWarp(std::make_shared<const bender::RibbonWarp>(spec));
+  filter->Update();
+  EXPECT_NE(filter->GetOutput()->GetPoints(), held.GetPointer());
+  double p[3];
+  held->GetPoint(4000, p);
+  EXPECT_EQ(bender::Norm(Vec3{ p[0], p[1], p[2] } - before), 0.0);
+  EXPECT_EQ(filter->GetPointsCopyCount(), 2);
+
+  // Pass-through shares the input's points; a warp of another blend mode is rebuilt here.
+  filter->PassThroughOn();
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetPoints(), inputPoints);
+  filter->PassThroughOff();
+  filter->SetBlendMode(bender::BlendMode::SingleProjection);
+  filter->Update();
+  EXPECT_EQ(filter->GetWarpBuildCount(), 1);
+}
