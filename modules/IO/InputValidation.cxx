@@ -130,6 +130,7 @@ std::string CleanMessage(std::string_view raw, std::size_t maxLength)
   }
   // 2. Line by line: drop location lines and object prefixes.
   std::vector<std::string> kept;
+  std::string innermostTeem; // teem chains go from the outermost call to the actual reason
   std::size_t start = 0;
   while (start <= text.size())
   {
@@ -171,8 +172,10 @@ std::string CleanMessage(std::string_view raw, std::size_t maxLength)
     line = DropObjectPrefix(line);
     // teem's "[nrrd] nrrdLoad: trouble reading ..." chains: drop "[nrrd] function: ".
     std::string cleaned(line);
+    bool teem = false;
     for (const char* tag : { "[nrrd] ", "[biff] ", "[air] ", "[hest] " })
     {
+      teem = teem || cleaned.find(tag) != std::string::npos;
       for (std::size_t at = cleaned.find(tag); at != std::string::npos; at = cleaned.find(tag, at))
       {
         std::size_t end = at + std::strlen(tag);
@@ -185,10 +188,23 @@ std::string CleanMessage(std::string_view raw, std::size_t maxLength)
         cleaned.erase(at, end - at);
       }
     }
+    if (teem)
+    {
+      if (!cleaned.empty())
+      {
+        innermostTeem = cleaned;
+      }
+      continue;
+    }
     if (!cleaned.empty() && (kept.empty() || kept.back() != cleaned))
     {
       kept.push_back(cleaned);
     }
+  }
+  if (!innermostTeem.empty())
+  {
+    // "ReadImageInformation: Error reading FILE:" says nothing the caller does not say.
+    kept.assign(1, innermostTeem);
   }
   std::string joined;
   for (const std::string& line : kept)

@@ -1,7 +1,9 @@
 #include "VolumeIO.h"
 
+#include "InputValidation.h"
 #include "ItkVtkBridge.h"
 #include "Private/ItkImage.h"
+#include "VolumeValidation.h"
 
 #include <itkGDCMImageIO.h>
 #include <itkGDCMImageIOFactory.h>
@@ -18,6 +20,7 @@
 
 #include <vtkCallbackCommand.h>
 #include <vtkDataArray.h>
+#include <vtkErrorCode.h>
 #include <vtkExecutive.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -27,10 +30,17 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <functional>
 #include <mutex>
+#include <random>
 #include <sstream>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace bender
 {
@@ -57,7 +67,8 @@ std::string Lower(std::string s)
 
 bool EndsWith(const std::string& s, const std::string& suffix)
 {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+    s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 VolumeFormat FormatOf(const std::string& path)
@@ -97,21 +108,11 @@ itk::ImageIOBase::Pointer MakeImageIO(VolumeFormat format)
   }
 }
 
-/// ITK messages span several lines and start with the source location: keep the description.
+/// ITK messages span several lines, start with the source location and object address, may
+/// hold teem's "[nrrd]" chains, ANSI colours or file bytes: one clean line of the description.
 std::string OneLine(const itk::ExceptionObject& e)
 {
-  std::string text = e.GetDescription();
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  // Drop ITK's "itk::ERROR: NrrdImageIO(0x55...): " prefix.
-  if (text.rfind("itk::ERROR: ", 0) == 0 && text.find("): ") != std::string::npos)
-  {
-    text = text.substr(text.find("): ") + 3);
-  }
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-  {
-    text.pop_back();
-  }
-  return text;
+  return io_detail::CleanMessage(e.GetDescription() ? e.GetDescription() : "", 240);
 }
 
 /// The readers also work through ITK's factories (e.g. GDCM inside ImageSeriesReader): register
@@ -119,14 +120,16 @@ std::string OneLine(const itk::ExceptionObject& e)
 void RegisterImageIOFactories()
 {
   static std::once_flag once;
-  std::call_once(once, [] {
-    // Problems reach the user as exceptions; ITK's own warnings would only be noise on stderr.
-    itk::Object::GlobalWarningDisplayOff();
-    itk::NrrdImageIOFactory::RegisterOneFactory();
-    itk::NiftiImageIOFactory::RegisterOneFactory();
-    itk::MetaImageIOFactory::RegisterOneFactory();
-    itk::GDCMImageIOFactory::RegisterOneFactory();
-  });
+  std::call_once(once,
+    []
+    {
+      // Problems reach the user as exceptions; ITK's own warnings would only be noise on stderr.
+      itk::Object::GlobalWarningDisplayOff();
+      itk::NrrdImageIOFactory::RegisterOneFactory();
+      itk::NiftiImageIOFactory::RegisterOneFactory();
+      itk::MetaImageIOFactory::RegisterOneFactory();
+      itk::GDCMImageIOFactory::RegisterOneFactory();
+    });
 }
 
 void CheckGeometry(const ImageGeometry& g, const std::string& path)
@@ -212,13 +215,15 @@ Volume ReadVti(const std::string& path)
   std::string error;
   vtkNew<vtkCallbackCommand> onError;
   onError->SetClientData(&error);
-  onError->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData) {
-    auto* text = static_cast<std::string*>(clientData);
-    if (text->empty() && callData)
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
     {
-      *text = static_cast<const char*>(callData);
-    }
-  });
+      auto* text = static_cast<std::string*>(clientData);
+      if (text->empty() && callData)
+      {
+        *text = static_cast<const char*>(callData);
+      }
+    });
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->SetFileName(path.c_str());
@@ -226,8 +231,7 @@ Volume ReadVti(const std::string& path)
   vtkImageData* image = reader->GetOutput();
   if (!error.empty() || !image || image->GetNumberOfPoints() == 0)
   {
-    std::string reason = error.empty() ? "no image data" : error;
-    std::replace(reason.begin(), reason.end(), '\n', ' ');
+    const std::string reason = error.empty() ? "no image data" : io_detail::CleanMessage(error);
     throw VolumeReadError(path + ": cannot read VTK image: " + reason);
   }
   if (!image->GetPointData()->GetScalars() ||
@@ -238,8 +242,9 @@ Volume ReadVti(const std::string& path)
   return VtkImageToVolume(image);
 }
 
-Volume ReadDicomFolder(
-  const std::string& folder, const VolumeReadOptions& options, const ProgressReporter& progress)
+Volume ReadDicomFolder(const std::string& folder,
+  const VolumeReadOptions& options,
+  const ProgressReporter& progress)
 {
   const std::vector<DicomSeriesInfo> series = ListDicomSeries(folder);
   if (series.empty())
@@ -251,19 +256,19 @@ Volume ReadDicomFolder(
   {
     if (series.size() > 1)
     {
-      std::string msg = folder + ": " + std::to_string(series.size()) +
-        " DICOM series, choose one by UID:";
+      std::string msg =
+        folder + ": " + std::to_string(series.size()) + " DICOM series, choose one by UID:";
       for (const DicomSeriesInfo& s : series)
       {
-        msg += " [" + s.uid + " \"" + s.description + "\" " + std::to_string(s.sliceCount) +
-          " slices]";
+        msg +=
+          " [" + s.uid + " \"" + s.description + "\" " + std::to_string(s.sliceCount) + " slices]";
       }
       throw VolumeReadError(msg);
     }
     uid = series.front().uid;
   }
-  else if (std::none_of(series.begin(), series.end(),
-             [&](const DicomSeriesInfo& s) { return s.uid == uid; }))
+  else if (std::none_of(
+             series.begin(), series.end(), [&](const DicomSeriesInfo& s) { return s.uid == uid; }))
   {
     throw VolumeReadError(folder + ": no DICOM series with UID " + uid);
   }
@@ -281,13 +286,14 @@ Volume ReadDicomFolder(
   return FromItk(reader->GetOutput());
 }
 
-template <typename TImage>
-void WriteItk(const TImage* image, const std::string& path)
+template<typename TImage>
+void WriteItk(const TImage* image, const std::string& path, const std::string& reportedPath)
 {
   const VolumeFormat format = FormatOf(path);
   if (format == VolumeFormat::Unknown || format == VolumeFormat::Vti)
   {
-    throw VolumeWriteError(path + ": unknown volume extension (use .nrrd .nhdr .nii .nii.gz .mha .mhd .vti)");
+    throw VolumeWriteError(
+      reportedPath + ": unknown volume extension (use .nrrd .nhdr .nii .nii.gz .mha .mhd .vti)");
   }
   try
   {
@@ -300,21 +306,131 @@ void WriteItk(const TImage* image, const std::string& path)
   }
   catch (const itk::ExceptionObject& e)
   {
-    throw VolumeWriteError(path + ": " + OneLine(e));
+    throw VolumeWriteError(reportedPath + ": " + OneLine(e));
   }
 }
 
-void WriteVti(vtkImageData* image, const std::string& path)
+void WriteVti(vtkImageData* image, const std::string& path, const std::string& reportedPath)
 {
   vtkNew<vtkXMLImageDataWriter> writer;
+  // Errors are reported through the exception below, not printed by VTK.
+  vtkNew<vtkCallbackCommand> quiet;
+  quiet->SetCallback([](vtkObject*, unsigned long, void*, void*) {});
+  writer->AddObserver(vtkCommand::ErrorEvent, quiet);
+  writer->AddObserver(vtkCommand::WarningEvent, quiet);
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
   writer->SetFileName(path.c_str());
   writer->SetInputData(image);
   writer->SetDataModeToAppended();
   writer->SetCompressorTypeToZLib();
-  if (writer->Write() != 1)
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
   {
-    throw VolumeWriteError(path + ": cannot write VTK image");
+    throw VolumeWriteError(reportedPath + ": cannot write VTK image (" +
+      (writer->GetErrorCode() == vtkErrorCode::OutOfDiskSpaceError ? std::string("disk full")
+                                                                   : std::string("write error")) +
+      ")");
   }
+}
+
+/// Flushes a written file to disk; false when that fails (full disk, I/O error).
+bool SyncFile(const std::string& path)
+{
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0)
+  {
+    return false;
+  }
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
+}
+
+/// All-or-nothing volume writes. The writer writes into a fresh hidden folder beside the
+/// target under the target's own name (so that a .mhd or .nhdr header names its data file by
+/// the final name); every file written there is flushed, the result is read back through the
+/// same validator as the readers use (ITK's NIfTI and MetaImage writers report success for a
+/// file cut short by a full disk), then the data files and last the header are renamed into
+/// place. Any failure removes the folder and everything in it; the previous target, if any,
+/// is untouched.
+void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write)
+{
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+  {
+    throw VolumeWriteError(path + ": the folder " + folder.string() + " does not exist");
+  }
+  if (fs::is_directory(target, ec))
+  {
+    throw VolumeWriteError(path + ": is a folder");
+  }
+  fs::path staging;
+  for (int attempt = 0; attempt < 100 && staging.empty(); ++attempt)
+  {
+    const fs::path candidate = folder /
+      ("." + target.filename().string() + ".bender-tmp-" + std::to_string(::getpid()) + "-" +
+        std::to_string(std::random_device{}() % 1000000));
+    if (fs::create_directory(candidate, ec) && !ec)
+    {
+      staging = candidate;
+    }
+  }
+  if (staging.empty())
+  {
+    throw VolumeWriteError(
+      path + ": cannot create a temporary folder beside it (" + ec.message() + ")");
+  }
+  const std::string staged = (staging / target.filename()).string();
+  try
+  {
+    write(staged);
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(staging))
+    {
+      files.push_back(entry.path());
+    }
+    for (const fs::path& file : files)
+    {
+      if (!SyncFile(file.string()))
+      {
+        throw VolumeWriteError(path + ": cannot flush " + file.filename().string() + " to disk (" +
+          std::strerror(errno) + ")");
+      }
+    }
+    std::string problem;
+    if (!io_detail::CheckVolumeFile(staged, io_detail::MaxVolumeBytes * 2, problem))
+    {
+      throw VolumeWriteError(
+        path + ": the written file is incomplete, disk full? (" + problem + ")");
+    }
+    // Data files first, the header (the target itself) last.
+    std::stable_partition(files.begin(),
+      files.end(),
+      [&](const fs::path& f) { return f.filename() != target.filename(); });
+    for (const fs::path& file : files)
+    {
+      fs::rename(file, folder / file.filename(), ec);
+      if (ec)
+      {
+        throw VolumeWriteError(
+          path + ": cannot rename the finished file into place (" + ec.message() + ")");
+      }
+    }
+    const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+    if (dir >= 0)
+    {
+      ::fsync(dir);
+      ::close(dir);
+    }
+  }
+  catch (...)
+  {
+    fs::remove_all(staging, ec);
+    throw;
+  }
+  fs::remove_all(staging, ec);
 }
 
 } // namespace
@@ -346,7 +462,8 @@ std::vector<DicomSeriesInfo> ListDicomSeries(const std::string& folder)
         std::string description;
         if (io->GetValueFromTag("0008|103e", description))
         {
-          while (!description.empty() && std::isspace(static_cast<unsigned char>(description.back())))
+          while (
+            !description.empty() && std::isspace(static_cast<unsigned char>(description.back())))
           {
             description.pop_back();
           }
@@ -360,13 +477,15 @@ std::vector<DicomSeriesInfo> ListDicomSeries(const std::string& folder)
   {
     throw VolumeReadError(folder + ": " + OneLine(e));
   }
-  std::sort(result.begin(), result.end(),
+  std::sort(result.begin(),
+    result.end(),
     [](const DicomSeriesInfo& a, const DicomSeriesInfo& b) { return a.uid < b.uid; });
   return result;
 }
 
-Volume ReadVolume(
-  const std::string& path, const VolumeReadOptions& options, const ProgressReporter& progress)
+Volume ReadVolume(const std::string& path,
+  const VolumeReadOptions& options,
+  const ProgressReporter& progress)
 {
   RegisterImageIOFactories();
   if (!std::filesystem::exists(path))
@@ -385,8 +504,17 @@ Volume ReadVolume(
       const VolumeFormat format = FormatOf(path);
       if (format == VolumeFormat::Unknown)
       {
-        throw VolumeReadError(
-          path + ": unknown volume extension (use .nrrd .nhdr .nii .nii.gz .mha .mhd .vti or a DICOM folder)");
+        throw VolumeReadError(path +
+          ": unknown volume extension (use .nrrd .nhdr .nii .nii.gz .mha .mhd .vti or a DICOM "
+          "folder)");
+      }
+      // Before ITK or VTK sees it: a regular file whose header parses safely and whose data is
+      // all there (ITK fills a truncated volume with zeros; long NRRD or MetaImage header
+      // fields overflow its buffers; a FIFO or /dev/zero would block or never end).
+      std::string problem;
+      if (!io_detail::CheckVolumeFile(path, io_detail::MaxVolumeBytes, problem))
+      {
+        throw VolumeReadError(path + ": " + problem);
       }
       volume = format == VolumeFormat::Vti ? ReadVti(path) : ReadItkFile(path, format, progress);
     }
@@ -413,13 +541,20 @@ void WriteVolume(const Volume& volume, const std::string& path)
   {
     throw VolumeWriteError(path + ": empty or inconsistent volume");
   }
+  if (FormatOf(path) == VolumeFormat::Unknown)
+  {
+    throw VolumeWriteError(
+      path + ": unknown volume extension (use .nrrd .nhdr .nii .nii.gz .mha .mhd .vti)");
+  }
   if (FormatOf(path) == VolumeFormat::Vti)
   {
-    WriteVti(VolumeToVtkImage(volume), path);
+    vtkSmartPointer<vtkImageData> image = VolumeToVtkImage(volume);
+    WriteAtomically(path, [&](const std::string& staged) { WriteVti(image, staged, path); });
     return;
   }
   auto image = detail::WrapVolume(volume);
-  WriteItk<FloatImage>(image, path);
+  WriteAtomically(
+    path, [&](const std::string& staged) { WriteItk<FloatImage>(image, staged, path); });
 }
 
 void WriteLabelMap(const LabelMap& mask, const std::string& path)
@@ -428,13 +563,20 @@ void WriteLabelMap(const LabelMap& mask, const std::string& path)
   {
     throw VolumeWriteError(path + ": empty or inconsistent mask");
   }
+  if (FormatOf(path) == VolumeFormat::Unknown)
+  {
+    throw VolumeWriteError(
+      path + ": unknown volume extension (use .nrrd .nhdr .nii .nii.gz .mha .mhd .vti)");
+  }
   if (FormatOf(path) == VolumeFormat::Vti)
   {
-    WriteVti(LabelMapToVtkImage(mask), path);
+    vtkSmartPointer<vtkImageData> image = LabelMapToVtkImage(mask);
+    WriteAtomically(path, [&](const std::string& staged) { WriteVti(image, staged, path); });
     return;
   }
   auto image = detail::WrapLabelMap(mask);
-  WriteItk<MaskImage>(image, path);
+  WriteAtomically(
+    path, [&](const std::string& staged) { WriteItk<MaskImage>(image, staged, path); });
 }
 
 } // namespace bender

@@ -11,9 +11,17 @@
 #include <itkImageFileWriter.h>
 #include <itkMetaDataObject.h>
 
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <random>
+#include <set>
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace
 {
@@ -34,7 +42,9 @@ bender::Volume ObliqueVolume()
   return v;
 }
 
-void ExpectSameGeometry(const bender::ImageGeometry& a, const bender::ImageGeometry& b, double tolerance)
+void ExpectSameGeometry(const bender::ImageGeometry& a,
+  const bender::ImageGeometry& b,
+  double tolerance)
 {
   for (int c = 0; c < 3; ++c)
   {
@@ -59,7 +69,7 @@ void ExpectMessage(const std::string& path, const std::string& fragment)
   {
     const std::string what = e.what();
     EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what << " (expected: " << fragment << ")";
     EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
   }
 }
@@ -105,8 +115,10 @@ TEST(VolumeIO, ObliqueNiftiIsReadInLpsMillimetres)
   float srow[3][4];
   std::memcpy(srow, header + 280, sizeof(srow));
   const bender::Volume read = bender::ReadVolume(path);
-  for (const bender::Point3 index : { bender::Point3{ { 0, 0, 0 } }, bender::Point3{ { 6, 0, 0 } },
-         bender::Point3{ { 2, 5, 1 } }, bender::Point3{ { 6, 5, 4 } } })
+  for (const bender::Point3 index : { bender::Point3{ { 0, 0, 0 } },
+         bender::Point3{ { 6, 0, 0 } },
+         bender::Point3{ { 2, 5, 1 } },
+         bender::Point3{ { 6, 5, 4 } } })
   {
     double ras[3];
     for (int r = 0; r < 3; ++r)
@@ -146,7 +158,8 @@ TEST(VolumeIO, Colin27HeadMriLoadsInLps)
 
 TEST(VolumeIO, SformQformMismatchLoadsWithAnOrthonormalDirection)
 {
-  const bender::Volume v = bender::ReadVolume(bender_test::ExternalData("KmeansTest_T1UCharRaw.nii.gz"));
+  const bender::Volume v =
+    bender::ReadVolume(bender_test::ExternalData("KmeansTest_T1UCharRaw.nii.gz"));
   EXPECT_EQ(v.geometry.size, (std::array<std::size_t, 3>{ { 128, 128, 62 } }));
   EXPECT_NEAR(v.geometry.spacing[0], 2.0, 1e-3);
   EXPECT_NEAR(v.geometry.spacing[1], 2.0, 1e-3);
@@ -166,7 +179,10 @@ using DicomSlice = itk::Image<short, 2>;
 
 /// Writes `count` copies of CT_small.dcm as one series: slice k at z = 2.5 k mm, its pixels
 /// offset by 100 k, file names in shuffled order.
-void WriteDicomSeries(const std::string& folder, const std::string& seriesUid, const std::string& description, int count)
+void WriteDicomSeries(const std::string& folder,
+  const std::string& seriesUid,
+  const std::string& description,
+  int count)
 {
   auto reader = itk::ImageFileReader<DicomSlice>::New();
   auto io = itk::GDCMImageIO::New();
@@ -190,9 +206,11 @@ void WriteDicomSeries(const std::string& folder, const std::string& seriesUid, c
     itk::MetaDataDictionary dict = reader->GetMetaDataDictionary();
     itk::EncapsulateMetaData<std::string>(dict, "0020|000e", seriesUid);
     itk::EncapsulateMetaData<std::string>(dict, "0008|103e", description);
-    itk::EncapsulateMetaData<std::string>(dict, "0008|0018", seriesUid + "." + std::to_string(k + 1));
+    itk::EncapsulateMetaData<std::string>(
+      dict, "0008|0018", seriesUid + "." + std::to_string(k + 1));
     itk::EncapsulateMetaData<std::string>(dict, "0020|0013", std::to_string(k + 1));
-    itk::EncapsulateMetaData<std::string>(dict, "0020|0032", "-10\\-20\\" + std::to_string(2.5 * k));
+    itk::EncapsulateMetaData<std::string>(
+      dict, "0020|0032", "-10\\-20\\" + std::to_string(2.5 * k));
     itk::EncapsulateMetaData<std::string>(dict, "0020|0037", "1\\0\\0\\0\\1\\0");
     itk::EncapsulateMetaData<std::string>(dict, "0028|1052", "0");
     itk::EncapsulateMetaData<std::string>(dict, "0028|1053", "1");
@@ -221,7 +239,8 @@ TEST(VolumeIO, DicomSeriesIsSortedByPosition)
   const std::size_t slice = v.geometry.size[0] * v.geometry.size[1];
   for (std::size_t k = 1; k < 5; ++k)
   {
-    EXPECT_NEAR(v.voxels[k * slice + 1000] - v.voxels[1000], 100.0 * double(k), 1e-3) << "slice " << k;
+    EXPECT_NEAR(v.voxels[k * slice + 1000] - v.voxels[1000], 100.0 * double(k), 1e-3)
+      << "slice " << k;
   }
 }
 
@@ -279,7 +298,8 @@ TEST(VolumeIO, BadInputsGetAOneLineMessage)
   ExpectMessage(dir.File("vector.nhdr"), "not supported");
 
   WriteText(dir.File("zero.nhdr"),
-    "NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 2\nspacings: 1 0 1\nendian: little\nencoding: raw\ndata file: zero.raw\n");
+    "NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 2\nspacings: 1 0 1\nendian: little\nencoding: "
+    "raw\ndata file: zero.raw\n");
   WriteText(dir.File("zero.raw"), std::string(32, '\0'));
   ExpectMessage(dir.File("zero.nhdr"), "spacing");
 
@@ -294,7 +314,192 @@ TEST(VolumeIO, WriteRejectsUnknownExtensionAndEmptyVolume)
   TempDir dir;
   EXPECT_THROW(bender::WriteVolume(ObliqueVolume(), dir.File("v.png")), bender::VolumeWriteError);
   EXPECT_THROW(bender::WriteVolume(bender::Volume{}, dir.File("v.nrrd")), bender::VolumeWriteError);
-  EXPECT_THROW(bender::WriteVolume(ObliqueVolume(), dir.File("missing/folder/v.nrrd")), bender::VolumeWriteError);
+  EXPECT_THROW(bender::WriteVolume(ObliqueVolume(), dir.File("missing/folder/v.nrrd")),
+    bender::VolumeWriteError);
+}
+
+// Issue 13: truncated volumes were accepted and zero-filled (ITK only printed "data not read
+// completely", or nothing for NIfTI; the VTK XML reader said nothing either).
+TEST(VolumeIO, TruncatedVolumesAreRefused)
+{
+  TempDir dir;
+  for (const char* name : { "t.nii", "t.nii.gz", "t.mha", "t.vti", "t.nrrd" })
+  {
+    SCOPED_TRACE(name);
+    const std::string path = dir.File(name);
+    bender::WriteVolume(ObliqueVolume(), path);
+    ASSERT_NO_THROW(bender::ReadVolume(path));
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 40);
+    ExpectMessage(path, "truncated");
+  }
+  // A MetaImage header with its data in a separate file.
+  const std::string mhd = dir.File("d.mhd");
+  bender::WriteVolume(ObliqueVolume(), mhd);
+  std::string dataFile;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.Path))
+  {
+    if (entry.path().filename().string().rfind("d.", 0) == 0 && entry.path().extension() != ".mhd")
+    {
+      dataFile = entry.path().string();
+    }
+  }
+  ASSERT_FALSE(dataFile.empty());
+  std::filesystem::resize_file(dataFile, std::filesystem::file_size(dataFile) / 2);
+  ExpectMessage(mhd, "truncated");
+  // Uncompressed data one value short.
+  WriteText(dir.File("short.mha"),
+    "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\n"
+    "ElementType = MET_FLOAT\nElementDataFile = LOCAL\n" +
+      std::string(28, '\0'));
+  ExpectMessage(dir.File("short.mha"), "the header implies 32 bytes, 28 are present");
+}
+
+// Issue 13: a FIFO blocked and a symlink to /dev/zero read forever.
+TEST(VolumeIO, OnlyRegularFilesAreRead)
+{
+  TempDir dir;
+  const std::string fifo = dir.File("pipe.nrrd");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  ExpectMessage(fifo, "not a regular file");
+  const std::string zero = dir.File("zero.nrrd");
+  std::filesystem::create_symlink("/dev/zero", zero);
+  ExpectMessage(zero, "not a regular file");
+}
+
+// Issue 13: ITK's NRRD reader overflowed a buffer on a 1000-byte header line or ASCII value
+// (a 100 KB value overwrote the stack); MetaIO's strcpy overflowed on a 255-byte field name,
+// and a negative or huge NDims looped forever.
+TEST(VolumeIO, HeadersThatOverflowItkAreRefused)
+{
+  TempDir dir;
+  WriteText(dir.File("line.nrrd"),
+    "NRRD0004\ntype: float\ndimension: 1\nsizes: 1\nencoding: raw\n"
+    "content: " +
+      std::string(2000, 'a') + "\n\n" + std::string(4, '\0'));
+  ExpectMessage(dir.File("line.nrrd"), "longer than 1000 bytes");
+  WriteText(dir.File("value.nrrd"),
+    "NRRD0004\ntype: float\ndimension: 1\nsizes: 1\nencoding: ascii\n\n" +
+      std::string(100000, '7') + "\n");
+  ExpectMessage(dir.File("value.nrrd"), "longer than 64 bytes");
+  WriteText(dir.File("key.mha"),
+    "ObjectType = Image\n" + std::string(300, 'K') +
+      " = 1\nNDims = 1\nDimSize = 1\nElementType = MET_FLOAT\nElementDataFile = LOCAL\n" +
+      std::string(4, '\0'));
+  ExpectMessage(dir.File("key.mha"), "field name of 300 bytes");
+  for (const char* dims : { "-1", "1000000", "x" })
+  {
+    WriteText(dir.File("dims.mha"),
+      std::string("ObjectType = Image\nNDims = ") + dims +
+        "\nDimSize = 1\nElementType = MET_FLOAT\nElementDataFile = LOCAL\n" + std::string(4, '\0'));
+    ExpectMessage(dir.File("dims.mha"), "NDims");
+  }
+  WriteText(dir.File("huge.nhdr"),
+    "NRRD0004\ntype: float\ndimension: 3\nsizes: 100000 100000 100000\n"
+    "encoding: raw\ndata file: huge.raw\n");
+  WriteText(dir.File("huge.raw"), "x");
+  ExpectMessage(dir.File("huge.nhdr"), "memory budget");
+}
+
+// Issue 13: library text reached the user raw ("ITK ERROR: MetaImageIO(0x55...)", "[nrrd] ...
+// trouble", several lines, ANSI colours).
+TEST(VolumeIO, LibraryMessagesAreCleaned)
+{
+  TempDir dir;
+  WriteText(dir.File("gz.nrrd"),
+    "NRRD0004\ntype: float\ndimension: 1\nsizes: 4\nencoding: gzip\n\n"
+    "\x1b[31mnot gzip data at all, just text\n");
+  try
+  {
+    bender::ReadVolume(dir.File("gz.nrrd"));
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const bender::VolumeReadError& e)
+  {
+    const std::string what = e.what();
+    for (const char* raw : { "ITK ERROR", "itk::ERROR", "[nrrd]", "(0x", "\x1b", "\n" })
+    {
+      EXPECT_EQ(what.find(raw), std::string::npos) << raw << " in: " << what;
+    }
+    EXPECT_EQ(what.rfind(dir.File("gz.nrrd") + ": ", 0), 0u) << what;
+  }
+}
+
+/// Lowers this process's file size limit (RLIMIT_FSIZE, unprivileged): writes past it fail
+/// with EFBIG, as they would with ENOSPC on a full disk; SIGXFSZ is ignored meanwhile.
+class FileSizeLimit
+{
+public:
+  explicit FileSizeLimit(rlim_t bytes)
+  {
+    this->PreviousHandler = std::signal(SIGXFSZ, SIG_IGN);
+    ::getrlimit(RLIMIT_FSIZE, &this->Previous);
+    rlimit limit = this->Previous;
+    limit.rlim_cur = bytes;
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FileSizeLimit()
+  {
+    ::setrlimit(RLIMIT_FSIZE, &this->Previous);
+    std::signal(SIGXFSZ, this->PreviousHandler);
+  }
+
+private:
+  rlimit Previous{};
+  void (*PreviousHandler)(int) = nullptr;
+};
+
+// Issue 13: on a full disk the phantom's volume was reported written for .nii/.nii.gz/.mha/.vti
+// (a truncated file), .nrrd left "*.part.nrrd", .mhd/.nhdr left the data file under its
+// temporary name. Simulated here with the file size limit: every format fails, nothing is
+// left behind and the previous file stays as it was.
+TEST(VolumeIO, FullDiskLeavesNothingBehind)
+{
+  TempDir dir;
+  bender::Volume big = ObliqueVolume();
+  big.geometry.size = { { 40, 40, 40 } };
+  big.voxels.resize(big.geometry.VoxelCount());
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> noise(-1000.0f, 1000.0f);
+  for (float& v : big.voxels)
+  {
+    v = noise(random); // incompressible: a few hundred KB in every format
+  }
+  for (const char* name : { "p.nrrd", "p.nhdr", "p.nii", "p.nii.gz", "p.mha", "p.mhd", "p.vti" })
+  {
+    SCOPED_TRACE(name);
+    const std::string path = dir.File(name);
+    bender::WriteVolume(ObliqueVolume(), path); // the previous, small, complete file
+    std::set<std::string> before;
+    std::map<std::string, std::uintmax_t> sizes;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.Path))
+    {
+      before.insert(entry.path().filename().string());
+      sizes[entry.path().filename().string()] = entry.file_size();
+    }
+    bool threw = false;
+    {
+      FileSizeLimit limit(64 * 1024);
+      try
+      {
+        bender::WriteVolume(big, path);
+      }
+      catch (const bender::VolumeWriteError& e)
+      {
+        threw = true;
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      }
+    }
+    EXPECT_TRUE(threw) << "a write past the size limit reported success";
+    std::set<std::string> after;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.Path))
+    {
+      after.insert(entry.path().filename().string());
+      EXPECT_EQ(entry.file_size(), sizes[entry.path().filename().string()]) << entry.path();
+    }
+    EXPECT_EQ(after, before);
+    EXPECT_NO_THROW(bender::ReadVolume(path));
+  }
 }
 
 } // namespace
