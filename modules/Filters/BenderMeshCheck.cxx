@@ -1,5 +1,7 @@
 #include "BenderMeshCheck.h"
 
+#include "Vec3.h"
+
 #include <nlohmann/json.hpp>
 
 #include <vtkCellArray.h>
@@ -16,34 +18,29 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
 namespace bender
 {
 namespace
 {
-using P3 = std::array<double, 3>;
-
-P3 Sub(const P3& a, const P3& b)
+Vec3 PointOf(vtkPolyData* mesh, vtkIdType i)
 {
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+  double x[3];
+  mesh->GetPoint(i, x);
+  return { x[0], x[1], x[2] };
 }
-P3 Cross(const P3& a, const P3& b)
+Vec3 Min(const Vec3& a, const Vec3& b)
 {
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+  return { std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z) };
 }
-double Dot(const P3& a, const P3& b)
+Vec3 Max(const Vec3& a, const Vec3& b)
 {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double Norm(const P3& a)
-{
-  return std::sqrt(Dot(a, a));
+  return { std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z) };
 }
 // Sign of the volume of (a, b, c, d): > 0 when d is above the plane of (a, b, c).
-double Orient(const P3& a, const P3& b, const P3& c, const P3& d)
+double Orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {
-  return Dot(Cross(Sub(b, a), Sub(c, a)), Sub(d, a));
+  return Dot(Cross(b - a, c - a), d - a);
 }
 int Sign(double v)
 {
@@ -52,7 +49,11 @@ int Sign(double v)
 
 // Segment pq properly crosses triangle abc (strictly: touching and coplanar cases are not
 // counted, so that triangles meeting along a shared border are never reported).
-bool SegmentCrossesTriangle(const P3& p, const P3& q, const P3& a, const P3& b, const P3& c)
+bool SegmentCrossesTriangle(const Vec3& p,
+  const Vec3& q,
+  const Vec3& a,
+  const Vec3& b,
+  const Vec3& c)
 {
   const int sp = Sign(Orient(a, b, c, p));
   const int sq = Sign(Orient(a, b, c, q));
@@ -68,7 +69,7 @@ bool SegmentCrossesTriangle(const P3& p, const P3& q, const P3& a, const P3& b, 
 
 // Two non-coplanar triangles intersect iff an edge of one crosses the other: each end of
 // their intersection segment lies on the border of one of them.
-bool TrianglesIntersect(const std::array<P3, 3>& t, const std::array<P3, 3>& u)
+bool TrianglesIntersect(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u)
 {
   for (int e = 0; e < 3; ++e)
   {
@@ -95,52 +96,63 @@ bool TrianglesIntersect(const std::array<P3, 3>& t, const std::array<P3, 3>& u)
 vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
   const std::vector<std::uint8_t>& usable,
   vtkPolyData* before,
-  const std::vector<P3>& after)
+  const std::vector<Vec3>& after)
 {
   const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
-  // Undirected edge -> up to two triangles.
-  std::unordered_map<std::uint64_t, std::array<vtkIdType, 2>> edges;
-  edges.reserve(static_cast<std::size_t>(3 * nt));
-  auto key = [](std::int64_t a, std::int64_t b)
-  {
-    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) ^
-      static_cast<std::uint64_t>(std::max(a, b));
-  };
+  // Across each edge of each usable triangle: the triangle on its other side (-1: none), from
+  // the edges of the usable triangles (the others masked out of the edge list).
+  std::vector<std::int64_t> masked(tris);
   for (vtkIdType t = 0; t < nt; ++t)
   {
     if (!usable[t])
     {
-      continue;
-    }
-    for (int e = 0; e < 3; ++e)
-    {
-      auto it = edges.emplace(
-        key(tris[3 * t + e], tris[3 * t + (e + 1) % 3]), std::array<vtkIdType, 2>{ { -1, -1 } });
-      auto& slot = it.first->second;
-      (slot[0] < 0 ? slot[0] : slot[1]) = t;
+      masked[3 * t] = masked[3 * t + 1] = masked[3 * t + 2] = -1;
     }
   }
-  std::vector<P3> pre(before->GetNumberOfPoints());
+  const TriangleEdges edges(masked, static_cast<std::int64_t>(after.size()));
+  std::vector<std::array<vtkIdType, 3>> across(static_cast<std::size_t>(nt), { { -1, -1, -1 } });
+  const auto localEdge = [&](vtkIdType t, const MeshEdge& e)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::int64_t a = tris[3 * t + k], b = tris[3 * t + (k + 1) % 3];
+      if (std::min(a, b) == e.lo && std::max(a, b) == e.hi)
+      {
+        return k;
+      }
+    }
+    return 0;
+  };
+  std::vector<std::array<vtkIdType, 2>> pairs; // triangles sharing a manifold-like edge
+  for (const MeshEdge& e : edges.Edges())
+  {
+    if (e.uses < 2)
+    {
+      continue;
+    }
+    const vtkIdType t = edges.Uses()[e.first].triangle;
+    const vtkIdType u = edges.Uses()[e.first + 1].triangle;
+    across[t][localEdge(t, e)] = u;
+    across[u][localEdge(u, e)] = t;
+    pairs.push_back({ { t, u } });
+  }
+  std::vector<Vec3> pre(static_cast<std::size_t>(before->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < before->GetNumberOfPoints(); ++i)
   {
-    before->GetPoint(i, pre[i].data());
+    pre[i] = PointOf(before, i);
   }
-  auto normal = [&](const std::vector<P3>& x, vtkIdType t)
+  auto normal = [&](const std::vector<Vec3>& x, vtkIdType t)
   {
     const std::int64_t* v = &tris[3 * t];
-    return Cross(Sub(x[v[1]], x[v[0]]), Sub(x[v[2]], x[v[0]]));
+    return Cross(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]);
   };
   std::vector<std::uint8_t> folded(static_cast<std::size_t>(nt), 0);
-  for (const auto& e : edges)
+  for (const auto& [t, u] : pairs)
   {
-    const vtkIdType t = e.second[0], u = e.second[1];
-    if (t < 0 || u < 0)
-    {
-      continue;
-    }
     // A fold turns the angle between neighbouring normals from small to nearly 180 degrees;
     // a sharp but genuine bend of the surface does not come near that.
-    const P3 bt = normal(pre, t), bu = normal(pre, u), at = normal(after, t), au = normal(after, u);
+    const Vec3 bt = normal(pre, t), bu = normal(pre, u), at = normal(after, t),
+               au = normal(after, u);
     const double nb = std::sqrt(Dot(bt, bt) * Dot(bu, bu));
     const double na = std::sqrt(Dot(at, at) * Dot(au, au));
     if (nb > 0.0 && na > 0.0 && Dot(bt, bu) > 0.5 * nb && Dot(at, au) < -0.5 * na)
@@ -164,8 +176,7 @@ vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
     for (int e = 0; e < 3; ++e)
     {
       const std::int64_t a = tris[3 * t + e], b = tris[3 * t + (e + 1) % 3];
-      const auto& slot = edges[key(a, b)];
-      const vtkIdType u = slot[0] == t ? slot[1] : slot[0];
+      const vtkIdType u = across[t][e];
       if (u < 0)
       {
         continue;
@@ -180,15 +191,14 @@ vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
       }
     }
     // Kabsch: H = sum (p - cp)(q - cq)^T, R = V diag(1, 1, det) U^T.
-    P3 cp{ 0, 0, 0 }, cq{ 0, 0, 0 };
+    Vec3 cp, cq;
     for (std::int64_t v : ids)
     {
-      for (int c = 0; c < 3; ++c)
-      {
-        cp[c] += pre[v][c] / ids.size();
-        cq[c] += after[v][c] / ids.size();
-      }
+      cp += pre[v];
+      cq += after[v];
     }
+    cp = cp / static_cast<double>(ids.size());
+    cq = cq / static_cast<double>(ids.size());
     double h[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
     for (std::int64_t v : ids)
     {
@@ -231,13 +241,10 @@ vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
       }
     }
     const std::int64_t* tv = &tris[3 * t];
-    const P3 n0 = Cross(Sub(pre[tv[1]], pre[tv[0]]), Sub(pre[tv[2]], pre[tv[0]]));
-    const P3 n1 = Cross(Sub(after[tv[1]], after[tv[0]]), Sub(after[tv[2]], after[tv[0]]));
-    P3 rn0{ 0, 0, 0 };
-    for (int r = 0; r < 3; ++r)
-    {
-      rn0[r] = rot[r][0] * n0[0] + rot[r][1] * n0[1] + rot[r][2] * n0[2];
-    }
+    const Vec3 n0 = Cross(pre[tv[1]] - pre[tv[0]], pre[tv[2]] - pre[tv[0]]);
+    const Vec3 n1 = Cross(after[tv[1]] - after[tv[0]], after[tv[2]] - after[tv[0]]);
+    const auto row = [&](int r) { return rot[r][0] * n0.x + rot[r][1] * n0.y + rot[r][2] * n0.z; };
+    const Vec3 rn0(row(0), row(1), row(2));
     if (Dot(rn0, n1) < 0)
     {
       ++flipped;
@@ -255,13 +262,13 @@ vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
 struct IntersectionWorker
 {
   const std::vector<std::int64_t>& Tris;
-  const std::vector<P3>& Pts;
+  const std::vector<Vec3>& Pts;
   const std::vector<std::uint8_t>& Usable;
   const std::vector<std::array<double, 6>>& Boxes;
   const std::vector<vtkIdType>& CellStart;
   const std::vector<vtkIdType>& CellTris;
   std::array<int, 3> Dims;
-  P3 Origin;
+  Vec3 Origin;
   double Size;
   std::size_t MaxExamples;
   vtkSMPThreadLocal<vtkIdType> Count;
@@ -319,8 +326,8 @@ struct IntersectionWorker
           {
             continue;
           }
-          const std::array<P3, 3> t{ this->Pts[vi[0]], this->Pts[vi[1]], this->Pts[vi[2]] };
-          const std::array<P3, 3> u{ this->Pts[vj[0]], this->Pts[vj[1]], this->Pts[vj[2]] };
+          const std::array<Vec3, 3> t{ this->Pts[vi[0]], this->Pts[vi[1]], this->Pts[vi[2]] };
+          const std::array<Vec3, 3> u{ this->Pts[vj[0]], this->Pts[vj[1]], this->Pts[vj[2]] };
           if (TrianglesIntersect(t, u))
           {
             ++count;
@@ -336,14 +343,14 @@ struct IntersectionWorker
 };
 
 void CheckSelfIntersections(const std::vector<std::int64_t>& tris,
-  const std::vector<P3>& pts,
+  const std::vector<Vec3>& pts,
   const std::vector<std::uint8_t>& usable,
   std::size_t maxExamples,
   MeshCheckReport& report)
 {
   const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
   std::vector<std::array<double, 6>> boxes(static_cast<std::size_t>(nt));
-  P3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  std::array<double, 3> lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
   double sumExtent = 0.0;
   vtkIdType counted = 0;
   for (vtkIdType t = 0; t < nt; ++t)
@@ -356,7 +363,7 @@ void CheckSelfIntersections(const std::vector<std::int64_t>& tris,
     }
     for (int k = 0; k < 3; ++k)
     {
-      const P3& p = pts[tris[3 * t + k]];
+      const Vec3& p = pts[tris[3 * t + k]];
       for (int a = 0; a < 3; ++a)
       {
         b[a] = std::min(b[a], p[a]);
@@ -376,7 +383,7 @@ void CheckSelfIntersections(const std::vector<std::int64_t>& tris,
     return;
   }
   // Cells about twice the mean box extent, at most ~4 cells per triangle.
-  const double diag = Norm(Sub(hi, lo));
+  const double diag = Norm(Vec3(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]));
   double size = std::max(2.0 * sumExtent / (3.0 * counted), 1e-9 * diag);
   const double volume =
     std::max(hi[0] - lo[0], size) * std::max(hi[1] - lo[1], size) * std::max(hi[2] - lo[2], size);
@@ -442,9 +449,18 @@ void CheckSelfIntersections(const std::vector<std::int64_t>& tris,
     }
     if (pass == 1)
     {
-      IntersectionWorker worker{
-        tris, pts, usable, boxes, start, items, dims, lo, size, maxExamples, {}, {}
-      };
+      IntersectionWorker worker{ tris,
+        pts,
+        usable,
+        boxes,
+        start,
+        items,
+        dims,
+        Vec3(lo[0], lo[1], lo[2]),
+        size,
+        maxExamples,
+        {},
+        {} };
       vtkSMPTools::For(0, ncells, worker);
       for (auto it = worker.Count.begin(); it != worker.Count.end(); ++it)
       {
@@ -482,103 +498,98 @@ std::string Plural(vtkIdType n, const char* word)
 }
 } // namespace
 
-MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshCheckOptions& options)
+namespace
 {
-  MeshCheckReport report;
-  if (!mesh)
-  {
-    report.problems.push_back("no mesh");
-    return report;
-  }
-  const vtkIdType np = mesh->GetNumberOfPoints();
-  report.points = np;
-  const std::vector<std::int64_t> tris = CollectTriangles(mesh);
-  const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
-  report.triangles = nt;
-  if (nt == 0)
-  {
-    report.problems.push_back("the mesh has no triangles");
-    return report;
-  }
+// The points of a mesh and which triangles the geometric measures can use.
+struct MeshSamples
+{
+  std::vector<Vec3> points;
+  std::vector<std::uint8_t> finite; // per point
+  std::vector<std::uint8_t> usable; // per triangle: valid ids, finite, not degenerate
+  vtkIdType badIds = 0;             // triangles with point ids out of range
+};
 
-  std::vector<P3> pts(static_cast<std::size_t>(np));
-  std::vector<std::uint8_t> finite(static_cast<std::size_t>(np), 1);
-  P3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+// Points, non-finite points and the bounding box diagonal.
+MeshSamples ReadPoints(vtkPolyData* mesh, MeshCheckReport& report, double& diagonal)
+{
+  const vtkIdType np = mesh->GetNumberOfPoints();
+  MeshSamples samples;
+  samples.points.resize(static_cast<std::size_t>(np));
+  samples.finite.assign(static_cast<std::size_t>(np), 1);
+  Vec3 lo(HUGE_VAL, HUGE_VAL, HUGE_VAL), hi(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
   for (vtkIdType i = 0; i < np; ++i)
   {
-    mesh->GetPoint(i, pts[i].data());
-    if (!std::isfinite(pts[i][0]) || !std::isfinite(pts[i][1]) || !std::isfinite(pts[i][2]))
+    samples.points[i] = PointOf(mesh, i);
+    if (!IsFinite(samples.points[i]))
     {
-      finite[i] = 0;
+      samples.finite[i] = 0;
       ++report.nonFinitePoints;
       continue;
     }
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min(lo[a], pts[i][a]);
-      hi[a] = std::max(hi[a], pts[i][a]);
-    }
+    lo = Min(lo, samples.points[i]);
+    hi = Max(hi, samples.points[i]);
   }
-  const double diag = report.nonFinitePoints == np ? 0.0 : Norm(Sub(hi, lo));
+  diagonal = report.nonFinitePoints == np ? 0.0 : Norm(hi - lo);
+  return samples;
+}
 
-  std::vector<std::uint8_t> usable(static_cast<std::size_t>(nt), 1);
+// Area, volume, edge lengths, minimum angles, degenerate triangles and unused points; marks
+// the triangles the other measures can use.
+void MeasureTriangles(const std::vector<std::int64_t>& tris,
+  double diagonal,
+  MeshSamples& samples,
+  MeshCheckReport& report)
+{
+  const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
+  const auto np = static_cast<std::int64_t>(samples.points.size());
+  const std::vector<Vec3>& pts = samples.points;
+  samples.usable.assign(static_cast<std::size_t>(nt), 1);
   std::vector<std::uint8_t> used(static_cast<std::size_t>(np), 0);
-  vtkIdType lengthCount = 0, angleCount = 0, badIds = 0;
+  vtkIdType lengthCount = 0, angleCount = 0;
   double volume6 = 0.0;
   for (vtkIdType t = 0; t < nt; ++t)
   {
     const std::int64_t* v = &tris[3 * t];
-    bool valid = true;
-    for (int k = 0; k < 3; ++k)
+    if (!(v[0] >= 0 && v[0] < np && v[1] >= 0 && v[1] < np && v[2] >= 0 && v[2] < np))
     {
-      valid = valid && v[k] >= 0 && v[k] < np;
-    }
-    if (!valid)
-    {
-      usable[t] = 0;
-      ++badIds;
+      samples.usable[t] = 0;
+      ++samples.badIds;
       continue;
     }
-    for (int k = 0; k < 3; ++k)
-    {
-      used[v[k]] = 1;
-    }
+    used[v[0]] = used[v[1]] = used[v[2]] = 1;
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
     {
       ++report.degenerateTriangles;
-      usable[t] = 0;
+      samples.usable[t] = 0;
       continue;
     }
-    if (!finite[v[0]] || !finite[v[1]] || !finite[v[2]])
+    if (!samples.finite[v[0]] || !samples.finite[v[1]] || !samples.finite[v[2]])
     {
-      usable[t] = 0;
+      samples.usable[t] = 0;
       continue;
     }
-    const P3 &a = pts[v[0]], &b = pts[v[1]], &c = pts[v[2]];
-    const P3 n = Cross(Sub(b, a), Sub(c, a));
-    const double area2 = Norm(n);
+    const Vec3 &a = pts[v[0]], &b = pts[v[1]], &c = pts[v[2]];
+    const double area2 = Norm(Cross(b - a, c - a));
     report.area += 0.5 * area2;
     volume6 += Dot(a, Cross(b, c));
-    if (area2 <= 2e-14 * diag * diag)
+    if (area2 <= 2e-14 * diagonal * diagonal)
     {
       ++report.degenerateTriangles;
-      usable[t] = 0;
+      samples.usable[t] = 0;
     }
-    const std::array<double, 3> len{ Norm(Sub(b, a)), Norm(Sub(c, b)), Norm(Sub(a, c)) };
-    for (double l : len)
+    for (double l : { Norm(b - a), Norm(c - b), Norm(a - c) })
     {
       Accumulate(report.edgeLength, l, lengthCount);
     }
-    if (usable[t])
+    if (samples.usable[t])
     {
       double minAngle = 180.0;
-      const std::array<const P3*, 3> p{ &a, &b, &c };
+      const std::array<const Vec3*, 3> p{ &a, &b, &c };
       for (int k = 0; k < 3; ++k)
       {
-        const P3 u = Sub(*p[(k + 1) % 3], *p[k]);
-        const P3 w = Sub(*p[(k + 2) % 3], *p[k]);
-        const double angle = std::atan2(Norm(Cross(u, w)), Dot(u, w)) * 180.0 / M_PI;
-        minAngle = std::min(minAngle, angle);
+        const Vec3 u = *p[(k + 1) % 3] - *p[k];
+        const Vec3 w = *p[(k + 2) % 3] - *p[k];
+        minAngle = std::min(minAngle, std::atan2(Norm(Cross(u, w)), Dot(u, w)) * 180.0 / M_PI);
       }
       Accumulate(report.minimumAngle, minAngle, angleCount);
     }
@@ -587,11 +598,17 @@ MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshChec
   report.minimumAngle.mean = angleCount ? report.minimumAngle.mean / angleCount : 0.0;
   report.volume = volume6 / 6.0;
   report.unusedPoints = std::count(used.begin(), used.end(), 0);
+}
 
-  // Edges (triangles with ids out of range left out), components and boundary.
-  const TriangleEdges edges(tris, np);
-  UnionFind components(static_cast<std::size_t>(nt));
-  std::vector<std::uint8_t> nonManifoldVertex(static_cast<std::size_t>(np), 0);
+// Boundary, non-manifold and inconsistently oriented edges, components and boundary loops.
+// Returns the vertices on non-manifold edges.
+std::vector<std::uint8_t> CheckEdges(const std::vector<std::int64_t>& tris,
+  vtkIdType np,
+  MeshCheckReport& report)
+{
+  const TriangleEdges edges(tris, np); // triangles with ids out of range left out
+  UnionFind components(tris.size() / 3);
+  std::vector<std::uint8_t> onNonManifoldEdge(static_cast<std::size_t>(np), 0);
   for (const MeshEdge& e : edges.Edges())
   {
     const EdgeUse* use = &edges.Uses()[e.first];
@@ -607,15 +624,12 @@ MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshChec
     }
     else if (e.uses == 2)
     {
-      if (use[0].forward == use[1].forward)
-      {
-        ++report.inconsistentEdges;
-      }
+      report.inconsistentEdges += use[0].forward == use[1].forward ? 1 : 0;
     }
     else
     {
       ++report.nonManifoldEdges;
-      nonManifoldVertex[e.lo] = nonManifoldVertex[e.hi] = 1;
+      onNonManifoldEdge[e.lo] = onNonManifoldEdge[e.hi] = 1;
     }
   }
   report.components = static_cast<vtkIdType>(components.Sets());
@@ -628,94 +642,131 @@ MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshChec
     report.boundaryLoops.push_back(static_cast<vtkIdType>(chain.edges));
   }
   std::sort(report.boundaryLoops.rbegin(), report.boundaryLoops.rend());
+  return onNonManifoldEdge;
+}
 
-  // Non-manifold vertices: the triangles around a vertex form more than one edge-connected fan
-  // (e.g. two cones touching at their tips). Vertices on non-manifold edges count too.
+// Non-manifold vertices: those on non-manifold edges, and those whose triangles form more
+// than one edge-connected fan (e.g. two cones touching at their tips).
+vtkIdType CountNonManifoldVertices(const std::vector<std::int64_t>& tris,
+  vtkIdType np,
+  std::vector<std::uint8_t> nonManifold)
+{
+  const vtkIdType nt = static_cast<vtkIdType>(tris.size() / 3);
+  const auto valid = [&](vtkIdType t)
   {
-    std::vector<vtkIdType> start(static_cast<std::size_t>(np + 1), 0);
-    for (vtkIdType t = 0; t < nt; ++t)
+    return tris[3 * t] >= 0 && tris[3 * t] < np && tris[3 * t + 1] >= 0 && tris[3 * t + 1] < np &&
+      tris[3 * t + 2] >= 0 && tris[3 * t + 2] < np;
+  };
+  // Triangles around each vertex (CSR).
+  std::vector<vtkIdType> start(static_cast<std::size_t>(np + 1), 0);
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    for (int k = 0; k < 3 && valid(t); ++k)
     {
-      if (tris[3 * t] >= 0 && tris[3 * t] < np && tris[3 * t + 1] >= 0 && tris[3 * t + 1] < np &&
-        tris[3 * t + 2] >= 0 && tris[3 * t + 2] < np)
+      ++start[tris[3 * t + k] + 1];
+    }
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<vtkIdType> fill(start.begin(), start.end() - 1);
+  std::vector<vtkIdType> incident(static_cast<std::size_t>(start[np]));
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    for (int k = 0; k < 3 && valid(t); ++k)
+    {
+      incident[fill[tris[3 * t + k]]++] = t;
+    }
+  }
+  for (vtkIdType v = 0; v < np; ++v)
+  {
+    const vtkIdType first = start[v];
+    const auto k = static_cast<std::size_t>(start[v + 1] - first);
+    if (k <= 1 || nonManifold[v])
+    {
+      continue;
+    }
+    // Fans: incident triangles sharing a second vertex are joined.
+    UnionFind fans(k);
+    for (std::size_t a = 0; a < k; ++a)
+    {
+      const std::int64_t* ta = &tris[3 * incident[first + a]];
+      for (std::size_t b = a + 1; b < k; ++b)
       {
-        for (int k = 0; k < 3; ++k)
+        const std::int64_t* tb = &tris[3 * incident[first + b]];
+        bool share = false;
+        for (int i = 0; i < 3 && !share; ++i)
         {
-          ++start[tris[3 * t + k] + 1];
+          share = ta[i] != v && (ta[i] == tb[0] || ta[i] == tb[1] || ta[i] == tb[2]);
+        }
+        if (share)
+        {
+          fans.Join(a, b);
         }
       }
     }
-    for (vtkIdType i = 0; i < np; ++i)
+    nonManifold[v] = fans.Sets() > 1 ? 1 : 0;
+  }
+  return std::count(nonManifold.begin(), nonManifold.end(), 1);
+}
+
+// The problems of a report, one short sentence each.
+std::vector<std::string> Problems(const MeshCheckReport& report,
+  vtkIdType badIds,
+  const MeshCheckOptions& options)
+{
+  std::vector<std::string> problems;
+  const auto add = [&](vtkIdType n, const std::string& text)
+  {
+    if (n > 0)
     {
-      start[i + 1] += start[i];
+      problems.push_back(text);
     }
-    std::vector<vtkIdType> fill(start.begin(), start.end() - 1);
-    std::vector<vtkIdType> incident(static_cast<std::size_t>(start[np]));
-    for (vtkIdType t = 0; t < nt; ++t)
-    {
-      if (tris[3 * t] >= 0 && tris[3 * t] < np && tris[3 * t + 1] >= 0 && tris[3 * t + 1] < np &&
-        tris[3 * t + 2] >= 0 && tris[3 * t + 2] < np)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          incident[fill[tris[3 * t + k]]++] = t;
-        }
-      }
-    }
-    for (vtkIdType v = 0; v < np; ++v)
-    {
-      const vtkIdType first = start[v], last = start[v + 1];
-      const vtkIdType k = last - first;
-      if (k <= 1 || nonManifoldVertex[v])
-      {
-        continue;
-      }
-      // Fans: join incident triangles sharing a second vertex.
-      std::vector<vtkIdType> parent(static_cast<std::size_t>(k));
-      std::iota(parent.begin(), parent.end(), vtkIdType(0));
-      auto find = [&](vtkIdType a)
-      {
-        while (parent[a] != a)
-        {
-          a = parent[a] = parent[parent[a]];
-        }
-        return a;
-      };
-      for (vtkIdType a = 0; a < k; ++a)
-      {
-        const std::int64_t* ta = &tris[3 * incident[first + a]];
-        for (vtkIdType b = a + 1; b < k; ++b)
-        {
-          const std::int64_t* tb = &tris[3 * incident[first + b]];
-          bool share = false;
-          for (int i = 0; i < 3 && !share; ++i)
-          {
-            share = ta[i] != v && (ta[i] == tb[0] || ta[i] == tb[1] || ta[i] == tb[2]);
-          }
-          if (share)
-          {
-            parent[find(a)] = find(b);
-          }
-        }
-      }
-      vtkIdType fans = 0;
-      for (vtkIdType a = 0; a < k; ++a)
-      {
-        fans += find(a) == a ? 1 : 0;
-      }
-      nonManifoldVertex[v] = fans > 1 ? 1 : 0;
-    }
-    report.nonManifoldVertices = std::count(nonManifoldVertex.begin(), nonManifoldVertex.end(), 1);
+  };
+  add(badIds, Plural(badIds, "triangle") + " with point ids out of range");
+  add(report.nonFinitePoints, Plural(report.nonFinitePoints, "non-finite point"));
+  add(report.nonManifoldEdges, Plural(report.nonManifoldEdges, "non-manifold edge"));
+  add(report.nonManifoldVertices, Plural(report.nonManifoldVertices, "non-manifold vertex"));
+  add(report.inconsistentEdges,
+    Plural(report.inconsistentEdges, "edge") + " with inconsistent orientation");
+  add(report.degenerateTriangles, Plural(report.degenerateTriangles, "degenerate triangle"));
+  add(
+    report.selfIntersections, Plural(report.selfIntersections, "self-intersecting triangle pair"));
+  add(report.flippedTriangles,
+    Plural(report.flippedTriangles, "flipped triangle") + " (space inverted by the warp)");
+  const auto loops = static_cast<vtkIdType>(report.boundaryLoops.size());
+  add(options.requireClosed ? loops : 0, "open: " + Plural(loops, "boundary loop"));
+  return problems;
+}
+} // namespace
+
+MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshCheckOptions& options)
+{
+  MeshCheckReport report;
+  if (!mesh)
+  {
+    report.problems.push_back("no mesh");
+    return report;
+  }
+  const vtkIdType np = mesh->GetNumberOfPoints();
+  report.points = np;
+  const std::vector<std::int64_t> tris = CollectTriangles(mesh);
+  report.triangles = static_cast<vtkIdType>(tris.size() / 3);
+  if (report.triangles == 0)
+  {
+    report.problems.push_back("the mesh has no triangles");
+    return report;
   }
 
+  double diagonal = 0.0;
+  MeshSamples samples = ReadPoints(mesh, report, diagonal);
+  MeasureTriangles(tris, diagonal, samples, report);
+  report.nonManifoldVertices = CountNonManifoldVertices(tris, np, CheckEdges(tris, np, report));
   if (options.selfIntersections)
   {
-    CheckSelfIntersections(tris, pts, usable, options.maxExamples, report);
+    CheckSelfIntersections(tris, samples.points, samples.usable, options.maxExamples, report);
   }
-
   if (before)
   {
-    const std::vector<std::int64_t> trisBefore = CollectTriangles(before);
-    if (before->GetNumberOfPoints() != np || trisBefore != tris)
+    if (before->GetNumberOfPoints() != np || CollectTriangles(before) != tris)
     {
       report.flipsNote = "the mesh before the warp has other points or triangles (e.g. after "
                          "subdivision): flips not checked";
@@ -723,49 +774,11 @@ MeshCheckReport CheckMesh(vtkPolyData* mesh, vtkPolyData* before, const MeshChec
     else
     {
       report.flipsChecked = true;
-      report.flippedTriangles = CountInvertedTriangles(tris, usable, before, pts);
+      report.flippedTriangles =
+        CountInvertedTriangles(tris, samples.usable, before, samples.points);
     }
   }
-
-  auto& problems = report.problems;
-  if (badIds > 0)
-  {
-    problems.push_back(Plural(badIds, "triangle") + " with point ids out of range");
-  }
-  if (report.nonFinitePoints > 0)
-  {
-    problems.push_back(Plural(report.nonFinitePoints, "non-finite point"));
-  }
-  if (report.nonManifoldEdges > 0)
-  {
-    problems.push_back(Plural(report.nonManifoldEdges, "non-manifold edge"));
-  }
-  if (report.nonManifoldVertices > 0)
-  {
-    problems.push_back(Plural(report.nonManifoldVertices, "non-manifold vertex"));
-  }
-  if (report.inconsistentEdges > 0)
-  {
-    problems.push_back(Plural(report.inconsistentEdges, "edge") + " with inconsistent orientation");
-  }
-  if (report.degenerateTriangles > 0)
-  {
-    problems.push_back(Plural(report.degenerateTriangles, "degenerate triangle"));
-  }
-  if (report.selfIntersections > 0)
-  {
-    problems.push_back(Plural(report.selfIntersections, "self-intersecting triangle pair"));
-  }
-  if (report.flippedTriangles > 0)
-  {
-    problems.push_back(
-      Plural(report.flippedTriangles, "flipped triangle") + " (space inverted by the warp)");
-  }
-  if (options.requireClosed && !report.boundaryLoops.empty())
-  {
-    problems.push_back(
-      "open: " + Plural(static_cast<vtkIdType>(report.boundaryLoops.size()), "boundary loop"));
-  }
+  report.problems = Problems(report, samples.badIds, options);
   return report;
 }
 

@@ -1,5 +1,6 @@
 #include "SurfaceExtraction.h"
 
+#include "MeshTopology.h"
 #include "Private/ItkImage.h"
 
 #include <itkBinaryMask3DMeshSource.h>
@@ -7,14 +8,17 @@
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
+#include <vtkCleanPolyData.h>
+#include <vtkDataArray.h>
 #include <vtkFlyingEdges3D.h>
-#include <vtkFloatArray.h>
-#include <vtkIdList.h>
 #include <vtkImageData.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataConnectivityFilter.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkQuadricDecimation.h>
 #include <vtkSMPTools.h>
 #include <vtkUnsignedCharArray.h>
@@ -44,15 +48,17 @@ public:
     , Stage(std::move(stage))
   {
     this->Command->SetClientData(this);
-    this->Command->SetCallback([](vtkObject* caller, unsigned long, void* self, void*) {
-      auto* watch = static_cast<VtkWatch*>(self);
-      auto* algorithm = static_cast<vtkAlgorithm*>(caller);
-      watch->Reporter.Report(watch->Stage, algorithm->GetProgress());
-      if (watch->Reporter.Cancelled())
+    this->Command->SetCallback(
+      [](vtkObject* caller, unsigned long, void* self, void*)
       {
-        algorithm->SetAbortExecute(1);
-      }
-    });
+        auto* watch = static_cast<VtkWatch*>(self);
+        auto* algorithm = static_cast<vtkAlgorithm*>(caller);
+        watch->Reporter.Report(watch->Stage, algorithm->GetProgress());
+        if (watch->Reporter.Cancelled())
+        {
+          algorithm->SetAbortExecute(1);
+        }
+      });
     filter->AddObserver(vtkCommand::ProgressEvent, this->Command);
   }
 
@@ -93,37 +99,42 @@ LabelMap CropWithBorder(const LabelMap& mask, std::array<long, 3>& offset)
   const auto& size = mask.geometry.size;
   const std::size_t nx = size[0];
   // Bounding box per slice (slices in parallel), then reduced: {lo x, hi x, lo y, hi y}.
-  std::vector<std::array<long, 4>> slices(size[2], std::array<long, 4>{ { long(nx), -1, long(size[1]), -1 } });
-  vtkSMPTools::For(0, static_cast<vtkIdType>(size[2]), [&](vtkIdType kBegin, vtkIdType kEnd) {
-    for (std::size_t k = std::size_t(kBegin); k < std::size_t(kEnd); ++k)
+  std::vector<std::array<long, 4>> slices(
+    size[2], std::array<long, 4>{ { long(nx), -1, long(size[1]), -1 } });
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(size[2]),
+    [&](vtkIdType kBegin, vtkIdType kEnd)
     {
-      std::array<long, 4>& box = slices[k];
-      for (std::size_t j = 0; j < size[1]; ++j)
+      for (std::size_t k = std::size_t(kBegin); k < std::size_t(kEnd); ++k)
       {
-        const std::uint8_t* row = mask.voxels.data() + mask.geometry.LinearIndex(0, j, k);
-        // Most rows are empty: a branch-free (vectorised) OR over the row rejects them quickly.
-        std::uint8_t any = 0;
-        for (std::size_t i = 0; i < nx; ++i)
+        std::array<long, 4>& box = slices[k];
+        for (std::size_t j = 0; j < size[1]; ++j)
         {
-          any |= row[i];
+          const std::uint8_t* row = mask.voxels.data() + mask.geometry.LinearIndex(0, j, k);
+          // Most rows are empty: a branch-free (vectorised) OR over the row rejects them quickly.
+          std::uint8_t any = 0;
+          for (std::size_t i = 0; i < nx; ++i)
+          {
+            any |= row[i];
+          }
+          if (any == 0)
+          {
+            continue;
+          }
+          const std::uint8_t* first =
+            std::find_if(row, row + nx, [](std::uint8_t v) { return v != 0; });
+          long last = long(nx) - 1;
+          while (row[last] == 0)
+          {
+            --last;
+          }
+          box[0] = std::min(box[0], long(first - row));
+          box[1] = std::max(box[1], last);
+          box[2] = std::min(box[2], long(j));
+          box[3] = std::max(box[3], long(j));
         }
-        if (any == 0)
-        {
-          continue;
-        }
-        const std::uint8_t* first = std::find_if(row, row + nx, [](std::uint8_t v) { return v != 0; });
-        long last = long(nx) - 1;
-        while (row[last] == 0)
-        {
-          --last;
-        }
-        box[0] = std::min(box[0], long(first - row));
-        box[1] = std::max(box[1], last);
-        box[2] = std::min(box[2], long(j));
-        box[3] = std::max(box[3], long(j));
       }
-    }
-  });
+    });
   long lo[3] = { long(size[0]), long(size[1]), long(size[2]) };
   long hi[3] = { -1, -1, -1 };
   for (std::size_t k = 0; k < size[2]; ++k)
@@ -151,19 +162,23 @@ LabelMap CropWithBorder(const LabelMap& mask, std::array<long, 3>& offset)
     local.geometry.size[c] = static_cast<std::size_t>(hi[c] - lo[c] + 3);
   }
   local.voxels.assign(local.geometry.VoxelCount(), 0);
-  vtkSMPTools::For(lo[2], hi[2] + 1, [&](vtkIdType kBegin, vtkIdType kEnd) {
-    for (long k = long(kBegin); k < long(kEnd); ++k)
+  vtkSMPTools::For(lo[2],
+    hi[2] + 1,
+    [&](vtkIdType kBegin, vtkIdType kEnd)
     {
-      for (long j = lo[1]; j <= hi[1]; ++j)
+      for (long k = long(kBegin); k < long(kEnd); ++k)
       {
-        const std::uint8_t* src =
-          mask.voxels.data() + mask.geometry.LinearIndex(std::size_t(lo[0]), std::size_t(j), std::size_t(k));
-        std::uint8_t* dst = local.voxels.data() +
-          local.geometry.LinearIndex(1, std::size_t(j - offset[1]), std::size_t(k - offset[2]));
-        std::transform(src, src + (hi[0] - lo[0] + 1), dst, [](std::uint8_t v) { return v ? 1 : 0; });
+        for (long j = lo[1]; j <= hi[1]; ++j)
+        {
+          const std::uint8_t* src = mask.voxels.data() +
+            mask.geometry.LinearIndex(std::size_t(lo[0]), std::size_t(j), std::size_t(k));
+          std::uint8_t* dst = local.voxels.data() +
+            local.geometry.LinearIndex(1, std::size_t(j - offset[1]), std::size_t(k - offset[2]));
+          std::transform(
+            src, src + (hi[0] - lo[0] + 1), dst, [](std::uint8_t v) { return v ? 1 : 0; });
+        }
       }
-    }
-  });
+    });
   return local;
 }
 
@@ -172,9 +187,11 @@ vtkSmartPointer<vtkPolyData> FlyingEdges(const LabelMap& local, const ProgressRe
   // Wrap the local map's buffer (no copy); it outlives the filter, whose output does not refer
   // to it. The local geometry is origin 0, identity direction.
   vtkNew<vtkUnsignedCharArray> scalars;
-  scalars->SetArray(const_cast<std::uint8_t*>(local.voxels.data()), static_cast<vtkIdType>(local.voxels.size()), 1);
+  scalars->SetArray(
+    const_cast<std::uint8_t*>(local.voxels.data()), static_cast<vtkIdType>(local.voxels.size()), 1);
   vtkNew<vtkImageData> image;
-  image->SetDimensions(int(local.geometry.size[0]), int(local.geometry.size[1]), int(local.geometry.size[2]));
+  image->SetDimensions(
+    int(local.geometry.size[0]), int(local.geometry.size[1]), int(local.geometry.size[2]));
   image->SetSpacing(local.geometry.spacing.data());
   image->SetOrigin(0.0, 0.0, 0.0);
   image->GetPointData()->SetScalars(scalars);
@@ -191,7 +208,8 @@ vtkSmartPointer<vtkPolyData> FlyingEdges(const LabelMap& local, const ProgressRe
   return surface;
 }
 
-vtkSmartPointer<vtkPolyData> ItkMarchingCubes(const LabelMap& local, const ProgressReporter& progress)
+vtkSmartPointer<vtkPolyData> ItkMarchingCubes(const LabelMap& local,
+  const ProgressReporter& progress)
 {
   using MeshType = itk::Mesh<double, 3>;
   using SourceType = itk::BinaryMask3DMeshSource<detail::MaskImage, MeshType>;
@@ -224,7 +242,8 @@ vtkSmartPointer<vtkPolyData> ItkMarchingCubes(const LabelMap& local, const Progr
     points->SetPoint(static_cast<vtkIdType>(it->Index()), p[0], p[1], p[2]);
   }
   vtkNew<vtkCellArray> triangles;
-  triangles->AllocateExact(static_cast<vtkIdType>(mesh->GetNumberOfCells()), 3 * static_cast<vtkIdType>(mesh->GetNumberOfCells()));
+  triangles->AllocateExact(static_cast<vtkIdType>(mesh->GetNumberOfCells()),
+    3 * static_cast<vtkIdType>(mesh->GetNumberOfCells()));
   for (auto it = mesh->GetCells()->Begin(); it != mesh->GetCells()->End(); ++it)
   {
     const auto* cell = it->Value();
@@ -257,136 +276,75 @@ void ReverseTriangles(vtkPolyData* surface)
   std::vector<vtkIdType> flipped;
   for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
   {
-    flipped.assign(std::reverse_iterator<const vtkIdType*>(ids + npts), std::reverse_iterator<const vtkIdType*>(ids));
+    flipped.assign(std::reverse_iterator<const vtkIdType*>(ids + npts),
+      std::reverse_iterator<const vtkIdType*>(ids));
     reversed->InsertNextCell(npts, flipped.data());
   }
   surface->SetPolys(reversed);
 }
 
-vtkIdType FindRoot(std::vector<vtkIdType>& parent, vtkIdType i)
+/// The connected pieces (triangles sharing points) nearest to the seeds, or the piece with the
+/// most triangles; unused points are dropped (vtkPolyDataConnectivityFilter).
+vtkSmartPointer<vtkPolyData> KeepComponents(vtkPolyData* surface,
+  const std::vector<Point3>& seeds,
+  const ProgressReporter& progress)
 {
-  while (parent[std::size_t(i)] != i)
-  {
-    parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
-    i = parent[std::size_t(i)];
-  }
-  return i;
-}
-
-/// The connected pieces (triangles sharing vertices) nearest to the seeds, or the piece with the
-/// most triangles; unused points are dropped. Union-find: linear time, unlike
-/// vtkPolyDataConnectivityFilter's cell-link traversal.
-vtkSmartPointer<vtkPolyData> KeepComponents(vtkPolyData* surface, const std::vector<Point3>& seeds)
-{
-  const vtkIdType nPoints = surface->GetNumberOfPoints();
-  std::vector<vtkIdType> parent(static_cast<std::size_t>(nPoints));
-  for (vtkIdType i = 0; i < nPoints; ++i)
-  {
-    parent[std::size_t(i)] = i;
-  }
-  vtkCellArray* polys = surface->GetPolys();
-  vtkIdType npts = 0;
-  const vtkIdType* ids = nullptr;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
-  {
-    for (vtkIdType v = 1; v < npts; ++v)
-    {
-      const vtkIdType a = FindRoot(parent, ids[0]);
-      const vtkIdType b = FindRoot(parent, ids[v]);
-      if (a != b)
-      {
-        parent[std::size_t(std::max(a, b))] = std::min(a, b);
-      }
-    }
-  }
-  std::vector<std::size_t> triangles(std::size_t(nPoints), 0);
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
-  {
-    ++triangles[std::size_t(FindRoot(parent, ids[0]))];
-  }
-  std::vector<char> keep(std::size_t(nPoints), 0);
+  vtkNew<vtkPolyDataConnectivityFilter> connectivity;
+  VtkWatch watch(connectivity, progress, "keep component");
+  connectivity->SetInputData(surface);
   if (seeds.empty())
   {
-    keep[std::size_t(std::max_element(triangles.begin(), triangles.end()) - triangles.begin())] = 1;
+    connectivity->SetExtractionModeToLargestRegion();
   }
   else
   {
-    // A few seeds: a linear scan for the nearest point beats building a locator.
-    vtkPoints* surfacePoints = surface->GetPoints();
+    // Label every piece, then keep those of the points nearest to the seeds (a few seeds: a
+    // linear scan beats building a locator).
+    connectivity->SetExtractionModeToAllRegions();
+    connectivity->ColorRegionsOn();
+    connectivity->Update();
+    vtkPolyData* labelled = connectivity->GetOutput();
+    vtkDataArray* region = labelled->GetPointData()->GetArray("RegionId");
+    std::vector<vtkIdType> regions;
     for (const Point3& seed : seeds)
     {
       vtkIdType nearest = -1;
       double best = std::numeric_limits<double>::max();
-      for (vtkIdType i = 0; i < nPoints; ++i)
+      for (vtkIdType i = 0; i < labelled->GetNumberOfPoints(); ++i)
       {
         double x[3];
-        surfacePoints->GetPoint(i, x);
-        const double d = (x[0] - seed[0]) * (x[0] - seed[0]) + (x[1] - seed[1]) * (x[1] - seed[1]) +
-          (x[2] - seed[2]) * (x[2] - seed[2]);
+        labelled->GetPoint(i, x);
+        const double d = vtkMath::Distance2BetweenPoints(x, seed.data());
         if (d < best)
         {
           best = d;
           nearest = i;
         }
       }
-      if (nearest >= 0)
+      if (nearest >= 0 && region)
       {
-        keep[std::size_t(FindRoot(parent, nearest))] = 1;
+        regions.push_back(static_cast<vtkIdType>(region->GetTuple1(nearest)));
       }
     }
-  }
-  // Usually every triangle is kept (one closed piece): return the surface unchanged.
-  bool keepAll = true;
-  for (polys->InitTraversal(); keepAll && polys->GetNextCell(npts, ids);)
-  {
-    keepAll = keep[std::size_t(FindRoot(parent, ids[0]))] != 0;
-  }
-  if (keepAll)
-  {
-    vtkIdType used = 0;
-    std::vector<char> isUsed(std::size_t(nPoints), 0);
-    for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+    connectivity->ColorRegionsOff();
+    connectivity->SetExtractionModeToSpecifiedRegions();
+    connectivity->InitializeSpecifiedRegionList();
+    for (const vtkIdType r : regions)
     {
-      for (vtkIdType v = 0; v < npts; ++v)
-      {
-        used += isUsed[std::size_t(ids[v])] ? 0 : 1;
-        isUsed[std::size_t(ids[v])] = 1;
-      }
-    }
-    if (used == nPoints)
-    {
-      auto output = vtkSmartPointer<vtkPolyData>::New();
-      output->SetPoints(surface->GetPoints());
-      output->SetPolys(polys);
-      return output;
+      connectivity->AddSpecifiedRegion(r);
     }
   }
-  std::vector<vtkIdType> newId(std::size_t(nPoints), -1);
-  vtkNew<vtkPoints> points;
-  points->SetDataType(surface->GetPoints()->GetDataType());
-  vtkNew<vtkCellArray> kept;
-  std::vector<vtkIdType> cell;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
-  {
-    if (!keep[std::size_t(FindRoot(parent, ids[0]))])
-    {
-      continue;
-    }
-    cell.resize(std::size_t(npts));
-    for (vtkIdType v = 0; v < npts; ++v)
-    {
-      vtkIdType& id = newId[std::size_t(ids[v])];
-      if (id < 0)
-      {
-        id = points->InsertNextPoint(surface->GetPoint(ids[v]));
-      }
-      cell[std::size_t(v)] = id;
-    }
-    kept->InsertNextCell(npts, cell.data());
-  }
+  // The filter keeps every input point: drop those of the other pieces (no merging).
+  vtkNew<vtkCleanPolyData> unused;
+  unused->SetInputConnection(connectivity->GetOutputPort());
+  unused->PointMergingOff();
+  unused->ConvertPolysToLinesOff();
+  unused->ConvertLinesToPointsOff();
+  unused->ConvertStripsToPolysOff();
+  unused->Update();
   auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->SetPoints(points);
-  output->SetPolys(kept);
+  output->SetPoints(unused->GetOutput()->GetPoints());
+  output->SetPolys(unused->GetOutput()->GetPolys());
   return output;
 }
 
@@ -410,7 +368,8 @@ std::vector<double> WindowedSincCoefficients(int iterations, double passBand)
     c[0] = w[0] * (theta + sigma) / pi;
     for (int i = 1; i <= n; ++i)
     {
-      c[std::size_t(i)] = 2.0 * w[std::size_t(i)] * std::sin(double(i) * (theta + sigma)) / (double(i) * pi);
+      c[std::size_t(i)] =
+        2.0 * w[std::size_t(i)] * std::sin(double(i) * (theta + sigma)) / (double(i) * pi);
     }
     // Coefficients of the derivative series.
     dc[std::size_t(n)] = 0.0;
@@ -445,8 +404,13 @@ std::vector<double> WindowedSincCoefficients(int iterations, double passBand)
 /// and no feature edges, where every vertex is "simple" and moves; the vertex loop of each
 /// iteration runs in parallel (vtkSMPTools) on a compact neighbour table. Returns null when the
 /// surface is not such a surface (the caller then uses VTK's filter).
-vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
-  vtkPolyData* surface, int iterations, double passBand, const ProgressReporter& progress)
+/// Kept instead of VTK's filter because it gives the same points (within 1e-4 mm:
+/// SurfaceExtraction.SmoothingMatchesVtkWindowedSinc) about twice as fast on the vessel
+/// surfaces (docs/segmentation.md, performance table).
+vtkSmartPointer<vtkPolyData> SmoothClosedSurface(vtkPolyData* surface,
+  int iterations,
+  double passBand,
+  const ProgressReporter& progress)
 {
   const std::size_t nPoints = static_cast<std::size_t>(surface->GetNumberOfPoints());
   vtkCellArray* polys = surface->GetPolys();
@@ -514,9 +478,12 @@ vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
   // Coordinates centred on the bounding box and scaled by its diagonal (NormalizeCoordinatesOn).
   double bounds[6];
   surface->GetBounds(bounds);
-  const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) };
+  const double centre[3] = {
+    0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])
+  };
   const double length = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   if (!(length > 0.0))
   {
     return nullptr;
@@ -540,7 +507,8 @@ vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
     }
   }
   // Minus the umbrella Laplacian of `in` at point i.
-  const auto laplacian = [&](const std::vector<double>& in, std::size_t i, double d[3]) {
+  const auto laplacian = [&](const std::vector<double>& in, std::size_t i, double d[3])
+  {
     double sum[3] = { 0.0, 0.0, 0.0 };
     const double* xi = in.data() + 3 * i;
     for (std::size_t e = first[i]; e < first[i + 1]; ++e)
@@ -556,19 +524,22 @@ vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
       d[r] = xi[r] - weight * sum[r];
     }
   };
-  vtkSMPTools::For(0, vtkIdType(nPoints), [&](vtkIdType begin, vtkIdType end) {
-    for (std::size_t i = std::size_t(begin); i < std::size_t(end); ++i)
+  vtkSMPTools::For(0,
+    vtkIdType(nPoints),
+    [&](vtkIdType begin, vtkIdType end)
     {
-      double d[3];
-      laplacian(x[0], i, d);
-      for (int r = 0; r < 3; ++r)
+      for (std::size_t i = std::size_t(begin); i < std::size_t(end); ++i)
       {
-        const std::size_t k = 3 * i + std::size_t(r);
-        x[1][k] = x[0][k] - 0.5 * d[r];
-        result[k] = c[0] * x[0][k] + c[1] * x[1][k];
+        double d[3];
+        laplacian(x[0], i, d);
+        for (int r = 0; r < 3; ++r)
+        {
+          const std::size_t k = 3 * i + std::size_t(r);
+          x[1][k] = x[0][k] - 0.5 * d[r];
+          result[k] = c[0] * x[0][k] + c[1] * x[1][k];
+        }
       }
-    }
-  });
+    });
   int zero = 0, one = 1, two = 2;
   for (int iteration = 2; iteration <= iterations; ++iteration)
   {
@@ -581,19 +552,22 @@ vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
     const std::vector<double>& x1 = x[one];
     std::vector<double>& x2 = x[two];
     const double ci = c[std::size_t(iteration)];
-    vtkSMPTools::For(0, vtkIdType(nPoints), [&](vtkIdType begin, vtkIdType end) {
-      for (std::size_t i = std::size_t(begin); i < std::size_t(end); ++i)
+    vtkSMPTools::For(0,
+      vtkIdType(nPoints),
+      [&](vtkIdType begin, vtkIdType end)
       {
-        double d[3];
-        laplacian(x1, i, d);
-        for (int r = 0; r < 3; ++r)
+        for (std::size_t i = std::size_t(begin); i < std::size_t(end); ++i)
         {
-          const std::size_t k = 3 * i + std::size_t(r);
-          x2[k] = x1[k] - x0[k] + x1[k] - d[r];
-          result[k] += ci * x2[k];
+          double d[3];
+          laplacian(x1, i, d);
+          for (int r = 0; r < 3; ++r)
+          {
+            const std::size_t k = 3 * i + std::size_t(r);
+            x2[k] = x1[k] - x0[k] + x1[k] - d[r];
+            result[k] += ci * x2[k];
+          }
         }
-      }
-    });
+      });
     zero = (zero + 1) % 3;
     one = (one + 1) % 3;
     two = (two + 1) % 3;
@@ -604,7 +578,10 @@ vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
   for (std::size_t i = 0; i < nPoints; ++i)
   {
     const double* q = result.data() + 3 * i;
-    smoothed->SetPoint(vtkIdType(i), q[0] * length + centre[0], q[1] * length + centre[1], q[2] * length + centre[2]);
+    smoothed->SetPoint(vtkIdType(i),
+      q[0] * length + centre[0],
+      q[1] * length + centre[1],
+      q[2] * length + centre[2]);
   }
   auto output = vtkSmartPointer<vtkPolyData>::New();
   output->SetPoints(smoothed);
@@ -615,7 +592,8 @@ vtkSmartPointer<vtkPolyData> SmoothClosedSurface(
 /// Maps local coordinates (spacing .* local index) to LPS mm in place.
 void ToPhysical(vtkPolyData* surface, const ImageGeometry& g, const std::array<long, 3>& offset)
 {
-  const Point3 shift = g.IndexToPhysical({ { double(offset[0]), double(offset[1]), double(offset[2]) } });
+  const Point3 shift =
+    g.IndexToPhysical({ { double(offset[0]), double(offset[1]), double(offset[2]) } });
   vtkPoints* points = surface->GetPoints();
   const vtkIdType n = points->GetNumberOfPoints();
   for (vtkIdType i = 0; i < n; ++i)
@@ -625,14 +603,16 @@ void ToPhysical(vtkPolyData* surface, const ImageGeometry& g, const std::array<l
     double p[3];
     for (int r = 0; r < 3; ++r)
     {
-      p[r] = shift[r] + g.direction[3 * r] * l[0] + g.direction[3 * r + 1] * l[1] + g.direction[3 * r + 2] * l[2];
+      p[r] = shift[r] + g.direction[3 * r] * l[0] + g.direction[3 * r + 1] * l[1] +
+        g.direction[3 * r + 2] * l[2];
     }
     points->SetPoint(i, p);
   }
   points->Modified();
 }
 
-/// Six times the signed volume enclosed by the triangles (> 0: counter-clockwise seen from outside).
+/// Six times the signed volume enclosed by the triangles (> 0: counter-clockwise seen from
+/// outside).
 double SignedVolume6(vtkPolyData* surface)
 {
   vtkPoints* points = surface->GetPoints();
@@ -656,113 +636,36 @@ double SignedVolume6(vtkPolyData* surface)
   return sum;
 }
 
-/// Point normals as vtkPolyDataNormals computes them without splitting or reorientation (the sum
-/// of the unit normals of the triangles around each point, normalised), in one linear pass;
-/// stored as the "Normals" float array.
+/// Point normals (the "Normals" float array) of a consistently ordered surface: no splitting,
+/// no reordering.
 void ComputePointNormals(vtkPolyData* surface)
 {
-  const vtkIdType nPoints = surface->GetNumberOfPoints();
-  std::vector<double> sum(3 * std::size_t(nPoints), 0.0);
-  vtkPoints* points = surface->GetPoints();
-  vtkCellArray* polys = surface->GetPolys();
-  vtkIdType npts = 0;
-  const vtkIdType* ids = nullptr;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
-  {
-    if (npts != 3)
-    {
-      continue;
-    }
-    double a[3], b[3], c[3];
-    points->GetPoint(ids[0], a);
-    points->GetPoint(ids[1], b);
-    points->GetPoint(ids[2], c);
-    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-    double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (length == 0.0)
-    {
-      continue;
-    }
-    for (vtkIdType corner = 0; corner < 3; ++corner)
-    {
-      double* s = sum.data() + 3 * std::size_t(ids[corner]);
-      for (int r = 0; r < 3; ++r)
-      {
-        s[r] += n[r] / length;
-      }
-    }
-  }
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(nPoints);
-  float* out = normals->GetPointer(0);
-  for (std::size_t i = 0; i < std::size_t(nPoints); ++i)
-  {
-    const double* s = sum.data() + 3 * i;
-    const double length = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-    for (int r = 0; r < 3; ++r)
-    {
-      out[3 * i + std::size_t(r)] = length > 0.0 ? float(s[r] / length) : 0.0f;
-    }
-  }
-  surface->GetPointData()->SetNormals(normals);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(surface);
+  normals->SplittingOff();
+  normals->ConsistencyOff();
+  normals->AutoOrientNormalsOff();
+  normals->ComputeCellNormalsOff();
+  normals->ComputePointNormalsOn();
+  normals->Update();
+  surface->GetPointData()->SetNormals(normals->GetOutput()->GetPointData()->GetNormals());
 }
 
 void CountEdges(vtkPolyData* surface, std::size_t& boundary, std::size_t& nonManifold)
 {
-  // Edges bucketed by their smaller vertex (counting sort, linear time), then counted per bucket.
-  const std::size_t nPoints = static_cast<std::size_t>(surface->GetNumberOfPoints());
-  std::vector<std::size_t> start(nPoints + 1, 0);
-  vtkCellArray* polys = surface->GetPolys();
-  vtkIdType npts = 0;
-  const vtkIdType* ids = nullptr;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
-  {
-    for (vtkIdType e = 0; e < npts; ++e)
-    {
-      ++start[std::size_t(std::min(ids[e], ids[(e + 1) % npts])) + 1];
-    }
-  }
-  for (std::size_t i = 0; i < nPoints; ++i)
-  {
-    start[i + 1] += start[i];
-  }
-  std::vector<vtkIdType> other(start[nPoints]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
-  {
-    for (vtkIdType e = 0; e < npts; ++e)
-    {
-      const vtkIdType a = ids[e];
-      const vtkIdType b = ids[(e + 1) % npts];
-      other[fill[std::size_t(std::min(a, b))]++] = std::max(a, b);
-    }
-  }
   boundary = 0;
   nonManifold = 0;
-  for (std::size_t v = 0; v < nPoints; ++v)
+  const TriangleEdges edges(CollectTriangles(surface));
+  for (const MeshEdge& edge : edges.Edges())
   {
-    const auto first = other.begin() + static_cast<std::ptrdiff_t>(start[v]);
-    const auto last = other.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
-    std::sort(first, last);
-    for (auto i = first; i != last;)
-    {
-      auto j = i;
-      while (j != last && *j == *i)
-      {
-        ++j;
-      }
-      boundary += (j - i == 1) ? 1 : 0;
-      nonManifold += (j - i > 2) ? 1 : 0;
-      i = j;
-    }
+    boundary += edge.uses == 1 ? 1 : 0;
+    nonManifold += edge.uses > 2 ? 1 : 0;
   }
 }
 
-SurfaceResult Extract(const LabelMap& mask, const SurfaceParameters& p, const ProgressReporter& progress)
+SurfaceResult Extract(const LabelMap& mask,
+  const SurfaceParameters& p,
+  const ProgressReporter& progress)
 {
   SurfaceResult result;
   StageClock clock(result.timings, progress);
@@ -784,19 +687,22 @@ SurfaceResult Extract(const LabelMap& mask, const SurfaceParameters& p, const Pr
   for (const Point3& seed : p.seeds)
   {
     ImageGeometry localToMask = mask.geometry;
-    localToMask.origin = mask.geometry.IndexToPhysical({ { double(offset[0]), double(offset[1]), double(offset[2]) } });
+    localToMask.origin = mask.geometry.IndexToPhysical(
+      { { double(offset[0]), double(offset[1]), double(offset[2]) } });
     const Point3 index = localToMask.PhysicalToIndex(seed);
-    localSeeds.push_back({ { index[0] * mask.geometry.spacing[0], index[1] * mask.geometry.spacing[1],
+    localSeeds.push_back({ { index[0] * mask.geometry.spacing[0],
+      index[1] * mask.geometry.spacing[1],
       index[2] * mask.geometry.spacing[2] } });
   }
-  surface = KeepComponents(surface, localSeeds);
+  surface = KeepComponents(surface, localSeeds, progress);
   clock.Done("keep component");
 
   if (p.smoothing > 0.0)
   {
     const int iterations = 20;
     const double passBand = std::pow(10.0, -4.0 * p.smoothing);
-    vtkSmartPointer<vtkPolyData> smoothed = SmoothClosedSurface(surface, iterations, passBand, progress);
+    vtkSmartPointer<vtkPolyData> smoothed =
+      SmoothClosedSurface(surface, iterations, passBand, progress);
     if (!smoothed)
     {
       // Not a closed 2-manifold of triangles: VTK's filter, which classifies boundary and
@@ -854,7 +760,9 @@ SurfaceResult Extract(const LabelMap& mask, const SurfaceParameters& p, const Pr
 
 } // namespace
 
-SurfaceResult ExtractSurface(const LabelMap& mask, const SurfaceParameters& parameters, const ProgressReporter& progress)
+SurfaceResult ExtractSurface(const LabelMap& mask,
+  const SurfaceParameters& parameters,
+  const ProgressReporter& progress)
 {
   if (!(parameters.smoothing >= 0.0 && parameters.smoothing <= 1.0))
   {
