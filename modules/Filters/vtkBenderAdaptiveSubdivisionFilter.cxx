@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <sstream>
 #include <unordered_map>
 
 vtkStandardNewMacro(vtkBenderAdaptiveSubdivisionFilter);
@@ -199,6 +200,29 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
   if (n0 >= (vtkIdType(1) << 31))
   {
     return fail("the input surface has too many points (2^31 or more)");
+  }
+  {
+    // Bounded up front: a tolerance below the rounding noise of the surface's coordinates
+    // never converges, so every pass may split every edge where W bends (4x the triangles).
+    // Refuse when that worst case over MaxPasses passes would pass the point limit, before
+    // any work (1e-12 with 64 passes took minutes and gigabytes before the limit stopped it).
+    double bounds[6];
+    input->GetBounds(bounds);
+    const double size = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2],
+      bounds[5] - bounds[4], std::fabs(bounds[0]), std::fabs(bounds[1]), std::fabs(bounds[2]),
+      std::fabs(bounds[3]), std::fabs(bounds[4]), std::fabs(bounds[5]) });
+    const double noise = std::max(size, 1e-300) * 1e-9;
+    const double worstPoints =
+      static_cast<double>(n0) * std::pow(4.0, static_cast<double>(this->MaxPasses));
+    if (this->Tolerance < noise && worstPoints > static_cast<double>(MaximumPoints))
+    {
+      std::ostringstream message;
+      message << "subdivision tolerance " << this->Tolerance << " is below the rounding noise ("
+              << noise << ") of a surface " << size << " across: with " << this->MaxPasses
+              << " passes on " << n0 << " points it could grow past " << MaximumPoints
+              << " points; use a larger tolerance or fewer passes";
+      return fail(message.str());
+    }
   }
 
   std::unique_ptr<bender::RibbonWarp> warp;
