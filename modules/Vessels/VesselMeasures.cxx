@@ -1,0 +1,378 @@
+#include "VesselMeasures.h"
+
+#include "VesselArrayNames.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkStaticPointLocator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace bender
+{
+namespace
+{
+
+inline Point3 Sub(const Point3& a, const Point3& b)
+{
+  return { { a[0] - b[0], a[1] - b[1], a[2] - b[2] } };
+}
+inline double Dot(const Point3& a, const Point3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline double Norm(const Point3& a)
+{
+  return std::sqrt(Dot(a, a));
+}
+inline Point3 Normalized(const Point3& a)
+{
+  const double n = Norm(a);
+  return n > 0 ? Point3{ { a[0] / n, a[1] / n, a[2] / n } } : Point3{ { 0, 0, 0 } };
+}
+double AngleDegrees(const Point3& a, const Point3& b)
+{
+  const double na = Norm(a), nb = Norm(b);
+  if (na <= 0 || nb <= 0)
+  {
+    return 0.0;
+  }
+  const double c = std::max(-1.0, std::min(1.0, Dot(a, b) / (na * nb)));
+  return std::acos(c) * 180.0 / 3.14159265358979323846;
+}
+
+int CellValue(vtkPolyData* data, const char* name, vtkIdType cell, int fallback)
+{
+  vtkDataArray* a = data->GetCellData()->GetArray(name);
+  return a ? static_cast<int>(a->GetComponent(cell, 0)) : fallback;
+}
+
+// Direction of the polyline at its start (forward) or end, averaged over `span` of arc length:
+// the chord from the end point to the point `span` away.
+Point3 EndDirection(const std::vector<Point3>& p,
+  const std::vector<double>& s,
+  double span,
+  bool atStart)
+{
+  const std::size_t n = p.size();
+  if (atStart)
+  {
+    std::size_t k = 1;
+    while (k + 1 < n && s[k] - s[0] < span)
+    {
+      ++k;
+    }
+    return Normalized(Sub(p[k], p[0]));
+  }
+  std::size_t k = n - 2;
+  while (k > 0 && s[n - 1] - s[k] < span)
+  {
+    --k;
+  }
+  return Normalized(Sub(p[n - 1], p[k]));
+}
+
+} // namespace
+
+VesselMeasurements MeasureBranches(vtkPolyData* branches)
+{
+  if (!branches)
+  {
+    throw std::invalid_argument("MeasureBranches: the centerlines are null");
+  }
+  VesselMeasurements out;
+  vtkDataArray* radius =
+    branches->GetPointData()->GetArray(VesselArrays::MaximumInscribedSphereRadius);
+  if (!radius)
+  {
+    out.Message = std::string("centerlines have no point data '") +
+      VesselArrays::MaximumInscribedSphereRadius + "'";
+    return out;
+  }
+  vtkCellArray* lines = branches->GetLines();
+  if (!lines)
+  {
+    return out;
+  }
+  std::vector<std::vector<Point3>> allPoints;
+  lines->InitTraversal();
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType cell = branches->GetNumberOfVerts();
+  while (lines->GetNextCell(npts, ids))
+  {
+    const vtkIdType cellId = cell++;
+    if (npts < 2)
+    {
+      continue;
+    }
+    std::vector<Point3> p(static_cast<std::size_t>(npts));
+    std::vector<double> r(p.size());
+    for (vtkIdType i = 0; i < npts; ++i)
+    {
+      branches->GetPoint(ids[i], p[i].data());
+      r[i] = radius->GetComponent(ids[i], 0);
+    }
+    // Curvature from the arrays when present, else from local cubic fits.
+    std::vector<double> curvature(p.size(), 0.0);
+    vtkDataArray* curvatureArray = branches->GetPointData()->GetArray(VesselArrays::Curvature);
+    std::vector<double> s(p.size(), 0.0);
+    for (std::size_t i = 1; i < p.size(); ++i)
+    {
+      s[i] = s[i - 1] + Norm(Sub(p[i], p[i - 1]));
+    }
+    double meanR = 0.0;
+    for (double v : r)
+    {
+      meanR += v;
+    }
+    meanR /= static_cast<double>(r.size());
+    if (curvatureArray)
+    {
+      for (std::size_t i = 0; i < p.size(); ++i)
+      {
+        curvature[i] = curvatureArray->GetComponent(ids[i], 0);
+      }
+    }
+    else
+    {
+      const auto frames = ComputeCurveFrames(p, std::max(meanR, 1e-9));
+      for (std::size_t i = 0; i < p.size(); ++i)
+      {
+        curvature[i] = frames[i].Curvature;
+      }
+    }
+    BranchMeasures m;
+    m.BranchId = CellValue(branches, VesselArrays::BranchId, cellId, static_cast<int>(cellId));
+    m.ParentBranchId = CellValue(branches, VesselArrays::ParentBranchId, cellId, -1);
+    m.StartBifurcationId = CellValue(branches, VesselArrays::StartBifurcationId, cellId, -1);
+    m.EndBifurcationId = CellValue(branches, VesselArrays::EndBifurcationId, cellId, -1);
+    m.EndpointId = CellValue(branches, VesselArrays::EndpointId, cellId, -1);
+    m.Length = s.back();
+    m.Start = p.front();
+    m.End = p.back();
+    m.Chord = Norm(Sub(p.back(), p.front()));
+    m.Tortuosity = m.Chord > 0 ? m.Length / m.Chord : 0.0;
+    m.MinRadius = r[0];
+    m.MaxRadius = r[0];
+    double weightedR = 0.0, weightedK = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      if (r[i] < m.MinRadius)
+      {
+        m.MinRadius = r[i];
+        m.MinRadiusPosition = p[i];
+        m.MinRadiusAbscissa = s[i];
+      }
+      if (i == 0)
+      {
+        m.MinRadiusPosition = p[0];
+      }
+      m.MaxRadius = std::max(m.MaxRadius, r[i]);
+      m.MaxCurvature = std::max(m.MaxCurvature, curvature[i]);
+      if (i > 0)
+      {
+        const double ds = s[i] - s[i - 1];
+        weightedR += 0.5 * (r[i] + r[i - 1]) * ds;
+        weightedK += 0.5 * (curvature[i] + curvature[i - 1]) * ds;
+      }
+    }
+    m.MeanRadius = m.Length > 0 ? weightedR / m.Length : r[0];
+    m.MeanCurvature = m.Length > 0 ? weightedK / m.Length : 0.0;
+    // End tangents over one mean radius (at most a third of the branch).
+    const double span = std::min(meanR, m.Length / 3.0);
+    m.StartTangent = EndDirection(p, s, span, true);
+    m.EndTangent = EndDirection(p, s, span, false);
+    vtkDataArray* tangent = branches->GetPointData()->GetArray(VesselArrays::FrenetTangent);
+    if (tangent && tangent->GetNumberOfComponents() == 3)
+    {
+      Point3 t0, t1;
+      tangent->GetTuple(ids[0], t0.data());
+      tangent->GetTuple(ids[npts - 1], t1.data());
+      if (Norm(t0) > 0.5 && Norm(t1) > 0.5)
+      {
+        m.StartTangent = Normalized(t0);
+        m.EndTangent = Normalized(t1);
+      }
+    }
+    m.BendAngle = AngleDegrees(m.StartTangent, m.EndTangent);
+    out.Branches.push_back(m);
+    allPoints.push_back(p);
+  }
+
+  // Outlets under each branch, leaves first.
+  std::map<int, std::size_t> byId;
+  for (std::size_t i = 0; i < out.Branches.size(); ++i)
+  {
+    byId[out.Branches[i].BranchId] = i;
+  }
+  for (std::size_t i = 0; i < out.Branches.size(); ++i)
+  {
+    if (out.Branches[i].EndpointId < 0)
+    {
+      continue;
+    }
+    // Walk up to the root adding the outlet (guarding against cycles in foreign data).
+    std::size_t current = i;
+    for (std::size_t guard = 0; guard <= out.Branches.size(); ++guard)
+    {
+      out.Branches[current].Outlets.insert(out.Branches[i].EndpointId);
+      auto parent = byId.find(out.Branches[current].ParentBranchId);
+      if (parent == byId.end())
+      {
+        break;
+      }
+      current = parent->second;
+    }
+  }
+
+  // Bifurcations: parent's direction into it, each child's direction out of it, over twice
+  // the child's mean radius.
+  std::map<int, BifurcationMeasures> bifurcations;
+  for (std::size_t i = 0; i < out.Branches.size(); ++i)
+  {
+    const auto& b = out.Branches[i];
+    if (b.EndBifurcationId >= 0)
+    {
+      bifurcations[b.EndBifurcationId].ParentBranchId = b.BranchId;
+    }
+    if (b.StartBifurcationId >= 0)
+    {
+      bifurcations[b.StartBifurcationId].ChildBranchIds.push_back(b.BranchId);
+    }
+  }
+  vtkDataArray* bifPoints = branches->GetFieldData()->GetArray(VesselArrays::BifurcationPoints);
+  for (auto& [id, bif] : bifurcations)
+  {
+    bif.Id = id;
+    if (bifPoints && id < bifPoints->GetNumberOfTuples() && bifPoints->GetNumberOfComponents() == 3)
+    {
+      bifPoints->GetTuple(id, bif.Position.data());
+    }
+    Point3 parentDirection{ { 0, 0, 0 } };
+    auto parent = byId.find(bif.ParentBranchId);
+    if (parent != byId.end())
+    {
+      const auto& p = allPoints[parent->second];
+      std::vector<double> s(p.size(), 0.0);
+      for (std::size_t k = 1; k < p.size(); ++k)
+      {
+        s[k] = s[k - 1] + Norm(Sub(p[k], p[k - 1]));
+      }
+      parentDirection = EndDirection(p, s, 2.0 * out.Branches[parent->second].MeanRadius, false);
+      if (bifPoints == nullptr)
+      {
+        bif.Position = p.back();
+      }
+    }
+    std::vector<Point3> childDirections;
+    for (int child : bif.ChildBranchIds)
+    {
+      const std::size_t c = byId[child];
+      const auto& p = allPoints[c];
+      std::vector<double> s(p.size(), 0.0);
+      for (std::size_t k = 1; k < p.size(); ++k)
+      {
+        s[k] = s[k - 1] + Norm(Sub(p[k], p[k - 1]));
+      }
+      const Point3 d = EndDirection(p, s, 2.0 * out.Branches[c].MeanRadius, true);
+      childDirections.push_back(d);
+      bif.ParentChildAngles.push_back(AngleDegrees(parentDirection, d));
+    }
+    if (childDirections.size() >= 2)
+    {
+      bif.ChildrenAngle = AngleDegrees(childDirections[0], childDirections[1]);
+    }
+    out.Bifurcations.push_back(bif);
+  }
+  return out;
+}
+
+VesselComparison CompareVessels(vtkPolyData* beforeBranches, vtkPolyData* afterBranches)
+{
+  VesselComparison c;
+  c.Before = MeasureBranches(beforeBranches);
+  c.After = MeasureBranches(afterBranches);
+  std::vector<bool> used(c.After.Branches.size(), false);
+  for (std::size_t i = 0; i < c.Before.Branches.size(); ++i)
+  {
+    BranchChange change;
+    change.BeforeIndex = static_cast<int>(i);
+    for (std::size_t j = 0; j < c.After.Branches.size(); ++j)
+    {
+      if (!used[j] && !c.Before.Branches[i].Outlets.empty() &&
+        c.After.Branches[j].Outlets == c.Before.Branches[i].Outlets)
+      {
+        change.AfterIndex = static_cast<int>(j);
+        used[j] = true;
+        break;
+      }
+    }
+    c.Pairs.push_back(change);
+  }
+  for (std::size_t j = 0; j < c.After.Branches.size(); ++j)
+  {
+    if (!used[j])
+    {
+      c.Pairs.push_back({ -1, static_cast<int>(j) });
+    }
+  }
+  return c;
+}
+
+std::vector<Point3> MatchedSeeds(vtkPolyData* beforeSurface,
+  vtkPolyData* afterSurface,
+  const std::vector<CenterlineEndpoint>& beforeEndpoints)
+{
+  if (!beforeSurface || !afterSurface || beforeSurface->GetNumberOfPoints() == 0 ||
+    afterSurface->GetNumberOfPoints() == 0)
+  {
+    throw std::invalid_argument("MatchedSeeds: a surface is null or has no points");
+  }
+  std::vector<Point3> seeds;
+  const bool sameIds = beforeSurface->GetNumberOfPoints() == afterSurface->GetNumberOfPoints();
+  vtkNew<vtkStaticPointLocator> beforeLocator;
+  beforeLocator->SetDataSet(beforeSurface);
+  beforeLocator->BuildLocator();
+  vtkNew<vtkIdList> near;
+  for (const auto& end : beforeEndpoints)
+  {
+    Point3 seed = end.Position;
+    if (sameIds)
+    {
+      beforeLocator->FindPointsWithinRadius(2.0 * end.Radius, end.Position.data(), near);
+      if (near->GetNumberOfIds() == 0)
+      {
+        near->InsertNextId(beforeLocator->FindClosestPoint(end.Position.data()));
+      }
+      Point3 shift{ { 0, 0, 0 } };
+      for (vtkIdType k = 0; k < near->GetNumberOfIds(); ++k)
+      {
+        double a[3], b[3];
+        beforeSurface->GetPoint(near->GetId(k), a);
+        afterSurface->GetPoint(near->GetId(k), b);
+        for (int c = 0; c < 3; ++c)
+        {
+          shift[c] += (b[c] - a[c]) / static_cast<double>(near->GetNumberOfIds());
+        }
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        seed[c] += shift[c];
+      }
+    }
+    seeds.push_back(seed);
+  }
+  return seeds;
+}
+
+} // namespace bender

@@ -1,0 +1,94 @@
+#ifndef bender_VesselMeasures_h
+#define bender_VesselMeasures_h
+
+// Per-branch measurements of centerlines (the branch output of ComputeCenterlines, or any
+// polylines with the same arrays) and the before/after comparison of two such sets.
+// Lengths in the centerlines' unit (mm), angles in degrees, curvature in 1/mm.
+
+#include "VesselCenterlines.h"
+
+#include <set>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace bender
+{
+
+struct BranchMeasures
+{
+  int BranchId = -1;
+  int ParentBranchId = -1;
+  int StartBifurcationId = -1;
+  int EndBifurcationId = -1;
+  int EndpointId = -1;   ///< the outlet the branch ends at, -1 at a bifurcation
+  std::set<int> Outlets; ///< outlets reached through this branch (its identity)
+  double Length = 0;     ///< arc length
+  double Chord = 0;      ///< distance between the branch's end points
+  double Tortuosity = 1; ///< Length / Chord (1 for a straight branch)
+  double MaxCurvature = 0;
+  double MeanCurvature = 0; ///< arc-length weighted
+  double BendAngle = 0;     ///< degrees between the start and end tangents
+  double MinRadius = 0, MeanRadius = 0, MaxRadius = 0;
+  Point3 MinRadiusPosition{ { 0, 0, 0 } };
+  double MinRadiusAbscissa = 0; ///< arc length from the branch's start to its narrowest point
+  Point3 Start{ { 0, 0, 0 } }, End{ { 0, 0, 0 } };
+  Point3 StartTangent{ { 0, 0, 0 } }, EndTangent{ { 0, 0, 0 } };
+};
+
+struct BifurcationMeasures
+{
+  int Id = -1;
+  Point3 Position{ { 0, 0, 0 } };
+  int ParentBranchId = -1;
+  std::vector<int> ChildBranchIds;
+  /// Angle (degrees) between the parent's direction and each child's, same order as the ids.
+  std::vector<double> ParentChildAngles;
+  /// Angle (degrees) between the first two children's directions (the bifurcation angle).
+  double ChildrenAngle = 0;
+};
+
+struct VesselMeasurements
+{
+  std::vector<BranchMeasures> Branches;
+  std::vector<BifurcationMeasures> Bifurcations;
+  /// Empty when the input had the arrays needed; otherwise says which one is missing.
+  std::string Message;
+};
+
+/// Measures every polyline cell of `branches`. Needs point data MaximumInscribedSphereRadius;
+/// uses Curvature and FrenetTangent when present (recomputed from the points otherwise) and the
+/// cell data of ComputeCenterlines' branch output when present (each cell its own branch
+/// otherwise). Tangent directions at the ends are averaged over one local radius so that the
+/// bend angle does not depend on a single sample. Throws std::invalid_argument for null input.
+VesselMeasurements MeasureBranches(vtkPolyData* branches);
+
+struct BranchChange
+{
+  int BeforeIndex = -1; ///< into Before.Branches, -1 when the branch exists only after
+  int AfterIndex = -1;  ///< into After.Branches, -1 when the branch exists only before
+};
+
+struct VesselComparison
+{
+  VesselMeasurements Before;
+  VesselMeasurements After;
+  /// Branches matched by the set of outlets they lead to (the same endpoint order must have
+  /// been used for both centerline computations, e.g. with MatchedSeeds).
+  std::vector<BranchChange> Pairs;
+};
+
+VesselComparison CompareVessels(vtkPolyData* beforeBranches, vtkPolyData* afterBranches);
+
+/// Seeds for computing the centerlines of `after` with the endpoints of `before` in the same
+/// order: when both surfaces have the same number of points (a warp moves points, keeps ids),
+/// each endpoint is moved by the mean displacement of the surface points within twice its
+/// radius; otherwise (a remeshed surface) the endpoints are used as they are.
+std::vector<Point3> MatchedSeeds(vtkPolyData* beforeSurface,
+  vtkPolyData* afterSurface,
+  const std::vector<CenterlineEndpoint>& beforeEndpoints);
+
+} // namespace bender
+
+#endif

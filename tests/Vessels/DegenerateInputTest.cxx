@@ -1,0 +1,130 @@
+// Degenerate inputs give Ok = false and one line, never a crash, a hang or a one-point line.
+
+#include "VesselCenterlines.h"
+#include "VesselMeasures.h"
+#include "VesselTestUtilities.h"
+
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSphereSource.h>
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+using namespace bender;
+
+namespace
+{
+void ExpectCleanFailure(const CenterlineResult& result)
+{
+  EXPECT_FALSE(result.Ok);
+  EXPECT_FALSE(result.Message.empty());
+  EXPECT_EQ(result.Message.find('\n'), std::string::npos);
+  ASSERT_NE(result.Branches, nullptr);
+  EXPECT_EQ(result.Branches->GetNumberOfPoints(), 0);
+}
+} // namespace
+
+TEST(VesselDegenerate, NullSurfaceAndBadOptionsThrow)
+{
+  EXPECT_THROW(ComputeCenterlines(nullptr), std::invalid_argument);
+  vtkNew<vtkPolyData> empty;
+  CenterlineOptions options;
+  options.Step = -1;
+  EXPECT_THROW(ComputeCenterlines(empty, options), std::invalid_argument);
+  options = {};
+  options.Seeds = { { { 0, 0, 0 } } };
+  EXPECT_THROW(ComputeCenterlines(empty, options), std::invalid_argument);
+}
+
+TEST(VesselDegenerate, EmptyAndSingleTriangle)
+{
+  vtkNew<vtkPolyData> empty;
+  ExpectCleanFailure(ComputeCenterlines(empty));
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> cells;
+  const vtkIdType ids[3] = { 0, 1, 2 };
+  cells->InsertNextCell(3, ids);
+  vtkNew<vtkPolyData> triangle;
+  triangle->SetPoints(points);
+  triangle->SetPolys(cells);
+  ExpectCleanFailure(ComputeCenterlines(triangle));
+}
+
+TEST(VesselDegenerate, FlatSheetHasNoLumen)
+{
+  const bender::test::Curve line = [](double t) { return Point3{ { t, 0, 0 } }; };
+  // A tube squashed to zero radius is a flat, doubled sheet.
+  auto sheet = bender::test::SweptTube(line, 0, 10, 11, 8, 1e-12);
+  ExpectCleanFailure(ComputeCenterlines(sheet));
+}
+
+TEST(VesselDegenerate, SphereIsNotAVessel)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(5.0);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(48);
+  sphere->Update();
+  const CenterlineResult result = ComputeCenterlines(sphere->GetOutput());
+  ExpectCleanFailure(result);
+  EXPECT_NE(result.Message.find("sphere"), std::string::npos) << result.Message;
+}
+
+TEST(VesselDegenerate, UnreachableOutletIsReportedNotTraced)
+{
+  // Two separate tubes: the seeds put the inlet in one and an outlet in the other.
+  const bender::test::Curve a = [](double t) { return Point3{ { 0, 0, t } }; };
+  const bender::test::Curve b = [](double t) { return Point3{ { 20, 0, t } }; };
+  auto first = bender::test::SweptTube(a, 0, 20, 41, 32, 2.0);
+  auto second = bender::test::SweptTube(b, 0, 20, 41, 32, 2.0);
+  vtkNew<vtkPolyData> both;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> cells;
+  for (vtkPolyData* part : { first.GetPointer(), second.GetPointer() })
+  {
+    const vtkIdType offset = points->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < part->GetNumberOfPoints(); ++i)
+    {
+      points->InsertNextPoint(part->GetPoint(i));
+    }
+    const vtkIdType* ids = nullptr;
+    vtkIdType n = 0;
+    part->GetPolys()->InitTraversal();
+    while (part->GetPolys()->GetNextCell(n, ids))
+    {
+      vtkIdType shifted[3] = { ids[0] + offset, ids[1] + offset, ids[2] + offset };
+      cells->InsertNextCell(3, shifted);
+    }
+  }
+  both->SetPoints(points);
+  both->SetPolys(cells);
+  CenterlineOptions options;
+  options.Seeds = { { { 0, 0, 0 } }, { { 20, 0, 20 } } };
+  const CenterlineResult result = ComputeCenterlines(both, options);
+  ExpectCleanFailure(result);
+  EXPECT_NE(result.Message.find("reached"), std::string::npos) << result.Message;
+  EXPECT_FALSE(result.Warnings.empty());
+  // With a reachable outlet too, the result keeps the reachable one and warns about the other.
+  options.Seeds = { { { 0, 0, 0 } }, { { 20, 0, 20 } }, { { 0, 0, 20 } } };
+  const CenterlineResult partial = ComputeCenterlines(both, options);
+  ASSERT_TRUE(partial.Ok) << partial.Message;
+  EXPECT_EQ(partial.Branches->GetNumberOfCells(), 1);
+  EXPECT_FALSE(partial.Endpoints[1].Reached);
+  EXPECT_TRUE(partial.Endpoints[2].Reached);
+}
+
+TEST(VesselDegenerate, MeasuresNeedTheRadius)
+{
+  EXPECT_THROW(MeasureBranches(nullptr), std::invalid_argument);
+  vtkNew<vtkPolyData> lines;
+  const VesselMeasurements m = MeasureBranches(lines);
+  EXPECT_FALSE(m.Message.empty());
+  EXPECT_TRUE(m.Branches.empty());
+}
