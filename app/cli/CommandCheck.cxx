@@ -2,13 +2,11 @@
 // before meshing a surface.
 
 #include "CliCommands.h"
+#include "CliParsing.h"
 
-#include "BenderMeshCheck.h"
-#include "MeshIO.h"
+#include "CheckSurface.h"
 
 #include <vtkOutputWindow.h>
-#include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
 
 #include <cstdio>
 #include <string>
@@ -47,70 +45,36 @@ std::string BaseName(const std::string& path)
 
 int RunCheckCommand(const std::vector<std::string>& args)
 {
+  bender::CommandLine cli("check", Usage);
   std::vector<std::string> positional;
-  std::string beforePath;
-  bool json = false;
-  bender::MeshCheckOptions options;
-  for (std::size_t i = 0; i < args.size(); ++i)
+  bool json = false, noSelfIntersections = false;
+  bender::CheckSurfaceOptions options;
+  cli.App.add_option("mesh", positional);
+  cli.App.add_flag("--json", json);
+  cli.App.add_flag("--closed", options.check.requireClosed);
+  cli.App.add_flag("--no-self-intersections", noSelfIntersections);
+  cli.App.add_option("--before", options.before);
+  if (const int status = cli.Parse(args); status >= 0)
   {
-    const std::string& a = args[i];
-    if (a == "-h" || a == "--help")
-    {
-      std::fputs(Usage, stdout);
-      return 0;
-    }
-    else if (a == "--json")
-    {
-      json = true;
-    }
-    else if (a == "--closed")
-    {
-      options.requireClosed = true;
-    }
-    else if (a == "--no-self-intersections")
-    {
-      options.selfIntersections = false;
-    }
-    else if (a == "--before")
-    {
-      if (i + 1 >= args.size())
-      {
-        std::fprintf(stderr, "bender-cli check: --before needs a mesh file\n");
-        return 2;
-      }
-      beforePath = args[++i];
-    }
-    else if (a.size() > 1 && a[0] == '-')
-    {
-      std::fprintf(stderr, "bender-cli check: unknown option '%s'\n%s", a.c_str(), Usage);
-      return 2;
-    }
-    else
-    {
-      positional.push_back(a);
-    }
+    return status;
   }
+  options.check.selfIntersections = !noSelfIntersections;
   if (positional.size() != 1)
   {
-    std::fprintf(stderr, "bender-cli check: expected one MESH\n%s", Usage);
-    return 2;
+    return cli.UsageError("expected one MESH");
   }
+  options.input = positional[0];
   vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
-  vtkSmartPointer<vtkPolyData> mesh, before;
+  bender::MeshCheckReport report;
   try
   {
-    mesh = bender::ReadMesh(positional[0]);
-    if (!beforePath.empty())
-    {
-      before = bender::ReadMesh(beforePath);
-    }
+    report = bender::CheckSurface(options);
   }
-  catch (const std::exception& e)
+  catch (const bender::Error& e)
   {
     std::fprintf(stderr, "bender-cli check: %s\n", e.what());
     return 2;
   }
-  const bender::MeshCheckReport report = bender::CheckMesh(mesh, before, options);
   const std::string name = BaseName(positional[0]);
   const std::string text =
     json ? bender::FormatReportJson(report, name) : bender::FormatReportText(report, name);

@@ -2,14 +2,10 @@
 // CFD-ready STL of a vessel surface.
 
 #include "CliCommands.h"
+#include "CliParsing.h"
 
-#include "BenderMeshCheck.h"
-#include "BenderStlExport.h"
-#include "MeshIO.h"
-#include "vtkBenderCapFilter.h"
+#include "ExportSurface.h"
 
-#include <vtkCellData.h>
-#include <vtkNew.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -55,118 +51,85 @@ int Fail(const std::string& message)
 
 int RunExportCommand(const std::vector<std::string>& args)
 {
+  bender::CommandLine cli("export", Usage);
   std::vector<std::string> positional;
-  std::string outPath;
-  bool cap = false, quiet = false;
-  double planarity = 0.1;
-  bender::StlExportOptions options;
-  for (std::size_t i = 0; i < args.size(); ++i)
+  std::string outPath, patches = "single", frame = "lps";
+  bool quiet = false;
+  bender::ExportSurfaceOptions options;
+  cli.App.add_option("mesh", positional);
+  cli.App.add_option("-o,--output", outPath);
+  cli.App.add_flag("--cap", options.cap);
+  cli.App.add_flag("--quiet", quiet);
+  std::string planarity;
+  cli.App.add_option("--planarity", planarity);
+  cli.App.add_option("--patches", patches);
+  cli.App.add_option("--frame", frame);
+  if (const int status = cli.Parse(args); status >= 0)
   {
-    const std::string& a = args[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= args.size())
-      {
-        std::fprintf(stderr, "bender-cli export: %s needs a value\n", a.c_str());
-        return false;
-      }
-      out = args[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "-h" || a == "--help")
+    return status;
+  }
+  if (!planarity.empty())
+  {
+    char* end = nullptr;
+    options.planarity = std::strtod(planarity.c_str(), &end);
+    if (end == planarity.c_str() || *end || !(options.planarity >= 0 && options.planarity <= 1))
     {
-      std::fputs(Usage, stdout);
-      return 0;
+      return cli.UsageError("--planarity: '" + planarity + "' is not in [0, 1]");
     }
-    else if (a == "-o" || a == "--output")
-    {
-      if (!value(outPath))
-      {
-        return 2;
-      }
-    }
-    else if (a == "--cap")
-    {
-      cap = true;
-    }
-    else if (a == "--quiet")
-    {
-      quiet = true;
-    }
-    else if (a == "--planarity")
-    {
-      if (!value(v))
-      {
-        return 2;
-      }
-      char* end = nullptr;
-      planarity = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end || !(planarity >= 0 && planarity <= 1))
-      {
-        std::fprintf(stderr, "bender-cli export: --planarity: '%s' is not in [0, 1]\n", v.c_str());
-        return 2;
-      }
-    }
-    else if (a == "--patches")
-    {
-      if (!value(v))
-      {
-        return 2;
-      }
-      if (v == "single")
-      {
-        options.patches = bender::StlPatchMode::Single;
-      }
-      else if (v == "solids")
-      {
-        options.patches = bender::StlPatchMode::Solids;
-      }
-      else if (v == "files")
-      {
-        options.patches = bender::StlPatchMode::Files;
-      }
-      else
-      {
-        std::fprintf(stderr, "bender-cli export: --patches: unknown value '%s'\n", v.c_str());
-        return 2;
-      }
-    }
-    else if (a == "--frame")
-    {
-      if (!value(v))
-      {
-        return 2;
-      }
-      if (v == "lps" || v == "LPS")
-      {
-        options.frame = bender::StlFrame::LPS;
-      }
-      else if (v == "ras" || v == "RAS")
-      {
-        options.frame = bender::StlFrame::RAS;
-      }
-      else
-      {
-        std::fprintf(stderr, "bender-cli export: --frame: unknown value '%s'\n", v.c_str());
-        return 2;
-      }
-    }
-    else if (a.size() > 1 && a[0] == '-')
-    {
-      std::fprintf(stderr, "bender-cli export: unknown option '%s'\n%s", a.c_str(), Usage);
-      return 2;
-    }
-    else
-    {
-      positional.push_back(a);
-    }
+  }
+  if (patches == "single")
+  {
+    options.patches = bender::StlPatchMode::Single;
+  }
+  else if (patches == "solids")
+  {
+    options.patches = bender::StlPatchMode::Solids;
+  }
+  else if (patches == "files")
+  {
+    options.patches = bender::StlPatchMode::Files;
+  }
+  else
+  {
+    return cli.UsageError("--patches: unknown value '" + patches + "'");
+  }
+  if (frame == "lps" || frame == "LPS")
+  {
+    options.frame = bender::StlFrame::LPS;
+  }
+  else if (frame == "ras" || frame == "RAS")
+  {
+    options.frame = bender::StlFrame::RAS;
+  }
+  else
+  {
+    return cli.UsageError("--frame: unknown value '" + frame + "'");
   }
   if (positional.size() != 1 || outPath.empty())
   {
-    std::fprintf(stderr, "bender-cli export: expected IN_MESH -o OUT.stl\n%s", Usage);
+    return cli.UsageError("expected IN_MESH -o OUT.stl");
+  }
+  std::string ext = outPath.size() >= 4 ? outPath.substr(outPath.size() - 4) : "";
+  for (char& c : ext)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  if (ext != ".stl" && ext != ".vtp")
+  {
+    std::fprintf(
+      stderr, "bender-cli export: %s: the output must be .stl (or .vtp)\n", outPath.c_str());
+    return 2;
+  }
+  if (ext == ".vtp" &&
+    (options.frame != bender::StlFrame::LPS || options.patches != bender::StlPatchMode::Single))
+  {
+    // The VTK form keeps the PatchId cell labels (wall 0, caps 1..n), in LPS.
+    std::fprintf(stderr, "bender-cli export: .vtp output is written whole, in LPS\n");
     return 2;
   }
   const std::string& inPath = positional[0];
+  options.output = outPath;
+  options.protectedPath = inPath;
   if (bender::SameFile(inPath, outPath))
   {
     return Fail(outPath + ": refusing to overwrite the input file; choose another output");
@@ -181,84 +144,36 @@ int RunExportCommand(const std::vector<std::string>& args)
   {
     return Fail(e.what());
   }
-  if (cap)
-  {
-    vtkNew<vtkBenderCapFilter> capper;
-    capper->SetInputData(mesh);
-    capper->SetPlanarity(planarity);
-    capper->Update();
-    if (!capper->GetLastError().empty())
-    {
-      return Fail(inPath + ": " + capper->GetLastError());
-    }
-    if (!quiet)
-    {
-      std::printf("capped %d open end%s%s\n", capper->GetNumberOfCaps(),
-        capper->GetNumberOfCaps() == 1 ? "" : "s",
-        capper->GetNumberOfSkippedLoops()
-          ? (", left " + std::to_string(capper->GetNumberOfSkippedLoops()) +
-              " non-planar boundary loop(s) open")
-              .c_str()
-          : "");
-    }
-    mesh = capper->GetOutput();
-  }
-  std::vector<std::string> written;
-  std::string ext = outPath.size() >= 4 ? outPath.substr(outPath.size() - 4) : "";
-  for (char& c : ext)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
+  bender::ExportSurfaceResult result;
   try
   {
-    if (ext == ".stl")
-    {
-      // With one file per patch the names derive from OUT: none may be the input.
-      for (const std::string& planned : bender::PlannedStlPaths(mesh, outPath, options))
-      {
-        if (bender::SameFile(inPath, planned))
-        {
-          return Fail(planned + ": refusing to overwrite the input file; choose another output");
-        }
-      }
-      written = bender::ExportStl(mesh, outPath, options);
-    }
-    else if (ext == ".vtp")
-    {
-      // The VTK form keeps the PatchId cell labels (wall 0, caps 1..n), in LPS.
-      if (options.frame != bender::StlFrame::LPS || options.patches != bender::StlPatchMode::Single)
-      {
-        std::fprintf(stderr, "bender-cli export: .vtp output is written whole, in LPS\n");
-        return 2;
-      }
-      bender::MeshWriteOptions writeOptions;
-      writeOptions.header = "bender export: frame LPS, unit mm";
-      bender::WriteMesh(mesh, outPath, writeOptions);
-      written.push_back(outPath);
-    }
-    else
-    {
-      std::fprintf(stderr, "bender-cli export: %s: the output must be .stl (or .vtp)\n",
-        outPath.c_str());
-      return 2;
-    }
+    result = bender::ExportSurface(mesh, options);
   }
-  catch (const std::exception& e)
+  catch (const bender::Error& e)
   {
     return Fail(e.what());
   }
   if (!quiet)
   {
-    const auto report = bender::CheckMesh(mesh, nullptr, [] {
-      bender::MeshCheckOptions o;
-      o.selfIntersections = false;
-      return o;
-    }());
-    for (const std::string& file : written)
+    if (options.cap)
+    {
+      std::printf("capped %d open end%s%s\n",
+        result.caps,
+        result.caps == 1 ? "" : "s",
+        result.skippedLoops
+          ? (", left " + std::to_string(result.skippedLoops) + " non-planar boundary loop(s) open")
+              .c_str()
+          : "");
+    }
+    bender::MeshCheckOptions checkOptions;
+    checkOptions.selfIntersections = false;
+    const auto report = bender::CheckMesh(result.surface, nullptr, checkOptions);
+    for (const std::string& file : result.written)
     {
       std::printf("wrote %s\n", file.c_str());
     }
-    std::printf("%lld triangles, %s%s\n", static_cast<long long>(report.triangles),
+    std::printf("%lld triangles, %s%s\n",
+      static_cast<long long>(report.triangles),
       report.closed ? "closed" : "open",
       report.closed ? (", volume " + std::to_string(std::abs(report.volume))).c_str() : "");
   }

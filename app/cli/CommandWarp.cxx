@@ -1,13 +1,12 @@
 // bender-cli warp IN_MESH PLAN OUT_MESH: replays a saved plan on a mesh.
 
 #include "CliCommands.h"
+#include "CliParsing.h"
 
+#include "ApplyPlan.h"
 #include "MeshIO.h"
 #include "WarpPlanIO.h"
-#include "vtkBenderAdaptiveSubdivisionFilter.h"
-#include "vtkBenderWarpFilter.h"
 
-#include <vtkNew.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -23,7 +22,8 @@ const char* const Usage =
   "\n"
   "Applies the warps of PLAN (a .bender.json warp plan) in order to IN_MESH and writes the\n"
   "result to OUT_MESH. A warp with a \"subdivision\" object is followed by adaptive\n"
-  "subdivision (spec 7): edges the warp bends by more than its tolerance are split. The plan is validated whole before anything is warped; on any error\n"
+  "subdivision (spec 7) instead of the plain warp: edges the warp bends by more than its\n"
+  "tolerance are split. The plan is validated whole before anything is written; on any error\n"
   "nothing is written. OUT_MESH must differ from IN_MESH (an input is never overwritten).\n"
   "\n"
   "Mesh formats (by extension): .stl .obj .ply .vtp .vtk .off (reading and writing).\n"
@@ -53,62 +53,40 @@ int Fail(const std::string& message)
 
 int RunWarpCommand(const std::vector<std::string>& args)
 {
+  bender::CommandLine cli("warp", Usage);
   std::vector<std::string> positional;
-  bender::WarpPrecision precision = bender::WarpPrecision::Exact;
+  std::string precisionName = "exact";
+  bool ascii = false;
   bool quiet = false;
-  bender::MeshWriteOptions writeOptions;
-  for (std::size_t i = 0; i < args.size(); ++i)
+  cli.App.add_option("files", positional);
+  cli.App.add_option("--precision", precisionName);
+  cli.App.add_flag("--ascii", ascii);
+  cli.App.add_flag("--quiet", quiet);
+  if (const int status = cli.Parse(args); status >= 0)
   {
-    const std::string& a = args[i];
-    if (a == "-h" || a == "--help")
-    {
-      std::fputs(Usage, stdout);
-      return 0;
-    }
-    else if (a == "--precision")
-    {
-      if (i + 1 >= args.size())
-      {
-        std::fprintf(stderr, "bender-cli warp: --precision needs a value (exact or table)\n");
-        return 2;
-      }
-      const std::string v = args[++i];
-      if (v == "exact")
-      {
-        precision = bender::WarpPrecision::Exact;
-      }
-      else if (v == "table")
-      {
-        precision = bender::WarpPrecision::Table;
-      }
-      else
-      {
-        std::fprintf(stderr, "bender-cli warp: --precision: unknown value '%s'\n", v.c_str());
-        return 2;
-      }
-    }
-    else if (a == "--ascii")
-    {
-      writeOptions.stlEncoding = bender::StlEncoding::Ascii;
-    }
-    else if (a == "--quiet")
-    {
-      quiet = true;
-    }
-    else if (a.size() > 1 && a[0] == '-')
-    {
-      std::fprintf(stderr, "bender-cli warp: unknown option '%s'\n%s", a.c_str(), Usage);
-      return 2;
-    }
-    else
-    {
-      positional.push_back(a);
-    }
+    return status;
+  }
+  bender::ApplyPlanOptions options;
+  if (precisionName == "exact")
+  {
+    options.precision = bender::WarpPrecision::Exact;
+  }
+  else if (precisionName == "table")
+  {
+    options.precision = bender::WarpPrecision::Table;
+  }
+  else
+  {
+    return cli.UsageError("--precision: unknown value '" + precisionName + "' (exact or table)");
   }
   if (positional.size() != 3)
   {
-    std::fprintf(stderr, "bender-cli warp: expected IN_MESH PLAN OUT_MESH\n%s", Usage);
-    return 2;
+    return cli.UsageError("expected IN_MESH PLAN OUT_MESH");
+  }
+  bender::MeshWriteOptions writeOptions;
+  if (ascii)
+  {
+    writeOptions.stlEncoding = bender::StlEncoding::Ascii;
   }
   const std::string& inPath = positional[0];
   const std::string& planPath = positional[1];
@@ -139,67 +117,59 @@ int RunWarpCommand(const std::vector<std::string>& args)
   }
 
   const std::string planName = BaseName(planPath);
-  vtkSmartPointer<vtkPolyData> current = mesh;
-  for (std::size_t i = 0; i < plan.warps.size(); ++i)
+  options.planName = planName;
+  bender::ApplyPlanResult result;
+  try
   {
-    vtkNew<vtkBenderWarpFilter> filter;
-    filter->SetInputData(current);
-    filter->SetWarp(plan.warps[i]);
-    filter->SetPrecision(precision);
-    filter->Update();
-    const std::string where = planName + ": warps[" + std::to_string(i) + "]";
-    if (!filter->GetLastError().empty())
+    result = bender::ApplyPlan(mesh, plan, options);
+  }
+  catch (const bender::Error& e)
+  {
+    return Fail(e.what());
+  }
+  for (std::size_t i = 0; i < result.info.size(); ++i)
+  {
+    const bender::WarpStepInfo& info = result.info[i];
+    if (!info.warning.empty())
     {
-      return Fail(where + ": " + filter->GetLastError());
+      std::fprintf(stderr,
+        "bender-cli warp: warning: %s: warps[%zu]: %s\n",
+        planName.c_str(),
+        i,
+        info.warning.c_str());
     }
-    if (!filter->GetLastWarning().empty())
+    if (quiet)
     {
-      std::fprintf(stderr, "bender-cli warp: warning: %s: %s\n", where.c_str(),
-        filter->GetLastWarning().c_str());
+      continue;
     }
-    if (!quiet)
+    const char* lift = info.flipOccurred ? " (screw continuity lift used)" : "";
+    if (info.subdivided)
     {
-      std::printf("warp %zu: %lld of %lld points inside R = %g%s\n", i,
-        static_cast<long long>(filter->GetNumberOfBoundPoints()),
-        static_cast<long long>(current->GetNumberOfPoints()), plan.warps[i].radius,
-        filter->GetFlipOccurred() ? " (screw continuity lift used)" : "");
-    }
-    vtkSmartPointer<vtkPolyData> next = vtkSmartPointer<vtkPolyData>::New();
-    if (plan.warps[i].subdivision)
-    {
-      // Subdivision needs the pre-warp positions: it warps `current` itself, refining where
-      // the warp bends edges by more than the tolerance.
-      vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivide;
-      subdivide->SetInputData(current);
-      subdivide->SetWarp(plan.warps[i]);
-      subdivide->SetPrecision(precision);
-      subdivide->Update();
-      if (!subdivide->GetLastError().empty())
-      {
-        return Fail(where + ": subdivision: " + subdivide->GetLastError());
-      }
-      const vtkIdType before = current->GetNumberOfPolys() + current->GetNumberOfStrips();
-      next->ShallowCopy(subdivide->GetOutput());
-      if (!quiet)
-      {
-        std::printf("warp %zu: subdivision (tolerance %g): %lld -> %lld triangles in %d "
-                    "passes%s\n",
-          i, subdivide->GetTolerance(), static_cast<long long>(before),
-          static_cast<long long>(next->GetNumberOfPolys()), subdivide->GetNumberOfPassesRun(),
-          subdivide->GetConverged() ? "" : " (stopped at maxPasses)");
-      }
+      std::printf("warp %zu: subdivision (tolerance %g): %lld -> %lld triangles in %d passes%s%s\n",
+        i,
+        info.tolerance,
+        info.trianglesBefore,
+        info.trianglesAfter,
+        info.passesRun,
+        info.converged ? "" : " (stopped at maxPasses)",
+        lift);
     }
     else
     {
-      next->ShallowCopy(filter->GetOutput());
+      std::printf("warp %zu: %lld of %lld points inside R = %g%s\n",
+        i,
+        info.boundPoints,
+        info.inputPoints,
+        plan.warps[i].radius,
+        lift);
     }
-    current = next;
   }
 
+  vtkPolyData* current = result.output;
   try
   {
-    writeOptions.header = "bender warp of " + BaseName(inPath) + " by " + planName + " (" +
-      plan.units + ")";
+    writeOptions.header =
+      "bender warp of " + BaseName(inPath) + " by " + planName + " (" + plan.units + ")";
     bender::WriteMesh(current, outPath, writeOptions);
   }
   catch (const std::exception& e)
@@ -210,9 +180,12 @@ int RunWarpCommand(const std::vector<std::string>& args)
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!quiet)
   {
-    std::printf("wrote %s: %lld points, %lld cells, %zu warps in %.3f s\n", outPath.c_str(),
+    std::printf("wrote %s: %lld points, %lld cells, %zu warps in %.3f s\n",
+      outPath.c_str(),
       static_cast<long long>(current->GetNumberOfPoints()),
-      static_cast<long long>(current->GetNumberOfCells()), plan.warps.size(), seconds);
+      static_cast<long long>(current->GetNumberOfCells()),
+      plan.warps.size(),
+      seconds);
   }
   return 0;
 }

@@ -70,6 +70,7 @@ vtkSmartPointer<vtkPolyData> ApplyOne(vtkPolyData* input,
     subdivide->SetInputData(source);
     subdivide->SetWarp(warp);
     subdivide->SetPrecision(options.precision);
+    subdivide->SetBlendMode(options.blend);
     subdivide->Update();
     if (!subdivide->GetLastError().empty())
     {
@@ -87,6 +88,7 @@ vtkSmartPointer<vtkPolyData> ApplyOne(vtkPolyData* input,
     filter->SetInputData(source);
     filter->SetWarp(warp);
     filter->SetPrecision(options.precision);
+    filter->SetBlendMode(options.blend);
     filter->Update();
     if (!filter->GetLastError().empty())
     {
@@ -140,7 +142,7 @@ ApplyPlanResult ApplyPlan(vtkPolyData* input, const WarpPlan& plan, const ApplyP
     result.output = vtkSmartPointer<vtkPolyData>::New();
     if (input)
     {
-      result.output->DeepCopy(input);
+      result.output->DeepCopy(WithDoublePoints(input));
     }
   }
   else

@@ -2,6 +2,7 @@
 #define bender_ApplyPlan_h
 
 #include "Progress.h"
+#include "RibbonWarp.h"
 #include "WarpBinding.h"
 #include "WarpPlan.h"
 
@@ -19,6 +20,8 @@ struct ApplyPlanOptions
 {
   /// Screw evaluation: Exact (the normative result, the default) or Table.
   WarpPrecision precision = WarpPrecision::Exact;
+  /// Points with two projections: the normative blend (default) or the single projection.
+  BlendMode blend = BlendMode::TwoProjections;
   /// Name of the plan in messages ("gallery.bender.json"); empty: "plan".
   std::string planName;
   /// Progress ("warp 1 of 3", fraction) and cancellation (checked between warps).
@@ -48,7 +51,7 @@ struct ApplyPlanResult
   /// steps[i] is the surface after warps[0..i]; new objects, points always double.
   std::vector<vtkSmartPointer<vtkPolyData>> steps;
   std::vector<WarpStepInfo> info;
-  /// The final surface (the input itself, deep-copied, for an empty plan).
+  /// The final surface (a deep copy of the input, with double points, for an empty plan).
   vtkSmartPointer<vtkPolyData> output;
 };
 

@@ -1,5 +1,7 @@
 #include "DemoPipeline.h"
 
+#include "DataDirectory.h"
+
 #include "MeshIO.h"
 #include "SurfaceExtraction.h"
 #include "VesselPhantom.h"
@@ -10,21 +12,12 @@
 #include <cstdlib>
 #include <sstream>
 
-#ifndef BENDER_SOURCE_DATA_DIR
-#define BENDER_SOURCE_DATA_DIR "data"
-#endif
-
 namespace bender
 {
 
 std::string DemoDataDirectory()
 {
-  const char* overridden = std::getenv("BENDER_DATA_DIR");
-  if (overridden && *overridden)
-  {
-    return overridden;
-  }
-  return BENDER_SOURCE_DATA_DIR;
+  return DataDirectory();
 }
 
 std::string DemoVesselPath()
@@ -37,8 +30,9 @@ std::string DemoPlanPath()
   return DemoDataDirectory() + "/demo/demo.bender.json";
 }
 
-DemoVessel SegmentDemoVessel(
-  const std::string& vesselPath, const DemoOptions& options, const ProgressReporter& progress)
+DemoVessel SegmentDemoVessel(const std::string& vesselPath,
+  const DemoOptions& options,
+  const ProgressReporter& progress)
 {
   progress.Report("read vessel", 0.0);
   vtkSmartPointer<vtkPolyData> truth = ReadMesh(vesselPath);
@@ -67,8 +61,7 @@ DemoVessel SegmentDemoVessel(
   const auto& size = demo.volume.geometry.size;
   summary << "Demo: MRA-like volume " << size[0] << "x" << size[1] << "x" << size[2] << " at "
           << options.spacing << " mm, lumen segmented (" << demo.mask.CountInside()
-          << " voxels), surface of " << demo.surface->GetNumberOfPolys()
-          << " triangles (LPS mm)";
+          << " voxels), surface of " << demo.surface->GetNumberOfPolys() << " triangles (LPS mm)";
   demo.summary = summary.str();
   return demo;
 }

@@ -13,8 +13,8 @@ class vtkPolyData;
 namespace bender
 {
 
-/// Where the built-in demo's files are: the source tree's data folder (compiled in), or the
-/// folder named by the environment variable BENDER_DATA_DIR (which holds external/ and demo/).
+/// Where the built-in demo's files are (external/ and demo/): bender::DataDirectory(), i.e.
+/// BENDER_DATA_DIR or <executable folder>/../share/bender (install and build tree alike).
 std::string DemoDataDirectory();
 /// data/external/aneurysm_data.stl: the branching cerebral artery with an aneurysm.
 std::string DemoVesselPath();
@@ -42,8 +42,9 @@ struct DemoVessel
 /// (threshold at mid-intensity from the phantom's seed) and extracts the surface. Runs on the
 /// calling thread (a GUI calls it from a worker). Throws MeshIOError (missing vessel file),
 /// the segmentation module's errors, SegmentationCancelled.
-DemoVessel SegmentDemoVessel(
-  const std::string& vesselPath, const DemoOptions& options = {}, const ProgressReporter& progress = {});
+DemoVessel SegmentDemoVessel(const std::string& vesselPath,
+  const DemoOptions& options = {},
+  const ProgressReporter& progress = {});
 
 } // namespace bender
 

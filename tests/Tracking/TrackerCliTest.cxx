@@ -5,6 +5,8 @@
 #include "TrackerCommand.h"
 #include "TrackingTestUtilities.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -43,14 +45,27 @@ CliResult RunCli(const std::vector<std::string>& args)
 TrackerPose ParseLine(const std::string& line)
 {
   TrackerPose p;
-  int button = -1;
-  const int n = std::sscanf(line.c_str(),
-    "{\"t\": %lf, \"station\": %d, \"position\": [%lf, %lf, %lf], \"quaternion\": [%lf, %lf, %lf, "
-    "%lf], \"button\": %d}",
-    &p.time, &p.station, &p.position.x, &p.position.y, &p.position.z, &p.orientation.w,
-    &p.orientation.x, &p.orientation.y, &p.orientation.z, &button);
-  EXPECT_EQ(n, 10) << line;
-  p.button = button == 1;
+  try
+  {
+    const nlohmann::json j = nlohmann::json::parse(line);
+    EXPECT_EQ(j.size(), 5u) << line;
+    p.time = j.at("t").get<double>();
+    p.station = j.at("station").get<int>();
+    const auto& x = j.at("position");
+    p.position = { x.at(0).get<double>(), x.at(1).get<double>(), x.at(2).get<double>() };
+    const auto& q = j.at("quaternion");
+    p.orientation.w = q.at(0).get<double>();
+    p.orientation.x = q.at(1).get<double>();
+    p.orientation.y = q.at(2).get<double>();
+    p.orientation.z = q.at(3).get<double>();
+    const int button = j.at("button").get<int>();
+    EXPECT_TRUE(button == 0 || button == 1) << line;
+    p.button = button == 1;
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    ADD_FAILURE() << "not a pose JSON line: " << line << " (" << e.what() << ")";
+  }
   return p;
 }
 
@@ -80,7 +95,8 @@ TEST(TrackerCli, ReplayPrintsOneJsonLinePerPoseAndASummary)
   for (std::size_t i = 0; i < r.lines.size(); ++i)
   {
     const TrackerPose got = ParseLine(r.lines[i]);
-    const TrackerPose expected = ExpectedBinary(script.PoseAt(int(i % 2) + 1, double(i / 2) / 10.0));
+    const TrackerPose expected =
+      ExpectedBinary(script.PoseAt(int(i % 2) + 1, double(i / 2) / 10.0));
     EXPECT_EQ(got.station, expected.station);
     EXPECT_EQ(got.button, expected.button);
     ExpectPoseEq(expected, got, 1e-4);
@@ -157,7 +173,9 @@ TEST(TrackerCli, SimulatorRecordingReplaysToTheSamePoses)
   const CliResult sim = RunCli({ "--device", "sim", "--count", "6", "--record", file });
   ASSERT_EQ(sim.status, 0) << sim.err;
   ASSERT_EQ(sim.lines.size(), 6u);
-  struct stat info{};
+  struct stat info
+  {
+  };
   ASSERT_EQ(::stat((file + ".timestamps").c_str(), &info), 0);
   const CliResult replay = RunCli({ "--device", "replay:" + file });
   ASSERT_EQ(replay.status, 0) << replay.err;
@@ -171,13 +189,15 @@ TEST(TrackerCli, SimulatorRecordingReplaysToTheSamePoses)
 // The real executable, once the whole tree builds (label: pipeline).
 TEST(TrackerCliPipeline, ExecutableReplaysTheFixture)
 {
-  struct stat info{};
+  struct stat info
+  {
+  };
   if (::stat(BENDER_CLI_PATH, &info) != 0)
   {
     GTEST_FAIL() << BENDER_CLI_PATH << " is not built";
   }
-  const std::string command = std::string(BENDER_CLI_PATH) + " tracker --device replay:" + Fixture +
-    " --count 3 2>/dev/null";
+  const std::string command =
+    std::string(BENDER_CLI_PATH) + " tracker --device replay:" + Fixture + " --count 3 2>/dev/null";
   std::FILE* pipe = ::popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::vector<std::string> lines;

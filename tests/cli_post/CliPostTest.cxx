@@ -124,8 +124,8 @@ class CliExport : public ScratchTest
 TEST_F(CliExport, CapsTheAneurysmIntoAClosedSurface)
 {
   REQUIRE_FILE(External + "/aneurysm_data.stl");
-  Result r = Run("export " + Q(External + "/aneurysm_data.stl") + " -o " + Q(Tmp("a.stl")) +
-    " --cap --quiet");
+  Result r = Run(
+    "export " + Q(External + "/aneurysm_data.stl") + " -o " + Q(Tmp("a.stl")) + " --cap --quiet");
   ASSERT_EQ(r.status, 0) << r.errors;
   r = Run("check " + Q(Tmp("a.stl")) + " --closed --json");
   EXPECT_EQ(r.status, 0) << r.output;
@@ -149,8 +149,8 @@ TEST_F(CliExport, CapsTheAneurysmIntoAClosedSurface)
 TEST_F(CliExport, SolidsAreNamedWallAndCaps)
 {
   REQUIRE_FILE(External + "/aneurysm_data.stl");
-  const Result r = Run("export " + Q(External + "/aneurysm_data.stl") + " -o " +
-    Q(Tmp("a.stl")) + " --cap --patches solids --quiet");
+  const Result r = Run("export " + Q(External + "/aneurysm_data.stl") + " -o " + Q(Tmp("a.stl")) +
+    " --cap --patches solids --quiet");
   ASSERT_EQ(r.status, 0) << r.errors;
   const std::string text = ReadText(Tmp("a.stl"));
   for (const char* solid : { "solid wall", "solid cap_1", "solid cap_2", "solid cap_3" })
@@ -166,11 +166,12 @@ TEST_F(CliExport, SolidsAreNamedWallAndCaps)
 TEST_F(CliExport, FilesModeWritesOneFilePerPatch)
 {
   REQUIRE_FILE(External + "/aneurysm_data.stl");
-  const Result r = Run("export " + Q(External + "/aneurysm_data.stl") + " -o " +
-    Q(Tmp("a.stl")) + " --cap --patches files --quiet");
+  const Result r = Run("export " + Q(External + "/aneurysm_data.stl") + " -o " + Q(Tmp("a.stl")) +
+    " --cap --patches files --quiet");
   ASSERT_EQ(r.status, 0) << r.errors;
-  const std::vector<std::string> expected = { "a_cap_1.stl", "a_cap_2.stl", "a_cap_3.stl",
-    "a_wall.stl" };
+  const std::vector<std::string> expected = {
+    "a_cap_1.stl", "a_cap_2.stl", "a_cap_3.stl", "a_wall.stl"
+  };
   EXPECT_EQ(Files(), expected);
   for (const std::string& name : expected)
   {
@@ -181,15 +182,17 @@ TEST_F(CliExport, FilesModeWritesOneFilePerPatch)
 TEST_F(CliExport, FrameIsStatedAndRasNegatesXAndY)
 {
   WriteText(Tmp("octa.off"), Octahedron);
-  WriteText(Tmp("shifted.off"),
-    "OFF\n3 1 0\n10 20 30\n11 20 30\n10 21 30\n3 0 1 2\n");
-  ASSERT_EQ(Run("export " + Q(Tmp("shifted.off")) + " -o " + Q(Tmp("lps.stl")) + " --quiet").status, 0);
-  ASSERT_EQ(Run("export " + Q(Tmp("shifted.off")) + " -o " + Q(Tmp("ras.stl")) +
-              " --frame ras --quiet")
-              .status,
+  WriteText(Tmp("shifted.off"), "OFF\n3 1 0\n10 20 30\n11 20 30\n10 21 30\n3 0 1 2\n");
+  ASSERT_EQ(
+    Run("export " + Q(Tmp("shifted.off")) + " -o " + Q(Tmp("lps.stl")) + " --quiet").status, 0);
+  ASSERT_EQ(
+    Run("export " + Q(Tmp("shifted.off")) + " -o " + Q(Tmp("ras.stl")) + " --frame ras --quiet")
+      .status,
     0);
-  EXPECT_EQ(ReadText(Tmp("lps.stl")).substr(0, 80).find("frame LPS, unit mm") == std::string::npos, false);
-  EXPECT_EQ(ReadText(Tmp("ras.stl")).substr(0, 80).find("frame RAS, unit mm") == std::string::npos, false);
+  EXPECT_EQ(
+    ReadText(Tmp("lps.stl")).substr(0, 80).find("frame LPS, unit mm") == std::string::npos, false);
+  EXPECT_EQ(
+    ReadText(Tmp("ras.stl")).substr(0, 80).find("frame RAS, unit mm") == std::string::npos, false);
   const auto lps = bender::ReadMesh(Tmp("lps.stl"));
   const auto ras = bender::ReadMesh(Tmp("ras.stl"));
   ASSERT_EQ(lps->GetNumberOfPoints(), ras->GetNumberOfPoints());
@@ -200,12 +203,15 @@ TEST_F(CliExport, FrameIsStatedAndRasNegatesXAndY)
   EXPECT_DOUBLE_EQ(ro[2], -lo[3]);
   EXPECT_DOUBLE_EQ(ro[4], lo[4]);
   EXPECT_DOUBLE_EQ(lo[0], 10.0);
-  EXPECT_EQ(Run("export " + Q(Tmp("octa.off")) + " -o " + Q(Tmp("x.stl")) + " --frame xyz").status, 2);
+  EXPECT_EQ(
+    Run("export " + Q(Tmp("octa.off")) + " -o " + Q(Tmp("x.stl")) + " --frame xyz").status, 2);
 }
 
 TEST_F(CliExport, NeverOverwritesTheInput)
 {
-  ASSERT_EQ(Run("export " + Q(Data + "/io/tetra_ascii.stl") + " -o " + Q(Tmp("t.stl")) + " --quiet").status, 0);
+  ASSERT_EQ(
+    Run("export " + Q(Data + "/io/tetra_ascii.stl") + " -o " + Q(Tmp("t.stl")) + " --quiet").status,
+    0);
   const std::string before = ReadText(Tmp("t.stl"));
   const Result r = Run("export " + Q(Tmp("t.stl")) + " -o " + Q(Tmp("t.stl")));
   EXPECT_NE(r.status, 0);
@@ -215,7 +221,8 @@ TEST_F(CliExport, NeverOverwritesTheInput)
   EXPECT_NE(Run("export " + Q(Tmp("t.stl")) + " -o " + Q(Tmp("./t.stl"))).status, 0);
   EXPECT_EQ(ReadText(Tmp("t.stl")), before);
   // One file per patch: OUT_wall.stl must not be the input either.
-  ASSERT_EQ(Run("export " + Q(Tmp("t.stl")) + " -o " + Q(Tmp("v_wall.stl")) + " --quiet").status, 0);
+  ASSERT_EQ(
+    Run("export " + Q(Tmp("t.stl")) + " -o " + Q(Tmp("v_wall.stl")) + " --quiet").status, 0);
   const std::string wall = ReadText(Tmp("v_wall.stl"));
   const Result files =
     Run("export " + Q(Tmp("v_wall.stl")) + " -o " + Q(Tmp("v.stl")) + " --patches files");
@@ -274,7 +281,7 @@ TEST_F(CliWarpSubdivision, PlanSubdivisionRefinesAndStaysClean)
   out->GetBounds(b);
   EXPECT_NEAR(b[2], -0.3, 1e-6);
   // --before cannot pair the triangles after subdivision: it says so instead of guessing.
-  const Result flips = Run("check " + Q(Tmp("bowl.vtp")) + " --before " +
-    Q(External + "/plane.off") + " --json");
+  const Result flips =
+    Run("check " + Q(Tmp("bowl.vtp")) + " --before " + Q(External + "/plane.off") + " --json");
   EXPECT_EQ(nlohmann::json::parse(flips.output).at("flippedTriangles"), nullptr);
 }

@@ -24,9 +24,9 @@ inline const std::string Examples = std::string(BENDER_SOURCE_DIR) + "/examples/
 
 struct Result
 {
-  int status = -1;     ///< exit status; -1 when the process did not exit normally
-  std::string output;  ///< stdout
-  std::string errors;  ///< stderr
+  int status = -1;    ///< exit status; -1 when the process did not exit normally
+  std::string output; ///< stdout
+  std::string errors; ///< stderr
 };
 
 inline std::string ReadText(const std::string& path)
@@ -94,10 +94,10 @@ protected:
 
 } // namespace clitest
 
-#define REQUIRE_FILE(path)                                                                     \
-  if (!std::filesystem::exists(path))                                                          \
-  {                                                                                            \
-    GTEST_FAIL() << (path) << " is missing: run scripts/fetch-data";                           \
+#define REQUIRE_FILE(path)                                                                         \
+  if (!std::filesystem::exists(path))                                                              \
+  {                                                                                                \
+    GTEST_FAIL() << (path) << " is missing: run scripts/fetch-data";                               \
   }
 
 #endif

@@ -101,7 +101,8 @@ TEST_F(CliRender, EveryViewAndWireframe)
   for (const char* view : { "iso", "front", "back", "left", "right", "top", "bottom" })
   {
     const std::string png = Tmp(std::string(view) + ".png");
-    const Result r = Run("render " + Q(tube) + " -o " + Q(png) + " --size 160x120 --wireframe --view " + view);
+    const Result r =
+      Run("render " + Q(tube) + " -o " + Q(png) + " --size 160x120 --wireframe --view " + view);
     ASSERT_EQ(r.status, 0) << view << ": " << r.errors;
     const ImageStats s = Measure(png);
     EXPECT_GT(s.variance, 10.0) << view;
@@ -129,9 +130,11 @@ TEST_F(CliRender, BadInputFailsWithoutWriting)
   Result r = Run("render " + Q(Data + "/cli/truncated.stl") + " -o " + Q(Tmp("x.png")));
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.errors.find("truncated.stl"), std::string::npos) << r.errors;
-  r = Run("render " + Q(Data + "/conformance/tube.off") + " -o " + Q(Tmp("x.png")) + " --view sideways");
+  r = Run(
+    "render " + Q(Data + "/conformance/tube.off") + " -o " + Q(Tmp("x.png")) + " --view sideways");
   EXPECT_EQ(r.status, 2);
-  r = Run("render " + Q(Data + "/conformance/tube.off") + " -o " + Q(Tmp("x.png")) + " --show-ribbon");
+  r = Run(
+    "render " + Q(Data + "/conformance/tube.off") + " -o " + Q(Tmp("x.png")) + " --show-ribbon");
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(Files().empty());
 }

@@ -55,8 +55,8 @@ TEST_F(CliWarp, ReproducesTheConformanceResultsExactly)
   for (const std::string name : { "bend90", "twist150", "semicircle_chain" })
   {
     const std::string out = this->Tmp(name + ".vtp");
-    const Result r = RunCli("warp " + Data + "/conformance/tube.off " + Data + "/conformance/" + name +
-      ".bender.json " + out);
+    const Result r = RunCli("warp " + Data + "/conformance/tube.off " + Data + "/conformance/" +
+      name + ".bender.json " + out);
     ASSERT_EQ(r.status, 0) << r.output;
     auto result = bender::ReadMesh(out);
     auto expected = bender::ReadMesh(Data + "/conformance/" + name + ".expected.off");
@@ -149,8 +149,7 @@ TEST_F(CliWarp, MixedPolygonsAreWarpedAndAPointCloudIsRefused)
          "3 0 1 2\n4 1 3 4 2\n3 3 5 4\n";
   }
   const std::string out = this->Tmp("mixed_out.vtp");
-  const Result ok =
-    RunCli("warp " + mixed + " " + Data + "/conformance/bend90.bender.json " + out);
+  const Result ok = RunCli("warp " + mixed + " " + Data + "/conformance/bend90.bender.json " + out);
   ASSERT_EQ(ok.status, 0) << ok.output;
   auto result = bender::ReadMesh(out);
   ASSERT_EQ(result->GetNumberOfPolys(), 3);

@@ -6,6 +6,7 @@
 // With the environment variable BENDER_GALLERY_OUT set to a folder, every test also writes
 // its meshes and a JSON file of its measured figures there; tools/make-gallery renders them.
 
+#include "ApplyPlan.h"
 #include "BenderMeshCheck.h"
 #include "BenderStlExport.h"
 #include "MeshIO.h"
@@ -55,10 +56,10 @@ bool Have(const std::string& path)
   return fs::exists(path);
 }
 
-#define REQUIRE_FILE(path)                                                                     \
-  if (!Have(path))                                                                             \
-  {                                                                                            \
-    GTEST_FAIL() << path << " is missing: run scripts/fetch-data";                             \
+#define REQUIRE_FILE(path)                                                                         \
+  if (!Have(path))                                                                                 \
+  {                                                                                                \
+    GTEST_FAIL() << path << " is missing: run scripts/fetch-data";                                 \
   }
 
 // --- Output for tools/make-gallery --------------------------------------------------------
@@ -221,41 +222,37 @@ bool AllFinite(vtkPolyData* mesh)
   return true;
 }
 
-// One warp through the production filters: the warp filter, or the subdivision filter when
-// the warp asks for it.
-vtkSmartPointer<vtkPolyData> ApplyWarp(vtkPolyData* mesh, const bender::WarpSpec& spec,
+// One warp through the production workflow (bender::ApplyWarp: the warp filter, or the
+// subdivision filter alone when the warp carries a subdivision object).
+vtkSmartPointer<vtkPolyData> WarpOnce(vtkPolyData* mesh,
+  const bender::WarpSpec& spec,
   BlendMode blend = BlendMode::TwoProjections)
 {
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  if (spec.subdivision)
+  bender::ApplyPlanOptions options;
+  options.blend = blend;
+  try
   {
-    vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivide;
-    subdivide->SetInputData(mesh);
-    subdivide->SetWarp(spec);
-    subdivide->SetBlendMode(blend);
-    subdivide->Update();
-    EXPECT_EQ(subdivide->GetLastError(), "");
-    out->ShallowCopy(subdivide->GetOutput());
-    return out;
+    return bender::ApplyWarp(mesh, spec, options);
   }
-  vtkNew<vtkBenderWarpFilter> filter;
-  filter->SetInputData(mesh);
-  filter->SetWarp(spec);
-  filter->SetBlendMode(blend);
-  filter->Update();
-  EXPECT_EQ(filter->GetLastError(), "");
-  out->ShallowCopy(filter->GetOutput());
-  return out;
+  catch (const bender::Error& e)
+  {
+    ADD_FAILURE() << e.what();
+    return vtkSmartPointer<vtkPolyData>::New();
+  }
 }
 
-vtkSmartPointer<vtkPolyData> ApplyPlan(vtkPolyData* mesh, const bender::WarpPlan& plan)
+// A whole plan through bender::ApplyPlan, the rule bender-cli and the GUI use.
+vtkSmartPointer<vtkPolyData> WarpByPlan(vtkPolyData* mesh, const bender::WarpPlan& plan)
 {
-  vtkSmartPointer<vtkPolyData> current = mesh;
-  for (const bender::WarpSpec& spec : plan.warps)
+  try
   {
-    current = ApplyWarp(current, spec);
+    return bender::ApplyPlan(mesh, plan).output;
   }
-  return current;
+  catch (const bender::Error& e)
+  {
+    ADD_FAILURE() << e.what();
+    return vtkSmartPointer<vtkPolyData>::New();
+  }
 }
 
 bender::WarpPlan Plan(const std::string& name)
@@ -265,7 +262,7 @@ bender::WarpPlan Plan(const std::string& name)
 
 // The warp of spec 6 evaluated point by point with the motion at s given by `motion` (so that
 // the test can swap the continuity lift for the minimal screws).
-template <typename MotionFn>
+template<typename MotionFn>
 Vec3 WarpPoint(const bender::RibbonWarp& warp, const Vec3& p, MotionFn motion)
 {
   const bender::WireProjections pr =
@@ -294,7 +291,8 @@ Vec3 WarpPoint(const bender::RibbonWarp& warp, const Vec3& p, MotionFn motion)
 bender::DualQuaternion MinimalMotion(const bender::RibbonWarp& warp, double s)
 {
   const bender::Frame c = warp.Initial().FrameAt(s), cp = warp.Final().FrameAt(s);
-  bender::Quaternion q = bender::QuaternionOfFrame(cp) * bender::Conjugate(bender::QuaternionOfFrame(c));
+  bender::Quaternion q =
+    bender::QuaternionOfFrame(cp) * bender::Conjugate(bender::QuaternionOfFrame(c));
   if (q.w < 0.0)
   {
     q = -q;
@@ -360,7 +358,7 @@ TEST(GalleryFigures, Fig01CowInSixWarps)
   const auto cow = Read(External + "/cow.off");
   const bender::WarpPlan plan = Plan("fig01-cow.bender.json");
   ASSERT_EQ(plan.warps.size(), 6u);
-  const auto warped = ApplyPlan(cow, plan);
+  const auto warped = WarpByPlan(cow, plan);
   ASSERT_EQ(warped->GetNumberOfPoints(), cow->GetNumberOfPoints());
   ASSERT_TRUE(AllFinite(warped));
   const auto report = Check(warped, cow);
@@ -384,8 +382,8 @@ TEST(GalleryFigures, Fig02BunnyEarBentThenTwisted)
 {
   REQUIRE_FILE(External + "/bunny00.off");
   const auto bunny = Read(External + "/bunny00.off");
-  const auto bent = ApplyPlan(bunny, Plan("fig02-bunny-ear-bend.bender.json"));
-  const auto twisted = ApplyPlan(bunny, Plan("fig02-bunny-ear-bend-twist.bender.json"));
+  const auto bent = WarpByPlan(bunny, Plan("fig02-bunny-ear-bend.bender.json"));
+  const auto twisted = WarpByPlan(bunny, Plan("fig02-bunny-ear-bend-twist.bender.json"));
   ASSERT_TRUE(AllFinite(bent));
   ASSERT_TRUE(AllFinite(twisted));
   Figures fig("fig02");
@@ -420,8 +418,8 @@ TEST(GalleryFigures, Fig08TwoProjectionsDoNotTear)
   const auto sphere = FineSphere();
   const bender::WarpPlan plan = Plan("fig08-sphere-circle.bender.json");
   ASSERT_EQ(plan.warps.size(), 1u);
-  const auto two = ApplyWarp(sphere, plan.warps[0], BlendMode::TwoProjections);
-  const auto single = ApplyWarp(sphere, plan.warps[0], BlendMode::SingleProjection);
+  const auto two = WarpOnce(sphere, plan.warps[0], BlendMode::TwoProjections);
+  const auto single = WarpOnce(sphere, plan.warps[0], BlendMode::SingleProjection);
   ASSERT_TRUE(AllFinite(two));
   ASSERT_TRUE(AllFinite(single));
   const double before = LongestEdge(sphere);
@@ -461,12 +459,12 @@ TEST(GalleryFigures, Fig09PlateauKeepsATubeRigid)
   for (double s : { 0.25, 0.5, 1.0 })
   {
     const Vec3 probe{ 30, 3, -2 };
-    ASSERT_LT(bender::Distance(bender::ApplyMotion(warp.MotionAt(s), probe),
-                bender::ApplyMotion(g, probe)),
+    ASSERT_LT(
+      bender::Distance(bender::ApplyMotion(warp.MotionAt(s), probe), bender::ApplyMotion(g, probe)),
       1e-9 * 50);
   }
-  const auto withPlateau = ApplyPlan(tube, plateau);
-  const auto withBell = ApplyPlan(tube, bell);
+  const auto withPlateau = WarpByPlan(tube, plateau);
+  const auto withBell = WarpByPlan(tube, bell);
   const std::vector<Vec3> p0 = PointsOf(tube), pp = PointsOf(withPlateau), pb = PointsOf(withBell);
   const double inner = spec.decay.plateau * spec.radius;
   double sumPlateau = 0.0, sumBell = 0.0;
@@ -524,7 +522,7 @@ TEST(GalleryFigures, Fig10ContinuityLiftRemovesTheJump)
     minimal[i] = WarpPoint(warp, p0[i], minimalMotion);
   }
   // The point-by-point warp with the lift is the production warp.
-  const auto production = ApplyPlan(tube, plan);
+  const auto production = WarpByPlan(tube, plan);
   const std::vector<Vec3> pp = PointsOf(production);
   for (std::size_t i = 0; i < p0.size(); ++i)
   {
@@ -533,7 +531,8 @@ TEST(GalleryFigures, Fig10ContinuityLiftRemovesTheJump)
   // The paper's figure: the surface swept by the helix trajectories H(s, f) = SCREW_F(P_s; f),
   // f in [0, 1], of the initial wire's points, on a grid of ns x nf samples.
   const int ns = 400, nf = 21;
-  const auto helix = [&](auto motion) {
+  const auto helix = [&](auto motion)
+  {
     std::vector<Vec3> grid;
     for (int i = 0; i < ns; ++i)
     {
@@ -548,7 +547,8 @@ TEST(GalleryFigures, Fig10ContinuityLiftRemovesTheJump)
   };
   const std::vector<Vec3> sweptLift = helix(liftedMotion), sweptMinimal = helix(minimalMotion);
   // Largest distance between trajectories of neighbouring wire points (same f).
-  const auto jump = [&](const std::vector<Vec3>& grid) {
+  const auto jump = [&](const std::vector<Vec3>& grid)
+  {
     double largest = 0.0;
     for (int i = 0; i + 1 < ns; ++i)
     {
@@ -571,7 +571,8 @@ TEST(GalleryFigures, Fig10ContinuityLiftRemovesTheJump)
   EXPECT_GT(jumpMinimal, 0.1 * warp.Initial().Wire().Length());
   if (!GalleryOut().empty())
   {
-    const auto surface = [&](const std::vector<Vec3>& grid) {
+    const auto surface = [&](const std::vector<Vec3>& grid)
+    {
       auto mesh = vtkSmartPointer<vtkPolyData>::New();
       vtkNew<vtkPoints> points;
       for (const Vec3& p : grid)
@@ -606,7 +607,7 @@ TEST(GalleryFigures, Fig11SubdivisionRefinesWhereTheWarpBends)
 {
   REQUIRE_FILE(External + "/plane.off");
   const auto plane = Read(External + "/plane.off");
-  const auto coarse = ApplyPlan(plane, Plan("fig11-plane-horn-coarse.bender.json"));
+  const auto coarse = WarpByPlan(plane, Plan("fig11-plane-horn-coarse.bender.json"));
   const bender::WarpPlan refinedPlan = Plan("fig13-plane-horn.bender.json");
   ASSERT_TRUE(refinedPlan.warps[0].subdivision);
   vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivide;
@@ -644,7 +645,7 @@ TEST(GalleryFigures, Fig12AneurysmVesselBentStaysClean)
 {
   REQUIRE_FILE(External + "/aneurysm_data.stl");
   const auto vessel = Read(External + "/aneurysm_data.stl");
-  const auto bent = ApplyPlan(vessel, Plan("fig12-aneurysm-bend.bender.json"));
+  const auto bent = WarpByPlan(vessel, Plan("fig12-aneurysm-bend.bender.json"));
   const auto before = Check(vessel);
   const auto after = Check(bent, vessel);
   EXPECT_TRUE(before.Clean()) << Problems(before);
@@ -698,7 +699,7 @@ void CheckShape(const Shape& shape, Figures& fig, const std::string& key)
   const auto mesh = Read(shape.mesh);
   const bender::WarpPlan plan = Plan(shape.plan);
   ASSERT_EQ(plan.warps.size(), 1u) << shape.plan;
-  const auto warped = ApplyPlan(mesh, plan);
+  const auto warped = WarpByPlan(mesh, plan);
   ASSERT_TRUE(AllFinite(warped)) << shape.plan;
   const bool same = warped->GetNumberOfPoints() == mesh->GetNumberOfPoints();
   const auto report = Check(warped, same && !plan.warps[0].subdivision ? mesh.Get() : nullptr);

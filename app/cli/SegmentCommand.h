@@ -1,8 +1,8 @@
 #ifndef bender_SegmentCommand_h
 #define bender_SegmentCommand_h
 
-// The logic of `bender-cli segment` and `bender-cli phantom`, kept in the module so that it is
-// tested without the executable. app/cli/CommandSegment.cxx only forwards to these.
+// `bender-cli segment` and `bender-cli phantom` (part of bender_cli_commands, so that the tests
+// run them in-process). The workflow itself is bender::SegmentVolume in modules/Logic.
 
 #include "SurfaceExtraction.h"
 #include "VesselPhantom.h"
@@ -45,7 +45,8 @@ PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args);
 
 /// Reads, segments and extracts; the surface is in LPS mm. Timings of every stage (read,
 /// segmentation, then the surface stages) are appended to the result's timings.
-SurfaceResult RunSegmentPipeline(const SegmentRequest& request, const ProgressReporter& progress = {});
+SurfaceResult RunSegmentPipeline(const SegmentRequest& request,
+  const ProgressReporter& progress = {});
 
 /// The whole commands: usage on `out` for --help (exit 0); progress and errors on `err`; exit
 /// status 0 on success, 1 on a processing error (bad input, seed outside the volume or in

@@ -6,6 +6,9 @@
 #include "TrackerDeviceFactory.h"
 #include "TrackingErrors.h"
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -75,34 +78,51 @@ double ParseNumber(const std::string& option, const std::string& value, double m
   return v;
 }
 
-// "+ 0.0" turns -0 into 0, so that JSON consumers never see "-0.000000".
-std::string PoseJson(const TrackerPose& p)
+// Rounded to the printed precision (4 decimals in mm, 6 for time and quaternions); "+ 0.0"
+// turns -0 into 0, so that JSON consumers never see "-0.0".
+double Rounded(double value, double scale)
 {
-  char line[320];
-  std::snprintf(line, sizeof line,
-    "{\"t\": %.6f, \"station\": %d, \"position\": [%.4f, %.4f, %.4f], "
-    "\"quaternion\": [%.6f, %.6f, %.6f, %.6f], \"button\": %d}",
-    p.time, p.station, p.position.x + 0.0, p.position.y + 0.0, p.position.z + 0.0,
-    p.orientation.w + 0.0, p.orientation.x + 0.0, p.orientation.y + 0.0, p.orientation.z + 0.0,
-    p.button ? 1 : 0);
-  return line;
+  return std::round(value * scale) / scale + 0.0;
 }
 
-void PrintSummary(std::ostream& err, const std::string& device, const TrackerStatistics& s,
+std::string PoseJson(const TrackerPose& p)
+{
+  nlohmann::ordered_json line;
+  line["t"] = Rounded(p.time, 1e6);
+  line["station"] = p.station;
+  line["position"] = { Rounded(p.position.x, 1e4), Rounded(p.position.y, 1e4),
+    Rounded(p.position.z, 1e4) };
+  line["quaternion"] = { Rounded(p.orientation.w, 1e6), Rounded(p.orientation.x, 1e6),
+    Rounded(p.orientation.y, 1e6), Rounded(p.orientation.z, 1e6) };
+  line["button"] = p.button ? 1 : 0;
+  return line.dump();
+}
+
+void PrintSummary(std::ostream& err,
+  const std::string& device,
+  const TrackerStatistics& s,
   std::uint64_t printed)
 {
   char line[256];
-  std::snprintf(line, sizeof line, "tracker summary: %s, %llu poses printed\n", device.c_str(),
+  std::snprintf(line,
+    sizeof line,
+    "tracker summary: %s, %llu poses printed\n",
+    device.c_str(),
     static_cast<unsigned long long>(printed));
   err << line;
   for (const StationStatistics& st : s.stations)
   {
-    std::snprintf(line, sizeof line, "  station %d: %llu samples over %.3f s, %.1f Hz\n",
-      st.station, static_cast<unsigned long long>(st.samples), st.lastTime - st.firstTime,
+    std::snprintf(line,
+      sizeof line,
+      "  station %d: %llu samples over %.3f s, %.1f Hz\n",
+      st.station,
+      static_cast<unsigned long long>(st.samples),
+      st.lastTime - st.firstTime,
       st.RateHz());
     err << line;
   }
-  std::snprintf(line, sizeof line,
+  std::snprintf(line,
+    sizeof line,
     "  records %llu, dropped %llu, malformed %llu, truncated %llu, garbage bytes %llu, "
     "warnings %llu, other stations %llu, queue overflows %llu\n",
     static_cast<unsigned long long>(s.parser.records),
@@ -116,7 +136,8 @@ void PrintSummary(std::ostream& err, const std::string& device, const TrackerSta
   err << line;
   if (s.latencyMs)
   {
-    std::snprintf(line, sizeof line, "  latency: %.1f ms (median round trip of 'P')\n", *s.latencyMs);
+    std::snprintf(
+      line, sizeof line, "  latency: %.1f ms (median round trip of 'P')\n", *s.latencyMs);
     err << line;
   }
 }
@@ -132,7 +153,8 @@ std::string TrackerCliUsage()
          "and prints one JSON line per pose on stdout:\n"
          "  {\"t\": s, \"station\": n, \"position\": [x, y, z] (mm), \"quaternion\": [w, x, y, z],"
          " \"button\": 0|1}\n"
-         "Grab/release events and a summary (rates, dropped and malformed records) go to stderr.\n\n"
+         "Grab/release events and a summary (rates, dropped and malformed records) go to "
+         "stderr.\n\n"
          "  --device SPEC    usb: first Fastrak on USB (vendor 0x0f44); serial:/dev/ttyUSB0 at\n"
          "                   115200 8N1 unless @BAUD[,8N1] says otherwise; replay:FILE plays raw\n"
          "                   bytes recorded in binary mode (FILE.timestamps used when present);\n"
@@ -140,7 +162,8 @@ std::string TrackerCliUsage()
          "  --record FILE    write what the device sends to FILE (+ FILE.timestamps)\n"
          "  --count N        stop after N poses\n"
          "  --stations LIST  stations to activate and print (default 1,2)\n"
-         "  --format F       binary (default) or ascii records (for replay: how FILE was recorded)\n"
+         "  --format F       binary (default) or ascii records (for replay: how FILE was "
+         "recorded)\n"
          "  --realtime       replay at the recorded pace instead of as fast as possible\n"
          "  --duration S     stop after S seconds of pose time\n"
          "  --timeout S      fail when a live device sends no pose within S s (default 5)\n"
@@ -148,7 +171,9 @@ std::string TrackerCliUsage()
          "See docs/tracking.md for connecting a Fastrak, udev rules and the recording format.\n";
 }
 
-int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+int RunTrackerCli(const std::vector<std::string>& args,
+  std::ostream& out,
+  std::ostream& err,
   std::shared_ptr<UsbBackend> usbBackend)
 {
   std::string deviceText;
@@ -159,66 +184,60 @@ int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::
   double timeout = 5.0;
   try
   {
-    for (std::size_t i = 0; i < args.size(); ++i)
+    CLI::App app("", "bender-cli tracker");
+    app.set_help_flag();
+    bool help = false;
+    std::string countText, stationsText, formatText, durationText, timeoutText;
+    app.add_flag("-h,--help", help);
+    app.add_option("--device", deviceText);
+    app.add_option("--record", options.recordPath);
+    app.add_option("--count", countText);
+    app.add_option("--stations", stationsText);
+    app.add_option("--format", formatText);
+    app.add_flag("--realtime", options.realtime);
+    app.add_option("--duration", durationText);
+    app.add_option("--timeout", timeoutText);
+    app.add_flag("--reset", options.reset);
+    try
     {
-      const std::string& a = args[i];
-      const auto value = [&]() -> const std::string& {
-        if (i + 1 >= args.size())
-        {
-          throw UsageError(a + " needs a value");
-        }
-        return args[++i];
-      };
-      if (a == "--help" || a == "-h")
+      std::vector<std::string> reversed(args.rbegin(), args.rend());
+      app.parse(reversed);
+    }
+    catch (const CLI::ParseError& e)
+    {
+      if (!help)
       {
-        out << TrackerCliUsage();
-        return 0;
+        throw UsageError(e.what());
       }
-      else if (a == "--device")
+    }
+    if (help)
+    {
+      out << TrackerCliUsage();
+      return 0;
+    }
+    if (app.count("--count"))
+    {
+      count = std::uint64_t(ParseNumber("--count", countText, 1, 1e12));
+    }
+    if (app.count("--stations"))
+    {
+      options.stations = ParseStationList(stationsText);
+    }
+    if (app.count("--format"))
+    {
+      if (formatText != "binary" && formatText != "ascii")
       {
-        deviceText = value();
+        throw UsageError("--format '" + formatText + "': expected binary or ascii");
       }
-      else if (a == "--record")
-      {
-        options.recordPath = value();
-      }
-      else if (a == "--count")
-      {
-        count = std::uint64_t(ParseNumber(a, value(), 1, 1e12));
-      }
-      else if (a == "--stations")
-      {
-        options.stations = ParseStationList(value());
-      }
-      else if (a == "--format")
-      {
-        const std::string& f = value();
-        if (f != "binary" && f != "ascii")
-        {
-          throw UsageError("--format '" + f + "': expected binary or ascii");
-        }
-        options.format = f == "binary" ? FastrakFormat::Binary : FastrakFormat::Ascii;
-      }
-      else if (a == "--realtime")
-      {
-        options.realtime = true;
-      }
-      else if (a == "--duration")
-      {
-        duration = ParseNumber(a, value(), 0.001, 1e7);
-      }
-      else if (a == "--timeout")
-      {
-        timeout = ParseNumber(a, value(), 0.1, 3600);
-      }
-      else if (a == "--reset")
-      {
-        options.reset = true;
-      }
-      else
-      {
-        throw UsageError("unknown argument '" + a + "'");
-      }
+      options.format = formatText == "binary" ? FastrakFormat::Binary : FastrakFormat::Ascii;
+    }
+    if (app.count("--duration"))
+    {
+      duration = ParseNumber("--duration", durationText, 0.001, 1e7);
+    }
+    if (app.count("--timeout"))
+    {
+      timeout = ParseNumber("--timeout", timeoutText, 0.1, 3600);
     }
     if (deviceText.empty())
     {
@@ -227,7 +246,8 @@ int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::
   }
   catch (const std::exception& e)
   {
-    err << "bender-cli tracker: " << e.what() << "\n" << "run 'bender-cli tracker --help' for usage\n";
+    err << "bender-cli tracker: " << e.what() << "\n"
+        << "run 'bender-cli tracker --help' for usage\n";
     return 2;
   }
 
@@ -248,7 +268,9 @@ int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::
   // Recording over the file being replayed would truncate it before it is read.
   if (spec.kind == TrackerDeviceSpec::Kind::Replay && !options.recordPath.empty())
   {
-    struct stat a{}, b{};
+    struct stat a
+    {
+    }, b{};
     if (::stat(spec.path.c_str(), &a) == 0 && ::stat(options.recordPath.c_str(), &b) == 0 &&
       a.st_dev == b.st_dev && a.st_ino == b.st_ino)
     {
@@ -315,8 +337,12 @@ int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::
         if (event.type == TrackerEventType::Grab || event.type == TrackerEventType::Release)
         {
           char line[96];
-          std::snprintf(line, sizeof line, "%s station %d at t=%.3f s\n", ToString(event.type),
-            event.station, event.time);
+          std::snprintf(line,
+            sizeof line,
+            "%s station %d at t=%.3f s\n",
+            ToString(event.type),
+            event.station,
+            event.time);
           err << line;
         }
         else if (event.type == TrackerEventType::EndOfStream)

@@ -17,7 +17,9 @@ namespace bender
 /// success, 1 when the device fails (not found, no reply, unplugged, bad recording), 2 on a
 /// usage error. Stops at --count poses, the end of a replay, --duration, or SIGINT/SIGTERM.
 /// `usbBackend` replaces libusb (tests); empty in production.
-int RunTrackerCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+int RunTrackerCli(const std::vector<std::string>& args,
+  std::ostream& out,
+  std::ostream& err,
   std::shared_ptr<UsbBackend> usbBackend = nullptr);
 
 /// The usage text of the command.

@@ -1,6 +1,9 @@
 #include "SegmentCommand.h"
 
 #include "MeshIO.h"
+#include "SegmentVolume.h"
+
+#include <CLI/CLI.hpp>
 
 #include <vtkPolyData.h>
 
@@ -47,30 +50,39 @@ bool ParsePoint(const std::string& text, Point3& point)
   return n == 3;
 }
 
-class ArgumentCursor
+// Runs CLI11 on the words after the command name; a CLI11 error becomes a ParameterError with
+// CLI11's one-line message. Returns false when --help was given (whatever else was wrong).
+bool ParseWords(CLI::App& app, const std::vector<std::string>& args, const bool& help)
 {
-public:
-  explicit ArgumentCursor(const std::vector<std::string>& args)
-    : Args(args)
+  try
   {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    app.parse(reversed);
   }
-  bool Done() const { return this->Next >= this->Args.size(); }
-  const std::string& Take() { return this->Args[this->Next++]; }
-  const std::string* Peek() const { return this->Done() ? nullptr : &this->Args[this->Next]; }
-  std::string Value(const std::string& option)
+  catch (const CLI::ParseError& e)
   {
-    if (this->Done())
+    if (help)
     {
-      throw ParameterError(option + ": missing value");
+      return false;
     }
-    return this->Take();
+    std::string what = e.what();
+    while (!what.empty() && (what.back() == '\n' || what.back() == ' '))
+    {
+      what.pop_back();
+    }
+    throw ParameterError(what);
   }
-  double Number(const std::string& option) { return ParseNumber(option, this->Value(option)); }
+  return !help;
+}
 
-private:
-  const std::vector<std::string>& Args;
-  std::size_t Next = 0;
-};
+// The value of an option given as text, as a number (same messages for every option).
+void Number(const CLI::App& app, const char* option, const std::string& text, double& value)
+{
+  if (app.count(option))
+  {
+    value = ParseNumber(option, text);
+  }
+}
 
 /// Prints "stage  NN%" lines; on a terminal they overwrite each other.
 class TerminalProgress
@@ -87,7 +99,8 @@ public:
     ProgressReporter reporter;
     if (!this->Quiet)
     {
-      reporter.onProgress = [this](const std::string& stage, double fraction) { this->Show(stage, fraction); };
+      reporter.onProgress = [this](const std::string& stage, double fraction)
+      { this->Show(stage, fraction); };
     }
     return reporter;
   }
@@ -114,7 +127,8 @@ private:
     this->Stage = stage;
     this->Percent = percent;
     std::ostringstream line;
-    line << "  " << std::left << std::setw(18) << stage << std::right << std::setw(4) << percent << "%";
+    line << "  " << std::left << std::setw(18) << stage << std::right << std::setw(4) << percent
+         << "%";
     if (this->Tty)
     {
       this->Err << "\r" << line.str() << std::flush;
@@ -156,9 +170,11 @@ std::string SegmentUsage()
        "  -o, --output SURFACE       the surface file to write (required)\n"
        "  --method threshold|vesselness\n"
        "                             threshold: intensity window + seeded region (default);\n"
-       "                             vesselness: multi-scale Frangi vesselness, then seeded region\n"
+       "                             vesselness: multi-scale Frangi vesselness, then seeded "
+       "region\n"
        "  --lower L, --upper U       intensity window of the lumen (default "
-    << d.lower << ", +inf)\n"
+    << d.lower
+    << ", +inf)\n"
        "  --seed x,y,z [x,y,z ...]   seed points, LPS mm (repeatable); the connected lumen that\n"
        "                             contains them is kept. Default: the largest component\n"
        "  --fill-holes on|off        fill cavities enclosed by the lumen (default on)\n"
@@ -173,7 +189,8 @@ std::string SegmentUsage()
        "  --vesselness-threshold T   vesselness: keep voxels >= T of the maximum, (0,1) (default "
     << d.vesselnessThreshold
     << ")\n"
-       "  --level-set N              geodesic active contour refinement, N iterations (default 0 = off)\n"
+       "  --level-set N              geodesic active contour refinement, N iterations (default 0 = "
+       "off)\n"
        "  --smoothing S              surface smoothing, 0..1 (default "
     << s.smoothing
     << ")\n"
@@ -202,9 +219,10 @@ std::string PhantomUsage()
     << d.spacing << ")\n"
     << "  --psf FWHM            point-spread full width at half maximum, mm (default " << d.psfFwhm
     << ")\n"
-    << "  --noise SIGMA         Rician noise sigma (default " << d.noiseSigma
-    << "; lumen " << d.vesselIntensity << ", background " << d.backgroundIntensity << ")\n"
-    << "  --bias A              relative bias amplitude, 0..0.5 (default " << d.biasAmplitude << ")\n"
+    << "  --noise SIGMA         Rician noise sigma (default " << d.noiseSigma << "; lumen "
+    << d.vesselIntensity << ", background " << d.backgroundIntensity << ")\n"
+    << "  --bias A              relative bias amplitude, 0..0.5 (default " << d.biasAmplitude
+    << ")\n"
     << "  --margin M            background around the surface, mm (default " << d.margin << ")\n"
     << "  --random-seed N       noise generator seed (default " << d.randomSeed << ")\n"
     << "  -h, --help            this help\n";
@@ -214,140 +232,131 @@ std::string PhantomUsage()
 SegmentRequest ParseSegmentArguments(const std::vector<std::string>& args)
 {
   SegmentRequest r;
-  ArgumentCursor cursor(args);
-  while (!cursor.Done())
+  CLI::App app("", "bender-cli segment");
+  app.set_help_flag();
+  app.add_flag("-h,--help", r.help);
+  std::vector<std::string> positional, seeds;
+  std::string method, lower, upper, fillHoles, closing, minRadius, maxRadius, scales, threshold,
+    levelSet, smoothing, targetTriangles, extractor;
+  app.add_option("volume", positional);
+  app.add_option("-o,--output", r.output);
+  app.add_option("--method", method);
+  app.add_option("--lower", lower);
+  app.add_option("--upper", upper);
+  // --seed x,y,z [x,y,z ...], repeatable.
+  app.add_option("--seed", seeds)->allow_extra_args(false);
+  app.add_option("--fill-holes", fillHoles);
+  app.add_option("--closing", closing);
+  app.add_option("--min-radius", minRadius);
+  app.add_option("--max-radius", maxRadius);
+  app.add_option("--scales", scales);
+  app.add_option("--vesselness-threshold", threshold);
+  app.add_option("--level-set", levelSet);
+  app.add_option("--smoothing", smoothing);
+  app.add_option("--target-triangles", targetTriangles);
+  app.add_option("--extractor", extractor);
+  app.add_option("--series", r.read.dicomSeriesUid);
+  app.add_flag("-q,--quiet", r.quiet);
+  // "--seed x,y,z [x,y,z ...]": every point is passed as "--seed=x,y,z" so that negative
+  // coordinates are never taken for options and the word after the points stays positional.
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i < args.size(); ++i)
   {
-    const std::string a = cursor.Take();
-    if (a == "-h" || a == "--help")
+    if (args[i] != "--seed" || i + 1 >= args.size())
     {
-      r.help = true;
-      return r;
+      words.push_back(args[i]);
+      continue;
     }
-    else if (a == "-o" || a == "--output")
+    words.push_back("--seed=" + args[++i]);
+    Point3 p{};
+    while (i + 1 < args.size() && ParsePoint(args[i + 1], p))
     {
-      r.output = cursor.Value(a);
+      words.push_back("--seed=" + args[++i]);
     }
-    else if (a == "--method")
+  }
+  if (!ParseWords(app, words, r.help))
+  {
+    r.help = true;
+    return r;
+  }
+  for (const std::string& text : seeds)
+  {
+    Point3 p{};
+    if (!ParsePoint(text, p))
     {
-      const std::string m = cursor.Value(a);
-      if (m == "threshold")
-      {
-        r.segmentation.method = SegmentationMethod::Threshold;
-      }
-      else if (m == "vesselness")
-      {
-        r.segmentation.method = SegmentationMethod::Vesselness;
-      }
-      else
-      {
-        throw ParameterError("--method: '" + m + "' is not threshold or vesselness");
-      }
+      throw ParameterError("--seed: expected x,y,z in mm, got '" + text + "'");
     }
-    else if (a == "--lower")
+    r.segmentation.seeds.push_back(p);
+  }
+  if (app.count("--method"))
+  {
+    if (method == "threshold")
     {
-      r.segmentation.lower = cursor.Number(a);
+      r.segmentation.method = SegmentationMethod::Threshold;
     }
-    else if (a == "--upper")
+    else if (method == "vesselness")
     {
-      r.segmentation.upper = cursor.Number(a);
-    }
-    else if (a == "--seed")
-    {
-      Point3 p{};
-      const std::string text = cursor.Value(a);
-      if (!ParsePoint(text, p))
-      {
-        throw ParameterError("--seed: expected x,y,z in mm, got '" + text + "'");
-      }
-      r.segmentation.seeds.push_back(p);
-      while (cursor.Peek() && ParsePoint(*cursor.Peek(), p))
-      {
-        cursor.Take();
-        r.segmentation.seeds.push_back(p);
-      }
-    }
-    else if (a == "--fill-holes")
-    {
-      const std::string v = cursor.Value(a);
-      if (v != "on" && v != "off")
-      {
-        throw ParameterError("--fill-holes: expected on or off, got '" + v + "'");
-      }
-      r.segmentation.fillHoles = v == "on";
-    }
-    else if (a == "--closing")
-    {
-      r.segmentation.closingRadius = cursor.Number(a);
-    }
-    else if (a == "--min-radius")
-    {
-      r.segmentation.minRadius = cursor.Number(a);
-    }
-    else if (a == "--max-radius")
-    {
-      r.segmentation.maxRadius = cursor.Number(a);
-    }
-    else if (a == "--scales")
-    {
-      r.segmentation.scales = int(cursor.Number(a));
-    }
-    else if (a == "--vesselness-threshold")
-    {
-      r.segmentation.vesselnessThreshold = cursor.Number(a);
-    }
-    else if (a == "--level-set")
-    {
-      r.segmentation.levelSetIterations = int(cursor.Number(a));
-    }
-    else if (a == "--smoothing")
-    {
-      r.surface.smoothing = cursor.Number(a);
-    }
-    else if (a == "--target-triangles")
-    {
-      const double n = cursor.Number(a);
-      if (n < 0 || n != std::floor(n))
-      {
-        throw ParameterError("--target-triangles: expected a count >= 0");
-      }
-      r.surface.targetTriangles = std::size_t(n);
-    }
-    else if (a == "--extractor")
-    {
-      const std::string e = cursor.Value(a);
-      if (e == "vtk")
-      {
-        r.surface.extractor = SurfaceExtractor::Vtk;
-      }
-      else if (e == "itk")
-      {
-        r.surface.extractor = SurfaceExtractor::Itk;
-      }
-      else
-      {
-        throw ParameterError("--extractor: '" + e + "' is not vtk or itk");
-      }
-    }
-    else if (a == "--series")
-    {
-      r.read.dicomSeriesUid = cursor.Value(a);
-    }
-    else if (a == "-q" || a == "--quiet")
-    {
-      r.quiet = true;
-    }
-    else if (!a.empty() && a[0] == '-' && a.size() > 1)
-    {
-      throw ParameterError("unknown option '" + a + "'");
-    }
-    else if (r.input.empty())
-    {
-      r.input = a;
+      r.segmentation.method = SegmentationMethod::Vesselness;
     }
     else
     {
-      throw ParameterError("unexpected argument '" + a + "' (one VOLUME only)");
+      throw ParameterError("--method: '" + method + "' is not threshold or vesselness");
     }
+  }
+  Number(app, "--lower", lower, r.segmentation.lower);
+  Number(app, "--upper", upper, r.segmentation.upper);
+  if (app.count("--fill-holes"))
+  {
+    if (fillHoles != "on" && fillHoles != "off")
+    {
+      throw ParameterError("--fill-holes: expected on or off, got '" + fillHoles + "'");
+    }
+    r.segmentation.fillHoles = fillHoles == "on";
+  }
+  Number(app, "--closing", closing, r.segmentation.closingRadius);
+  Number(app, "--min-radius", minRadius, r.segmentation.minRadius);
+  Number(app, "--max-radius", maxRadius, r.segmentation.maxRadius);
+  if (app.count("--scales"))
+  {
+    r.segmentation.scales = int(ParseNumber("--scales", scales));
+  }
+  Number(app, "--vesselness-threshold", threshold, r.segmentation.vesselnessThreshold);
+  if (app.count("--level-set"))
+  {
+    r.segmentation.levelSetIterations = int(ParseNumber("--level-set", levelSet));
+  }
+  Number(app, "--smoothing", smoothing, r.surface.smoothing);
+  if (app.count("--target-triangles"))
+  {
+    const double n = ParseNumber("--target-triangles", targetTriangles);
+    if (n < 0 || n != std::floor(n))
+    {
+      throw ParameterError("--target-triangles: expected a count >= 0");
+    }
+    r.surface.targetTriangles = std::size_t(n);
+  }
+  if (app.count("--extractor"))
+  {
+    if (extractor == "vtk")
+    {
+      r.surface.extractor = SurfaceExtractor::Vtk;
+    }
+    else if (extractor == "itk")
+    {
+      r.surface.extractor = SurfaceExtractor::Itk;
+    }
+    else
+    {
+      throw ParameterError("--extractor: '" + extractor + "' is not vtk or itk");
+    }
+  }
+  if (positional.size() > 1)
+  {
+    throw ParameterError("unexpected argument '" + positional[1] + "' (one VOLUME only)");
+  }
+  if (!positional.empty())
+  {
+    r.input = positional[0];
   }
   if (r.input.empty())
   {
@@ -369,60 +378,45 @@ SegmentRequest ParseSegmentArguments(const std::vector<std::string>& args)
 PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args)
 {
   PhantomRequest r;
-  ArgumentCursor cursor(args);
-  while (!cursor.Done())
+  CLI::App app("", "bender-cli phantom");
+  app.set_help_flag();
+  app.add_flag("-h,--help", r.help);
+  std::vector<std::string> positional;
+  std::string spacing, psf, noise, bias, margin, randomSeed;
+  app.add_option("surface", positional);
+  app.add_option("-o,--output", r.output);
+  app.add_option("--spacing", spacing);
+  app.add_option("--psf", psf);
+  app.add_option("--noise", noise);
+  app.add_option("--bias", bias);
+  app.add_option("--margin", margin);
+  app.add_option("--random-seed", randomSeed);
+  if (!ParseWords(app, args, r.help))
   {
-    const std::string a = cursor.Take();
-    if (a == "-h" || a == "--help")
+    r.help = true;
+    return r;
+  }
+  Number(app, "--spacing", spacing, r.phantom.spacing);
+  Number(app, "--psf", psf, r.phantom.psfFwhm);
+  Number(app, "--noise", noise, r.phantom.noiseSigma);
+  Number(app, "--bias", bias, r.phantom.biasAmplitude);
+  Number(app, "--margin", margin, r.phantom.margin);
+  if (app.count("--random-seed"))
+  {
+    const double n = ParseNumber("--random-seed", randomSeed);
+    if (n < 0 || n > 4294967295.0 || n != std::floor(n))
     {
-      r.help = true;
-      return r;
+      throw ParameterError("--random-seed: expected an integer in [0, 2^32)");
     }
-    else if (a == "-o" || a == "--output")
-    {
-      r.output = cursor.Value(a);
-    }
-    else if (a == "--spacing")
-    {
-      r.phantom.spacing = cursor.Number(a);
-    }
-    else if (a == "--psf")
-    {
-      r.phantom.psfFwhm = cursor.Number(a);
-    }
-    else if (a == "--noise")
-    {
-      r.phantom.noiseSigma = cursor.Number(a);
-    }
-    else if (a == "--bias")
-    {
-      r.phantom.biasAmplitude = cursor.Number(a);
-    }
-    else if (a == "--margin")
-    {
-      r.phantom.margin = cursor.Number(a);
-    }
-    else if (a == "--random-seed")
-    {
-      const double n = cursor.Number(a);
-      if (n < 0 || n > 4294967295.0 || n != std::floor(n))
-      {
-        throw ParameterError("--random-seed: expected an integer in [0, 2^32)");
-      }
-      r.phantom.randomSeed = std::uint32_t(n);
-    }
-    else if (!a.empty() && a[0] == '-' && a.size() > 1)
-    {
-      throw ParameterError("unknown option '" + a + "'");
-    }
-    else if (r.input.empty())
-    {
-      r.input = a;
-    }
-    else
-    {
-      throw ParameterError("unexpected argument '" + a + "' (one SURFACE only)");
-    }
+    r.phantom.randomSeed = std::uint32_t(n);
+  }
+  if (positional.size() > 1)
+  {
+    throw ParameterError("unexpected argument '" + positional[1] + "' (one SURFACE only)");
+  }
+  if (!positional.empty())
+  {
+    r.input = positional[0];
   }
   if (r.input.empty())
   {
@@ -437,17 +431,13 @@ PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args)
 
 SurfaceResult RunSegmentPipeline(const SegmentRequest& request, const ProgressReporter& progress)
 {
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point t0 = Clock::now();
-  const Volume volume = ReadVolume(request.input, request.read, progress);
-  const Clock::time_point t1 = Clock::now();
-  const LabelMap mask = SegmentVessels(volume, request.segmentation, progress);
-  const Clock::time_point t2 = Clock::now();
-  SurfaceResult result = ExtractSurface(mask, request.surface, progress);
-  result.timings.insert(result.timings.begin(),
-    { { "read", std::chrono::duration<double>(t1 - t0).count() },
-      { "segmentation", std::chrono::duration<double>(t2 - t1).count() } });
-  return result;
+  SegmentVolumeOptions options;
+  options.input = request.input;
+  options.read = request.read;
+  options.segmentation = request.segmentation;
+  options.surface = request.surface;
+  options.progress = progress;
+  return SegmentVolume(options);
 }
 
 int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
@@ -486,7 +476,8 @@ int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::
     }
     out << request.output << ": " << result.surface->GetNumberOfPolys() << " triangles, "
         << result.surface->GetNumberOfPoints() << " points, LPS mm, "
-        << (result.boundaryEdges == 0 ? std::string("closed") : std::to_string(result.boundaryEdges) + " open edges")
+        << (result.boundaryEdges == 0 ? std::string("closed")
+                                      : std::to_string(result.boundaryEdges) + " open edges")
         << ", " << std::fixed << std::setprecision(2) << total << " s\n";
     return 0;
   }
@@ -525,16 +516,17 @@ int RunPhantomCli(const std::vector<std::string>& args, std::ostream& out, std::
       std::filesystem::create_directories(parent);
     }
     // Write beside the target, then rename: no half-written volume on failure.
-    const std::string ext = request.output.size() > 7 && request.output.substr(request.output.size() - 7) == ".nii.gz"
+    const std::string ext =
+      request.output.size() > 7 && request.output.substr(request.output.size() - 7) == ".nii.gz"
       ? ".nii.gz"
       : std::filesystem::path(request.output).extension().string();
     const std::string temporary = request.output + ".part" + ext;
     WriteVolume(phantom.volume, temporary);
     std::filesystem::rename(temporary, request.output);
     const ImageGeometry& g = phantom.volume.geometry;
-    out << request.output << ": " << g.size[0] << "x" << g.size[1] << "x" << g.size[2] << " voxels of "
-        << g.spacing[0] << " mm, lumen " << request.phantom.vesselIntensity << ", background "
-        << request.phantom.backgroundIntensity << "\n"
+    out << request.output << ": " << g.size[0] << "x" << g.size[1] << "x" << g.size[2]
+        << " voxels of " << g.spacing[0] << " mm, lumen " << request.phantom.vesselIntensity
+        << ", background " << request.phantom.backgroundIntensity << "\n"
         << "seed inside the lumen (LPS mm): " << FormatPoint(phantom.seed) << "\n"
         << "segment with: bender-cli segment " << request.output << " -o SURFACE --lower "
         << phantom.midIntensity << " --seed " << FormatPoint(phantom.seed) << "\n";

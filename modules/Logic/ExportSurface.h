@@ -1,0 +1,69 @@
+#ifndef bender_ExportSurface_h
+#define bender_ExportSurface_h
+
+#include "BenderErrors.h"
+#include "BenderMeshCheck.h"
+#include "BenderStlExport.h"
+#include "MeshIO.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <string>
+#include <vector>
+
+namespace bender
+{
+
+/// Options of ExportSurface, the one export of Bender (GUI, session, bender-cli export).
+/// The format follows the extension of `output`: .stl (binary, ASCII, named solids or one file
+/// per patch), .vtp (keeps the PatchId cell labels), .ply, .obj, .vtk, .off.
+struct ExportSurfaceOptions
+{
+  std::string output;
+  /// Coordinate frame of the written coordinates. The surface is LPS millimetres; RAS negates
+  /// x and y (a half turn about z: orientation and volume are kept). Stated in the header.
+  StlFrame frame = StlFrame::LPS;
+  std::string unit = "mm";
+  /// .stl of the whole surface: binary (default) or ASCII (written as named solids).
+  StlEncoding stlEncoding = StlEncoding::Binary;
+  /// .stl only: one file (Single), one ASCII file with a named solid per patch (Solids), or one
+  /// binary file per patch (Files). Patches come from the cell array PatchId or from `cap`.
+  StlPatchMode patches = StlPatchMode::Single;
+  /// Close the planar-ish open ends (vessel inlets and outlets) with flat caps, labelled in
+  /// PatchId (wall 0, caps 1..n).
+  bool cap = false;
+  /// A loop is capped when its points lie within planarity x its diameter of a plane, [0, 1].
+  double planarity = 0.1;
+  /// A file that must never be written (the user's input surface), also among the names of
+  /// one file per patch.
+  std::string protectedPath;
+};
+
+/// What was written.
+struct ExportSurfaceResult
+{
+  std::vector<std::string> written; ///< the files, in order
+  int caps = 0;                     ///< open ends capped
+  int skippedLoops = 0;             ///< boundary loops left open (not planar-ish)
+  long long triangles = 0;          ///< of the written surface (caps included)
+  /// The surface written (caps included), in LPS.
+  vtkSmartPointer<vtkPolyData> surface;
+};
+
+/// "bender export: frame LPS, unit mm": the header of the written files where the format has one.
+std::string ExportHeader(StlFrame frame, const std::string& unit = "mm");
+
+/// The check shown before writing: watertightness, manifoldness, self-intersections and, with
+/// `before` of the same points and triangles (the surface before the warps), flipped triangles.
+/// `before` with another topology (after subdivision) is ignored for flips.
+MeshCheckReport CheckForExport(vtkPolyData* surface, vtkPolyData* before);
+
+/// Caps (optionally) and writes `surface` atomically (all files or none). Throws InputError
+/// naming the file: no surface, an output that is the protected input, patches for a format
+/// other than .stl, capping failure, an unwritable file.
+ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptions& options);
+
+} // namespace bender
+
+#endif

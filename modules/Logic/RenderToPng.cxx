@@ -1,0 +1,322 @@
+#include "RenderToPng.h"
+
+#include "AtomicFile.h"
+#include "BenderErrors.h"
+#include "vtkBenderRibbonSource.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <sstream>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace bender
+{
+
+namespace fs = std::filesystem;
+
+bool ParseRenderView(const std::string& name, RenderView& view)
+{
+  const std::pair<const char*, RenderView> names[] = { { "iso", RenderView::Iso },
+    { "front", RenderView::Front },
+    { "back", RenderView::Back },
+    { "left", RenderView::Left },
+    { "right", RenderView::Right },
+    { "top", RenderView::Top },
+    { "bottom", RenderView::Bottom } };
+  for (const auto& entry : names)
+  {
+    if (name == entry.first)
+    {
+      view = entry.second;
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace
+{
+std::string FindExecutable(const std::string& name)
+{
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "/usr/bin:/bin");
+  std::string dir;
+  while (std::getline(dirs, dir, ':'))
+  {
+    const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/" + name;
+    if (::access(candidate.c_str(), X_OK) == 0)
+    {
+      return candidate;
+    }
+  }
+  return {};
+}
+
+// A private X server for the life of the process, started when rendering is asked for and the
+// process has no display.
+class PrivateXvfb
+{
+public:
+  ~PrivateXvfb()
+  {
+    if (this->Pid > 0)
+    {
+      ::kill(this->Pid, SIGTERM);
+      int status = 0;
+      ::waitpid(this->Pid, &status, 0);
+    }
+  }
+
+  // Returns "" when DISPLAY now names a running server.
+  std::string Start()
+  {
+    const std::string xvfb = FindExecutable("Xvfb");
+    if (xvfb.empty())
+    {
+      return "no display: DISPLAY is not set and Xvfb is not installed (install xvfb, or run "
+             "under xvfb-run -a)";
+    }
+    for (int number = 91; number < 140; ++number)
+    {
+      const std::string socket = "/tmp/.X11-unix/X" + std::to_string(number);
+      const std::string lock = "/tmp/.X" + std::to_string(number) + "-lock";
+      std::error_code error;
+      if (fs::exists(socket, error) || fs::exists(lock, error))
+      {
+        continue;
+      }
+      const std::string display = ":" + std::to_string(number);
+      const pid_t pid = ::fork();
+      if (pid < 0)
+      {
+        break;
+      }
+      if (pid == 0)
+      {
+        ::execl(xvfb.c_str(),
+          "Xvfb",
+          display.c_str(),
+          "-screen",
+          "0",
+          "1280x1024x24",
+          "-nolisten",
+          "tcp",
+          static_cast<char*>(nullptr));
+        ::_exit(127);
+      }
+      for (int wait = 0; wait < 100; ++wait)
+      {
+        if (fs::exists(socket, error))
+        {
+          ::setenv("DISPLAY", display.c_str(), 1);
+          this->Pid = pid;
+          return {};
+        }
+        int status = 0;
+        if (::waitpid(pid, &status, WNOHANG) == pid)
+        {
+          break; // this display number was taken meanwhile: try the next
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+      ::kill(pid, SIGTERM);
+      int status = 0;
+      ::waitpid(pid, &status, 0);
+    }
+    return "no display: DISPLAY is not set and a private Xvfb could not be started";
+  }
+
+private:
+  pid_t Pid = -1;
+};
+
+vtkSmartPointer<vtkActor> RibbonActor(const RenderRibbon& r)
+{
+  vtkNew<vtkBenderRibbonSource> source;
+  source->SetRibbon(r.ribbon);
+  source->SetWidth(r.width);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(source->GetOutputPort(0));
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(r.color[0], r.color[1], r.color[2]);
+  actor->GetProperty()->BackfaceCullingOff();
+  // The strip's normals face one side only: light it mostly ambiently so both sides show.
+  actor->GetProperty()->SetAmbient(0.5);
+  actor->GetProperty()->SetDiffuse(0.5);
+  return actor;
+}
+} // namespace
+
+std::string EnsureRenderDisplay()
+{
+  static std::mutex mutex;
+  static PrivateXvfb server;
+  static std::string problem;
+  static bool tried = false;
+  std::lock_guard<std::mutex> lock(mutex);
+  const char* display = std::getenv("DISPLAY");
+  if (display && *display)
+  {
+    return {};
+  }
+  if (!tried)
+  {
+    tried = true;
+    problem = server.Start();
+  }
+  return problem;
+}
+
+void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options)
+{
+  const std::string& path = options.output;
+  if (path.empty())
+  {
+    throw InputError("render: no output image given");
+  }
+  if (!surface || surface->GetNumberOfPoints() == 0)
+  {
+    throw InputError(path + ": there is no surface to render");
+  }
+  if (options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192)
+  {
+    throw InputError(path + ": the image size must be in 16..8192 pixels");
+  }
+  // Debian's VTK renders through GLX: without an X server the render window would abort the
+  // process. Start a private one, or say why not.
+  const std::string problem = EnsureRenderDisplay();
+  if (!problem.empty())
+  {
+    throw EnvironmentError(path + ": " + problem);
+  }
+
+  vtkNew<vtkRenderer> renderer;
+  if (options.darkBackground)
+  {
+    renderer->SetBackground(0.12, 0.13, 0.16);
+    renderer->SetBackground2(0.32, 0.34, 0.40);
+    renderer->GradientBackgroundOn();
+  }
+  else
+  {
+    renderer->SetBackground(1.0, 1.0, 1.0);
+  }
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(surface);
+  normals->SplittingOff();
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(normals->GetOutputPort());
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(options.color[0], options.color[1], options.color[2]);
+  actor->GetProperty()->SetSpecular(0.2);
+  actor->GetProperty()->SetOpacity(options.opacity);
+  if (options.wireframe)
+  {
+    actor->GetProperty()->EdgeVisibilityOn();
+    actor->GetProperty()->SetEdgeColor(0.3, 0.3, 0.3);
+  }
+  renderer->AddActor(actor);
+  vtkNew<vtkPolyDataMapper> ghostMapper;
+  vtkNew<vtkActor> ghostActor;
+  if (options.ghost)
+  {
+    ghostMapper->SetInputData(options.ghost);
+    ghostMapper->ScalarVisibilityOff();
+    ghostActor->SetMapper(ghostMapper);
+    ghostActor->GetProperty()->SetColor(0.8, 0.85, 0.95);
+    ghostActor->GetProperty()->SetOpacity(0.22);
+    renderer->AddActor(ghostActor);
+  }
+  for (const RenderRibbon& ribbon : options.ribbons)
+  {
+    renderer->AddActor(RibbonActor(ribbon));
+  }
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(0, 0, 0);
+  double position[3] = { 1, -1, 0.8 }, up[3] = { 0, 0, 1 };
+  switch (options.view)
+  {
+    case RenderView::Iso:
+      break;
+    case RenderView::Front:
+      position[0] = 0, position[1] = -1, position[2] = 0;
+      break;
+    case RenderView::Back:
+      position[0] = 0, position[1] = 1, position[2] = 0;
+      break;
+    case RenderView::Left:
+      position[0] = 1, position[1] = 0, position[2] = 0;
+      break;
+    case RenderView::Right:
+      position[0] = -1, position[1] = 0, position[2] = 0;
+      break;
+    case RenderView::Top:
+    case RenderView::Bottom:
+      position[0] = 0, position[1] = 0, position[2] = options.view == RenderView::Top ? 1 : -1;
+      up[0] = 0, up[1] = -1, up[2] = 0;
+      break;
+  }
+  camera->SetPosition(position);
+  camera->SetViewUp(up);
+  renderer->ResetCamera();
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(options.width, options.height);
+  window->SetMultiSamples(0);
+  window->AddRenderer(renderer);
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  grab->Update();
+
+  std::string writeProblem;
+  const bool written = AtomicWrite(
+    path,
+    [&grab](const std::string& tempPath, std::string& why)
+    {
+      vtkNew<vtkPNGWriter> writer;
+      writer->SetFileName(tempPath.c_str());
+      writer->SetInputConnection(grab->GetOutputPort());
+      writer->Write();
+      if (writer->GetErrorCode() != 0)
+      {
+        why = "cannot write the image";
+        return false;
+      }
+      return true;
+    },
+    writeProblem);
+  if (!written)
+  {
+    throw InputError(
+      path + ": " + (writeProblem.empty() ? "cannot write the image" : writeProblem));
+  }
+}
+
+} // namespace bender

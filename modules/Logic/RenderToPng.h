@@ -1,0 +1,70 @@
+#ifndef bender_RenderToPng_h
+#define bender_RenderToPng_h
+
+#include "BenderErrors.h"
+#include "WarpPlan.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace bender
+{
+
+/// Camera direction. LPS: +x left, +y posterior, +z superior; Front looks from anterior along +y.
+enum class RenderView
+{
+  Iso,
+  Front,
+  Back,
+  Left,
+  Right,
+  Top,
+  Bottom
+};
+
+/// "iso", "front", ... -> the view; false for an unknown name.
+bool ParseRenderView(const std::string& name, RenderView& view);
+
+/// A ribbon drawn as a strip over the surface.
+struct RenderRibbon
+{
+  RibbonSpec ribbon;
+  double width = 1.0; ///< model units
+  std::array<double, 3> color{ { 0.95, 0.5, 0.1 } };
+};
+
+/// Options of RenderToPng.
+struct RenderToPngOptions
+{
+  std::string output; ///< the PNG, written atomically
+  int width = 800;    ///< pixels, [16, 8192]
+  int height = 600;
+  RenderView view = RenderView::Iso;
+  bool wireframe = false; ///< draw the triangle edges
+  /// Surface colour and opacity (see the ribbons through a translucent surface).
+  std::array<double, 3> color{ { 0.85, 0.78, 0.70 } };
+  double opacity = 1.0;
+  /// White background (documentation figures) or the application's dark gradient.
+  bool darkBackground = false;
+  /// A second surface drawn as a pale ghost (the surface before the plan); may be null.
+  vtkPolyData* ghost = nullptr;
+  std::vector<RenderRibbon> ribbons;
+};
+
+/// Renders `surface` off screen and writes a PNG (bender-cli render, the headless demo).
+/// Debian's VTK renders through an X server: with DISPLAY set it renders off screen there;
+/// without one it starts a private Xvfb (kept for the life of the process) when Xvfb is
+/// installed. Throws EnvironmentError (one line: no display and no Xvfb), InputError (no
+/// surface, bad size, the PNG cannot be written). Nothing is left behind on failure.
+void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options);
+
+/// Makes sure rendering can run: DISPLAY set, or a private Xvfb started now. Returns an empty
+/// string when it can, else the one-line reason.
+std::string EnsureRenderDisplay();
+
+} // namespace bender
+
+#endif

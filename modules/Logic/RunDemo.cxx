@@ -1,0 +1,163 @@
+#include "RunDemo.h"
+
+#include "ApplyPlan.h"
+#include "BenderErrors.h"
+#include "ExportSurface.h"
+#include "MeshIO.h"
+#include "RenderToPng.h"
+#include "WarpPlanIO.h"
+
+#include "AtomicFile.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <exception>
+#include <filesystem>
+
+namespace bender
+{
+
+namespace fs = std::filesystem;
+
+RunDemoResult RunDemo(const RunDemoOptions& options)
+{
+  RunDemoResult result;
+  auto say = [&options](const std::string& line)
+  {
+    if (options.onMessage)
+    {
+      options.onMessage(line, false);
+    }
+  };
+  auto warn = [&options, &result](const std::string& line)
+  {
+    result.warnings.push_back(line);
+    if (options.onMessage)
+    {
+      options.onMessage("warning: " + line, true);
+    }
+  };
+  const std::string& dir = options.outputDirectory;
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir, error))
+  {
+    throw InputError(dir + ": cannot create the output folder");
+  }
+  const std::string vesselPath = options.vesselPath.empty() ? DemoVesselPath() : options.vesselPath;
+  const std::string planPath = options.planPath.empty() ? DemoPlanPath() : options.planPath;
+  auto out = [&dir](const char* name) { return (fs::path(dir) / name).string(); };
+
+  vtkSmartPointer<vtkPolyData> surface;
+  if (options.segment)
+  {
+    say("Segmenting the demo vessel (MRA-like phantom of " + vesselPath + ")...");
+    try
+    {
+      DemoVessel demo = SegmentDemoVessel(vesselPath, options.demo, options.progress);
+      say(demo.summary);
+      surface = demo.surface;
+      WriteMesh(surface, out("demo-segmented.vtp"));
+      result.written.push_back(out("demo-segmented.vtp"));
+      result.segmented = true;
+    }
+    catch (const Cancelled&)
+    {
+      throw;
+    }
+    catch (const std::exception& e)
+    {
+      warn(std::string("segmentation failed (") + e.what() + "); using the vessel surface");
+      surface = nullptr;
+    }
+  }
+  WarpPlan plan;
+  try
+  {
+    if (!surface)
+    {
+      surface = ReadMesh(vesselPath);
+    }
+    plan = ReadWarpPlan(planPath);
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(e.what());
+  }
+  options.progress.ThrowIfCancelled("demo plan");
+
+  ApplyPlanOptions applyOptions;
+  applyOptions.planName = fs::path(planPath).filename().string();
+  applyOptions.progress = options.progress;
+  const vtkSmartPointer<vtkPolyData> bent = ApplyPlan(surface, plan, applyOptions).output;
+  say("Applied " + std::to_string(plan.warps.size()) + " warps of " + applyOptions.planName);
+
+  const MeshCheckReport report = CheckForExport(bent, surface);
+  const std::string reportText = FormatReportText(report, "demo-bent.stl");
+  std::string problem;
+  if (!AtomicWriteText(out("demo-check.txt"), reportText, problem))
+  {
+    throw InputError(out("demo-check.txt") + ": " + problem);
+  }
+  result.written.push_back(out("demo-check.txt"));
+  say(reportText);
+  result.checkClean = report.Clean();
+  if (!result.checkClean)
+  {
+    warn("the check found problems (see demo-check.txt); exporting anyway");
+  }
+
+  for (const char* name : { "demo-bent.stl", "demo-bent.vtp" })
+  {
+    ExportSurfaceOptions exportOptions;
+    exportOptions.output = out(name);
+    exportOptions.protectedPath = vesselPath;
+    for (const std::string& file : ExportSurface(bent, exportOptions).written)
+    {
+      result.written.push_back(file);
+    }
+  }
+  try
+  {
+    WriteWarpPlan(plan, out("demo-plan.bender.json"));
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(e.what());
+  }
+  result.written.push_back(out("demo-plan.bender.json"));
+
+  if (options.screenshot)
+  {
+    RenderToPngOptions render;
+    render.output = out("demo.png");
+    render.width = 1200;
+    render.height = 900;
+    render.darkBackground = true;
+    render.color = { { 0.86, 0.36, 0.32 } };
+    render.opacity = 0.75;
+    render.ghost = surface;
+    if (!plan.warps.empty())
+    {
+      // The final ribbon of the last warp, where the surgeon's hands let go.
+      render.ribbons.push_back({ plan.warps.back().final, 1.2, { { 1.0, 0.78, 0.2 } } });
+    }
+    try
+    {
+      RenderToPng(bent, render);
+      result.written.push_back(render.output);
+    }
+    catch (const EnvironmentError& e)
+    {
+      warn(std::string(e.what()) + ": screenshot skipped");
+    }
+    catch (const InputError& e)
+    {
+      warn(std::string("the screenshot could not be written: ") + e.what());
+    }
+  }
+  return result;
+}
+
+} // namespace bender
