@@ -1,17 +1,21 @@
 #include "BendPanel.h"
 
+#include "MainActions.h"
+
+#include <QAction>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QLabel>
-#include <QPushButton>
+#include <QToolButton>
 #include <QVBoxLayout>
 
 #include <cmath>
 
-BendPanel::BendPanel(QWidget* parent)
+BendPanel::BendPanel(MainActions* actions, QWidget* parent)
   : QWidget(parent)
+  , Actions(actions)
 {
   auto* layout = new QVBoxLayout(this);
   auto* form = new QFormLayout;
@@ -55,16 +59,10 @@ BendPanel::BendPanel(QWidget* parent)
   this->Tolerance->setSuffix(" mm");
   form->addRow("Subdivision tolerance", this->Tolerance);
 
-  this->PlaceButton = new QPushButton("Place ribbon on surface (P)", this);
-  this->PlaceButton->setObjectName("placeRibbon");
-  this->PlaceButton->setToolTip("Then click on the vessel: a straight ribbon is laid along it");
-  layout->addWidget(this->PlaceButton);
-  this->GrabButton = new QPushButton("Grab (G, or hold Space)", this);
-  this->GrabButton->setObjectName("grab");
-  layout->addWidget(this->GrabButton);
-  this->CancelButton = new QPushButton("Cancel bend (Esc)", this);
-  this->CancelButton->setObjectName("cancelBend");
-  layout->addWidget(this->CancelButton);
+  // The gesture buttons show the window's shared actions (menus and keys do the same).
+  layout->addWidget(ActionButton(actions->PlaceRibbon, this, "placeRibbon"));
+  layout->addWidget(ActionButton(actions->Grab, this, "grab"));
+  layout->addWidget(ActionButton(actions->CancelBend, this, "cancelBend"));
   this->State = new QLabel(this);
   this->State->setObjectName("bendState");
   this->State->setWordWrap(true);
@@ -72,7 +70,8 @@ BendPanel::BendPanel(QWidget* parent)
   layout->addStretch(1);
 
   this->setParameters(bender::WarpParameters{});
-  auto changed = [this]() {
+  auto changed = [this]()
+  {
     if (!this->Updating)
     {
       this->Plateau->setEnabled(this->Decay->currentIndex() == 1);
@@ -86,17 +85,14 @@ BendPanel::BendPanel(QWidget* parent)
   connect(this->ReverseScrews, &QCheckBox::toggled, this, changed);
   connect(this->Subdivide, &QCheckBox::toggled, this, changed);
   connect(this->Tolerance, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, changed);
-  connect(this->PlaceButton, &QPushButton::clicked, this, &BendPanel::placeRibbonRequested);
-  connect(this->GrabButton, &QPushButton::clicked, this, &BendPanel::grabToggled);
-  connect(this->CancelButton, &QPushButton::clicked, this, &BendPanel::cancelRequested);
 }
 
 bender::WarpParameters BendPanel::parameters() const
 {
   bender::WarpParameters p;
   p.radius = this->Radius->value();
-  p.decay.shape = this->Decay->currentIndex() == 1 ? bender::DecayShape::Plateau
-                                                   : bender::DecayShape::Bell;
+  p.decay.shape =
+    this->Decay->currentIndex() == 1 ? bender::DecayShape::Plateau : bender::DecayShape::Bell;
   p.decay.plateau = this->Plateau->value();
   p.reverseScrews = this->ReverseScrews->isChecked();
   p.subdivide = this->Subdivide->isChecked();
@@ -121,10 +117,11 @@ void BendPanel::setParameters(const bender::WarpParameters& p)
 void BendPanel::showState(const bender::BenderSession& session)
 {
   const bool grabbed = session.GetState() == bender::GrabState::Grabbed;
-  this->GrabButton->setText(grabbed ? "Release (G)" : "Grab (G, or hold Space)");
-  this->GrabButton->setEnabled(session.HasSurface());
-  this->CancelButton->setEnabled(grabbed);
-  this->PlaceButton->setEnabled(session.HasSurface() && !grabbed);
+  const bool busy = session.IsBusy();
+  this->Actions->Grab->setText(grabbed ? "Release (G)" : "Grab (G, or hold Space)");
+  this->Actions->Grab->setEnabled(session.HasSurface() && !busy);
+  this->Actions->CancelBend->setEnabled(grabbed && !busy);
+  this->Actions->PlaceRibbon->setEnabled(session.HasSurface() && !grabbed && !busy);
   // The toggle is offered once a flip occurred, and stays so that it can be turned back off.
   this->ReverseScrews->setEnabled(
     (grabbed && session.GetFlipOccurred()) || this->ReverseScrews->isChecked());
@@ -150,10 +147,12 @@ void BendPanel::showState(const bender::BenderSession& session)
   switch (session.GetState())
   {
     case bender::GrabState::Idle:
-      state = session.HasSurface() ? "Idle: place the ribbon, then grab" : "Load or segment a surface";
+      state =
+        session.HasSurface() ? "Idle: place the ribbon, then grab" : "Load or segment a surface";
       break;
     case bender::GrabState::Grabbed:
-      state = QString("Grabbed: %1 points bound; drag the handles").arg(session.GetNumberOfBoundPoints());
+      state =
+        QString("Grabbed: %1 points bound; drag the handles").arg(session.GetNumberOfBoundPoints());
       if (!session.GetLiveProblem().empty())
       {
         state += QString("\nNot applied: ") + QString::fromStdString(session.GetLiveProblem());

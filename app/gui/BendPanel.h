@@ -5,6 +5,7 @@
 
 #include <QWidget>
 
+class MainActions;
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
@@ -14,25 +15,21 @@ class QSpinBox;
 
 /// The Bend panel: region of influence R (with r_min and the space-inversion warning), decay
 /// bell/plateau and plateau width, the screw-direction toggle of paper 3.8 (enabled when a flip
-/// occurred), adaptive subdivision at release, and the gesture buttons.
+/// occurred), adaptive subdivision at release, and the gesture buttons (the window's shared
+/// Place, Grab and Cancel actions).
 class BendPanel : public QWidget
 {
   Q_OBJECT
 public:
-  explicit BendPanel(QWidget* parent = nullptr);
+  explicit BendPanel(MainActions* actions, QWidget* parent = nullptr);
 
   bender::WarpParameters parameters() const;
   void setParameters(const bender::WarpParameters& parameters);
   /// Refreshes the live information (r_min, risk, flip, state) from the session.
   void showState(const bender::BenderSession& session);
 
-  QPushButton* grabButton() const { return this->GrabButton; }
-
 signals:
   void parametersChanged();
-  void placeRibbonRequested();
-  void grabToggled();
-  void cancelRequested();
 
 private:
   QDoubleSpinBox* Radius;
@@ -42,9 +39,7 @@ private:
   QCheckBox* ReverseScrews;
   QCheckBox* Subdivide;
   QDoubleSpinBox* Tolerance;
-  QPushButton* PlaceButton;
-  QPushButton* GrabButton;
-  QPushButton* CancelButton;
+  MainActions* Actions;
   QLabel* State;
   bool Updating = false;
 };

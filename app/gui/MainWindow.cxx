@@ -1,68 +1,46 @@
 #include "MainWindow.h"
 
 #include "BendPanel.h"
+#include "BenderView.h"
+#include "DataPanel.h"
+#include "DemoPipeline.h"
+#include "ExportPanel.h"
+#include "MainActions.h"
 #include "MeshIO.h"
 #include "RibbonPlacement.h"
-#include "SegmentationErrors.h"
+#include "SegmentPanel.h"
 #include "SliceViews.h"
-#include "SurfaceExtraction.h"
 #include "TrackersPanel.h"
-#include "VesselSegmentation.h"
 #include "VolumeConversion.h"
-#include "VolumeIO.h"
 #include "WarpPlanIO.h"
+#include "WorkRunner.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
-#include <algorithm>
-#include <array>
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
-#include <QCheckBox>
-#include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
-#include <QElapsedTimer>
-#include <QKeyEvent>
-#include <QPointer>
-#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
-#include <QEventLoop>
+#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
+#include <QKeyEvent>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
-#include <QPlainTextEdit>
-#include <QProgressBar>
-#include <QPushButton>
-#include <QSettings>
 #include <QSplitter>
 #include <QStandardPaths>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTimer>
-#include <QVBoxLayout>
-#include <QVTKOpenGLNativeWidget.h>
-#include <QtConcurrent/QtConcurrent>
 
-#include <vtkActor.h>
-#include <vtkCallbackCommand.h>
-#include <vtkCamera.h>
-#include <vtkCellPicker.h>
-#include <vtkCommand.h>
-#include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkImageData.h>
-#include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkProperty.h>
-#include <vtkRenderWindowInteractor.h>
-#include <vtkRenderer.h>
+#include <vtkRenderWindow.h>
 
 #include <algorithm>
 #include <cmath>
@@ -70,42 +48,28 @@
 
 namespace
 {
-
-QString Lower(const QString& s)
+bool EndsWithAny(const QString& path, std::initializer_list<const char*> extensions)
 {
-  return s.toLower();
+  const QString p = path.toLower();
+  return std::any_of(
+    extensions.begin(), extensions.end(), [&](const char* e) { return p.endsWith(e); });
 }
 
 bool IsMesh(const QString& path)
 {
-  const QString p = Lower(path);
-  for (const char* ext : { ".stl", ".obj", ".ply", ".vtp", ".vtk", ".off" })
-  {
-    if (p.endsWith(ext))
-    {
-      return true;
-    }
-  }
-  return false;
+  return EndsWithAny(path, { ".stl", ".obj", ".ply", ".vtp", ".vtk", ".off" });
 }
 
 bool IsVolume(const QString& path)
 {
-  const QString p = Lower(path);
-  if (QFileInfo(path).isDir())
-  {
-    return true;
-  }
-  for (const char* ext : { ".nrrd", ".nhdr", ".nii", ".nii.gz", ".mha", ".mhd", ".vti" })
-  {
-    if (p.endsWith(ext))
-    {
-      return true;
-    }
-  }
-  return false;
+  return QFileInfo(path).isDir() ||
+    EndsWithAny(path, { ".nrrd", ".nhdr", ".nii", ".nii.gz", ".mha", ".mhd", ".vti" });
 }
 
+std::string Name(const QString& path)
+{
+  return QFileInfo(path).fileName().toStdString();
+}
 }
 
 MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
@@ -117,33 +81,39 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
   this->setAcceptDrops(true);
   this->resize(1280, 860);
   this->Trackers = std::make_unique<bender::TrackerSession>(this->Session);
+  this->Actions = new MainActions(this);
 
-  this->buildView();
+  this->View = new BenderView(this->Session.GetOutputPort(), this);
+  this->View->installEventFilter(this);
+  this->Slices = new SliceViews(this);
+  this->Slices->hide();
+  this->Splitter = new QSplitter(Qt::Vertical, this);
+  this->Splitter->addWidget(this->View);
+  this->Splitter->addWidget(this->Slices);
+  this->Splitter->setStretchFactor(0, 3);
+  this->Splitter->setStretchFactor(1, 1);
+  this->setCentralWidget(this->Splitter);
   this->buildPanels();
-  this->buildMenus();
-
+  this->Actions->addMenus(this->menuBar());
   this->StatusText = new QLabel("Ready: open a mesh or a volume, or run the demo (Ctrl+D)", this);
   this->StatusText->setObjectName("statusText");
   this->statusBar()->addWidget(this->StatusText, 1);
-  this->Progress = new QProgressBar(this);
-  this->Progress->setRange(0, 100);
-  this->Progress->setMaximumWidth(220);
-  this->Progress->hide();
-  this->statusBar()->addPermanentWidget(this->Progress);
-  this->CancelButton = new QPushButton("Cancel", this);
-  this->CancelButton->setObjectName("cancelWork");
-  this->CancelButton->hide();
-  this->statusBar()->addPermanentWidget(this->CancelButton);
-  connect(this->CancelButton, &QPushButton::clicked, this, [this]() {
-    this->CancelFlag = true;
-    this->StatusText->setText("Cancelling...");
-  });
-
-  this->Watcher = new QFutureWatcher<Finisher>(this);
-  connect(this->Watcher, &QFutureWatcher<Finisher>::finished, this, &MainWindow::finishWork);
-  this->TrackerTimer = new QTimer(this);
-  this->TrackerTimer->setInterval(16);
-  connect(this->TrackerTimer, &QTimer::timeout, this, &MainWindow::pollTrackers);
+  this->Worker = new WorkRunner(
+    this->statusBar(),
+    this->StatusText,
+    [this](int severity, const std::string& text)
+    { this->Session.AddMessage(static_cast<bender::MessageSeverity>(severity), text); },
+    this);
+  this->Worker->Hook = this->Options.workHook;
+  connect(this->Worker,
+    &WorkRunner::finished,
+    this,
+    [this](bool ok)
+    {
+      this->refresh();
+      emit this->workFinished(ok);
+    });
+  this->connectActions();
 
   this->Session.SetMessageCallback([this](const bender::LogicMessage& m) { this->showMessage(m); });
   this->Session.SetChangeCallback([this]() { this->refresh(); });
@@ -154,72 +124,40 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
     QDir().mkpath(folder);
     autosave = folder + "/autosave.bender-session.json";
   }
+  this->Session.SetAutosavePath(autosave.toStdString());
   if (this->Options.offerRecovery && QFileInfo::exists(autosave))
   {
-    this->Session.SetAutosavePath(autosave.toStdString());
     QTimer::singleShot(0, this, &MainWindow::offerRecovery);
-  }
-  else
-  {
-    this->Session.SetAutosavePath(autosave.toStdString());
   }
   this->refresh();
 }
 
 MainWindow::~MainWindow()
 {
-  this->CancelFlag = true;
-  this->Watcher->waitForFinished();
-  this->TrackerTimer->stop();
+  this->Worker->cancelAndWait();
   this->Session.SetMessageCallback(nullptr);
   this->Session.SetChangeCallback(nullptr);
   this->Trackers.reset();
-  this->RibbonWidget->Off();
 }
 
-void MainWindow::buildView()
+vtkBenderRibbonWidget* MainWindow::ribbonWidget()
 {
-  this->View = new QVTKOpenGLNativeWidget(this);
-  this->View->setObjectName("view3d");
-  this->View->setRenderWindow(this->RenderWindow);
-  this->RenderWindow->AddRenderer(this->Renderer);
-  this->Renderer->SetBackground(0.12, 0.13, 0.16);
-  this->Renderer->SetBackground2(0.32, 0.34, 0.40);
-  this->Renderer->GradientBackgroundOn();
-  // Multisampling with blended translucency draws stripes on software OpenGL (llvmpipe).
-  this->RenderWindow->SetMultiSamples(0);
-  vtkNew<vtkInteractorStyleTrackballCamera> style;
-  this->RenderWindow->GetInteractor()->SetInteractorStyle(style);
+  return this->View->ribbonWidget();
+}
 
-  this->SurfaceMapper->SetInputData(this->Session.GetDisplaySurface());
-  this->SurfaceMapper->ScalarVisibilityOff();
-  this->SurfaceActor->SetMapper(this->SurfaceMapper);
-  this->SurfaceActor->GetProperty()->SetColor(0.86, 0.36, 0.32);
-  this->SurfaceActor->GetProperty()->SetSpecular(0.3);
-  this->SurfaceActor->GetProperty()->SetSpecularPower(20);
-  this->Renderer->AddActor(this->SurfaceActor);
+vtkRenderer* MainWindow::renderer()
+{
+  return this->View->renderer();
+}
 
-  this->RibbonWidget->SetInteractor(this->RenderWindow->GetInteractor());
-  this->RibbonWidget->SetCurrentRenderer(this->Renderer);
-  this->RibbonWidget->CreateDefaultRepresentation();
-  this->RibbonObserver->SetCallback(&MainWindow::RibbonCallback);
-  this->RibbonObserver->SetClientData(this);
-  this->RibbonWidget->AddObserver(vtkCommand::InteractionEvent, this->RibbonObserver);
-  this->RibbonWidget->AddObserver(vtkCommand::EndInteractionEvent, this->RibbonObserver);
-  this->PickObserver->SetCallback(&MainWindow::PickCallback);
-  this->PickObserver->SetClientData(this);
-  this->RenderWindow->GetInteractor()->AddObserver(
-    vtkCommand::LeftButtonPressEvent, this->PickObserver, 10.0f);
-  this->View->installEventFilter(this);
+QVTKOpenGLNativeWidget* MainWindow::view()
+{
+  return this->View;
+}
 
-  this->Slices = new SliceViews(this);
-  this->Slices->hide();
-  this->Splitter = new QSplitter(Qt::Vertical, this);
-  this->Splitter->addWidget(this->View);
-  this->Splitter->addWidget(this->Slices);
-  this->Splitter->setStretchFactor(0, 3);
-  this->Splitter->setStretchFactor(1, 1);
-  this->setCentralWidget(this->Splitter);
+bool MainWindow::isPlacingRibbon() const
+{
+  return this->View->isPicking();
 }
 
 void MainWindow::buildPanels()
@@ -227,123 +165,28 @@ void MainWindow::buildPanels()
   this->Panels = new QTabWidget(this);
   this->Panels->setObjectName("panels");
   this->Panels->setMinimumWidth(330);
-
-  // Data
-  auto* data = new QWidget(this);
-  auto* dataLayout = new QVBoxLayout(data);
-  auto* openButton = new QPushButton("Open mesh, volume or plan... (Ctrl+O)", data);
-  auto* demoButton = new QPushButton("Run the demo (Ctrl+D)", data);
-  demoButton->setObjectName("demoButton");
-  this->DataInfo = new QLabel("No data", data);
-  this->DataInfo->setObjectName("dataInfo");
-  this->DataInfo->setWordWrap(true);
-  dataLayout->addWidget(openButton);
-  dataLayout->addWidget(demoButton);
-  dataLayout->addWidget(new QLabel("Or drop files on the window.", data));
-  dataLayout->addWidget(this->DataInfo);
-  dataLayout->addStretch(1);
-  connect(openButton, &QPushButton::clicked, this, [this]() {
-    const QString file = QFileDialog::getOpenFileName(this, "Open", QString(),
-      "All supported (*.stl *.obj *.ply *.vtp *.vtk *.off *.json *.nrrd *.nhdr *.nii *.nii.gz "
-      "*.mha *.mhd *.vti);;All files (*)");
-    if (!file.isEmpty())
-    {
-      this->openFile(file);
-    }
-  });
-  connect(demoButton, &QPushButton::clicked, this, &MainWindow::startDemo);
-  this->Panels->addTab(data, "Data");
-
-  // Segment
-  auto* segment = new QWidget(this);
-  auto* segmentLayout = new QVBoxLayout(segment);
-  auto* segmentForm = new QFormLayout;
-  segmentLayout->addLayout(segmentForm);
-  this->MethodCombo = new QComboBox(segment);
-  this->MethodCombo->addItems({ "Threshold", "Vesselness" });
-  segmentForm->addRow("Method", this->MethodCombo);
-  this->ThresholdSpin = new QDoubleSpinBox(segment);
-  this->ThresholdSpin->setObjectName("lumenThreshold");
-  this->ThresholdSpin->setRange(-1e6, 1e6);
-  this->ThresholdSpin->setValue(250.0);
-  segmentForm->addRow("Lumen above", this->ThresholdSpin);
-  this->SmoothingSpin = new QDoubleSpinBox(segment);
-  this->SmoothingSpin->setRange(0.0, 1.0);
-  this->SmoothingSpin->setSingleStep(0.1);
-  this->SmoothingSpin->setValue(0.5);
-  segmentForm->addRow("Smoothing", this->SmoothingSpin);
-  auto* segmentButton = new QPushButton("Segment the loaded volume", segment);
-  segmentButton->setObjectName("segmentButton");
-  segmentLayout->addWidget(segmentButton);
-  segmentLayout->addStretch(1);
-  connect(segmentButton, &QPushButton::clicked, this, &MainWindow::segmentLoadedVolume);
-  this->Panels->addTab(segment, "Segment");
-
-  // Bend
-  this->Bend = new BendPanel(this);
-  connect(this->Bend, &BendPanel::parametersChanged, this, &MainWindow::applyParameters);
-  connect(this->Bend, &BendPanel::placeRibbonRequested, this, [this]() {
-    this->PlacingRibbon = true;
-    this->StatusText->setText("Click on the vessel to place the ribbon along it");
-  });
-  connect(this->Bend, &BendPanel::grabToggled, this, [this]() {
-    if (this->Session.GetState() == bender::GrabState::Grabbed)
-      this->release();
-    else
-      this->grab();
-  });
-  connect(this->Bend, &BendPanel::cancelRequested, this,
-    [this]() { this->Session.CancelGrab("cancelled by the user"); });
-  this->Panels->addTab(this->Bend, "Bend");
-
-  // Trackers
+  this->Data = new DataPanel(this->Actions, this);
+  this->Segment = new SegmentPanel(this->Actions, this);
+  this->Bend = new BendPanel(this->Actions, this);
   this->TrackersUi = new TrackersPanel(this);
-  connect(this->TrackersUi, &TrackersPanel::connectRequested, this, &MainWindow::connectTrackers);
-  connect(this->TrackersUi, &TrackersPanel::disconnectRequested, this, &MainWindow::disconnectTrackers);
-  connect(this->TrackersUi, &TrackersPanel::clutchToggled, this,
-    [this](bool engaged) { this->Trackers->SetClutch(engaged); });
-  connect(this->TrackersUi, &TrackersPanel::alignRequested, this, &MainWindow::alignTrackers);
-  this->Panels->addTab(this->TrackersUi, "Trackers");
-
-  // Export
-  auto* exportPanel = new QWidget(this);
-  auto* exportLayout = new QVBoxLayout(exportPanel);
-  auto* exportForm = new QFormLayout;
-  exportLayout->addLayout(exportForm);
-  this->FormatCombo = new QComboBox(exportPanel);
-  this->FormatCombo->addItems({ "STL (binary)", "STL (ASCII)", "VTP", "PLY", "OBJ" });
-  exportForm->addRow("Format", this->FormatCombo);
-  this->CapCheck = new QCheckBox("Cap the open vessel ends (inlets and outlets)", exportPanel);
-  this->CapCheck->setObjectName("capCheck");
-  exportForm->addRow("Caps", this->CapCheck);
-  this->PatchesCombo = new QComboBox(exportPanel);
-  this->PatchesCombo->setObjectName("patchesCombo");
-  this->PatchesCombo->addItems(
-    { "One surface", "Named solids per patch (ASCII, snappyHexMesh)", "One STL file per patch" });
-  exportForm->addRow("STL patches", this->PatchesCombo);
-  this->FrameCombo = new QComboBox(exportPanel);
-  this->FrameCombo->setObjectName("frameCombo");
-  this->FrameCombo->addItems({ "LPS (DICOM, ITK)", "RAS (Slicer, NIfTI)" });
-  exportForm->addRow("Frame", this->FrameCombo);
-  exportForm->addRow("Unit", new QLabel("millimetres (frame and unit stated in the file header)"));
-  auto* checkButton = new QPushButton("Check the surface", exportPanel);
-  auto* exportButton = new QPushButton("Export... (Ctrl+E)", exportPanel);
-  this->CheckReport = new QPlainTextEdit(exportPanel);
-  this->CheckReport->setObjectName("checkReport");
-  this->CheckReport->setReadOnly(true);
-  exportLayout->addWidget(checkButton);
-  exportLayout->addWidget(exportButton);
-  exportLayout->addWidget(this->CheckReport, 1);
-  connect(checkButton, &QPushButton::clicked, this, &MainWindow::runCheck);
-  connect(exportButton, &QPushButton::clicked, this, [this]() {
-    const QString file = QFileDialog::getSaveFileName(this, "Export surface", QString(), this->exportFilter());
-    if (!file.isEmpty())
+  this->Export = new ExportPanel(this->Actions, this);
+  this->addPanel(this->Data, "Data");
+  this->addPanel(this->Segment, "Segment");
+  this->addPanel(this->Bend, "Bend");
+  this->addPanel(this->TrackersUi, "Trackers");
+  this->addPanel(this->Export, "Export");
+  connect(this->Bend, &BendPanel::parametersChanged, this, &MainWindow::applyParameters);
+  this->TrackersUi->attach(
+    this->Trackers.get(),
+    &this->Session,
+    this->ribbonWidget(),
+    [this]() { this->render(); },
+    [this](const std::function<void()>& call)
     {
-      this->exportSurface(file);
-    }
-  });
-  this->Panels->addTab(exportPanel, "Export");
-
+      ++this->RenderSuppressed; // the poll renders once at its end
+      call();
+      --this->RenderSuppressed;
+    });
   auto* dock = new QDockWidget("Panels", this);
   dock->setObjectName("panelsDock");
   dock->setWidget(this->Panels);
@@ -351,100 +194,136 @@ void MainWindow::buildPanels()
   this->addDockWidget(Qt::RightDockWidgetArea, dock);
 }
 
-void MainWindow::buildMenus()
+void MainWindow::addPanel(QWidget* panel, const QString& title)
 {
-  QMenu* file = this->menuBar()->addMenu("&File");
-  file->addAction("&Open...", this, [this]() {
-    const QString f = QFileDialog::getOpenFileName(this, "Open");
-    if (!f.isEmpty())
-      this->openFile(f);
-  }, QKeySequence::Open);
-  this->RecentMenu = file->addMenu("Open &Recent");
-  file->addAction("Run the &demo", this, &MainWindow::startDemo, QKeySequence("Ctrl+D"));
-  file->addSeparator();
-  file->addAction("&Load plan and replay...", this, [this]() {
-    const QString f = QFileDialog::getOpenFileName(this, "Load plan", QString(), "Plans (*.bender.json *.json)");
-    if (!f.isEmpty() && this->Session.LoadPlan(f.toStdString()))
-      this->addRecentFile(f);
-  }, QKeySequence("Ctrl+L"));
-  file->addAction("&Save plan...", this, [this]() {
-    const QString f = QFileDialog::getSaveFileName(this, "Save plan", "plan.bender.json", "Plans (*.bender.json)");
-    if (!f.isEmpty())
-      this->Session.SavePlan(f.toStdString());
-  }, QKeySequence::Save);
-  file->addAction("&Export surface...", this, [this]() {
-    const QString f = QFileDialog::getSaveFileName(this, "Export surface", QString(), this->exportFilter());
-    if (!f.isEmpty())
-      this->exportSurface(f);
-  }, QKeySequence("Ctrl+E"));
-  file->addAction("Screens&hot...", this, [this]() {
-    const QString f = QFileDialog::getSaveFileName(this, "Screenshot", "bender.png", "PNG (*.png)");
-    if (!f.isEmpty())
-      this->saveScreenshot(f);
-  }, QKeySequence("F12"));
-  file->addSeparator();
-  file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
+  this->Panels->addTab(panel, title);
+}
 
-  QMenu* edit = this->menuBar()->addMenu("&Edit");
-  this->UndoAction = edit->addAction("&Undo warp", this, [this]() { this->Session.Undo(); },
-    QKeySequence("Ctrl+Z"));
-  this->RedoAction = edit->addAction("&Redo warp", this, [this]() { this->Session.Redo(); },
-    QKeySequence("Ctrl+Shift+Z"));
-
-  QMenu* bend = this->menuBar()->addMenu("&Bend");
-  bend->addAction("&Place ribbon on surface", this, [this]() {
-    this->PlacingRibbon = true;
-    this->StatusText->setText("Click on the vessel to place the ribbon along it");
-  }, QKeySequence("P"));
-  bend->addAction("&Grab / release", this, [this]() {
-    if (this->Session.GetState() == bender::GrabState::Grabbed)
-      this->release();
-    else
-      this->grab();
-  }, QKeySequence("G"));
-  bend->addAction("&Cancel bend", this, [this]() {
-    this->PlacingRibbon = false;
-    this->Session.CancelGrab("cancelled by the user");
-  }, QKeySequence("Esc"));
-
-  QMenu* view = this->menuBar()->addMenu("&View");
-  view->addAction("&Reset camera", this, &MainWindow::resetCamera, QKeySequence("Ctrl+R"));
-  this->updateRecentMenu();
+void MainWindow::connectActions()
+{
+  MainActions* a = this->Actions;
+  connect(a->Open,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString file = QFileDialog::getOpenFileName(this,
+        "Open",
+        QString(),
+        "All supported (*.stl *.obj *.ply *.vtp *.vtk *.off *.json *.nrrd *.nhdr *.nii *.nii.gz "
+        "*.mha *.mhd *.vti);;All files (*)");
+      if (!file.isEmpty())
+        this->openFile(file);
+    });
+  connect(a, &MainActions::recentFileChosen, this, &MainWindow::openFile);
+  connect(a->Demo, &QAction::triggered, this, &MainWindow::startDemo);
+  connect(a->LoadPlan,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString f =
+        QFileDialog::getOpenFileName(this, "Load plan", QString(), "Plans (*.bender.json *.json)");
+      if (!f.isEmpty())
+        this->openFile(f);
+    });
+  connect(a->SavePlan,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString f = QFileDialog::getSaveFileName(
+        this, "Save plan", "plan.bender.json", "Plans (*.bender.json)");
+      if (!f.isEmpty())
+        this->Session.SavePlan(f.toStdString());
+    });
+  connect(a->Check, &QAction::triggered, this, &MainWindow::checkSurface);
+  connect(a->Export,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString f =
+        QFileDialog::getSaveFileName(this, "Export surface", QString(), ExportPanel::fileFilter());
+      if (!f.isEmpty())
+        this->exportSurface(f);
+    });
+  connect(a->Screenshot,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString f =
+        QFileDialog::getSaveFileName(this, "Screenshot", "bender.png", "PNG (*.png)");
+      if (!f.isEmpty())
+        this->saveScreenshot(f);
+    });
+  connect(a->Quit, &QAction::triggered, this, &QWidget::close);
+  connect(a->Undo, &QAction::triggered, this, [this]() { this->Session.Undo(); });
+  connect(a->Redo, &QAction::triggered, this, [this]() { this->Session.Redo(); });
+  connect(a->PlaceRibbon,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      this->View->setPicking(true);
+      this->StatusText->setText("Click on the vessel to place the ribbon along it");
+    });
+  connect(a->Grab,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      if (this->Session.GetState() == bender::GrabState::Grabbed)
+        this->release();
+      else
+        this->grab();
+    });
+  connect(a->CancelBend,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      this->View->setPicking(false);
+      this->Session.CancelGrab("cancelled by the user");
+    });
+  connect(a->Segment, &QAction::triggered, this, &MainWindow::segmentVolume);
+  connect(a->ResetCamera, &QAction::triggered, this->View, &BenderView::resetCamera);
+  connect(this->View, &BenderView::ribbonInteraction, this, &MainWindow::onRibbonInteraction);
+  connect(this->View,
+    &BenderView::surfacePicked,
+    this,
+    [this](double x, double y, double z)
+    {
+      const double point[3] = { x, y, z };
+      this->placeRibbonAt(point);
+    });
+  connect(this->View,
+    &BenderView::pickMissed,
+    this,
+    [this]()
+    {
+      this->Session.AddMessage(
+        bender::MessageSeverity::Warning, "Place ribbon: click on the surface");
+    });
 }
 
 void MainWindow::showMessage(const bender::LogicMessage& message)
 {
-  QString text = QString::fromStdString(message.text);
-  if (message.severity == bender::MessageSeverity::Error)
-  {
-    this->StatusText->setStyleSheet("color: #e55;");
-  }
-  else if (message.severity == bender::MessageSeverity::Warning)
-  {
-    this->StatusText->setStyleSheet("color: #d90;");
-  }
-  else
-  {
-    this->StatusText->setStyleSheet("");
-  }
-  this->StatusText->setText(text);
-  this->StatusText->setToolTip(text);
+  const auto severity = message.severity;
+  this->StatusText->setStyleSheet(severity == bender::MessageSeverity::Error
+      ? "color: #e55;"
+      : (severity == bender::MessageSeverity::Warning ? "color: #d90;" : ""));
+  this->StatusText->setText(QString::fromStdString(message.text));
+  this->StatusText->setToolTip(QString::fromStdString(message.text));
 }
 
 void MainWindow::refresh()
 {
   this->Bend->showState(this->Session);
-  this->UndoAction->setEnabled(this->Session.CanUndo());
-  this->RedoAction->setEnabled(this->Session.CanRedo());
-  if (this->Session.HasSurface())
-  {
-    vtkPolyData* surface = this->Session.GetSurface();
-    this->DataInfo->setText(QString("%1\n%2 points, %3 triangles (LPS mm)\n%4 warps committed")
-                              .arg(QString::fromStdString(this->Session.GetSurfaceName()))
-                              .arg(surface->GetNumberOfPoints())
-                              .arg(surface->GetNumberOfPolys())
-                              .arg(this->Session.GetHistoryPosition()));
-  }
+  this->Data->showState(this->Session, this->Segmentation);
+  this->Actions->Undo->setEnabled(this->Session.CanUndo() && !this->Session.IsBusy());
+  this->Actions->Redo->setEnabled(this->Session.CanRedo() && !this->Session.IsBusy());
   if (this->RenderSuppressed == 0)
   {
     this->render();
@@ -453,26 +332,20 @@ void MainWindow::refresh()
 
 void MainWindow::render()
 {
-  this->SurfaceMapper->Modified();
-  this->RenderWindow->Render();
-}
-
-void MainWindow::resetCamera()
-{
-  this->Renderer->ResetCamera();
-  this->render();
+  // The mapper is connected to the session's pipeline: no Modified() needed here.
+  this->View->render();
 }
 
 bool MainWindow::isBusy() const
 {
-  return this->WorkPending;
+  return this->Worker->isBusy();
 }
 
 bool MainWindow::waitUntilIdle(int milliseconds)
 {
   QElapsedTimer timer;
   timer.start();
-  while (this->WorkPending)
+  while (this->Worker->isBusy())
   {
     if (timer.elapsed() > milliseconds)
     {
@@ -483,227 +356,269 @@ bool MainWindow::waitUntilIdle(int milliseconds)
   return true;
 }
 
-void MainWindow::runInBackground(const QString& title, Work work)
+bool MainWindow::refuseWhenBusy()
 {
-  if (this->isBusy())
+  if (!this->isBusy())
   {
-    this->Session.AddMessage(bender::MessageSeverity::Error,
-      "Busy: wait for the current task or cancel it");
-    return;
+    return false;
   }
-  this->CancelFlag = false;
-  this->WorkPending = true;
-  this->Progress->setValue(0);
-  this->Progress->setFormat(title + " %p%");
-  this->Progress->show();
-  this->CancelButton->show();
-  this->StatusText->setText(title + "...");
-  bender::ProgressReporter reporter;
-  reporter.cancel = &this->CancelFlag;
-  QPointer<MainWindow> self(this);
-  reporter.onProgress = [self, title](const std::string& stage, double fraction) {
-    QMetaObject::invokeMethod(qApp, [self, title, stage, fraction]() {
-      if (self)
-      {
-        self->Progress->setValue(static_cast<int>(std::lround(100.0 * fraction)));
-        self->Progress->setFormat(title + ": " + QString::fromStdString(stage) + " %p%");
-      }
-    }, Qt::QueuedConnection);
-  };
-  this->Watcher->setFuture(QtConcurrent::run([this, work, reporter]() -> Finisher {
-    try
-    {
-      return work(reporter);
-    }
-    catch (const bender::SegmentationCancelled&)
-    {
-      return [this]() { this->Session.AddMessage(bender::MessageSeverity::Warning, "Cancelled"); };
-    }
-    catch (const std::exception& e)
-    {
-      const std::string what = e.what();
-      return [this, what]() { this->Session.AddMessage(bender::MessageSeverity::Error, what); };
-    }
-  }));
+  this->Session.AddMessage(
+    bender::MessageSeverity::Error, "Busy: wait for the current task or cancel it");
+  return true;
 }
 
-void MainWindow::finishWork()
+bool MainWindow::runInBackground(const QString& title, Work work)
 {
-  this->Progress->hide();
-  this->CancelButton->hide();
-  const std::size_t before = this->Session.GetMessages().size();
-  Finisher finisher = this->Watcher->result();
-  if (finisher)
+  return this->Worker->run(title,
+    [this, work](const bender::ProgressReporter& progress)
+    {
+      Finisher finisher = work(progress);
+      // A finisher that reports an error (a surface refused, ...) fails the job.
+      return Finisher(
+        [this, finisher]()
+        {
+          const std::size_t before = this->Session.GetMessages().size();
+          finisher();
+          const auto& messages = this->Session.GetMessages();
+          if (std::any_of(messages.begin() + static_cast<std::ptrdiff_t>(before),
+                messages.end(),
+                [](const bender::LogicMessage& m)
+                { return m.severity == bender::MessageSeverity::Error; }))
+          {
+            this->Worker->markFailed();
+          }
+        });
+    });
+}
+
+bool MainWindow::runSessionJob(const std::shared_ptr<bender::SessionJob>& job,
+  std::function<void(bender::SessionJob&, bool)> then)
+{
+  if (!job)
   {
-    finisher();
+    return false;
   }
-  bool failed = false;
-  const auto& messages = this->Session.GetMessages();
-  for (std::size_t i = before; i < messages.size(); ++i)
-  {
-    failed |= messages[i].severity == bender::MessageSeverity::Error || messages[i].text == "Cancelled";
-  }
-  this->WorkPending = false;
-  emit this->workFinished(!failed);
+  this->refresh(); // the session is busy: actions disabled
+  return this->runInBackground(QString::fromStdString(job->GetTitle()),
+    [this, job, then](const bender::ProgressReporter& progress)
+    {
+      job->Run(progress);
+      return Finisher(
+        [this, job, then]()
+        {
+          const bool ok = this->Session.Finish(*job);
+          if (!ok)
+          {
+            this->Worker->markFailed();
+          }
+          if (then)
+          {
+            then(*job, ok);
+          }
+        });
+    });
 }
 
 bool MainWindow::openFile(const QString& path)
 {
-  const QString lower = Lower(path);
-  const std::string file = path.toStdString();
-  if (lower.endsWith(".bender-session.json"))
+  if (this->refuseWhenBusy())
   {
-    return this->Session.Recover(file);
+    return false;
   }
-  if (lower.endsWith(".json"))
+  const std::string file = path.toStdString();
+  if (path.toLower().endsWith(".bender-session.json"))
   {
-    const bool ok = this->Session.LoadPlan(file);
-    if (ok)
-      this->addRecentFile(path);
-    return ok;
+    return this->runSessionJob(this->Session.BeginRecover(file),
+      [this](bender::SessionJob&, bool ok)
+      {
+        if (ok)
+          this->View->resetCamera();
+      });
+  }
+  if (path.toLower().endsWith(".json"))
+  {
+    return this->runSessionJob(this->Session.BeginLoadPlan(file),
+      [this, path](bender::SessionJob&, bool ok)
+      {
+        if (ok)
+          this->Actions->addRecentFile(path);
+      });
   }
   if (IsMesh(path))
   {
-    this->addRecentFile(path);
-    this->runInBackground("Reading " + QFileInfo(path).fileName(), [this, file](const bender::ProgressReporter&) {
-      vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(file);
-      return Finisher([this, mesh, file]() {
-        const std::string name = QFileInfo(QString::fromStdString(file)).fileName().toStdString();
-        if (this->Session.SetSurface(mesh, name, QFileInfo(QString::fromStdString(file)).absoluteFilePath().toStdString()))
-        {
-          // A mesh file has no volume behind it.
-          this->LoadedVolume.reset();
-          this->Slices->setVolume(nullptr, nullptr);
-          this->Slices->hide();
-          this->resetCamera();
-        }
+    this->Actions->addRecentFile(path);
+    return this->runInBackground("Reading " + QFileInfo(path).fileName(),
+      [this, path](const bender::ProgressReporter&)
+      {
+        vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(path.toStdString());
+        return Finisher(
+          [this, mesh, path]()
+          {
+            if (this->Session.SetSurface(
+                  mesh, Name(path), QFileInfo(path).absoluteFilePath().toStdString()))
+            {
+              // A mesh file has no volume behind it.
+              this->Segmentation.Clear();
+              this->showSlices();
+              this->View->resetCamera();
+            }
+          });
       });
-    });
-    return true;
   }
   if (IsVolume(path))
   {
-    this->addRecentFile(path);
-    this->runInBackground("Reading " + QFileInfo(path).fileName(), [this, file](const bender::ProgressReporter& progress) {
-      auto volume = std::make_shared<bender::Volume>(bender::ReadVolume(file, {}, progress));
-      return Finisher([this, volume, file]() {
-        this->LoadedVolume = std::make_unique<bender::Volume>(*volume);
-        this->showSlices(ToImageData(*volume), nullptr);
-        this->Panels->setCurrentIndex(1);
-        const auto& size = volume->geometry.size;
-        this->Session.AddMessage(bender::MessageSeverity::Info,
-          QString("Loaded volume %1: %2x%3x%4; segment it in the Segment panel")
-            .arg(QFileInfo(QString::fromStdString(file)).fileName())
-            .arg(size[0]).arg(size[1]).arg(size[2]).toStdString());
+    this->Actions->addRecentFile(path);
+    auto job = this->Segmentation.BeginRead(file);
+    return this->runInBackground("Reading " + QFileInfo(path).fileName(),
+      [this, job, path](const bender::ProgressReporter& progress)
+      {
+        job->Run(progress);
+        return Finisher(
+          [this, job, path]()
+          {
+            this->Segmentation.FinishRead(*job);
+            this->showSlices();
+            this->Panels->setCurrentWidget(this->Segment);
+            const auto& size = job->volume->geometry.size;
+            this->Session.AddMessage(bender::MessageSeverity::Info,
+              QString("Loaded volume %1: %2x%3x%4; segment it in the Segment panel")
+                .arg(QFileInfo(path).fileName())
+                .arg(size[0])
+                .arg(size[1])
+                .arg(size[2])
+                .toStdString());
+          });
       });
-    });
-    return true;
   }
   this->Session.AddMessage(bender::MessageSeverity::Error,
-    QFileInfo(path).fileName().toStdString() +
+    Name(path) +
       ": unknown file type (meshes: stl obj ply vtp vtk off; volumes: nrrd nii mha vti or a "
       "DICOM folder; plans: .bender.json)");
   return false;
 }
 
-void MainWindow::segmentLoadedVolume()
+bool MainWindow::segmentVolume()
 {
-  if (!this->LoadedVolume)
+  std::string problem;
+  if (this->refuseWhenBusy() || !this->Segmentation.SetSettings(this->Segment->settings(), problem))
   {
-    this->Session.AddMessage(bender::MessageSeverity::Error, "Segment: open a volume first");
-    return;
+    if (!problem.empty())
+      this->Session.AddMessage(bender::MessageSeverity::Error, "Segment: " + problem);
+    return false;
   }
-  auto volume = std::make_shared<bender::Volume>(*this->LoadedVolume);
-  bender::SegmentationParameters parameters;
-  parameters.method = this->MethodCombo->currentIndex() == 1 ? bender::SegmentationMethod::Vesselness
-                                                             : bender::SegmentationMethod::Threshold;
-  parameters.lower = this->ThresholdSpin->value();
-  bender::SurfaceParameters surfaceParameters;
-  surfaceParameters.smoothing = this->SmoothingSpin->value();
-  this->runInBackground("Segmenting", [this, volume, parameters, surfaceParameters](
-                                        const bender::ProgressReporter& progress) {
-    auto mask = std::make_shared<bender::LabelMap>(bender::SegmentVessels(*volume, parameters, progress));
-    bender::SurfaceResult surface = bender::ExtractSurface(*mask, surfaceParameters, progress);
-    return Finisher([this, volume, mask, surface]() {
-      this->showSlices(ToImageData(*volume), ToImageData(*mask));
-      if (this->Session.SetSurface(surface.surface, "segmented vessel"))
-      {
-        this->resetCamera();
-        this->Panels->setCurrentIndex(2);
-      }
+  auto job = this->Segmentation.BeginSegment(problem);
+  if (!job)
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error, problem);
+    return false;
+  }
+  return this->runInBackground("Segmenting",
+    [this, job](const bender::ProgressReporter& progress)
+    {
+      job->Run(progress);
+      return Finisher(
+        [this, job]()
+        {
+          this->Segmentation.FinishSegment(*job);
+          this->showSlices();
+          if (this->Session.SetSurface(job->surface, "segmented vessel"))
+          {
+            this->View->resetCamera();
+            this->Panels->setCurrentWidget(this->Bend);
+          }
+        });
     });
-  });
 }
 
 void MainWindow::startDemo()
 {
-  this->runInBackground("Demo", [this](const bender::ProgressReporter& progress) {
-    auto demo = std::make_shared<bender::DemoVessel>();
-    std::string fallback;
-    try
+  if (this->refuseWhenBusy())
+  {
+    return;
+  }
+  this->runInBackground("Demo",
+    [this](const bender::ProgressReporter& progress)
     {
-      *demo = bender::SegmentDemoVessel(bender::DemoVesselPath(), {}, progress);
-    }
-    catch (const bender::SegmentationCancelled&)
-    {
-      throw;
-    }
-    catch (const std::exception& e)
-    {
-      // Without the segmentation the demo still bends the vessel surface itself.
-      fallback = e.what();
-      demo->surface = bender::ReadMesh(bender::DemoVesselPath());
-    }
-    auto plan = std::make_shared<bender::WarpPlan>(bender::ReadWarpPlan(bender::DemoPlanPath()));
-    return Finisher([this, demo, plan, fallback]() {
-      if (!fallback.empty())
+      auto demo = std::make_shared<bender::DemoVessel>();
+      std::string fallback;
+      try
       {
-        this->Session.AddMessage(bender::MessageSeverity::Warning,
-          "Demo: segmentation unavailable (" + fallback + "); using the vessel surface");
+        *demo = bender::SegmentDemoVessel(bender::DemoVesselPath(), {}, progress);
       }
-      if (demo->volume.voxels.size() > 0)
+      catch (const bender::Cancelled&)
       {
-        this->LoadedVolume = std::make_unique<bender::Volume>(demo->volume);
-        this->showSlices(ToImageData(demo->volume), ToImageData(demo->mask));
+        throw;
       }
-      if (!this->Session.SetSurface(demo->surface, fallback.empty() ? "demo vessel (segmented)" : "demo vessel"))
+      catch (const std::exception& e)
       {
-        return;
+        // Without the segmentation the demo still bends the vessel surface itself.
+        fallback = e.what();
+        demo->surface = bender::ReadMesh(bender::DemoVesselPath());
       }
-      if (!plan->warps.empty())
-      {
-        const bender::WarpSpec& warp = plan->warps.front();
-        bender::WarpParameters parameters = this->Bend->parameters();
-        parameters.radius = warp.radius;
-        parameters.decay = warp.decay;
-        this->Bend->setParameters(parameters);
-        this->applyParameters();
-        auto* rep = this->RibbonWidget->GetRibbonRepresentation();
-        rep->SetHandleLength(4.0);
-        rep->SetHandleRadius(0.8);
-        rep->SetStripWidth(1.2);
-        this->setRibbon(warp.initial);
-        this->RibbonWidget->On();
-      }
-      this->resetCamera();
-      this->Panels->setCurrentIndex(2);
-      this->Session.AddMessage(bender::MessageSeverity::Info,
-        (fallback.empty() ? demo->summary + ". " : std::string()) +
-          "Ribbon placed on a branch: press G (or hold Space), drag the end handles, press G to release");
+      auto plan = std::make_shared<bender::WarpPlan>(bender::ReadWarpPlan(bender::DemoPlanPath()));
+      return Finisher(
+        [this, demo, plan, fallback]()
+        {
+          if (!fallback.empty())
+          {
+            this->Session.AddMessage(bender::MessageSeverity::Warning,
+              "Demo: segmentation unavailable (" + fallback + "); using the vessel surface");
+          }
+          if (demo->volume.voxels.size() > 0)
+          {
+            this->Segmentation.SetVolume(
+              std::make_shared<const bender::Volume>(std::move(demo->volume)),
+              "demo MRA volume",
+              std::make_shared<const bender::LabelMap>(std::move(demo->mask)));
+            this->showSlices();
+          }
+          if (!this->Session.SetSurface(
+                demo->surface, fallback.empty() ? "demo vessel (segmented)" : "demo vessel"))
+          {
+            return;
+          }
+          if (!plan->warps.empty())
+          {
+            const bender::WarpSpec& warp = plan->warps.front();
+            bender::WarpParameters parameters = this->Bend->parameters();
+            parameters.radius = warp.radius;
+            parameters.decay = warp.decay;
+            this->Bend->setParameters(parameters);
+            this->applyParameters();
+            auto* rep = this->ribbonWidget()->GetRibbonRepresentation();
+            rep->SetHandleLength(4.0);
+            rep->SetHandleRadius(0.8);
+            rep->SetStripWidth(1.2);
+            this->setRibbon(warp.initial);
+            this->ribbonWidget()->On();
+          }
+          this->View->resetCamera();
+          this->Panels->setCurrentWidget(this->Bend);
+          this->Session.AddMessage(bender::MessageSeverity::Info,
+            (fallback.empty() ? demo->summary + ". " : std::string()) +
+              "Ribbon placed on a branch: press G (or hold Space), drag the end handles, press G "
+              "to release");
+        });
     });
-  });
 }
 
-void MainWindow::showSlices(vtkImageData* volume, vtkImageData* mask)
+void MainWindow::showSlices()
 {
-  const bool wasHidden = this->Slices->isHidden();
-  this->Slices->show();
-  if (wasHidden)
+  const auto& volume = this->Segmentation.GetVolume();
+  if (!volume)
   {
+    this->Slices->setVolume(nullptr, nullptr);
+    this->Slices->hide();
+    return;
+  }
+  if (this->Slices->isHidden())
+  {
+    this->Slices->show();
     const int height = std::max(400, this->Splitter->height());
     this->Splitter->setSizes({ height * 7 / 10, height * 3 / 10 });
   }
-  this->Slices->setVolume(volume, mask);
+  const auto& mask = this->Segmentation.GetMask();
+  this->Slices->setVolume(ToImageData(*volume), mask ? ToImageData(*mask) : nullptr);
 }
 
 void MainWindow::applyParameters()
@@ -711,7 +626,7 @@ void MainWindow::applyParameters()
   const bender::WarpParameters parameters = this->Bend->parameters();
   if (this->Session.SetParameters(parameters))
   {
-    this->RibbonWidget->GetRibbonRepresentation()->SetRadius(parameters.radius);
+    this->ribbonWidget()->GetRibbonRepresentation()->SetRadius(parameters.radius);
   }
   this->Bend->showState(this->Session);
   this->render();
@@ -719,8 +634,8 @@ void MainWindow::applyParameters()
 
 void MainWindow::setRibbon(const bender::RibbonSpec& ribbon)
 {
-  this->RibbonWidget->GetRibbonRepresentation()->SetRibbon(ribbon);
-  this->RibbonWidget->GetRibbonRepresentation()->SetRadius(this->Session.GetParameters().radius);
+  this->ribbonWidget()->GetRibbonRepresentation()->SetRibbon(ribbon);
+  this->ribbonWidget()->GetRibbonRepresentation()->SetRadius(this->Session.GetParameters().radius);
   if (this->Session.GetState() == bender::GrabState::Grabbed)
   {
     this->Session.MoveFinal(ribbon);
@@ -730,17 +645,13 @@ void MainWindow::setRibbon(const bender::RibbonSpec& ribbon)
 
 bool MainWindow::grab()
 {
-  if (!this->RibbonWidget->GetEnabled())
+  auto* rep = this->ribbonWidget()->GetRibbonRepresentation();
+  if (!this->ribbonWidget()->GetEnabled() || !rep->GetValid())
   {
     this->Session.AddMessage(bender::MessageSeverity::Error,
-      "Grab: place the ribbon first (P, then click on the vessel)");
-    return false;
-  }
-  auto* rep = this->RibbonWidget->GetRibbonRepresentation();
-  if (!rep->GetValid())
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Error,
-      "Grab refused: the ribbon is invalid (" + rep->GetLastError() + ")");
+      this->ribbonWidget()->GetEnabled()
+        ? "Grab refused: the ribbon is invalid (" + rep->GetLastError() + ")"
+        : "Grab: place the ribbon first (P, then click on the vessel)");
     return false;
   }
   return this->Session.Grab(rep->GetRibbon());
@@ -748,27 +659,30 @@ bool MainWindow::grab()
 
 bool MainWindow::release()
 {
-  if (this->Session.GetState() != bender::GrabState::Grabbed)
+  if (this->Session.GetState() != bender::GrabState::Grabbed || this->refuseWhenBusy())
   {
     return false;
   }
-  const bool ok = this->Session.Release();
-  if (ok)
-  {
-    // The ribbon stays where the hands left it: the committed (final) ribbon.
-    this->RibbonWidget->GetRibbonRepresentation()->SetRibbon(this->Session.GetFinalRibbon());
-  }
-  this->render();
-  return ok;
+  return this->runSessionJob(this->Session.BeginRelease(),
+    [this](bender::SessionJob&, bool ok)
+    {
+      if (ok)
+      {
+        // The ribbon stays where the hands left it: the committed (final) ribbon.
+        this->ribbonWidget()->GetRibbonRepresentation()->SetRibbon(this->Session.GetFinalRibbon());
+      }
+      this->render();
+    });
 }
 
 bool MainWindow::placeRibbonAt(const double point[3])
 {
+  this->View->setPicking(false);
   try
   {
     const bender::RibbonPlacement placement =
       bender::PlaceRibbonOnSurface(this->Session.GetSurface(), { point[0], point[1], point[2] });
-    auto* rep = this->RibbonWidget->GetRibbonRepresentation();
+    auto* rep = this->ribbonWidget()->GetRibbonRepresentation();
     rep->SetHandleLength(1.2 * placement.vesselRadius);
     rep->SetHandleRadius(0.22 * placement.vesselRadius);
     rep->SetStripWidth(0.3 * placement.vesselRadius);
@@ -777,8 +691,7 @@ bool MainWindow::placeRibbonAt(const double point[3])
     this->Bend->setParameters(parameters);
     this->applyParameters();
     this->setRibbon(placement.ribbon);
-    this->RibbonWidget->On();
-    this->PlacingRibbon = false;
+    this->ribbonWidget()->On();
     this->Session.AddMessage(bender::MessageSeverity::Info,
       QString("Ribbon placed along the vessel (local radius %1 mm, R = %2 mm): press G to grab")
         .arg(placement.vesselRadius, 0, 'f', 2)
@@ -794,140 +707,74 @@ bool MainWindow::placeRibbonAt(const double point[3])
   }
 }
 
-void MainWindow::RibbonCallback(vtkObject*, unsigned long, void* clientData, void*)
-{
-  static_cast<MainWindow*>(clientData)->onRibbonInteraction();
-}
-
 void MainWindow::onRibbonInteraction()
 {
   if (this->Session.GetState() == bender::GrabState::Grabbed)
   {
     // The widget renders after this event: one frame per move, not two.
     ++this->RenderSuppressed;
-    this->Session.MoveFinal(this->RibbonWidget->GetRibbonRepresentation()->GetRibbon());
+    this->Session.MoveFinal(this->ribbonWidget()->GetRibbonRepresentation()->GetRibbon());
     --this->RenderSuppressed;
   }
 }
 
-void MainWindow::PickCallback(vtkObject*, unsigned long, void* clientData, void*)
-{
-  static_cast<MainWindow*>(clientData)->onPickForPlacement();
-}
-
-void MainWindow::onPickForPlacement()
-{
-  if (!this->PlacingRibbon || !this->Session.HasSurface())
-  {
-    return;
-  }
-  vtkRenderWindowInteractor* interactor = this->RenderWindow->GetInteractor();
-  const int* position = interactor->GetEventPosition();
-  vtkNew<vtkCellPicker> picker;
-  picker->SetTolerance(0.002);
-  picker->PickFromListOn();
-  picker->AddPickList(this->SurfaceActor);
-  if (picker->Pick(position[0], position[1], 0, this->Renderer))
-  {
-    double point[3];
-    picker->GetPickPosition(point);
-    this->placeRibbonAt(point);
-  }
-  else
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Warning, "Place ribbon: click on the surface");
-  }
-  this->PickObserver->SetAbortFlag(1);
-}
-
 bool MainWindow::exportSurface(const QString& path, bool proceedOnProblems)
 {
-  if (!this->Session.HasSurface())
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Error, "Export: there is no surface");
-    return false;
-  }
-  // The check runs on the worker, on copies, while the window stays responsive.
-  auto surface = vtkSmartPointer<vtkPolyData>::New();
-  surface->DeepCopy(this->Session.GetSurface());
-  auto original = vtkSmartPointer<vtkPolyData>::New();
-  original->DeepCopy(this->Session.GetOriginalSurface());
-  auto report = std::make_shared<bender::MeshCheckReport>();
-  this->runInBackground("Checking", [surface, original, report](const bender::ProgressReporter&) {
-    *report = bender::CheckForExport(surface, original);
-    return Finisher([]() {});
-  });
-  if (!this->waitUntilIdle(600000))
+  if (this->refuseWhenBusy())
   {
     return false;
   }
-  this->CheckReport->setPlainText(
-    QString::fromStdString(bender::FormatReportText(*report, QFileInfo(path).fileName().toStdString())));
-  if (!report->Clean())
-  {
-    QString problems;
-    for (const auto& problem : report->problems)
+  // Interactive: check first, ask on problems, then write (a second job).
+  const bool proceed = proceedOnProblems && !this->Options.interactive;
+  return this->runSessionJob(
+    this->Session.BeginExport(path.toStdString(), this->Export->options(path), proceed),
+    [this, path](bender::SessionJob& job, bool ok)
     {
-      problems += "- " + QString::fromStdString(problem) + "\n";
-    }
-    bool goOn = proceedOnProblems;
-    if (this->Options.interactive)
-    {
-      goOn = QMessageBox::warning(this, "The surface has problems",
-               "The check found:\n" + problems + "\nExport anyway?",
-               QMessageBox::Yes | QMessageBox::No, QMessageBox::No) == QMessageBox::Yes;
-    }
-    if (!goOn)
-    {
-      this->Session.AddMessage(bender::MessageSeverity::Warning,
-        "Export not written: the check found problems");
-      return false;
-    }
-  }
-  bender::ExportOptions options;
-  const QString lower = Lower(path);
-  options.stlEncoding = (lower.endsWith(".stl") && this->FormatCombo->currentIndex() == 1)
-    ? bender::StlEncoding::Ascii
-    : bender::StlEncoding::Binary;
-  options.cap = this->CapCheck->isChecked();
-  options.patches = this->PatchesCombo->currentIndex() == 1
-    ? bender::StlPatchMode::Solids
-    : (this->PatchesCombo->currentIndex() == 2 ? bender::StlPatchMode::Files
-                                                : bender::StlPatchMode::Single);
-  options.frame = this->FrameCombo->currentIndex() == 1 ? "RAS" : "LPS";
-  const bool ok = this->Session.Export(path.toStdString(), options);
-  if (ok)
-  {
-    this->addRecentFile(path);
-  }
-  return ok;
-}
-
-void MainWindow::runCheck()
-{
-  if (!this->Session.HasSurface())
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Error, "Check: there is no surface");
-    return;
-  }
-  auto surface = vtkSmartPointer<vtkPolyData>::New();
-  surface->DeepCopy(this->Session.GetSurface());
-  auto original = vtkSmartPointer<vtkPolyData>::New();
-  original->DeepCopy(this->Session.GetOriginalSurface());
-  const std::string name = this->Session.GetSurfaceName();
-  this->runInBackground("Checking", [this, surface, original, name](const bender::ProgressReporter&) {
-    auto report = std::make_shared<bender::MeshCheckReport>(bender::CheckForExport(surface, original));
-    return Finisher([this, report, name]() {
-      this->CheckReport->setPlainText(QString::fromStdString(bender::FormatReportText(*report, name)));
-      this->Session.AddMessage(report->Clean() ? bender::MessageSeverity::Info : bender::MessageSeverity::Warning,
-        report->Clean() ? "Check: no problems found" : "Check: problems found, see the Export panel");
+      this->Export->showReport(
+        QString::fromStdString(bender::FormatReportText(job.GetReport(), Name(path))));
+      if (ok)
+      {
+        this->Actions->addRecentFile(path);
+        return;
+      }
+      if (job.GetOutcome() != bender::SessionJob::Outcome::Done || job.GetReport().Clean() ||
+        !this->Options.interactive)
+      {
+        return;
+      }
+      QString problems;
+      for (const auto& problem : job.GetReport().problems)
+        problems += "- " + QString::fromStdString(problem) + "\n";
+      QTimer::singleShot(0,
+        this,
+        [this, path, problems]()
+        {
+          if (QMessageBox::warning(this,
+                "The surface has problems",
+                "The check found:\n" + problems + "\nExport anyway?",
+                QMessageBox::Yes | QMessageBox::No,
+                QMessageBox::No) == QMessageBox::Yes)
+          {
+            this->runSessionJob(
+              this->Session.BeginExport(path.toStdString(), this->Export->options(path), true));
+          }
+        });
     });
-  });
 }
 
-QString MainWindow::exportFilter() const
+bool MainWindow::checkSurface()
 {
-  return "STL (*.stl);;VTK XML polydata (*.vtp);;PLY (*.ply);;Wavefront OBJ (*.obj)";
+  if (this->refuseWhenBusy())
+  {
+    return false;
+  }
+  const std::string name = this->Session.GetSurfaceName();
+  return this->runSessionJob(this->Session.BeginCheck(),
+    [this, name](bender::SessionJob& job, bool)
+    {
+      this->Export->showReport(
+        QString::fromStdString(bender::FormatReportText(job.GetReport(), name)));
+    });
 }
 
 QImage MainWindow::grabWindowImage()
@@ -943,11 +790,12 @@ bool MainWindow::saveScreenshot(const QString& path)
   const QImage image = this->grabWindowImage();
   if (image.isNull() || !image.save(path, "PNG"))
   {
-    this->Session.AddMessage(bender::MessageSeverity::Error,
-      QFileInfo(path).fileName().toStdString() + ": the screenshot could not be written");
+    this->Session.AddMessage(
+      bender::MessageSeverity::Error, Name(path) + ": the screenshot could not be written");
     return false;
   }
-  this->Session.AddMessage(bender::MessageSeverity::Info, "Screenshot saved to " + path.toStdString());
+  this->Session.AddMessage(
+    bender::MessageSeverity::Info, "Screenshot saved to " + path.toStdString());
   return true;
 }
 
@@ -957,125 +805,37 @@ bool MainWindow::saveViewScreenshot(const QString& path)
   const QImage image = this->View->grabFramebuffer();
   return !image.isNull() && image.save(path, "PNG");
 }
-
 bool MainWindow::connectTrackers()
 {
-  bender::TrackerDeviceOptions options;
-  options.stations = { this->TrackersUi->leftStation(), this->TrackersUi->rightStation() };
-  options.realtime = true;
-  options.simulatorRealtime = true;
-  bender::HandMapping hands;
-  hands.leftStation = this->TrackersUi->leftStation();
-  hands.rightStation = this->TrackersUi->rightStation();
-  bender::TrackerCalibration calibration;
-  try
-  {
-    calibration = bender::TrackerCalibration(bender::Quaternion{}, bender::Vec3{}, this->TrackersUi->motionScale());
-  }
-  catch (const std::exception& e)
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Error, e.what());
-    return false;
-  }
-  if (!this->Trackers->Connect(this->TrackersUi->deviceSpec().toStdString(), options, hands, calibration))
-  {
-    return false;
-  }
-  this->TrackersUi->setConnected(true);
-  this->TrackerTimer->start();
-  return true;
+  return this->TrackersUi->connectDevice();
 }
 
 void MainWindow::disconnectTrackers()
 {
-  this->TrackerTimer->stop();
-  this->Trackers->Disconnect();
-  this->TrackersUi->setConnected(false);
-  this->TrackersUi->setStatus("not connected");
+  this->TrackersUi->disconnectDevice();
 }
 
 void MainWindow::pollTrackers()
 {
-  if (!this->Trackers->IsConnected())
-  {
-    return;
-  }
-  ++this->RenderSuppressed;
-  const bender::TrackerSession::PollResult result = this->Trackers->Poll();
-  --this->RenderSuppressed;
-  if (const auto ribbon = this->Trackers->CurrentRibbon())
-  {
-    // The widget shows what the hands hold; the live warp already moved in Poll.
-    this->RibbonWidget->GetRibbonRepresentation()->SetRibbon(*ribbon);
-    if (!this->RibbonWidget->GetEnabled() && this->Session.HasSurface())
-    {
-      this->RibbonWidget->On();
-    }
-  }
-  if (result.released)
-  {
-    this->RibbonWidget->GetRibbonRepresentation()->SetRibbon(this->Session.GetFinalRibbon());
-  }
-  this->TrackersUi->setStatus(QString::fromStdString(this->Trackers->StatusText()));
-  if (result.ended)
-  {
-    this->TrackerTimer->stop();
-    this->TrackersUi->setConnected(false);
-  }
-  this->render();
-}
-
-void MainWindow::alignTrackers()
-{
-  this->Trackers->AlignTo(this->RibbonWidget->GetRibbonRepresentation()->GetRibbon());
+  this->TrackersUi->poll();
 }
 
 void MainWindow::offerRecovery()
 {
-  const QString path = QString::fromStdString(this->Session.GetAutosavePath());
-  const auto answer = QMessageBox::question(this, "Recover the last session?",
+  const auto answer = QMessageBox::question(this,
+    "Recover the last session?",
     "Bender did not close cleanly last time. Recover the surface and the warps of that session?",
-    QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes);
+    QMessageBox::Yes | QMessageBox::No,
+    QMessageBox::Yes);
   if (answer == QMessageBox::Yes)
   {
-    if (this->Session.Recover(path.toStdString()))
-    {
-      this->resetCamera();
-    }
+    this->openFile(QString::fromStdString(this->Session.GetAutosavePath()));
   }
   else
   {
     this->Session.DiscardAutosave();
   }
 }
-
-void MainWindow::addRecentFile(const QString& path)
-{
-  QSettings settings;
-  QStringList files = settings.value("recentFiles").toStringList();
-  const QString absolute = QFileInfo(path).absoluteFilePath();
-  files.removeAll(absolute);
-  files.prepend(absolute);
-  while (files.size() > 10)
-  {
-    files.removeLast();
-  }
-  settings.setValue("recentFiles", files);
-  this->updateRecentMenu();
-}
-
-void MainWindow::updateRecentMenu()
-{
-  this->RecentMenu->clear();
-  const QStringList files = QSettings().value("recentFiles").toStringList();
-  for (const QString& file : files)
-  {
-    this->RecentMenu->addAction(QFileInfo(file).fileName(), this, [this, file]() { this->openFile(file); })
-      ->setToolTip(file);
-  }
-  this->RecentMenu->setEnabled(!files.isEmpty());
-}
-
 void MainWindow::dragEnterEvent(QDragEnterEvent* event)
 {
   if (event->mimeData()->hasUrls())
@@ -1147,8 +907,7 @@ void MainWindow::keyReleaseEvent(QKeyEvent* event)
 
 void MainWindow::closeEvent(QCloseEvent* event)
 {
-  this->CancelFlag = true;
-  this->Watcher->waitForFinished();
+  this->Worker->cancelAndWait();
   this->disconnectTrackers();
   // A clean exit: nothing to recover next time.
   this->Session.DiscardAutosave();

@@ -2,44 +2,32 @@
 #define MainWindow_h
 
 #include "BenderSession.h"
-#include "DemoPipeline.h"
+#include "SegmentationSession.h"
 #include "TrackerSession.h"
 
-#include <QFutureWatcher>
 #include <QImage>
 #include <QMainWindow>
 
-#include <vtkNew.h>
-#include <vtkSmartPointer.h>
-
-#include <atomic>
 #include <functional>
 #include <memory>
 
 class BendPanel;
-class QAction;
-class QDoubleSpinBox;
-class QCheckBox;
-class QComboBox;
+class BenderView;
+class DataPanel;
+class ExportPanel;
+class MainActions;
 class QLabel;
-class QMenu;
-class QPlainTextEdit;
-class QProgressBar;
 class QSplitter;
-class QPushButton;
 class QTabWidget;
 class QTimer;
 class QVTKOpenGLNativeWidget;
+class SegmentPanel;
 class SliceViews;
 class TrackersPanel;
-class vtkActor;
 class vtkBenderRibbonWidget;
-class vtkCallbackCommand;
-class vtkGenericOpenGLRenderWindow;
 class vtkImageData;
-class vtkObject;
-class vtkPolyDataMapper;
 class vtkRenderer;
+class WorkRunner;
 
 struct MainWindowOptions
 {
@@ -49,13 +37,23 @@ struct MainWindowOptions
   bool offerRecovery = true;
   /// Ask before exporting a surface whose check found problems (tests answer themselves).
   bool interactive = true;
+  /// Called on the worker thread at the start of every background job (tests slow jobs down
+  /// with it to see the window keep working).
+  std::function<void(const bender::ProgressReporter&)> workHook;
 };
 
-/// The Bender main window: the 3D view with the ribbon widget, slice views when a volume is
-/// loaded, the Data / Segment / Bend / Trackers / Export panels, menus with recent files,
-/// shortcuts, drag and drop, and a status bar showing the logic layer's messages. Long work
-/// (reading, segmentation, checks) runs on a worker thread with progress and Cancel. The window
-/// holds no algorithm: everything goes through bender::BenderSession.
+/// The Bender main window. It composes and holds no state of its own: the surface, the gesture,
+/// the history and the jobs are bender::BenderSession's, the volume and its segmentation
+/// bender::SegmentationSession's, the trackers bender::TrackerSession's. It shows them in the 3D
+/// view (BenderView) and the slice views, with the Data / Segment / Bend / Trackers / Export
+/// panels, menus and buttons sharing one set of actions (MainActions), drag and drop and a status
+/// bar with the logic layer's messages. Long work (reading, segmentation, release, replay,
+/// recovery, check, export) runs on a worker thread with progress and Cancel; the window keeps
+/// drawing meanwhile.
+///
+/// Adding a panel: write a QWidget class in app/gui that takes the window's MainActions (for
+/// buttons) and shows the sessions' state in a `showState(...)`; create it in buildPanels()
+/// (or call addPanel from outside) and call its showState from refresh().
 class MainWindow : public QMainWindow
 {
   Q_OBJECT
@@ -64,38 +62,50 @@ public:
   ~MainWindow() override;
 
   bender::BenderSession& session() { return this->Session; }
+  bender::SegmentationSession& segmentation() { return this->Segmentation; }
   bender::TrackerSession& trackers() { return *this->Trackers; }
-  vtkBenderRibbonWidget* ribbonWidget() { return this->RibbonWidget; }
-  vtkRenderer* renderer() { return this->Renderer; }
-  QVTKOpenGLNativeWidget* view() { return this->View; }
+  MainActions* actions() { return this->Actions; }
+  vtkBenderRibbonWidget* ribbonWidget();
+  vtkRenderer* renderer();
+  QVTKOpenGLNativeWidget* view();
   BendPanel* bendPanel() { return this->Bend; }
   TrackersPanel* trackersPanel() { return this->TrackersUi; }
   QLabel* statusLabel() { return this->StatusText; }
+  /// Adds a panel as a tab of the panel dock.
+  void addPanel(QWidget* panel, const QString& title);
 
   /// Opens a file by its kind: mesh (.stl .obj .ply .vtp .vtk .off), plan (.bender.json),
   /// session (.bender-session.json), volume (.nrrd .nhdr .nii .nii.gz .mha .mhd .vti or a
-  /// folder). Meshes and volumes load on the worker; returns false when refused at once.
+  /// folder). Everything but a plan's parsing runs on the worker; returns false when refused
+  /// at once (unknown type, unreadable plan, busy).
   bool openFile(const QString& path);
   /// Starts the built-in demo on the worker: MRA-like volume, segmentation, ribbon on a branch.
   void startDemo();
-  /// True while the worker runs.
+  /// Segments the loaded volume on the worker with the Segment panel's settings.
+  bool segmentVolume();
+  /// True while the worker runs (until its result has been taken in).
   bool isBusy() const;
-  /// Waits (processing events) until the worker is idle; false on timeout.
+  /// For tests and scripts: waits (processing events) until the worker is idle; false on
+  /// timeout. The window itself never waits.
   bool waitUntilIdle(int milliseconds);
 
-  /// The gesture, as the buttons and keys do it.
+  /// The gesture, as the buttons and keys do it. release() starts the commit (exact warp,
+  /// subdivision, autosave) on the worker and returns whether it started.
   bool grab();
   bool release();
   /// Places a straight ribbon along the vessel at a model point (the "place ribbon" helper).
   bool placeRibbonAt(const double point[3]);
   /// True after "place ribbon" (P) until the next click on the surface.
-  bool isPlacingRibbon() const { return this->PlacingRibbon; }
+  bool isPlacingRibbon() const;
   /// Sets the ribbon of the widget (and moves the live warp when grabbed).
   void setRibbon(const bender::RibbonSpec& ribbon);
 
-  /// Exports the committed surface after its check. With problems: asks when interactive,
-  /// else goes on only when `proceedOnProblems`.
+  /// Checks, then exports the committed surface, on the worker. With problems: asks when
+  /// interactive, else writes only when `proceedOnProblems`. Returns whether the job started;
+  /// workFinished says whether the file was written.
   bool exportSurface(const QString& path, bool proceedOnProblems = false);
+  /// Checks the committed surface on the worker and shows the report in the Export panel.
+  bool checkSurface();
   /// The window's pixels (3D view included) and a PNG of them.
   QImage grabWindowImage();
   bool saveScreenshot(const QString& path);
@@ -111,6 +121,7 @@ public:
   void render();
 
 signals:
+  /// A background job ended; false when it failed or was cancelled.
   void workFinished(bool succeeded);
 
 protected:
@@ -125,71 +136,40 @@ private:
   using Finisher = std::function<void()>;
   using Work = std::function<Finisher(const bender::ProgressReporter&)>;
 
-  void buildView();
   void buildPanels();
-  void buildMenus();
-  void runInBackground(const QString& title, Work work);
-  void finishWork();
+  void connectActions();
+  bool refuseWhenBusy();
+  bool runInBackground(const QString& title, Work work);
+  bool runSessionJob(const std::shared_ptr<bender::SessionJob>& job,
+    std::function<void(bender::SessionJob&, bool)> then = {});
   void showMessage(const bender::LogicMessage& message);
   void refresh();
-  void resetCamera();
-  void addRecentFile(const QString& path);
-  void updateRecentMenu();
   void applyParameters();
   void onRibbonInteraction();
-  void onPickForPlacement();
-  void alignTrackers();
   void offerRecovery();
-  void segmentLoadedVolume();
-  void runCheck();
-  void showSlices(vtkImageData* volume, vtkImageData* mask);
-  QString exportFilter() const;
-
-  static void RibbonCallback(vtkObject*, unsigned long, void* clientData, void*);
-  static void PickCallback(vtkObject*, unsigned long, void* clientData, void*);
+  void showSlices();
+  void exportWithOptions(const QString& path, bool proceedOnProblems);
 
   MainWindowOptions Options;
   bender::BenderSession Session;
+  bender::SegmentationSession Segmentation;
   std::unique_ptr<bender::TrackerSession> Trackers;
 
-  QVTKOpenGLNativeWidget* View = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkPolyDataMapper> SurfaceMapper;
-  vtkNew<vtkActor> SurfaceActor;
-  vtkNew<vtkBenderRibbonWidget> RibbonWidget;
-  vtkNew<vtkCallbackCommand> RibbonObserver;
-  vtkNew<vtkCallbackCommand> PickObserver;
-  bool PlacingRibbon = false;
-  int RenderSuppressed = 0; // > 0 while a caller renders itself after the session's change
-  bool SpaceHeld = false;
-
+  MainActions* Actions = nullptr;
+  BenderView* View = nullptr;
   SliceViews* Slices = nullptr;
   QSplitter* Splitter = nullptr;
   QTabWidget* Panels = nullptr;
+  DataPanel* Data = nullptr;
+  SegmentPanel* Segment = nullptr;
   BendPanel* Bend = nullptr;
   TrackersPanel* TrackersUi = nullptr;
-  QTimer* TrackerTimer = nullptr;
-  QDoubleSpinBox* ThresholdSpin = nullptr;
-  QDoubleSpinBox* SmoothingSpin = nullptr;
-  QComboBox* MethodCombo = nullptr;
-  QComboBox* FormatCombo = nullptr;
-  QComboBox* PatchesCombo = nullptr;
-  QComboBox* FrameCombo = nullptr;
-  QCheckBox* CapCheck = nullptr;
-  QPlainTextEdit* CheckReport = nullptr;
-  QLabel* DataInfo = nullptr;
+  ExportPanel* Export = nullptr;
   QLabel* StatusText = nullptr;
-  QProgressBar* Progress = nullptr;
-  QPushButton* CancelButton = nullptr;
-  QMenu* RecentMenu = nullptr;
-  QAction* UndoAction = nullptr;
-  QAction* RedoAction = nullptr;
+  int RenderSuppressed = 0; // > 0 while a caller renders itself after the session's change
+  bool SpaceHeld = false;
 
-  QFutureWatcher<Finisher>* Watcher = nullptr;
-  std::atomic<bool> CancelFlag{ false };
-  bool WorkPending = false; // from runInBackground until its finisher has run
-  std::unique_ptr<bender::Volume> LoadedVolume;
+  WorkRunner* Worker = nullptr;
 };
 
 #endif

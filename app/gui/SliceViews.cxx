@@ -106,13 +106,15 @@ void SliceViews::setVolume(vtkImageData* volume, vtkImageData* mask)
     }
     double bounds[6];
     volume->GetBounds(bounds);
-    const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-      0.5 * (bounds[4] + bounds[5]) };
+    const double centre[3] = {
+      0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])
+    };
     vtkCamera* camera = view->renderer->GetActiveCamera();
     camera->ParallelProjectionOn();
     camera->SetFocalPoint(centre);
     camera->SetPosition(centre[0] - 500 * view->viewDirection[0],
-      centre[1] - 500 * view->viewDirection[1], centre[2] - 500 * view->viewDirection[2]);
+      centre[1] - 500 * view->viewDirection[1],
+      centre[2] - 500 * view->viewDirection[2]);
     camera->SetViewUp(view->viewUp);
     view->renderer->ResetCamera();
   }

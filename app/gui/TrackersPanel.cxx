@@ -1,5 +1,10 @@
 #include "TrackersPanel.h"
 
+#include "BenderSession.h"
+#include "TrackerSession.h"
+#include "vtkBenderRibbonRepresentation.h"
+#include "vtkBenderRibbonWidget.h"
+
 #include <QCheckBox>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
@@ -9,6 +14,7 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QTimer>
 #include <QVBoxLayout>
 
 TrackersPanel::TrackersPanel(QWidget* parent)
@@ -62,18 +68,39 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   layout->addStretch(1);
   this->setConnected(false);
 
-  connect(browse, &QPushButton::clicked, this, [this]() {
-    const QString file = QFileDialog::getOpenFileName(
-      this, "Tracker recording", QString(), "Fastrak recordings (*.fastrak);;All files (*)");
-    if (!file.isEmpty())
+  connect(browse,
+    &QPushButton::clicked,
+    this,
+    [this]()
     {
-      this->Device->setText("replay:" + file);
-    }
-  });
-  connect(this->ConnectButton, &QPushButton::clicked, this, &TrackersPanel::connectRequested);
-  connect(this->DisconnectButton, &QPushButton::clicked, this, &TrackersPanel::disconnectRequested);
-  connect(this->AlignButton, &QPushButton::clicked, this, &TrackersPanel::alignRequested);
-  connect(this->Clutch, &QCheckBox::toggled, this, &TrackersPanel::clutchToggled);
+      const QString file = QFileDialog::getOpenFileName(
+        this, "Tracker recording", QString(), "Fastrak recordings (*.fastrak);;All files (*)");
+      if (!file.isEmpty())
+      {
+        this->Device->setText("replay:" + file);
+      }
+    });
+  connect(this->ConnectButton, &QPushButton::clicked, this, &TrackersPanel::connectDevice);
+  connect(this->DisconnectButton, &QPushButton::clicked, this, &TrackersPanel::disconnectDevice);
+  connect(this->AlignButton,
+    &QPushButton::clicked,
+    this,
+    [this]()
+    {
+      if (this->Trackers)
+        this->Trackers->AlignTo(this->Widget->GetRibbonRepresentation()->GetRibbon());
+    });
+  connect(this->Clutch,
+    &QCheckBox::toggled,
+    this,
+    [this](bool engaged)
+    {
+      if (this->Trackers)
+        this->Trackers->SetClutch(engaged);
+    });
+  this->Timer = new QTimer(this);
+  this->Timer->setInterval(16);
+  connect(this->Timer, &QTimer::timeout, this, &TrackersPanel::poll);
 }
 
 QString TrackersPanel::deviceSpec() const
@@ -122,4 +149,87 @@ void TrackersPanel::setConnected(bool connected)
 void TrackersPanel::setStatus(const QString& status)
 {
   this->Status->setText(status);
+}
+
+void TrackersPanel::attach(bender::TrackerSession* trackers,
+  bender::BenderSession* session,
+  vtkBenderRibbonWidget* widget,
+  std::function<void()> render,
+  std::function<void(const std::function<void()>&)> quietly)
+{
+  this->Trackers = trackers;
+  this->Session = session;
+  this->Widget = widget;
+  this->Render = std::move(render);
+  this->Quietly = std::move(quietly);
+}
+
+bool TrackersPanel::connectDevice()
+{
+  if (!this->Trackers)
+    return false;
+  bender::TrackerDeviceOptions options;
+  options.stations = { this->leftStation(), this->rightStation() };
+  options.realtime = true;
+  options.simulatorRealtime = true;
+  bender::HandMapping hands;
+  hands.leftStation = this->leftStation();
+  hands.rightStation = this->rightStation();
+  bender::TrackerCalibration calibration;
+  try
+  {
+    calibration =
+      bender::TrackerCalibration(bender::Quaternion{}, bender::Vec3{}, this->motionScale());
+  }
+  catch (const std::exception& e)
+  {
+    this->Session->AddMessage(bender::MessageSeverity::Error, e.what());
+    return false;
+  }
+  if (!this->Trackers->Connect(this->deviceSpec().toStdString(), options, hands, calibration))
+  {
+    return false;
+  }
+  this->setConnected(true);
+  this->Timer->start();
+  return true;
+}
+
+void TrackersPanel::disconnectDevice()
+{
+  this->Timer->stop();
+  if (this->Trackers)
+    this->Trackers->Disconnect();
+  this->setConnected(false);
+  this->setStatus("not connected");
+}
+
+void TrackersPanel::poll()
+{
+  if (!this->Trackers || !this->Trackers->IsConnected())
+  {
+    return;
+  }
+  bender::TrackerSession::PollResult result;
+  this->Quietly([this, &result]() { result = this->Trackers->Poll(); });
+  if (const auto ribbon = this->Trackers->CurrentRibbon())
+  {
+    // The widget shows what the hands hold; the live warp already moved in Poll.
+    this->Widget->GetRibbonRepresentation()->SetRibbon(*ribbon);
+    if (!this->Widget->GetEnabled() && this->Session->HasSurface())
+    {
+      this->Widget->On();
+    }
+  }
+  if (result.released)
+  {
+    this->Widget->GetRibbonRepresentation()->SetRibbon(this->Session->GetFinalRibbon());
+  }
+  this->setStatus(QString::fromStdString(this->Trackers->StatusText()));
+  if (result.ended)
+  {
+    this->Timer->stop();
+    this->setConnected(false);
+  }
+  this->Render();
 }

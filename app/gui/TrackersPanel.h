@@ -3,6 +3,16 @@
 
 #include <QWidget>
 
+#include <functional>
+
+namespace bender
+{
+class BenderSession;
+class TrackerSession;
+}
+class QTimer;
+class vtkBenderRibbonWidget;
+
 class QCheckBox;
 class QDoubleSpinBox;
 class QLabel;
@@ -12,7 +22,9 @@ class QSpinBox;
 
 /// The Trackers panel: which device (usb, usb:N, serial:PATH[@BAUD], replay:FILE, sim), which
 /// stations the two hands hold, the motion scale, connect/disconnect, the clutch, alignment of
-/// the hands onto the current ribbon, and the device's status and rates.
+/// the hands onto the current ribbon, and the device's status and rates. Once attached, the panel
+/// drives the tracker session itself: connect, poll at the display rate (the live warp follows
+/// the hands, the widget shows their ribbon), disconnect, align.
 class TrackersPanel : public QWidget
 {
   Q_OBJECT
@@ -28,11 +40,18 @@ public:
   void setConnected(bool connected);
   void setStatus(const QString& status);
 
-signals:
-  void connectRequested();
-  void disconnectRequested();
-  void clutchToggled(bool engaged);
-  void alignRequested();
+  /// What the panel drives. `render` draws a frame; `quietly` runs a call during which the
+  /// session's changes do not render (one frame per poll).
+  void attach(bender::TrackerSession* trackers,
+    bender::BenderSession* session,
+    vtkBenderRibbonWidget* widget,
+    std::function<void()> render,
+    std::function<void(const std::function<void()>&)> quietly);
+  /// Connects the device as the panel says and starts polling.
+  bool connectDevice();
+  void disconnectDevice();
+  /// One poll (the timer's; tests may call it).
+  void poll();
 
 private:
   QLineEdit* Device;
@@ -44,6 +63,12 @@ private:
   QPushButton* AlignButton;
   QCheckBox* Clutch;
   QLabel* Status;
+  QTimer* Timer = nullptr;
+  bender::TrackerSession* Trackers = nullptr;
+  bender::BenderSession* Session = nullptr;
+  vtkBenderRibbonWidget* Widget = nullptr;
+  std::function<void()> Render;
+  std::function<void(const std::function<void()>&)> Quietly;
 };
 
 #endif

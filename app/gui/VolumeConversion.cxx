@@ -12,7 +12,8 @@ namespace
 vtkSmartPointer<vtkImageData> EmptyImage(const bender::ImageGeometry& geometry)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(static_cast<int>(geometry.size[0]), static_cast<int>(geometry.size[1]),
+  image->SetDimensions(static_cast<int>(geometry.size[0]),
+    static_cast<int>(geometry.size[1]),
     static_cast<int>(geometry.size[2]));
   image->SetSpacing(geometry.spacing.data());
   image->SetOrigin(geometry.origin.data());

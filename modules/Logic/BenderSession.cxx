@@ -1,13 +1,13 @@
 #include "BenderSession.h"
 
+#include "BenderErrors.h"
 #include "GeometryErrors.h"
 #include "MeshIO.h"
 #include "Ribbon.h"
 #include "RibbonWarp.h"
 #include "SessionAutosave.h"
 #include "WarpPlanIO.h"
-#include "vtkBenderAdaptiveSubdivisionFilter.h"
-
+#include <vtkAlgorithmOutput.h>
 #include <vtkPolyData.h>
 
 #include <cmath>
@@ -36,7 +36,8 @@ std::string AbsolutePath(const std::string& path)
 
 bool SameRibbon(const RibbonSpec& a, const RibbonSpec& b)
 {
-  auto same = [](const RibbonEnd& x, const RibbonEnd& y) {
+  auto same = [](const RibbonEnd& x, const RibbonEnd& y)
+  {
     auto eq = [](const Vec3& u, const Vec3& v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
     return eq(x.position, y.position) && eq(x.tangent, y.tangent) && eq(x.normal, y.normal);
   };
@@ -59,13 +60,20 @@ std::string Describe(const WarpParameters& p)
 BenderSession::BenderSession()
 {
   this->LiveFilter->SetPrecision(WarpPrecision::Table);
+  this->LiveFilter->PassThroughOn();
 }
 
 BenderSession::~BenderSession() = default;
 
+vtkAlgorithmOutput* BenderSession::GetOutputPort() const
+{
+  return this->LiveFilter->GetOutputPort();
+}
+
 vtkPolyData* BenderSession::GetDisplaySurface() const
 {
-  return this->Display.GetPointer();
+  this->LiveFilter->Update();
+  return this->LiveFilter->GetOutput();
 }
 
 void BenderSession::Report(MessageSeverity severity, const std::string& text)
@@ -97,20 +105,56 @@ void BenderSession::SetChangeCallback(std::function<void()> callback)
 
 void BenderSession::ShowCommitted()
 {
-  vtkPolyData* current = this->History.Current();
-  if (current)
+  // The pipeline stays connected: the committed surface passes through the live filter.
+  this->LiveFilter->PassThroughOn();
+  this->LiveFilter->SetPreparedWarp(nullptr);
+  this->LiveWarp.reset();
+  this->LiveFilter->SetInputData(this->History.Current());
+}
+
+bool BenderSession::RefuseWhenBusy(const std::string& what)
+{
+  if (!this->Busy)
   {
-    this->Display->ShallowCopy(current);
+    return false;
   }
-  else
+  this->Report(MessageSeverity::Error, what + ": busy, wait for the current task or cancel it");
+  return true;
+}
+
+bool BenderSession::SetLiveWarp(const WarpSpec& warp, std::string& problem)
+{
+  // The one build per move: validates (convention 11) and is shared with the filter.
+  std::shared_ptr<const RibbonWarp> built;
+  try
   {
-    this->Display->Initialize();
+    ++this->WarpBuildCount;
+    built = std::make_shared<const RibbonWarp>(warp);
   }
-  this->Display->Modified();
+  catch (const std::exception& e)
+  {
+    problem = e.what();
+    return false;
+  }
+  this->LiveFilter->SetPreparedWarp(built);
+  this->LiveFilter->Update();
+  if (!this->LiveFilter->GetLastError().empty())
+  {
+    problem = this->LiveFilter->GetLastError();
+    // Back to the last valid warp so that the display stays consistent.
+    this->LiveFilter->SetPreparedWarp(this->LiveWarp);
+    return false;
+  }
+  this->LiveWarp = built;
+  return true;
 }
 
 bool BenderSession::LoadSurface(const std::string& path)
 {
+  if (this->RefuseWhenBusy(FileName(path)))
+  {
+    return false;
+  }
   vtkSmartPointer<vtkPolyData> mesh;
   try
   {
@@ -124,13 +168,18 @@ bool BenderSession::LoadSurface(const std::string& path)
   return this->SetSurface(mesh, FileName(path), AbsolutePath(path));
 }
 
-bool BenderSession::SetSurface(
-  vtkPolyData* surface, const std::string& name, const std::string& sourcePath)
+bool BenderSession::SetSurface(vtkPolyData* surface,
+  const std::string& name,
+  const std::string& sourcePath)
 {
-  if (!surface || surface->GetNumberOfPoints() == 0 || surface->GetNumberOfPolys() +
-      surface->GetNumberOfStrips() == 0)
+  if (!surface || surface->GetNumberOfPoints() == 0 ||
+    surface->GetNumberOfPolys() + surface->GetNumberOfStrips() == 0)
   {
     this->Report(MessageSeverity::Error, name + ": the surface has no triangles");
+    return false;
+  }
+  if (this->RefuseWhenBusy(name))
+  {
     return false;
   }
   if (this->State == GrabState::Grabbed)
@@ -142,7 +191,6 @@ bool BenderSession::SetSurface(
   this->SourcePath = sourcePath;
   this->SurfaceName = name;
   this->AutosaveSourcePath.clear();
-  this->LiveFilter->SetInputData(nullptr);
   this->ShowCommitted();
   std::ostringstream text;
   text << "Loaded " << name << ": " << surface->GetNumberOfPoints() << " points, "
@@ -183,12 +231,10 @@ bool BenderSession::SetParameters(const WarpParameters& parameters)
     this->Live.radius = parameters.radius;
     this->Live.decay = parameters.decay;
     this->Live.reverseScrews = parameters.reverseScrews;
-    this->LiveFilter->SetWarp(this->Live);
-    this->LiveFilter->Update();
-    if (this->LiveFilter->GetLastError().empty())
+    std::string problem;
+    if (!this->SetLiveWarp(this->Live, problem))
     {
-      this->Display->ShallowCopy(this->LiveFilter->GetOutput());
-      this->Display->Modified();
+      this->LiveProblem = problem;
     }
     this->UpdateLiveInformation();
     this->Changed();
@@ -198,14 +244,19 @@ bool BenderSession::SetParameters(const WarpParameters& parameters)
 
 void BenderSession::UpdateLiveInformation()
 {
-  this->InitialMinimumRadius = this->LiveFilter->GetInitialMinimumRadius();
-  this->SpaceInversionRisk = this->LiveFilter->GetSpaceInversionRisk();
-  this->FlipOccurred = this->LiveFilter->GetFlipOccurred();
-  this->InversionWarning = this->SpaceInversionRisk ? this->LiveFilter->GetLastWarning() : std::string();
+  if (!this->LiveWarp)
+  {
+    return;
+  }
+  this->InitialMinimumRadius = this->LiveWarp->InitialMinimumRadius();
+  this->SpaceInversionRisk = this->LiveWarp->SpaceInversionRisk();
+  this->FlipOccurred = this->LiveWarp->FlipOccurred();
+  this->InversionWarning =
+    this->SpaceInversionRisk ? this->LiveWarp->SpaceInversionWarning() : std::string();
   if (this->SpaceInversionRisk && !this->WarnedInversion)
   {
     this->WarnedInversion = true;
-    this->Report(MessageSeverity::Warning, this->LiveFilter->GetLastWarning());
+    this->Report(MessageSeverity::Warning, this->InversionWarning);
   }
 }
 
@@ -223,6 +274,10 @@ bool BenderSession::Grab(const RibbonSpec& initial)
     this->Report(MessageSeverity::Error, "Grab: load or segment a surface first");
     return false;
   }
+  if (this->RefuseWhenBusy("Grab"))
+  {
+    return false;
+  }
   if (this->State == GrabState::Grabbed)
   {
     this->Report(MessageSeverity::Error, "Grab: already grabbed; release or cancel first");
@@ -238,7 +293,6 @@ bool BenderSession::Grab(const RibbonSpec& initial)
   warp.reverseScrews = this->Parameters.reverseScrews;
   try
   {
-    RibbonWarp::Validate(warp);
     this->Unwrapper.Start(start);
   }
   catch (const std::exception& e)
@@ -246,25 +300,25 @@ bool BenderSession::Grab(const RibbonSpec& initial)
     this->Report(MessageSeverity::Error, std::string("Grab refused: ") + e.what());
     return false;
   }
-  this->Live = warp;
+  this->LiveWarp.reset();
   this->LiveFilter->SetInputData(this->History.Current());
-  this->LiveFilter->SetPrecision(WarpPrecision::Table);
-  this->LiveFilter->SetWarp(warp);
-  this->LiveFilter->Update();
-  if (!this->LiveFilter->GetLastError().empty())
+  this->LiveFilter->PassThroughOff();
+  std::string problem;
+  if (!this->SetLiveWarp(warp, problem))
   {
-    this->Report(MessageSeverity::Error, "Grab refused: " + this->LiveFilter->GetLastError());
+    this->ShowCommitted();
+    this->Report(MessageSeverity::Error, "Grab refused: " + problem);
     return false;
   }
+  this->Live = warp;
   this->State = GrabState::Grabbed;
   this->LiveProblem.clear();
   this->WarnedInversion = false;
   this->UpdateLiveInformation();
-  this->Display->ShallowCopy(this->LiveFilter->GetOutput());
-  this->Display->Modified();
   std::ostringstream text;
-  text << "Grabbed (" << Describe(this->Parameters) << "): "
-       << this->LiveFilter->GetNumberOfBoundPoints() << " points inside the region of influence";
+  text << "Grabbed (" << Describe(this->Parameters)
+       << "): " << this->LiveFilter->GetNumberOfBoundPoints()
+       << " points inside the region of influence";
   this->Report(MessageSeverity::Info, text.str());
   this->Changed();
   return true;
@@ -272,30 +326,23 @@ bool BenderSession::Grab(const RibbonSpec& initial)
 
 bool BenderSession::MoveFinal(const RibbonSpec& final)
 {
-  if (this->State != GrabState::Grabbed)
+  if (this->State != GrabState::Grabbed || this->Busy)
   {
     return false;
   }
   WarpSpec candidate = this->Live;
+  std::string problem;
   try
   {
     candidate.final = this->Unwrapper.Unwrap(final);
-    RibbonWarp::Validate(candidate);
   }
   catch (const std::exception& e)
   {
-    this->LiveProblem = e.what();
-    this->Changed();
-    return false;
+    problem = e.what();
   }
-  this->LiveFilter->SetFinalRibbon(candidate.final);
-  this->LiveFilter->Update();
-  if (!this->LiveFilter->GetLastError().empty())
+  if (!problem.empty() || !this->SetLiveWarp(candidate, problem))
   {
-    this->LiveProblem = this->LiveFilter->GetLastError();
-    // Put the filter back on the last valid ribbon so that the display stays consistent.
-    this->LiveFilter->SetFinalRibbon(this->Live.final);
-    this->LiveFilter->Update();
+    this->LiveProblem = problem;
     this->Changed();
     return false;
   }
@@ -303,102 +350,22 @@ bool BenderSession::MoveFinal(const RibbonSpec& final)
   this->Live = candidate;
   this->LiveProblem.clear();
   this->UpdateLiveInformation();
-  this->Display->ShallowCopy(this->LiveFilter->GetOutput());
-  this->Display->Modified();
   this->Changed();
-  return true;
-}
-
-bool BenderSession::ApplyExact(const WarpSpec& warp, vtkPolyData* input,
-  vtkSmartPointer<vtkPolyData>& output, std::string& problem) const
-{
-  if (warp.subdivision && warp.subdivision->maxPasses > 0)
-  {
-    vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivision;
-    subdivision->SetInputData(input);
-    subdivision->SetWarp(warp);
-    subdivision->SetPrecision(WarpPrecision::Exact);
-    subdivision->Update();
-    if (!subdivision->GetLastError().empty())
-    {
-      problem = subdivision->GetLastError();
-      return false;
-    }
-    output = vtkSmartPointer<vtkPolyData>::New();
-    output->DeepCopy(subdivision->GetOutput());
-    return true;
-  }
-  vtkNew<vtkBenderWarpFilter> filter;
-  filter->SetInputData(input);
-  filter->SetWarp(warp);
-  filter->SetPrecision(WarpPrecision::Exact);
-  filter->Update();
-  if (!filter->GetLastError().empty())
-  {
-    problem = filter->GetLastError();
-    return false;
-  }
-  output = vtkSmartPointer<vtkPolyData>::New();
-  output->DeepCopy(filter->GetOutput());
   return true;
 }
 
 bool BenderSession::Release()
 {
-  if (this->State != GrabState::Grabbed)
-  {
-    this->Report(MessageSeverity::Error, "Release: nothing is grabbed");
-    return false;
-  }
-  WarpSpec warp = this->Live;
-  if (SameRibbon(warp.initial, warp.final))
-  {
-    this->State = GrabState::Idle;
-    this->ShowCommitted();
-    this->Report(MessageSeverity::Info, "Released without moving: no warp recorded");
-    this->Changed();
-    return true;
-  }
-  if (this->Parameters.subdivide)
-  {
-    warp.subdivision = SubdivisionSpec{ this->Parameters.subdivisionTolerance,
-      this->Parameters.subdivisionMaxPasses };
-  }
-  vtkSmartPointer<vtkPolyData> result;
-  std::string problem;
-  // The live preview used the interpolated table; the committed shape is the exact warp.
-  if (!this->ApplyExact(warp, this->History.Current(), result, problem))
-  {
-    this->Report(MessageSeverity::Error, "Release failed, the warp was not applied: " + problem);
-    this->State = GrabState::Idle;
-    this->ShowCommitted();
-    this->Changed();
-    return false;
-  }
-  this->History.Commit(warp, result);
-  this->State = GrabState::Released;
-  this->LiveFilter->SetInputData(nullptr);
-  this->ShowCommitted();
-  std::ostringstream text;
-  text << "Warp " << this->History.Position() << " committed";
-  if (warp.subdivision)
-  {
-    text << " (subdivided to " << result->GetNumberOfPolys() << " triangles)";
-  }
-  this->Report(MessageSeverity::Info, text.str());
-  this->Autosave();
-  this->Changed();
-  return true;
+  return this->RunNow(this->BeginRelease());
 }
 
 void BenderSession::CancelGrab(const std::string& reason)
 {
-  if (this->State != GrabState::Grabbed)
+  if (this->State != GrabState::Grabbed || this->Busy)
   {
     return;
   }
   this->State = GrabState::Idle;
-  this->LiveFilter->SetInputData(nullptr);
   this->ShowCommitted();
   this->Report(MessageSeverity::Warning,
     "The live warp was cancelled (" + reason + "); the last committed shape is kept");
@@ -407,6 +374,10 @@ void BenderSession::CancelGrab(const std::string& reason)
 
 bool BenderSession::Undo()
 {
+  if (this->RefuseWhenBusy("Undo"))
+  {
+    return false;
+  }
   if (this->State == GrabState::Grabbed)
   {
     this->Report(MessageSeverity::Error, "Undo: release or cancel the grab first");
@@ -427,6 +398,10 @@ bool BenderSession::Undo()
 
 bool BenderSession::Redo()
 {
+  if (this->RefuseWhenBusy("Redo"))
+  {
+    return false;
+  }
   if (this->State == GrabState::Grabbed)
   {
     this->Report(MessageSeverity::Error, "Redo: release or cancel the grab first");
@@ -463,73 +438,19 @@ bool BenderSession::SavePlan(const std::string& path)
     this->Report(MessageSeverity::Error, std::string("Saving the plan failed: ") + e.what());
     return false;
   }
-  this->Report(MessageSeverity::Info, "Saved the plan (" +
-      std::to_string(this->History.Position()) + " warps) to " + FileName(path));
+  this->Report(MessageSeverity::Info,
+    "Saved the plan (" + std::to_string(this->History.Position()) + " warps) to " + FileName(path));
   return true;
 }
 
 bool BenderSession::LoadPlan(const std::string& path)
 {
-  WarpPlan plan;
-  try
-  {
-    plan = ReadWarpPlan(path);
-  }
-  catch (const std::exception& e)
-  {
-    this->Report(MessageSeverity::Error, e.what());
-    return false;
-  }
-  return this->ReplayPlan(plan, FileName(path));
+  return this->RunNow(this->BeginLoadPlan(path));
 }
 
 bool BenderSession::ReplayPlan(const WarpPlan& plan, const std::string& name)
 {
-  if (!this->HasSurface())
-  {
-    this->Report(MessageSeverity::Error, name + ": load or segment a surface before replaying");
-    return false;
-  }
-  if (this->State == GrabState::Grabbed)
-  {
-    this->Report(MessageSeverity::Error, name + ": release or cancel the grab first");
-    return false;
-  }
-  // All or nothing: compute every step before committing any.
-  std::vector<vtkSmartPointer<vtkPolyData>> results;
-  vtkPolyData* input = this->History.Current();
-  for (std::size_t i = 0; i < plan.warps.size(); ++i)
-  {
-    vtkSmartPointer<vtkPolyData> output;
-    std::string problem;
-    try
-    {
-      RibbonWarp::Validate(plan.warps[i]);
-    }
-    catch (const std::exception& e)
-    {
-      problem = e.what();
-    }
-    if (!problem.empty() || !this->ApplyExact(plan.warps[i], input, output, problem))
-    {
-      this->Report(MessageSeverity::Error,
-        name + ": warps[" + std::to_string(i) + "]: " + problem + "; nothing was applied");
-      return false;
-    }
-    results.push_back(output);
-    input = output;
-  }
-  for (std::size_t i = 0; i < plan.warps.size(); ++i)
-  {
-    this->History.Commit(plan.warps[i], results[i]);
-  }
-  this->State = GrabState::Idle;
-  this->ShowCommitted();
-  this->Report(MessageSeverity::Info,
-    "Replayed " + std::to_string(plan.warps.size()) + " warps of " + name);
-  this->Autosave();
-  this->Changed();
-  return true;
+  return this->RunNow(this->BeginReplay(plan, name));
 }
 
 bool BenderSession::ApplyWarp(const WarpSpec& warp)
@@ -544,39 +465,9 @@ MeshCheckReport BenderSession::CheckSurface() const
   return CheckForExport(this->History.Current(), this->History.Original());
 }
 
-bool BenderSession::Export(const std::string& path, const ExportOptions& options)
+bool BenderSession::Export(const std::string& path, const ExportSurfaceOptions& options)
 {
-  if (!this->HasSurface())
-  {
-    this->Report(MessageSeverity::Error, FileName(path) + ": there is no surface to export");
-    return false;
-  }
-  if (!this->SourcePath.empty() && SameFile(path, this->SourcePath))
-  {
-    this->Report(MessageSeverity::Error,
-      FileName(path) + ": refusing to overwrite the input surface; choose another file");
-    return false;
-  }
-  ExportOptions guarded = options;
-  guarded.protectedPath = this->SourcePath;
-  std::vector<std::string> written;
-  try
-  {
-    written = ExportSurface(this->History.Current(), path, guarded);
-  }
-  catch (const std::exception& e)
-  {
-    this->Report(MessageSeverity::Error, std::string("Export failed: ") + e.what());
-    return false;
-  }
-  std::string names;
-  for (const std::string& file : written)
-  {
-    names += (names.empty() ? "" : ", ") + FileName(file);
-  }
-  this->Report(MessageSeverity::Info,
-    "Exported " + names + " (frame " + options.frame + ", unit " + options.unit + ")");
-  return true;
+  return this->RunNow(this->BeginExport(path, options, true));
 }
 
 void BenderSession::SetAutosavePath(const std::string& path)
@@ -631,44 +522,383 @@ void BenderSession::DiscardAutosave()
 
 bool BenderSession::Recover(const std::string& sessionPath)
 {
-  SessionSnapshot snapshot;
-  try
+  return this->RunNow(this->BeginRecover(sessionPath));
+}
+
+// ---- Jobs ----
+
+std::shared_ptr<SessionJob> BenderSession::NewJob(SessionJob::Kind kind, const std::string& title)
+{
+  auto job = std::make_shared<SessionJob>();
+  job->JobKind = kind;
+  job->Title = title;
+  return job;
+}
+
+bool BenderSession::RunNow(const std::shared_ptr<SessionJob>& job)
+{
+  if (!job)
   {
-    snapshot = ReadSessionFile(sessionPath);
-  }
-  catch (const std::exception& e)
-  {
-    this->Report(MessageSeverity::Error, std::string("Recovery failed: ") + e.what());
     return false;
   }
-  vtkSmartPointer<vtkPolyData> source;
+  job->Run({});
+  return this->Finish(*job);
+}
+
+std::shared_ptr<SessionJob> BenderSession::BeginRelease()
+{
+  if (this->State != GrabState::Grabbed)
+  {
+    this->Report(MessageSeverity::Error, "Release: nothing is grabbed");
+    return nullptr;
+  }
+  if (this->RefuseWhenBusy("Release"))
+  {
+    return nullptr;
+  }
+  auto job = this->NewJob(SessionJob::Kind::Release, "Committing the warp");
+  WarpSpec warp = this->Live;
+  if (!SameRibbon(warp.initial, warp.final))
+  {
+    // The single subdivision rule (ApplyWarp): subdivide iff the warp carries a subdivision.
+    if (this->Parameters.subdivide)
+    {
+      warp.subdivision = SubdivisionSpec{ this->Parameters.subdivisionTolerance,
+        this->Parameters.subdivisionMaxPasses };
+    }
+    job->Plan.warps.push_back(warp);
+    // The live preview used the interpolated table; the committed shape is the exact warp,
+    // computed on a copy so that the display keeps the live warp meanwhile.
+    job->Input = vtkSmartPointer<vtkPolyData>::New();
+    job->Input->DeepCopy(this->History.Current());
+  }
+  job->Name = "release";
+  this->Busy = true;
+  return job;
+}
+
+std::shared_ptr<SessionJob> BenderSession::BeginReplay(const WarpPlan& plan,
+  const std::string& name)
+{
+  if (!this->HasSurface())
+  {
+    this->Report(MessageSeverity::Error, name + ": load or segment a surface before replaying");
+    return nullptr;
+  }
+  if (this->RefuseWhenBusy(name))
+  {
+    return nullptr;
+  }
+  if (this->State == GrabState::Grabbed)
+  {
+    this->Report(MessageSeverity::Error, name + ": release or cancel the grab first");
+    return nullptr;
+  }
+  auto job = this->NewJob(SessionJob::Kind::Replay, "Replaying " + name);
+  job->Name = name;
+  job->Plan = plan;
+  job->Input = vtkSmartPointer<vtkPolyData>::New();
+  job->Input->DeepCopy(this->History.Current());
+  this->Busy = true;
+  return job;
+}
+
+std::shared_ptr<SessionJob> BenderSession::BeginLoadPlan(const std::string& path)
+{
+  WarpPlan plan;
   try
   {
-    source = ReadMesh(snapshot.sourcePath);
+    plan = ReadWarpPlan(path);
   }
   catch (const std::exception& e)
   {
+    this->Report(MessageSeverity::Error, e.what());
+    return nullptr;
+  }
+  return this->BeginReplay(plan, FileName(path));
+}
+
+std::shared_ptr<SessionJob> BenderSession::BeginRecover(const std::string& sessionPath)
+{
+  if (this->RefuseWhenBusy("Recovery"))
+  {
+    return nullptr;
+  }
+  if (this->State == GrabState::Grabbed)
+  {
+    this->CancelGrab("a session is being recovered");
+  }
+  auto job = this->NewJob(SessionJob::Kind::Recover, "Recovering the session");
+  job->SessionPath = sessionPath;
+  job->Name = FileName(sessionPath);
+  this->Busy = true;
+  return job;
+}
+
+std::shared_ptr<SessionJob> BenderSession::BeginCheck()
+{
+  if (!this->HasSurface())
+  {
+    this->Report(MessageSeverity::Error, "Check: there is no surface");
+    return nullptr;
+  }
+  auto job = this->NewJob(SessionJob::Kind::Check, "Checking");
+  job->Name = this->SurfaceName;
+  // Copies: the check runs while the window keeps drawing the surface.
+  job->Input = vtkSmartPointer<vtkPolyData>::New();
+  job->Input->DeepCopy(this->History.Current());
+  job->Before = vtkSmartPointer<vtkPolyData>::New();
+  job->Before->DeepCopy(this->History.Original());
+  return job;
+}
+
+std::shared_ptr<SessionJob> BenderSession::BeginExport(const std::string& path,
+  const ExportSurfaceOptions& options,
+  bool proceedOnProblems)
+{
+  if (!this->HasSurface())
+  {
+    this->Report(MessageSeverity::Error, FileName(path) + ": there is no surface to export");
+    return nullptr;
+  }
+  if (!this->SourcePath.empty() && SameFile(path, this->SourcePath))
+  {
     this->Report(MessageSeverity::Error,
-      std::string("Recovery failed: the session's source cannot be read: ") + e.what());
+      FileName(path) + ": refusing to overwrite the input surface; choose another file");
+    return nullptr;
+  }
+  auto job = this->BeginCheck();
+  job->JobKind = SessionJob::Kind::Export;
+  job->Title = "Checking and exporting";
+  job->Name = FileName(path);
+  job->Path = path;
+  job->Options = options;
+  job->Options.output = path;
+  job->Options.protectedPath = this->SourcePath;
+  // Export writes only when the check is clean or the caller accepted its problems.
+  job->ProceedOnProblems = proceedOnProblems;
+  return job;
+}
+
+void SessionJob::Run(const ProgressReporter& progress)
+{
+  try
+  {
+    switch (this->JobKind)
+    {
+      case Kind::Recover:
+      {
+        const SessionSnapshot snapshot = ReadSessionFile(this->SessionPath);
+        this->SourcePath = snapshot.sourcePath;
+        this->Plan = snapshot.plan;
+        try
+        {
+          this->Input = ReadMesh(snapshot.sourcePath);
+        }
+        catch (const std::exception& e)
+        {
+          throw InputError(std::string("the session's source cannot be read: ") + e.what());
+        }
+        progress.ThrowIfCancelled("recovery");
+      }
+        [[fallthrough]];
+      case Kind::Release:
+      case Kind::Replay:
+        if (!this->Plan.warps.empty())
+        {
+          ApplyPlanOptions options;
+          options.planName = this->Name;
+          options.progress = progress;
+          this->Steps = ApplyPlan(this->Input, this->Plan, options);
+        }
+        break;
+      case Kind::Check:
+        this->Report = CheckForExport(this->Input, this->Before);
+        break;
+      case Kind::Export:
+        this->Report = CheckForExport(this->Input, this->Before);
+        progress.ThrowIfCancelled("check");
+        if (this->Report.Clean() || this->ProceedOnProblems)
+        {
+          this->Written = ExportSurface(this->Input, this->Options).written;
+        }
+        break;
+    }
+    this->Result = Outcome::Done;
+  }
+  catch (const Cancelled& e)
+  {
+    this->Result = Outcome::Cancelled;
+    this->Problem = e.what();
+  }
+  catch (const std::exception& e)
+  {
+    this->Result = Outcome::Failed;
+    this->Problem = e.what();
+  }
+}
+
+bool BenderSession::Finish(SessionJob& job)
+{
+  const bool warps = job.JobKind == SessionJob::Kind::Release ||
+    job.JobKind == SessionJob::Kind::Replay || job.JobKind == SessionJob::Kind::Recover;
+  if (warps)
+  {
+    this->Busy = false;
+  }
+  switch (job.JobKind)
+  {
+    case SessionJob::Kind::Release:
+      return this->FinishRelease(job);
+    case SessionJob::Kind::Replay:
+      return this->FinishReplay(job);
+    case SessionJob::Kind::Recover:
+      return this->FinishRecover(job);
+    case SessionJob::Kind::Check:
+      if (job.Result != SessionJob::Outcome::Done)
+      {
+        this->Report(job.Result == SessionJob::Outcome::Cancelled ? MessageSeverity::Warning
+                                                                  : MessageSeverity::Error,
+          "Check: " + job.Problem);
+        return false;
+      }
+      this->Report(job.Report.Clean() ? MessageSeverity::Info : MessageSeverity::Warning,
+        job.Report.Clean() ? "Check: no problems found"
+                           : "Check: problems found, see the Export panel");
+      return true;
+    case SessionJob::Kind::Export:
+      return this->FinishExport(job);
+  }
+  return false;
+}
+
+bool BenderSession::FinishRelease(SessionJob& job)
+{
+  if (job.Result != SessionJob::Outcome::Done)
+  {
+    const bool cancelled = job.Result == SessionJob::Outcome::Cancelled;
+    this->State = GrabState::Idle;
+    this->ShowCommitted();
+    this->Report(cancelled ? MessageSeverity::Warning : MessageSeverity::Error,
+      std::string(cancelled ? "Release cancelled" : "Release failed") +
+        ", the warp was not applied: " + job.Problem);
+    this->Changed();
+    return false;
+  }
+  if (job.Plan.warps.empty())
+  {
+    this->State = GrabState::Idle;
+    this->ShowCommitted();
+    this->Report(MessageSeverity::Info, "Released without moving: no warp recorded");
+    this->Changed();
+    return true;
+  }
+  const WarpSpec& warp = job.Plan.warps.front();
+  vtkPolyData* result = job.Steps.output;
+  this->History.Commit(warp, result);
+  this->State = GrabState::Released;
+  this->ShowCommitted();
+  std::ostringstream text;
+  text << "Warp " << this->History.Position() << " committed";
+  if (warp.subdivision)
+  {
+    text << " (subdivided to " << result->GetNumberOfPolys() << " triangles)";
+  }
+  this->Report(MessageSeverity::Info, text.str());
+  this->Autosave();
+  this->Changed();
+  return true;
+}
+
+bool BenderSession::FinishReplay(SessionJob& job)
+{
+  if (job.Result != SessionJob::Outcome::Done)
+  {
+    const bool cancelled = job.Result == SessionJob::Outcome::Cancelled;
+    this->Report(cancelled ? MessageSeverity::Warning : MessageSeverity::Error,
+      (cancelled ? job.Name + ": replay cancelled (" + job.Problem + ")" : job.Problem) +
+        "; nothing was applied");
+    return false;
+  }
+  // All or nothing: every step was computed before any is committed.
+  for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)
+  {
+    this->History.Commit(job.Plan.warps[i], job.Steps.steps[i]);
+  }
+  this->State = GrabState::Idle;
+  this->ShowCommitted();
+  this->Report(MessageSeverity::Info,
+    "Replayed " + std::to_string(job.Plan.warps.size()) + " warps of " + job.Name);
+  this->Autosave();
+  this->Changed();
+  return true;
+}
+
+bool BenderSession::FinishRecover(SessionJob& job)
+{
+  if (job.Result != SessionJob::Outcome::Done)
+  {
+    this->Report(job.Result == SessionJob::Outcome::Cancelled ? MessageSeverity::Warning
+                                                              : MessageSeverity::Error,
+      std::string(job.Result == SessionJob::Outcome::Cancelled ? "Recovery cancelled: "
+                                                               : "Recovery failed: ") +
+        job.Problem);
     return false;
   }
   // Recovering from our own autosave: keep the source copy, it is the only one.
-  const bool ownCopy = snapshot.sourcePath == AbsolutePath(this->AutosavePath + ".source.vtp");
-  // No autosave until the replay has succeeded: loading the surface would otherwise overwrite
-  // the session being recovered with an empty plan, and a failed replay would lose it.
+  const bool ownCopy = job.SourcePath == AbsolutePath(this->AutosavePath + ".source.vtp");
+  // No autosave until the plan is in: loading the surface would otherwise overwrite the
+  // session being recovered with an empty plan.
   const std::string autosavePath = this->AutosavePath;
   this->AutosavePath.clear();
-  const bool recovered =
-    this->SetSurface(source, FileName(snapshot.sourcePath), ownCopy ? std::string() : snapshot.sourcePath) &&
-    this->ReplayPlan(snapshot.plan, FileName(sessionPath));
+  bool recovered =
+    this->SetSurface(job.Input, FileName(job.SourcePath), ownCopy ? std::string() : job.SourcePath);
+  if (recovered)
+  {
+    for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)
+    {
+      this->History.Commit(job.Plan.warps[i], job.Steps.steps[i]);
+    }
+    this->ShowCommitted();
+  }
   this->AutosavePath = autosavePath;
   if (!recovered)
   {
     return false;
   }
+  if (ownCopy)
+  {
+    this->AutosaveSourcePath = job.SourcePath;
+  }
   this->Autosave();
   this->Report(MessageSeverity::Info,
-    "Recovered the session: " + std::to_string(snapshot.plan.warps.size()) + " warps");
+    "Recovered the session: " + std::to_string(job.Plan.warps.size()) + " warps");
+  this->Changed();
+  return true;
+}
+
+bool BenderSession::FinishExport(SessionJob& job)
+{
+  if (job.Result != SessionJob::Outcome::Done)
+  {
+    const bool cancelled = job.Result == SessionJob::Outcome::Cancelled;
+    this->Report(cancelled ? MessageSeverity::Warning : MessageSeverity::Error,
+      cancelled ? "Export cancelled, nothing was written" : "Export failed: " + job.Problem);
+    return false;
+  }
+  if (job.Written.empty())
+  {
+    this->Report(MessageSeverity::Warning, "Export not written: the check found problems");
+    return false;
+  }
+  std::string names;
+  for (const std::string& file : job.Written)
+  {
+    names += (names.empty() ? "" : ", ") + FileName(file);
+  }
+  this->Report(MessageSeverity::Info,
+    "Exported " + names + " (frame " + (job.Options.frame == StlFrame::RAS ? "RAS" : "LPS") +
+      ", unit " + job.Options.unit + ")");
   return true;
 }
 

@@ -1,9 +1,11 @@
 #ifndef bender_BenderSession_h
 #define bender_BenderSession_h
 
+#include "ApplyPlan.h"
 #include "BenderMeshCheck.h"
+#include "ExportSurface.h"
 #include "LogicMessage.h"
-#include "SurfaceExport.h"
+#include "Progress.h"
 #include "TwistUnwrapper.h"
 #include "WarpHistory.h"
 #include "WarpPlan.h"
@@ -15,9 +17,12 @@
 #include <vtkSmartPointer.h>
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+class vtkAlgorithmOutput;
 
 namespace bender
 {
@@ -25,9 +30,9 @@ namespace bender
 /// Where the session is in the bend gesture.
 enum class GrabState
 {
-  Idle,     ///< nothing held (no warp yet, or after undo/cancel)
-  Grabbed,  ///< the initial ribbon is captured and bound; the surface follows the final ribbon
-  Released  ///< the last gesture was committed as a warp; a new grab may start
+  Idle,    ///< nothing held (no warp yet, or after undo/cancel)
+  Grabbed, ///< the initial ribbon is captured and bound; the surface follows the final ribbon
+  Released ///< the last gesture was committed as a warp; a new grab may start
 };
 
 /// The parameters of the next warp, set from the Bend panel.
@@ -42,6 +47,64 @@ struct WarpParameters
   int subdivisionMaxPasses = 8;
 };
 
+/// Long work of a session (release, replay, recovery, check, export) as a job that runs off the
+/// session's thread: BenderSession::Begin... makes it on the session's thread (inputs copied,
+/// the session refuses other changes meanwhile), Run computes on any thread (only the job's own
+/// data), BenderSession::Finish commits it on the session's thread. Synchronous callers use the
+/// plain operations (Release, ReplayPlan, ...), which do the three steps at once.
+class SessionJob
+{
+public:
+  enum class Kind
+  {
+    Release,
+    Replay,
+    Recover,
+    Check,
+    Export
+  };
+  enum class Outcome
+  {
+    Pending,
+    Done,
+    Failed,
+    Cancelled
+  };
+
+  Kind GetKind() const { return this->JobKind; }
+  /// What the job is doing, for a progress bar ("Committing the warp", ...).
+  const std::string& GetTitle() const { return this->Title; }
+  /// Computes; never throws: the outcome and the problem are kept for Finish. Cancellation is
+  /// the typed bender::Cancelled of the workflows, seen here as Outcome::Cancelled.
+  void Run(const ProgressReporter& progress);
+  Outcome GetOutcome() const { return this->Result; }
+  const std::string& GetProblem() const { return this->Problem; }
+  /// The check's report (Check jobs, and Export jobs once run).
+  const MeshCheckReport& GetReport() const { return this->Report; }
+  /// Export jobs: the files written (none when the check found problems and the caller did
+  /// not accept them).
+  const std::vector<std::string>& GetWrittenFiles() const { return this->Written; }
+
+private:
+  friend class BenderSession;
+  Kind JobKind = Kind::Release;
+  std::string Title;
+  std::string Name; // plan or file name for messages
+  WarpPlan Plan;
+  vtkSmartPointer<vtkPolyData> Input;  // a copy owned by the job
+  vtkSmartPointer<vtkPolyData> Before; // the surface before the warps (check)
+  std::string SessionPath;             // Recover
+  std::string SourcePath;              // Recover: the source read by the job
+  std::string Path;                    // Export
+  ExportSurfaceOptions Options;
+  bool ProceedOnProblems = false;
+  ApplyPlanResult Steps;
+  MeshCheckReport Report;
+  std::vector<std::string> Written;
+  Outcome Result = Outcome::Pending;
+  std::string Problem;
+};
+
 /// The application state of Bender without Qt: the loaded surface, the grab / release state
 /// machine that drives vtkBenderWarpFilter (Precision Table while dragging, Exact at release),
 /// the undo history of committed warps, the plan, autosave and recovery, checks and export.
@@ -49,8 +112,14 @@ struct WarpParameters
 /// Every public operation returns false (or nothing) on failure and never throws: the problem
 /// is added to Messages() as one sentence naming the input, and the callback set with
 /// SetMessageCallback is called. Coordinates are those of the surface (LPS mm for segmented
-/// vessels). Not thread-safe: call from one thread (a GUI runs heavy reads in a worker with
-/// ReadMesh and hands the result to SetSurface).
+/// vessels). Not thread-safe: call from one thread. Long work (release, replay, recovery,
+/// check, export) is also offered as a SessionJob whose Run goes on a worker thread; every
+/// warp is applied through the ApplyPlan workflow (ApplyPlan.h).
+///
+/// The live warp is a VTK pipeline connected once: the committed surface (History.Current())
+/// is the input of a vtkBenderWarpFilter (Table precision) whose output port GetOutputPort()
+/// a mapper connects to. Idle, the filter passes the surface through (no copy); grabbed, each
+/// move builds the RibbonWarp once (validation included) and hands it to the filter.
 class BenderSession
 {
 public:
@@ -65,14 +134,25 @@ public:
   bool LoadSurface(const std::string& path);
   /// Makes `surface` (deep-copied) the session's surface. `name` is for messages;
   /// `sourcePath` is the file it came from, empty for a surface made here (segmentation).
-  bool SetSurface(vtkPolyData* surface, const std::string& name, const std::string& sourcePath = {});
+  bool SetSurface(vtkPolyData* surface,
+    const std::string& name,
+    const std::string& sourcePath = {});
   bool HasSurface() const { return !this->History.Empty(); }
   /// The committed surface (after the current history step); owned by the session.
   vtkPolyData* GetSurface() const { return this->History.Current(); }
   /// The surface before any warp.
   vtkPolyData* GetOriginalSurface() const { return this->History.Original(); }
-  /// A stable object for rendering: the live warp while grabbed, else the committed surface.
+  /// The live pipeline's output for rendering, connected once: the committed surface
+  /// (History.Current(), passed through without a copy) through vtkBenderWarpFilter, which
+  /// warps it live while grabbed. Connect a mapper to it; no Modified() is needed.
+  vtkAlgorithmOutput* GetOutputPort() const;
+  /// The same output, brought up to date (for tests and headless use).
   vtkPolyData* GetDisplaySurface() const;
+  /// The live warp filter (read-only use: counters for tests and benchmarks).
+  vtkBenderWarpFilter* GetLiveFilter() const { return this->LiveFilter.GetPointer(); }
+  /// How many RibbonWarp objects the session built for the live warp (one per grab, per
+  /// accepted or refused move, per change of R while grabbed): for tests.
+  long long GetWarpBuildCount() const { return this->WarpBuildCount; }
   const std::string& GetSourcePath() const { return this->SourcePath; }
   const std::string& GetSurfaceName() const { return this->SurfaceName; }
   ///@}
@@ -131,11 +211,29 @@ public:
   bool ApplyWarp(const WarpSpec& warp);
   ///@}
 
+  ///@{ Jobs (see SessionJob): nullptr, with a message, when refused (busy, nothing grabbed,
+  ///    no surface). While a job is begun and not finished, the session refuses other changes.
+  std::shared_ptr<SessionJob> BeginRelease();
+  std::shared_ptr<SessionJob> BeginReplay(const WarpPlan& plan, const std::string& name);
+  /// Reads the plan file in the job.
+  std::shared_ptr<SessionJob> BeginLoadPlan(const std::string& path);
+  std::shared_ptr<SessionJob> BeginRecover(const std::string& sessionPath);
+  std::shared_ptr<SessionJob> BeginCheck();
+  /// Checks, then writes when the check is clean or `proceedOnProblems`.
+  std::shared_ptr<SessionJob> BeginExport(const std::string& path,
+    const ExportSurfaceOptions& options,
+    bool proceedOnProblems);
+  /// Commits a job that ran (or reports why not); returns whether it succeeded.
+  bool Finish(SessionJob& job);
+  bool IsBusy() const { return this->Busy; }
+  ///@}
+
   ///@{ Check and export
   /// The report shown before writing (see CheckForExport).
   MeshCheckReport CheckSurface() const;
   /// Writes the committed surface (atomic). Refuses to overwrite the source file.
-  bool Export(const std::string& path, const ExportOptions& options = {});
+  /// Written through the export workflow (ExportSurface); `options.output` is set to `path`.
+  bool Export(const std::string& path, const ExportSurfaceOptions& options = {});
   ///@}
 
   ///@{ Autosave and recovery
@@ -156,15 +254,24 @@ public:
   /// Called after the display surface, state or history changed.
   void SetChangeCallback(std::function<void()> callback);
   /// Adds a message from a collaborator (tracker session, GUI worker results).
-  void AddMessage(MessageSeverity severity, const std::string& text) { this->Report(severity, text); }
+  void AddMessage(MessageSeverity severity, const std::string& text)
+  {
+    this->Report(severity, text);
+  }
   ///@}
 
 private:
   void Report(MessageSeverity severity, const std::string& text);
   void Changed();
   void ShowCommitted();
-  bool ApplyExact(const WarpSpec& warp, vtkPolyData* input, vtkSmartPointer<vtkPolyData>& output,
-    std::string& problem) const;
+  bool RefuseWhenBusy(const std::string& what);
+  std::shared_ptr<SessionJob> NewJob(SessionJob::Kind kind, const std::string& title);
+  bool RunNow(const std::shared_ptr<SessionJob>& job);
+  bool FinishRelease(SessionJob& job);
+  bool FinishReplay(SessionJob& job);
+  bool FinishRecover(SessionJob& job);
+  bool FinishExport(SessionJob& job);
+  bool SetLiveWarp(const WarpSpec& warp, std::string& problem);
   void UpdateLiveInformation();
 
   WarpHistory History;
@@ -180,7 +287,9 @@ private:
   std::string InversionWarning;
 
   vtkNew<vtkBenderWarpFilter> LiveFilter;
-  vtkNew<vtkPolyData> Display;
+  std::shared_ptr<const RibbonWarp> LiveWarp;
+  long long WarpBuildCount = 0;
+  bool Busy = false;
 
   std::string SourcePath;
   std::string SurfaceName;

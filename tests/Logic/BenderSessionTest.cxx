@@ -6,14 +6,17 @@
 #include "WarpPlanIO.h"
 
 #include <vtkCellData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 using namespace bender;
 using bender::test::MakeTube;
@@ -200,7 +203,8 @@ TEST_F(BenderSessionTest, TwistIsUnwrappedAcrossHalfTurns)
   {
     RibbonSpec rolled = initial;
     rolled.end.normal = Rotate({ 1, 0, 0 }, degrees * 3.14159265358979323846 / 180.0, { 0, 0, 1 });
-    ASSERT_TRUE(this->Session.MoveFinal(rolled)) << degrees << ": " << this->Session.GetLiveProblem();
+    ASSERT_TRUE(this->Session.MoveFinal(rolled))
+      << degrees << ": " << this->Session.GetLiveProblem();
   }
   EXPECT_EQ(this->Session.GetFinalRibbon().extraTurns, 1);
   ASSERT_TRUE(this->Session.Release());
@@ -314,13 +318,13 @@ TEST_F(BenderSessionTest, ExportWritesACheckedFileAndNeverTheSource)
     auto back = ReadMesh(folder + "/" + name);
     EXPECT_EQ(back->GetNumberOfPolys(), this->Tube->GetNumberOfPolys()) << name;
   }
-  ExportOptions ascii;
+  ExportSurfaceOptions ascii;
   ascii.stlEncoding = StlEncoding::Ascii;
   ASSERT_TRUE(this->Session.Export(folder + "/ascii.stl", ascii));
+  // The frame and unit are stated in the file.
   std::ifstream in(folder + "/ascii.stl");
-  std::string first;
-  std::getline(in, first);
-  EXPECT_NE(first.find("LPS"), std::string::npos) << first;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("frame LPS"), std::string::npos) << text.substr(0, 200);
 
   // The loaded source is never overwritten.
   BenderSession fromFile;
@@ -335,7 +339,7 @@ TEST_F(BenderSessionTest, ExportCapsTheOpenEndsIntoNamedPatchesForCfd)
 {
   this->Bend(30);
   const std::string folder = test::TemporaryFolder("export-cfd");
-  ExportOptions cfd;
+  ExportSurfaceOptions cfd;
   cfd.cap = true;
   cfd.patches = StlPatchMode::Solids;
   ASSERT_TRUE(this->Session.Export(folder + "/vessel.stl", cfd));
@@ -348,7 +352,7 @@ TEST_F(BenderSessionTest, ExportCapsTheOpenEndsIntoNamedPatchesForCfd)
   EXPECT_EQ(text.find("solid cap_3"), std::string::npos) << "the tube has two open ends";
 
   // The labelled VTP reassembles into a closed, consistently oriented surface.
-  ExportOptions vtp;
+  ExportSurfaceOptions vtp;
   vtp.cap = true;
   ASSERT_TRUE(this->Session.Export(folder + "/vessel.vtp", vtp));
   auto capped = ReadMesh(folder + "/vessel.vtp");
@@ -360,7 +364,7 @@ TEST_F(BenderSessionTest, ExportCapsTheOpenEndsIntoNamedPatchesForCfd)
   EXPECT_GT(report.volume, 0.0);
 
   // One file per patch, and RAS coordinates (x and y negated).
-  ExportOptions files;
+  ExportSurfaceOptions files;
   files.cap = true;
   files.patches = StlPatchMode::Files;
   ASSERT_TRUE(this->Session.Export(folder + "/parts.stl", files));
@@ -370,8 +374,8 @@ TEST_F(BenderSessionTest, ExportCapsTheOpenEndsIntoNamedPatchesForCfd)
     parts += entry.path().filename().string().rfind("parts_", 0) == 0 ? 1 : 0;
   }
   EXPECT_EQ(parts, 3);
-  ExportOptions ras;
-  ras.frame = "RAS";
+  ExportSurfaceOptions ras;
+  ras.frame = StlFrame::RAS;
   ASSERT_TRUE(this->Session.Export(folder + "/ras.vtp", ras));
   auto lps = this->Session.GetSurface();
   auto back = ReadMesh(folder + "/ras.vtp");
@@ -442,4 +446,112 @@ TEST_F(BenderSessionTest, SpaceInversionRiskIsReportedAndRadiusChangesRebind)
   EXPECT_GT(this->Session.GetNumberOfBoundPoints(), boundAt6);
   ASSERT_TRUE(this->Session.Release());
   EXPECT_EQ(this->Session.GetPlan().warps[0].radius, 12.0);
+}
+
+// Issue 9: the live warp is a pipeline, History.Current() -> warp filter -> output port. A drag
+// builds the warp once per move (in the session, shared with the filter), never copies the
+// surface, and the committed surface is passed through untouched when nothing is grabbed.
+TEST_F(BenderSessionTest, ADragCopiesNoSurfaceAndBuildsTheWarpOncePerMove)
+{
+  vtkPolyData* committed = this->Session.GetSurface();
+  vtkPoints* committedPoints = committed->GetPoints();
+  const vtkMTimeType committedTime = committedPoints->GetMTime();
+  // Nothing grabbed: the output shares the committed points.
+  EXPECT_EQ(this->Session.GetDisplaySurface()->GetPoints(), committedPoints);
+  ASSERT_NE(this->Session.GetOutputPort(), nullptr);
+
+  vtkBenderWarpFilter* filter = this->Session.GetLiveFilter();
+  const long long buildsBefore = this->Session.GetWarpBuildCount();
+  const vtkIdType copiesBefore = filter->GetPointsCopyCount();
+  const RibbonSpec initial = StraightRibbon(20, 40);
+  ASSERT_TRUE(this->Session.Grab(initial));
+  EXPECT_EQ(this->Session.GetWarpBuildCount(), buildsBefore + 1);
+  vtkPoints* livePoints = this->Session.GetDisplaySurface()->GetPoints();
+  ASSERT_NE(livePoints, committedPoints);
+  const int moves = 12;
+  for (int step = 1; step <= moves; ++step)
+  {
+    ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 3.0 * step)));
+    vtkPolyData* live = this->Session.GetDisplaySurface();
+    // Same output points array, written in place; the committed surface is not touched.
+    EXPECT_EQ(live->GetPoints(), livePoints);
+    EXPECT_EQ(this->Session.GetSurface(), committed);
+    EXPECT_EQ(committed->GetPoints(), committedPoints);
+    EXPECT_EQ(committedPoints->GetMTime(), committedTime);
+  }
+  // One warp built per move (plus the grab's), none by the filter itself.
+  EXPECT_EQ(this->Session.GetWarpBuildCount(), buildsBefore + 1 + moves);
+  EXPECT_EQ(filter->GetWarpBuildCount(), 0);
+  // The points were copied into the output once, at the grab's binding, not per move.
+  EXPECT_EQ(filter->GetPointsCopyCount(), copiesBefore + 1);
+  EXPECT_EQ(filter->GetBindingCount(), 1);
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), this->Tube), 0.0);
+  EXPECT_GT(MaxDifference(this->Session.GetDisplaySurface(), this->Tube), 1.0);
+
+  // A refused move builds at most once (to validate) and changes nothing.
+  RibbonSpec bad = Bent(initial, 36.0);
+  bad.end.position = bad.start.position;
+  vtkNew<vtkPolyData> lastValid;
+  lastValid->DeepCopy(this->Session.GetDisplaySurface());
+  EXPECT_FALSE(this->Session.MoveFinal(bad));
+  EXPECT_LE(this->Session.GetWarpBuildCount(), buildsBefore + 2 + moves);
+  EXPECT_FALSE(this->Session.GetLiveProblem().empty());
+  EXPECT_EQ(MaxDifference(this->Session.GetDisplaySurface(), lastValid), 0.0);
+
+  ASSERT_TRUE(this->Session.Release());
+  // Committed: passed through again, the new step's own points.
+  EXPECT_EQ(
+    this->Session.GetDisplaySurface()->GetPoints(), this->Session.GetSurface()->GetPoints());
+}
+
+// Release, replay and export as jobs: begun on the session's thread, run on another, finished
+// back; the session refuses changes meanwhile; the same result as the synchronous calls.
+TEST_F(BenderSessionTest, JobsRunOffTheSessionThreadWithTheSameResult)
+{
+  BenderSession reference;
+  ASSERT_TRUE(reference.SetSurface(this->Tube, "tube"));
+  ASSERT_TRUE(reference.SetParameters(this->Session.GetParameters()));
+  const RibbonSpec initial = StraightRibbon(20, 40);
+  ASSERT_TRUE(reference.Grab(initial));
+  ASSERT_TRUE(reference.MoveFinal(Bent(initial, 35)));
+  ASSERT_TRUE(reference.Release());
+
+  ASSERT_TRUE(this->Session.Grab(initial));
+  ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 35)));
+  std::shared_ptr<SessionJob> job = this->Session.BeginRelease();
+  ASSERT_TRUE(job);
+  EXPECT_TRUE(this->Session.IsBusy());
+  EXPECT_FALSE(this->Session.Undo());
+  EXPECT_TRUE(HasMessage(this->Session, MessageSeverity::Error, "busy"));
+  EXPECT_FALSE(this->Session.BeginRelease());
+  std::thread worker([job]() { job->Run({}); });
+  worker.join();
+  EXPECT_EQ(job->GetOutcome(), SessionJob::Outcome::Done);
+  ASSERT_TRUE(this->Session.Finish(*job));
+  EXPECT_FALSE(this->Session.IsBusy());
+  EXPECT_EQ(this->Session.GetHistoryPosition(), 1u);
+  EXPECT_EQ(MaxDifference(this->Session.GetSurface(), reference.GetSurface()), 0.0);
+
+  // A cancelled replay commits nothing; the cancellation is typed, not a message text.
+  std::shared_ptr<SessionJob> replay = this->Session.BeginReplay(reference.GetPlan(), "plan");
+  ASSERT_TRUE(replay);
+  std::atomic<bool> cancel{ true };
+  ProgressReporter progress;
+  progress.cancel = &cancel;
+  std::thread canceller([replay, progress]() { replay->Run(progress); });
+  canceller.join();
+  EXPECT_EQ(replay->GetOutcome(), SessionJob::Outcome::Cancelled);
+  EXPECT_FALSE(this->Session.Finish(*replay));
+  EXPECT_EQ(this->Session.GetHistoryPosition(), 1u);
+
+  // Export on another thread writes the file the synchronous export writes.
+  const std::string folder = test::TemporaryFolder("session-jobs");
+  std::shared_ptr<SessionJob> exportJob =
+    this->Session.BeginExport(folder + "/bent.vtp", ExportSurfaceOptions{}, true);
+  ASSERT_TRUE(exportJob);
+  std::thread exporter([exportJob]() { exportJob->Run({}); });
+  exporter.join();
+  ASSERT_TRUE(this->Session.Finish(*exportJob));
+  ASSERT_EQ(exportJob->GetWrittenFiles().size(), 1u);
+  EXPECT_EQ(MaxDifference(ReadMesh(folder + "/bent.vtp"), this->Session.GetSurface()), 0.0);
 }

@@ -3,6 +3,7 @@
 // save/load/replay, export checked by bender-cli, a screenshot, a replayed tracker recording,
 // and a corrupt file dropped on the window. Run under Xvfb (QT_QPA_PLATFORM=xcb).
 #include "BendPanel.h"
+#include "DemoPipeline.h"
 #include "MainWindow.h"
 #include "MeshIO.h"
 #include "Ribbon.h"
@@ -13,14 +14,15 @@
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
+#include <QAbstractButton>
 #include <QApplication>
 #include <QDir>
 #include <QDoubleSpinBox>
-#include <QPushButton>
 #include <QFile>
 #include <QLabel>
 #include <QMimeData>
 #include <QProcess>
+#include <QPushButton>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -39,10 +41,13 @@
 #include "LogicTestUtilities.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <sstream>
+#include <thread>
 
 namespace
 {
@@ -105,6 +110,12 @@ private:
   std::unique_ptr<MainWindow> Window;
   vtkSmartPointer<vtkPolyData> Segmented;
   vtkSmartPointer<vtkPolyData> AfterFirstBend;
+  // The slow fake job: while SlowJobs, every background job first waits on the worker until
+  // the GUI thread's timer has ticked 5 more times (so it ends only if the event loop turns).
+  std::atomic<bool> SlowJobs{ false };
+  std::atomic<int> Ticks{ 0 };
+  std::atomic<int> Stalls{ 0 };
+  std::atomic<int> SlowJobsRun{ 0 };
 
   QString artefact(const QString& name)
   {
@@ -120,6 +131,22 @@ private slots:
     options.autosavePath = this->Folder.filePath("autosave.bender-session.json");
     options.offerRecovery = false;
     options.interactive = false;
+    options.workHook = [this](const bender::ProgressReporter& progress)
+    {
+      if (!this->SlowJobs)
+        return;
+      ++this->SlowJobsRun;
+      const int start = this->Ticks;
+      for (int wait = 0; this->Ticks < start + 5 && !progress.Cancelled(); ++wait)
+      {
+        if (wait > 60000)
+        {
+          ++this->Stalls; // a minute without 5 ticks: the GUI thread is blocked
+          return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    };
     this->Window = std::make_unique<MainWindow>(options);
     this->Window->resize(1280, 900);
     this->Window->show();
@@ -209,6 +236,7 @@ private slots:
     QCOMPARE(MaxDifference(session.GetSurface(), this->Segmented), 0.0);
 
     QVERIFY(this->Window->release());
+    QVERIFY(this->Window->waitUntilIdle(60000));
     QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
     vtkPolyData* after = session.GetSurface();
     QCOMPARE(after->GetNumberOfPoints(), this->Segmented->GetNumberOfPoints());
@@ -223,7 +251,8 @@ private slots:
       if (change == 0.0)
         continue;
       // Every moved point lies inside the region of influence of the initial wire.
-      QVERIFY2(DistanceToWire(initial, p) < radius * (1 + 1e-9), qPrintable(QString("point %1").arg(i)));
+      QVERIFY2(
+        DistanceToWire(initial, p) < radius * (1 + 1e-9), qPrintable(QString("point %1").arg(i)));
       ++movedInside;
     }
     QVERIFY(movedInside > 100);
@@ -253,6 +282,7 @@ private slots:
     QVERIFY(session.Undo());
     QCOMPARE(MaxDifference(session.GetSurface(), this->Segmented), 0.0);
     QVERIFY(this->Window->openFile(plan));
+    QVERIFY(this->Window->waitUntilIdle(60000));
     QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
     QVERIFY(MaxDifference(session.GetSurface(), this->AfterFirstBend) <= 1e-9);
   }
@@ -260,7 +290,11 @@ private slots:
   void exportIsAcceptedByTheCheckCommand()
   {
     const QString stl = this->Folder.filePath("bent.stl");
+    QSignalSpy finished(this->Window.get(), &MainWindow::workFinished);
     QVERIFY(this->Window->exportSurface(stl, false));
+    QVERIFY(this->Window->waitUntilIdle(120000));
+    QCOMPARE(finished.count(), 1);
+    QCOMPARE(finished.first().first().toBool(), true);
     QVERIFY(QFileInfo(stl).size() > 84);
     QProcess check;
     check.start(BENDER_CLI_PATH, { "check", stl });
@@ -272,6 +306,64 @@ private slots:
     QFile file(stl);
     QVERIFY(file.open(QIODevice::ReadOnly));
     QVERIFY(file.read(80).contains("LPS"));
+  }
+
+  // Release, replay and export run on the worker: the window's event loop keeps turning (a
+  // timer keeps firing) while they run, and their results arrive afterwards.
+  void longWorkKeepsTheEventLoopTurning()
+  {
+    bender::BenderSession& session = this->Window->session();
+    QTimer timer;
+    connect(&timer, &QTimer::timeout, [this]() { ++this->Ticks; });
+    timer.start(5);
+    this->SlowJobs = true;
+    const std::size_t position = session.GetHistoryPosition();
+
+    // Release: grab, move the end, release.
+    auto* rep = this->Window->ribbonWidget()->GetRibbonRepresentation();
+    QVERIFY(this->Window->grab());
+    bender::RibbonSpec moved = rep->GetRibbon();
+    moved.end.position.y += 2.0;
+    this->Window->setRibbon(moved);
+    QVERIFY(session.GetLiveProblem().empty());
+    int before = this->Ticks;
+    QVERIFY(this->Window->release());
+    QVERIFY(this->Window->isBusy()); // returned at once; the commit runs on the worker
+    QVERIFY(this->Window->waitUntilIdle(120000));
+    QVERIFY(this->Ticks - before >= 5);
+    QCOMPARE(session.GetHistoryPosition(), position + 1);
+
+    // Replay: the plan of those warps onto the surface before them.
+    const QString plan = this->Folder.filePath("slow.bender.json");
+    QVERIFY(session.SavePlan(plan.toStdString()));
+    vtkSmartPointer<vtkPolyData> bent = Copy(session.GetSurface());
+    for (std::size_t i = 0; i <= position; ++i)
+      QVERIFY(session.Undo());
+    before = this->Ticks;
+    QVERIFY(this->Window->openFile(plan));
+    QVERIFY(this->Window->isBusy());
+    QVERIFY(this->Window->waitUntilIdle(120000));
+    QVERIFY(this->Ticks - before >= 5);
+    QCOMPARE(session.GetHistoryPosition(), position + 1);
+    QVERIFY(MaxDifference(session.GetSurface(), bent) <= 1e-9);
+
+    // Export.
+    const QString vtp = this->Folder.filePath("slow.vtp");
+    before = this->Ticks;
+    QSignalSpy finished(this->Window.get(), &MainWindow::workFinished);
+    QVERIFY(this->Window->exportSurface(vtp, true));
+    QVERIFY(this->Window->isBusy());
+    QVERIFY(this->Window->waitUntilIdle(120000));
+    QVERIFY(this->Ticks - before >= 5);
+    QCOMPARE(finished.count(), 1);
+    QVERIFY(QFileInfo(vtp).size() > 0);
+
+    this->SlowJobs = false;
+    QCOMPARE(this->SlowJobsRun.load(), 3);
+    QCOMPARE(this->Stalls.load(), 0);
+    // Back to the state the next tests expect: one warp.
+    while (session.GetHistoryPosition() > position)
+      QVERIFY(session.Undo());
   }
 
   void screenshotIsNotBlank()
@@ -355,14 +447,15 @@ private slots:
     auto* lumen = this->Window->findChild<QDoubleSpinBox*>("lumenThreshold");
     QVERIFY(lumen);
     lumen->setValue(250.0);
-    auto* segment = this->Window->findChild<QPushButton*>("segmentButton");
+    auto* segment = this->Window->findChild<QAbstractButton*>("segmentButton");
     QVERIFY(segment);
     segment->click();
     QVERIFY(this->Window->waitUntilIdle(120000));
     bender::BenderSession& session = this->Window->session();
     QCOMPARE(session.GetSurfaceName(), std::string("segmented vessel"));
     // The same lumen as the demo's segmentation, within a few percent of its triangles.
-    const double ratio = double(session.GetSurface()->GetNumberOfPolys()) / demo.surface->GetNumberOfPolys();
+    const double ratio =
+      double(session.GetSurface()->GetNumberOfPolys()) / demo.surface->GetNumberOfPolys();
     QVERIFY2(ratio > 0.9 && ratio < 1.1, qPrintable(QString::number(ratio)));
   }
 

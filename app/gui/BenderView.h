@@ -1,0 +1,58 @@
+#ifndef BenderView_h
+#define BenderView_h
+
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <vtkNew.h>
+
+class vtkActor;
+class vtkAlgorithmOutput;
+class vtkBenderRibbonWidget;
+class vtkCallbackCommand;
+class vtkGenericOpenGLRenderWindow;
+class vtkObject;
+class vtkPolyDataMapper;
+class vtkRenderer;
+
+/// The 3D view: the session's live surface (its output port, connected once: the pipeline
+/// updates the mapper when the warp moves, nothing is copied or forced) and the ribbon widget.
+/// Emits ribbonInteraction while a handle is dragged, and surfacePicked for a click on the
+/// surface while picking is on ("place ribbon").
+class BenderView : public QVTKOpenGLNativeWidget
+{
+  Q_OBJECT
+public:
+  explicit BenderView(vtkAlgorithmOutput* surface, QWidget* parent = nullptr);
+  ~BenderView() override;
+
+  vtkRenderer* renderer() const { return this->Renderer; }
+  vtkBenderRibbonWidget* ribbonWidget() const { return this->RibbonWidget; }
+  void render();
+  void resetCamera();
+
+  /// The next left click on the surface emits surfacePicked (else pickMissed) instead of
+  /// rotating the camera.
+  void setPicking(bool picking) { this->Picking = picking; }
+  bool isPicking() const { return this->Picking; }
+
+signals:
+  void ribbonInteraction();
+  void surfacePicked(double x, double y, double z);
+  void pickMissed();
+
+private:
+  static void RibbonCallback(vtkObject*, unsigned long, void* clientData, void*);
+  static void PickCallback(vtkObject*, unsigned long, void* clientData, void*);
+  void pick();
+
+  vtkNew<vtkGenericOpenGLRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkPolyDataMapper> SurfaceMapper;
+  vtkNew<vtkActor> SurfaceActor;
+  vtkNew<vtkBenderRibbonWidget> RibbonWidget;
+  vtkNew<vtkCallbackCommand> RibbonObserver;
+  vtkNew<vtkCallbackCommand> PickObserver;
+  bool Picking = false;
+};
+
+#endif

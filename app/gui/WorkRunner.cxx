@@ -1,0 +1,128 @@
+#include "WorkRunner.h"
+
+#include <QApplication>
+#include <QLabel>
+#include <QPointer>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QStatusBar>
+#include <QtConcurrent/QtConcurrent>
+
+#include <cmath>
+#include <exception>
+
+WorkRunner::WorkRunner(QStatusBar* bar, QLabel* status, Reporter report, QObject* parent)
+  : QObject(parent)
+  , Status(status)
+  , Report(std::move(report))
+{
+  this->Progress = new QProgressBar(bar);
+  this->Progress->setRange(0, 100);
+  this->Progress->setMaximumWidth(220);
+  this->Progress->hide();
+  bar->addPermanentWidget(this->Progress);
+  this->Cancel = new QPushButton("Cancel", bar);
+  this->Cancel->setObjectName("cancelWork");
+  this->Cancel->hide();
+  bar->addPermanentWidget(this->Cancel);
+  connect(this->Cancel,
+    &QPushButton::clicked,
+    this,
+    [this]()
+    {
+      this->CancelFlag = true;
+      this->Status->setText("Cancelling...");
+    });
+  connect(&this->Watcher, &QFutureWatcher<Finisher>::finished, this, &WorkRunner::finish);
+}
+
+WorkRunner::~WorkRunner()
+{
+  this->cancelAndWait();
+}
+
+void WorkRunner::cancelAndWait()
+{
+  this->CancelFlag = true;
+  this->Watcher.waitForFinished();
+}
+
+bool WorkRunner::run(const QString& title, Work work)
+{
+  if (this->Pending)
+  {
+    this->Report(2, "Busy: wait for the current task or cancel it");
+    return false;
+  }
+  this->CancelFlag = false;
+  this->Pending = true;
+  this->Failed = false;
+  this->Progress->setValue(0);
+  this->Progress->setFormat(title + " %p%");
+  this->Progress->show();
+  this->Cancel->show();
+  this->Status->setStyleSheet("");
+  this->Status->setText(title + "...");
+  bender::ProgressReporter reporter;
+  reporter.cancel = &this->CancelFlag;
+  QPointer<QProgressBar> bar(this->Progress);
+  reporter.onProgress = [bar, title](const std::string& stage, double fraction)
+  {
+    QMetaObject::invokeMethod(
+      qApp,
+      [bar, title, stage, fraction]()
+      {
+        if (bar)
+        {
+          bar->setValue(static_cast<int>(std::lround(100.0 * fraction)));
+          bar->setFormat(title + ": " + QString::fromStdString(stage) + " %p%");
+        }
+      },
+      Qt::QueuedConnection);
+  };
+  auto hook = this->Hook;
+  this->Watcher.setFuture(QtConcurrent::run(
+    [this, work, reporter, hook]() -> Finisher
+    {
+      try
+      {
+        if (hook)
+        {
+          hook(reporter);
+        }
+        return work(reporter);
+      }
+      catch (const bender::Cancelled& e)
+      {
+        const std::string what = e.what();
+        return [this, what]()
+        {
+          this->Failed = true;
+          this->Report(1, "Cancelled: " + what + "; nothing was changed");
+        };
+      }
+      catch (const std::exception& e)
+      {
+        const std::string what = e.what();
+        return [this, what]()
+        {
+          this->Failed = true;
+          this->Report(2, what);
+        };
+      }
+    }));
+  return true;
+}
+
+void WorkRunner::finish()
+{
+  this->Progress->hide();
+  this->Cancel->hide();
+  Finisher finisher = this->Watcher.result();
+  if (finisher)
+  {
+    finisher();
+  }
+  this->Pending = false;
+  emit this->finished(!this->Failed);
+}

@@ -1,0 +1,61 @@
+#ifndef WorkRunner_h
+#define WorkRunner_h
+
+#include "Progress.h"
+
+#include <QFutureWatcher>
+#include <QObject>
+#include <QString>
+
+#include <atomic>
+#include <functional>
+
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QStatusBar;
+
+/// The window's worker: one job at a time on a pool thread, with a progress bar and a Cancel
+/// button in the status bar. A job computes on the worker and returns a finisher that runs on
+/// the GUI thread (where the sessions are changed). Errors are typed: bender::Cancelled (the
+/// Cancel button) and other exceptions end the job as failed, with a message through `report`.
+/// The GUI thread never waits for a job.
+class WorkRunner : public QObject
+{
+  Q_OBJECT
+public:
+  using Finisher = std::function<void()>;
+  using Work = std::function<Finisher(const bender::ProgressReporter&)>;
+  /// severity 0 info, 1 warning, 2 error (bender::MessageSeverity's order).
+  using Reporter = std::function<void(int severity, const std::string& text)>;
+
+  WorkRunner(QStatusBar* bar, QLabel* status, Reporter report, QObject* parent);
+  ~WorkRunner() override;
+
+  /// Starts `work`; false (nothing started) while another job runs.
+  bool run(const QString& title, Work work);
+  bool isBusy() const { return this->Pending; }
+  /// Marks the running job as failed (its finisher found a problem).
+  void markFailed() { this->Failed = true; }
+  /// Asks the running job to stop and waits for the worker (closing the window).
+  void cancelAndWait();
+  /// Called on the worker at the start of every job (tests).
+  std::function<void(const bender::ProgressReporter&)> Hook;
+
+signals:
+  void finished(bool succeeded);
+
+private:
+  void finish();
+
+  QFutureWatcher<Finisher> Watcher;
+  QProgressBar* Progress;
+  QPushButton* Cancel;
+  QLabel* Status;
+  Reporter Report;
+  std::atomic<bool> CancelFlag{ false };
+  bool Pending = false;
+  bool Failed = false;
+};
+
+#endif

@@ -1,0 +1,89 @@
+#ifndef bender_SegmentationSession_h
+#define bender_SegmentationSession_h
+
+#include "Progress.h"
+#include "SurfaceExtraction.h"
+#include "VesselSegmentation.h"
+#include "Volume.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <memory>
+#include <string>
+
+namespace bender
+{
+
+/// The parameters of the Segment panel: the segmentation stage and the surface stage.
+struct SegmentationSettings
+{
+  SegmentationParameters segmentation;
+  SurfaceParameters surface;
+};
+
+/// The segmentation half of the application state, without Qt: the loaded volume, the mask of
+/// the last segmentation, the parameters, and the jobs that read and segment (run on a worker,
+/// finished on the session's thread, as BenderSession's jobs). The window shows the volume and
+/// the mask; the surface goes to BenderSession.
+///
+/// Volumes and masks are shared read-only (std::shared_ptr<const ...>): a job holds what it
+/// reads, so the window may replace them while a job runs.
+class SegmentationSession
+{
+public:
+  /// Reads a volume file or DICOM folder (ReadVolume) on the job's thread.
+  struct ReadJob
+  {
+    std::string path;
+    std::shared_ptr<const Volume> volume;
+    /// Throws the reader's errors (bender::Error) and bender::Cancelled.
+    void Run(const ProgressReporter& progress);
+  };
+
+  /// Segments a volume and extracts its surface (SegmentVessels, then ExtractSurface).
+  struct SegmentJob
+  {
+    std::shared_ptr<const Volume> volume;
+    SegmentationSettings settings;
+    std::shared_ptr<const LabelMap> mask;
+    vtkSmartPointer<vtkPolyData> surface;
+    /// Throws the segmentation's errors (bender::Error) and bender::Cancelled.
+    void Run(const ProgressReporter& progress);
+  };
+
+  bool HasVolume() const { return this->LoadedVolume != nullptr; }
+  const std::shared_ptr<const Volume>& GetVolume() const { return this->LoadedVolume; }
+  /// The mask of the last segmentation of the loaded volume; null before one.
+  const std::shared_ptr<const LabelMap>& GetMask() const { return this->Mask; }
+  const std::string& GetVolumeName() const { return this->VolumeName; }
+
+  /// Makes `volume` the loaded one (its mask, if any, with it); null unloads.
+  void SetVolume(std::shared_ptr<const Volume> volume,
+    const std::string& name,
+    std::shared_ptr<const LabelMap> mask = nullptr);
+  /// Forgets the volume and the mask (a mesh was opened instead).
+  void Clear();
+
+  /// Validated when set: false, and `problem` says why, for parameters out of range.
+  bool SetSettings(const SegmentationSettings& settings, std::string& problem);
+  const SegmentationSettings& GetSettings() const { return this->Settings; }
+
+  std::shared_ptr<ReadJob> BeginRead(const std::string& path) const;
+  /// Takes the job's volume as the loaded one.
+  void FinishRead(const ReadJob& job);
+  /// Null, and `problem` says why, without a loaded volume.
+  std::shared_ptr<SegmentJob> BeginSegment(std::string& problem) const;
+  /// Keeps the mask when the job segmented the volume still loaded.
+  void FinishSegment(const SegmentJob& job);
+
+private:
+  std::shared_ptr<const Volume> LoadedVolume;
+  std::shared_ptr<const LabelMap> Mask;
+  std::string VolumeName;
+  SegmentationSettings Settings;
+};
+
+} // namespace bender
+
+#endif
