@@ -24,8 +24,10 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace
@@ -292,4 +294,48 @@ TEST_F(CapExport, ErrorsLeaveNothingBehind)
   cap->Update();
   EXPECT_NE(cap->GetLastError().find("non-finite"), std::string::npos);
   EXPECT_TRUE(errors.ExpectError("non-finite"));
+}
+
+// One STL per patch is all-or-nothing: when one patch file cannot be written (a folder is in
+// its place), the other patch files keep their previous content or are not created.
+TEST_F(CapExport, PatchFilesAreWrittenAllOrNothing)
+{
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(OpenTube());
+  cap->Update();
+  ASSERT_EQ(cap->GetNumberOfCaps(), 2);
+  const std::string dir = TempDir();
+  bender::StlExportOptions options;
+  options.patches = bender::StlPatchMode::Files;
+  const std::vector<std::string> planned =
+    bender::PlannedStlPaths(cap->GetOutput(), dir + "/case.stl", options);
+  ASSERT_EQ(planned.size(), 3u); // wall, cap_1, cap_2
+  {
+    std::ofstream(planned[0]) << "previous wall";
+  }
+  ASSERT_EQ(mkdir(planned[2].c_str(), 0755), 0);
+  try
+  {
+    bender::ExportStl(cap->GetOutput(), dir + "/case.stl", options);
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const bender::StlExportError& e)
+  {
+    EXPECT_EQ(std::string(e.what()).rfind("case_cap_2.stl: ", 0), 0u) << e.what();
+  }
+  std::ifstream wall(planned[0]);
+  const std::string previous(
+    (std::istreambuf_iterator<char>(wall)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(previous, "previous wall");
+  EXPECT_NE(access(planned[1].c_str(), F_OK), 0) << "cap_1 written without cap_2";
+
+  // With the folder gone, all three are written.
+  ASSERT_EQ(rmdir(planned[2].c_str()), 0);
+  EXPECT_EQ(bender::ExportStl(cap->GetOutput(), dir + "/case.stl", options), planned);
+  for (const std::string& file : planned)
+  {
+    EXPECT_EQ(access(file.c_str(), R_OK), 0) << file;
+    std::remove(file.c_str());
+  }
+  EXPECT_EQ(rmdir(dir.c_str()), 0); // no temporary or kept previous file left behind
 }
