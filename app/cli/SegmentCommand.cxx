@@ -515,14 +515,8 @@ int RunPhantomCli(const std::vector<std::string>& args, std::ostream& out, std::
     {
       std::filesystem::create_directories(parent);
     }
-    // Write beside the target, then rename: no half-written volume on failure.
-    const std::string ext =
-      request.output.size() > 7 && request.output.substr(request.output.size() - 7) == ".nii.gz"
-      ? ".nii.gz"
-      : std::filesystem::path(request.output).extension().string();
-    const std::string temporary = request.output + ".part" + ext;
-    WriteVolume(phantom.volume, temporary);
-    std::filesystem::rename(temporary, request.output);
+    // WriteVolume is all-or-nothing (temporary beside the target, then renamed).
+    WriteVolume(phantom.volume, request.output);
     const ImageGeometry& g = phantom.volume.geometry;
     out << request.output << ": " << g.size[0] << "x" << g.size[1] << "x" << g.size[2]
         << " voxels of " << g.spacing[0] << " mm, lumen " << request.phantom.vesselIntensity
