@@ -976,6 +976,271 @@ bool CheckLegacyVtk(std::string_view data, std::string& problem)
 }
 
 // ---------------------------------------------------------------------------------------------
+// ASCII STL and OBJ
+// ---------------------------------------------------------------------------------------------
+
+namespace
+{
+
+// Splits data into lines (without "\r\n"); false when one is longer than maxLine.
+template<typename Visit>
+bool ForEachLine(std::string_view data, std::size_t maxLine, std::string& problem, Visit&& visit)
+{
+  std::size_t number = 0;
+  for (std::size_t pos = 0; pos < data.size();)
+  {
+    std::size_t end = data.find('\n', pos);
+    if (end == std::string_view::npos)
+    {
+      end = data.size();
+    }
+    std::string_view line = data.substr(pos, end - pos);
+    pos = end + 1;
+    ++number;
+    if (line.size() > maxLine)
+    {
+      problem =
+        "line " + std::to_string(number) + " is longer than " + std::to_string(maxLine) + " bytes";
+      return false;
+    }
+    if (line.find('\0') != std::string_view::npos)
+    {
+      problem = "line " + std::to_string(number) + ": NUL byte (binary data in a text file)";
+      return false;
+    }
+    if (!line.empty() && line.back() == '\r')
+    {
+      line.remove_suffix(1);
+    }
+    if (!visit(number, line))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<std::string_view> Words(std::string_view line)
+{
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < line.size())
+  {
+    while (i < line.size() && IsBlank(line[i]))
+    {
+      ++i;
+    }
+    const std::size_t start = i;
+    while (i < line.size() && !IsBlank(line[i]))
+    {
+      ++i;
+    }
+    if (i > start)
+    {
+      words.push_back(line.substr(start, i - start));
+    }
+  }
+  return words;
+}
+
+bool Number(std::string_view word, bool requireFinite = false)
+{
+  const char* begin = word.data();
+  const char* end = word.data() + word.size();
+  if (begin < end && *begin == '+')
+  {
+    ++begin;
+  }
+  double value = 0;
+  const auto r = std::from_chars(begin, end, value);
+  if (r.ptr != end || begin == end)
+  {
+    return false;
+  }
+  if (r.ec == std::errc::result_out_of_range)
+  {
+    return !requireFinite;
+  }
+  return r.ec == std::errc() && (!requireFinite || std::isfinite(value));
+}
+
+} // namespace
+
+bool CheckAsciiStl(std::string_view data, std::string& problem)
+{
+  // States: 0 outside a solid, 1 in a solid, 2 after "facet normal", 3 in a loop (count
+  // vertices), 4 after "endloop".
+  int state = 0;
+  int vertices = 0;
+  std::size_t facets = 0;
+  std::string where;
+  const bool ok = ForEachLine(data,
+    4000,
+    problem,
+    [&](std::size_t number, std::string_view line)
+    {
+      const std::vector<std::string_view> w = Words(line);
+      if (w.empty())
+      {
+        return true;
+      }
+      const std::string key = Lower(w[0]);
+      where = "ASCII STL line " + std::to_string(number) + ": ";
+      auto expect = [&](const char* what)
+      {
+        problem = where + "expected " + what + ", got \"" + QuoteBytes(line, 40) + "\"";
+        return false;
+      };
+      switch (state)
+      {
+        case 0:
+          if (key != "solid")
+          {
+            return expect("\"solid\"");
+          }
+          state = 1;
+          return true;
+        case 1:
+          if (key == "endsolid")
+          {
+            state = 0;
+            return true;
+          }
+          if (key != "facet" || w.size() != 5 || Lower(w[1]) != "normal" || !Number(w[2]) ||
+            !Number(w[3]) || !Number(w[4]))
+          {
+            return expect("\"facet normal x y z\" or \"endsolid\"");
+          }
+          state = 2;
+          return true;
+        case 2:
+          if (key != "outer" || w.size() != 2 || Lower(w[1]) != "loop")
+          {
+            return expect("\"outer loop\"");
+          }
+          state = 3;
+          vertices = 0;
+          return true;
+        case 3:
+          if (key == "endloop" && w.size() == 1 && vertices == 3)
+          {
+            state = 4;
+            return true;
+          }
+          if (key != "vertex" || w.size() != 4 || vertices == 3 || !Number(w[1]) || !Number(w[2]) ||
+            !Number(w[3]))
+          {
+            return expect(vertices == 3 ? "\"endloop\"" : "\"vertex x y z\"");
+          }
+          ++vertices;
+          return true;
+        default:
+          if (key != "endfacet" || w.size() != 1)
+          {
+            return expect("\"endfacet\"");
+          }
+          ++facets;
+          state = 1;
+          return true;
+      }
+    });
+  if (!ok)
+  {
+    return false;
+  }
+  if (state != 0)
+  {
+    problem = "truncated ASCII STL (no \"endsolid\" after " + std::to_string(facets) + " facets)";
+    return false;
+  }
+  return true;
+}
+
+bool CheckObj(std::string_view data, std::string& problem)
+{
+  std::uint64_t v = 0, vt = 0, vn = 0;
+  // Pass 1: counts and vertex coordinates.
+  if (!ForEachLine(data,
+        8000,
+        problem,
+        [&](std::size_t number, std::string_view line)
+        {
+          const std::vector<std::string_view> w = Words(line);
+          if (w.empty())
+          {
+            return true;
+          }
+          if (w[0] == "v")
+          {
+            if (w.size() < 4 || !Number(w[1], true) || !Number(w[2], true) || !Number(w[3], true))
+            {
+              problem =
+                "line " + std::to_string(number) + ": expected 3 finite coordinates after \"v\"";
+              return false;
+            }
+            ++v;
+          }
+          else if (w[0] == "vt")
+          {
+            ++vt;
+          }
+          else if (w[0] == "vn")
+          {
+            ++vn;
+          }
+          return true;
+        }))
+  {
+    return false;
+  }
+  // Pass 2: every index of every element in range.
+  return ForEachLine(data,
+    8000,
+    problem,
+    [&](std::size_t number, std::string_view line)
+    {
+      const std::vector<std::string_view> w = Words(line);
+      if (w.empty() || (w[0] != "f" && w[0] != "l" && w[0] != "p"))
+      {
+        return true;
+      }
+      for (std::size_t k = 1; k < w.size(); ++k)
+      {
+        std::string_view ref = w[k];
+        const std::uint64_t counts[3] = { v, vt, vn };
+        const char* names[3] = { "vertex", "texture coordinate", "normal" };
+        for (int part = 0; part < 3 && !ref.empty(); ++part)
+        {
+          const std::size_t slash = ref.find('/');
+          const std::string_view index = ref.substr(0, slash);
+          ref = slash == std::string_view::npos ? std::string_view() : ref.substr(slash + 1);
+          if (index.empty() && part > 0)
+          {
+            continue; // "1//3": no texture coordinate
+          }
+          long long i = 0;
+          const auto r = std::from_chars(index.data(), index.data() + index.size(), i);
+          if (r.ec != std::errc() || r.ptr != index.data() + index.size() || i < 1 ||
+            static_cast<std::uint64_t>(i) > counts[part])
+          {
+            problem = "line " + std::to_string(number) + ": " + names[part] + " index \"" +
+              QuoteBytes(index) + "\" out of range (the file has " + std::to_string(counts[part]) +
+              ")";
+            return false;
+          }
+        }
+        if (!ref.empty())
+        {
+          problem =
+            "line " + std::to_string(number) + ": malformed element \"" + QuoteBytes(w[k]) + "\"";
+          return false;
+        }
+      }
+      return true;
+    });
+}
+
+// ---------------------------------------------------------------------------------------------
 // VTK XML
 // ---------------------------------------------------------------------------------------------
 
@@ -1250,7 +1515,7 @@ bool CheckVtkXml(std::string_view data,
         {
           if (!ParseCount(value, n) || n > budgetBytes)
           {
-            problem = "VTK XML Piece with " + key + "=\"" + QuoteBytes(value) + "\"";
+            problem = "VTK XML Piece with " + QuoteBytes(key) + "=\"" + QuoteBytes(value) + "\"";
             return false;
           }
           if (key == "NumberOfPoints")

@@ -38,6 +38,18 @@ std::string QuoteBytes(std::string_view bytes, std::size_t maxLength = 40);
 /// the announced length, only keywords vtkPolyDataReader knows.
 bool CheckLegacyVtk(std::string_view data, std::string& problem);
 
+/// ASCII STL as vtkSTLReader reads it: one or more "solid ... endsolid" blocks of
+/// "facet normal x y z / outer loop / vertex x y z (3 times) / endloop / endfacet", numbers
+/// that parse, lines of at most 4000 bytes (VTK 9.1's ASCII parser allocates wildly or
+/// misreads anything else).
+bool CheckAsciiStl(std::string_view data, std::string& problem);
+
+/// OBJ as vtkOBJReader reads it: lines of at most 8000 bytes, "v" lines with 3 finite numbers,
+/// and every vertex, texture-coordinate and normal index of "f", "l" and "p" lines between 1
+/// and the number of "v", "vt" and "vn" lines (vtkOBJReader reads normals and texture
+/// coordinates by index without checking; relative negative indices are not supported).
+bool CheckObj(std::string_view data, std::string& problem);
+
 /// VTK XML files (.vtp, .vti): the root element is <VTKFile type="expectedType"> with a known
 /// byte_order, header_type (UInt32/UInt64) and compressor; every DataArray has a known type,
 /// 1 to 64 components and a size (NumberOfPoints, NumberOfCells, extent) whose data fits the

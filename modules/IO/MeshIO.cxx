@@ -8,8 +8,8 @@
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
-#include <vtkCommand.h>
 #include <vtkCellArrayIterator.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkErrorCode.h>
 #include <vtkExecutive.h>
@@ -55,7 +55,10 @@ using io_detail::DisplayName;
 
 [[noreturn]] void Fail(const std::string& path, const std::string& problem)
 {
-  throw MeshIOError(DisplayName(path) + ": " + problem);
+  // File names and problems may quote file bytes: never let a control byte or an escape
+  // sequence reach the terminal.
+  throw MeshIOError(
+    io_detail::QuoteBytes(DisplayName(path), 200) + ": " + io_detail::QuoteBytes(problem, 400));
 }
 
 // A VTK message fit for a one-line error: the file's base name instead of its full path
@@ -188,8 +191,8 @@ public:
     vtkNew<vtkCallbackCommand> callback;
     callback->SetClientData(this);
     callback->SetCallback(&VtkMessageGuard::OnEvent);
-    for (vtkObject* object : { static_cast<vtkObject*>(algorithm),
-           static_cast<vtkObject*>(algorithm->GetExecutive()) })
+    for (vtkObject* object :
+      { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
     {
       object->AddObserver(vtkCommand::ErrorEvent, callback);
       object->AddObserver(vtkCommand::WarningEvent, callback);
@@ -201,8 +204,9 @@ public:
   /// The first error seen, else the first warning; empty when there was neither.
   std::string Message() const
   {
-    const std::vector<std::string>* lists[] = { &this->Errors, &this->Capture->Errors,
-      &this->Warnings, &this->Capture->Warnings };
+    const std::vector<std::string>* lists[] = {
+      &this->Errors, &this->Capture->Errors, &this->Warnings, &this->Capture->Warnings
+    };
     for (const auto* list : lists)
     {
       if (!list->empty())
@@ -301,9 +305,11 @@ void CheckMesh(const std::string& path, vtkPolyData* mesh)
 
 // Runs a configured VTK reader and returns its output, or throws with its first error.
 // warningsAreErrors: for the VTK formats, whose readers only warn about truncated data.
-template <typename Reader>
-vtkSmartPointer<vtkPolyData> RunReader(const std::string& path, Reader* reader,
-  VtkMessageGuard& guard, bool warningsAreErrors = false)
+template<typename Reader>
+vtkSmartPointer<vtkPolyData> RunReader(const std::string& path,
+  Reader* reader,
+  VtkMessageGuard& guard,
+  bool warningsAreErrors = false)
 {
   reader->Update();
   const unsigned long code = reader->GetErrorCode();
@@ -322,7 +328,8 @@ vtkSmartPointer<vtkPolyData> RunReader(const std::string& path, Reader* reader,
   if (!output || output->GetNumberOfPoints() == 0)
   {
     const std::string message = Tidy(path, guard.Message());
-    Fail(path, message.empty() ? "no points in the file" : "no points in the file (" + message + ")");
+    Fail(
+      path, message.empty() ? "no points in the file" : "no points in the file (" + message + ")");
   }
   // Detach from the reader so that the caller owns plain data.
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
@@ -412,6 +419,15 @@ vtkSmartPointer<vtkPolyData> ReadStl(const std::string& path, std::uintmax_t siz
     Fail(path, msg.str());
   }
 
+  if (!binary)
+  {
+    // VTK 9.1's ASCII STL parser asks for gigabytes or misreads a malformed facet.
+    std::string problem;
+    if (!io_detail::CheckAsciiStl(ReadAll(path), problem))
+    {
+      Fail(path, problem);
+    }
+  }
   VtkMessageGuard guard;
   vtkNew<vtkSTLReader> reader;
   guard.Watch(reader);
@@ -480,6 +496,14 @@ void CheckObjVertices(const std::string& path)
 vtkSmartPointer<vtkPolyData> ReadObj(const std::string& path)
 {
   CheckObjVertices(path);
+  // vtkOBJReader reads normals and texture coordinates by index without checking them.
+  {
+    std::string problem;
+    if (!io_detail::CheckObj(ReadAll(path), problem))
+    {
+      Fail(path, problem);
+    }
+  }
   VtkMessageGuard guard;
   vtkNew<vtkOBJReader> reader;
   guard.Watch(reader);
@@ -510,7 +534,8 @@ vtkSmartPointer<vtkPolyData> ReadVtp(const std::string& path)
   // vtkXMLReader divides by the header word size it reads and allocates what the counts say.
   {
     std::string problem;
-    if (!io_detail::CheckVtkXml(ReadAll(path), "PolyData", io_detail::MaxMeshFileBytes * 4, problem))
+    if (!io_detail::CheckVtkXml(
+          ReadAll(path), "PolyData", io_detail::MaxMeshFileBytes * 4, problem))
     {
       Fail(path, problem);
     }
@@ -603,7 +628,7 @@ vtkSmartPointer<vtkPolyData> Triangulated(vtkPolyData* mesh)
 }
 
 // Runs a configured VTK writer (vtkWriter or vtkXMLWriter), reporting its first error.
-template <typename Writer>
+template<typename Writer>
 bool RunWriter(Writer* writer, std::string& problem)
 {
   VtkMessageGuard guard;
@@ -634,7 +659,8 @@ static vtkSmartPointer<vtkPolyData> ReadMeshUnchecked(const std::string& path)
   }
   if (size > io_detail::MaxMeshFileBytes)
   {
-    Fail(path, "larger than the " + std::to_string(io_detail::MaxMeshFileBytes >> 20) +
+    Fail(path,
+      "larger than the " + std::to_string(io_detail::MaxMeshFileBytes >> 20) +
         " MiB limit for mesh files (" + std::to_string(size >> 20) + " MiB)");
   }
   const std::string ext = io_detail::LowerExtension(path);
@@ -716,8 +742,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
     {
       Fail(path,
-        "refusing to write a mesh with a non-finite coordinate (point " + std::to_string(i) +
-          ")");
+        "refusing to write a mesh with a non-finite coordinate (point " + std::to_string(i) + ")");
     }
   }
   const std::string ext = io_detail::LowerExtension(path);
@@ -745,7 +770,8 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   std::function<bool(const std::string&, std::string&)> produce;
   if (ext == ".stl")
   {
-    produce = [&](const std::string& temp, std::string& problem) {
+    produce = [&](const std::string& temp, std::string& problem)
+    {
       vtkSmartPointer<vtkPolyData> triangles = Triangulated(mesh);
       if (triangles->GetNumberOfPolys() == 0)
       {
@@ -782,7 +808,8 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   }
   else if (ext == ".obj")
   {
-    produce = [&](const std::string& temp, std::string& problem) {
+    produce = [&](const std::string& temp, std::string& problem)
+    {
       vtkNew<vtkOBJWriter> writer;
       writer->SetInputData(mesh);
       writer->SetFileName(temp.c_str());
@@ -791,7 +818,8 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   }
   else if (ext == ".ply")
   {
-    produce = [&](const std::string& temp, std::string& problem) {
+    produce = [&](const std::string& temp, std::string& problem)
+    {
       vtkNew<vtkPLYWriter> writer;
       writer->SetInputData(mesh);
       writer->SetFileName(temp.c_str());
@@ -801,7 +829,8 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   }
   else if (ext == ".vtp")
   {
-    produce = [&](const std::string& temp, std::string& problem) {
+    produce = [&](const std::string& temp, std::string& problem)
+    {
       vtkNew<vtkXMLPolyDataWriter> writer;
       writer->SetInputData(mesh);
       writer->SetFileName(temp.c_str());
@@ -814,21 +843,22 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   }
   else if (ext == ".vtk")
   {
-    produce = [&](const std::string& temp, std::string& problem) {
+    produce = [&](const std::string& temp, std::string& problem)
+    {
       vtkNew<vtkPolyDataWriter> writer;
       writer->SetInputData(mesh);
       writer->SetFileName(temp.c_str());
       writer->SetFileTypeToBinary();
-      const std::string header = OneLine(options.header.empty() ? "bender mesh" : options.header, 250);
+      const std::string header =
+        OneLine(options.header.empty() ? "bender mesh" : options.header, 250);
       writer->SetHeader(header.c_str());
       return RunWriter(writer.Get(), problem);
     };
   }
   else if (ext == ".off")
   {
-    produce = [&](const std::string& temp, std::string& problem) {
-      return io_detail::WriteOff(mesh, temp, OneLine(options.header, 1000), problem);
-    };
+    produce = [&](const std::string& temp, std::string& problem)
+    { return io_detail::WriteOff(mesh, temp, OneLine(options.header, 1000), problem); };
   }
   else
   {

@@ -91,8 +91,8 @@ std::int64_t DecodeInteger(const unsigned char* p, int size, bool isSigned, bool
 
 std::string Where(const Element& element, std::uint64_t record)
 {
-  return "element \"" + element.name + "\" record " + std::to_string(record + 1) + " of " +
-    std::to_string(element.count);
+  return "element \"" + QuoteBytes(element.name) + "\" record " + std::to_string(record + 1) +
+    " of " + std::to_string(element.count);
 }
 
 // The list count of a binary record; lists never have negative lengths.
@@ -181,7 +181,7 @@ bool CheckPlyBytes(const std::string& data, std::string& problem)
       words >> format;
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
       {
-        problem = where + "unknown format \"" + format + "\"";
+        problem = where + "unknown format \"" + QuoteBytes(format) + "\"";
         return false;
       }
     }
@@ -223,12 +223,13 @@ bool CheckPlyBytes(const std::string& data, std::string& problem)
           elements.back().name == "face" && property.name == "vertex_indices";
         if (property.isFaceIndices && !property.itemInteger)
         {
-          problem = where + "face indices of type \"" + itemType + "\"";
+          problem = where + "face indices of type \"" + QuoteBytes(itemType) + "\"";
           return false;
         }
         if (property.countSize == 0 || property.countSize == 8 || property.size == 0)
         {
-          problem = where + "unsupported list types \"" + countType + " " + itemType + "\"";
+          problem =
+            where + "unsupported list types \"" + QuoteBytes(countType + " " + itemType) + "\"";
           return false;
         }
       }
@@ -238,7 +239,7 @@ bool CheckPlyBytes(const std::string& data, std::string& problem)
         property.size = TypeSize(type);
         if (property.size == 0)
         {
-          problem = where + "unknown property type \"" + type + "\"";
+          problem = where + "unknown property type \"" + QuoteBytes(type) + "\"";
           return false;
         }
       }
@@ -250,7 +251,7 @@ bool CheckPlyBytes(const std::string& data, std::string& problem)
     }
     else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty())
     {
-      problem = where + "unexpected \"" + keyword.substr(0, 20) + "\"";
+      problem = where + "unexpected \"" + QuoteBytes(keyword, 20) + "\"";
       return false;
     }
   }

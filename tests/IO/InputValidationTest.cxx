@@ -290,3 +290,120 @@ TEST(InputValidation, MessageCleanerGivesOneSafeLine)
   EXPECT_EQ(CleanMessage(longText).size(), 200u);
   EXPECT_EQ(bender::io_detail::QuoteBytes(std::string("ab\0\xff", 4)), "ab\\x00\\xff");
 }
+
+// Truncation: every prefix of every valid fixture is refused with one line, or (for formats
+// whose sections or records are not counted: OBJ, ASCII STL, legacy VTK sections) read
+// consistently: no more points than the whole file (ReadMesh checks coordinates and ids). For
+// the counted formats (binary STL, PLY, VTP, OFF) an accepted prefix must give the same mesh
+// (only optional trailing columns, such as an OFF face colour, may be cut).
+TEST(InputValidation, EveryPrefixOfEveryFixtureIsRefusedOrConsistent)
+{
+  TempDir dir;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> polys;
+  const double corners[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  for (const auto& c : corners)
+  {
+    points->InsertNextPoint(c);
+  }
+  const vtkIdType faces[4][3] = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } };
+  for (const auto& f : faces)
+  {
+    polys->InsertNextCell(3, f);
+  }
+  vtkNew<vtkPolyData> tetra;
+  tetra->SetPoints(points);
+  tetra->SetPolys(polys);
+
+  struct Fixture
+  {
+    std::string name;
+    bool counted;
+  };
+  std::vector<Fixture> fixtures = { { "w.stl", true },
+    { "w.ply", true },
+    { "w.vtp", true },
+    { "w.off", true },
+    { "w.obj", false },
+    { "w.vtk", false } };
+  for (const Fixture& f : fixtures)
+  {
+    WriteMesh(tetra, dir / f.name);
+  }
+  bender::MeshWriteOptions ascii;
+  ascii.stlEncoding = bender::StlEncoding::Ascii;
+  WriteMesh(tetra, dir / "a.stl", ascii);
+  fixtures.push_back({ "a.stl", false });
+  for (const char* data :
+    { "io/tetra_ascii.stl", "io/cube_commented.off", "io/tetra_crlf_coloured.off" })
+  {
+    const std::string name = fs::path(data).filename().string();
+    fs::copy_file(TestData(data), dir / name);
+    fixtures.push_back({ name, fs::path(name).extension() == ".off" });
+  }
+  for (const Fixture& f : fixtures)
+  {
+    SCOPED_TRACE(f.name);
+    const std::string bytes = ReadText(dir / f.name);
+    const auto whole = ReadMesh(dir / f.name);
+    const vtkIdType wholePoints = whole->GetNumberOfPoints();
+    const vtkIdType wholePolys = whole->GetNumberOfPolys();
+    const std::string ext = fs::path(f.name).extension().string();
+    const std::size_t last = bytes.find_last_not_of(" \t\r\n");
+    for (std::size_t n = 0; n < bytes.size(); ++n)
+    {
+      const std::string path = dir / ("prefix" + ext);
+      WriteText(path, bytes.substr(0, n));
+      try
+      {
+        const auto mesh = ReadMesh(path);
+        EXPECT_LE(mesh->GetNumberOfPoints(), wholePoints) << n;
+        if (f.counted && n <= last)
+        {
+          // Only optional trailing columns (an OFF face colour) may be missing: the same mesh.
+          EXPECT_EQ(mesh->GetNumberOfPoints(), wholePoints) << n;
+          EXPECT_EQ(mesh->GetNumberOfPolys(), wholePolys) << n;
+        }
+      }
+      catch (const MeshIOError& e)
+      {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind("prefix" + ext + ": ", 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      }
+    }
+  }
+}
+
+// Found by fuzz_mesh_obj: vtkOBJReader reads normals by index without checking (SEGV).
+TEST(InputValidation, ObjIndicesOutOfRangeAreRefused)
+{
+  TempDir dir;
+  WriteText(dir / "normals.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n");
+  ExpectRefused(dir / "normals.obj", "normal index \"1\" out of range (the file has 0)");
+  WriteText(dir / "tcoord.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/2 2/1 3/1\n");
+  ExpectRefused(dir / "tcoord.obj", "texture coordinate index \"2\" out of range");
+  WriteText(dir / "vertex.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+  ExpectRefused(dir / "vertex.obj", "vertex index \"4\" out of range");
+  WriteText(dir / "good.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n");
+  EXPECT_EQ(ReadMesh(dir / "good.obj")->GetNumberOfPolys(), 1);
+}
+
+// Found by fuzz_mesh_stl: a malformed ASCII facet made vtkSTLReader ask for 19 GB.
+TEST(InputValidation, MalformedAsciiStlIsRefused)
+{
+  TempDir dir;
+  WriteText(dir / "broken.stl",
+    "solid broken\n  facet normal 0 0 \x89\x89\x89 1\n    ou\x16er l 0\n"
+    "      vertex 1 0\n");
+  ExpectRefused(dir / "broken.stl", "expected \"facet normal x y z\"");
+  WriteText(dir / "cut.stl",
+    "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+    "vertex 0 1 0\nendloop\nendfacet\n");
+  ExpectRefused(dir / "cut.stl", "truncated ASCII STL (no \"endsolid\" after 1 facets)");
+  WriteText(dir / "good.stl",
+    "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
+  EXPECT_EQ(ReadMesh(dir / "good.stl")->GetNumberOfPolys(), 1);
+}

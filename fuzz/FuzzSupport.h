@@ -1,0 +1,76 @@
+#ifndef bender_FuzzSupport_h
+#define bender_FuzzSupport_h
+
+// Shared by the libFuzzer harnesses: a per-process scratch file for the readers that take a
+// path, and the check that an error message is one clean line.
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <unistd.h>
+
+namespace bender_fuzz
+{
+
+/// A scratch folder for this process (removed at exit), e.g. /tmp/bender-fuzz-1234/.
+inline const std::filesystem::path& ScratchFolder()
+{
+  static const std::filesystem::path folder = []
+  {
+    const char* base = std::getenv("TMPDIR");
+    std::filesystem::path p = std::filesystem::path(base && *base ? base : "/tmp") /
+      ("bender-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(p);
+    std::atexit(
+      []
+      {
+        std::error_code ec;
+        std::filesystem::remove_all(ScratchFolder(), ec);
+      });
+    return p;
+  }();
+  return folder;
+}
+
+/// Writes the input to ScratchFolder()/name and returns the path.
+inline std::string WriteInput(const std::string& name, const std::uint8_t* data, std::size_t size)
+{
+  const std::string path = (ScratchFolder() / name).string();
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  out.close();
+  if (!out)
+  {
+    std::abort();
+  }
+  return path;
+}
+
+/// Every message the project shows must be one line of printable ASCII without escape
+/// sequences; anything else is a finding.
+inline void CheckMessage(const std::string& message)
+{
+  for (const char c : message)
+  {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 32 || u >= 127)
+    {
+      std::fprintf(
+        stderr, "finding: non-printable byte 0x%02x in message: %s\n", u, message.c_str());
+      std::abort();
+    }
+  }
+  if (message.empty() || message.size() > 1000)
+  {
+    std::fprintf(stderr, "finding: empty or over-long (%zu bytes) message\n", message.size());
+    std::abort();
+  }
+}
+
+} // namespace bender_fuzz
+
+#endif

@@ -1,0 +1,150 @@
+#!/usr/bin/env python3
+"""Writes fuzz/corpus (small valid seeds per harness) and fuzz/regressions (one file per crash,
+hang or silent acceptance listed in issue 13). Run from anywhere; the output is committed, so
+this only needs re-running when a seed or regression is added. scripts/fuzz adds the fixtures
+of tests/data to the seeds at run time."""
+import gzip, os, struct, zlib
+
+here = os.path.dirname(os.path.abspath(__file__))
+
+def put(kind, harness, name, data):
+    folder = os.path.join(here, kind, harness)
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, name), "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+
+seed = lambda h, n, d: put("corpus", h, n, d)
+regression = lambda h, n, d: put("regressions", h, n, d)
+
+tri = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+faces = [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)]
+
+# --- STL
+def binary_stl(count=None, extra=b""):
+    body = b"".join(struct.pack("<12fH", 0, 0, 1, *tri[a], *tri[b], *tri[c], 0) for a, b, c in faces)
+    return b"bender fuzz seed".ljust(80, b" ") + struct.pack("<I", len(faces) if count is None else count) + body + extra
+seed("fuzz_mesh_stl", "tetra-binary.stl", binary_stl())
+regression("fuzz_mesh_stl", "longer-than-count.stl", binary_stl(count=1))
+regression("fuzz_mesh_stl", "zero-count-padding.stl", b"\0" * 84 + b"\0" * 5000)
+
+# --- OBJ
+obj = "".join("v %g %g %g\n" % p for p in tri) + "".join("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in faces)
+seed("fuzz_mesh_obj", "tetra.obj", obj)
+seed("fuzz_mesh_obj", "normals.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n")
+
+# --- PLY
+ply_head = "ply\nformat %s 1.0\ncomment seed\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+ascii_body = "".join("%g %g %g\n" % p for p in tri) + "".join("3 %d %d %d\n" % f for f in faces)
+seed("fuzz_mesh_ply", "tetra-ascii.ply", ply_head % "ascii" + ascii_body)
+binary_body = b"".join(struct.pack("<3f", *p) for p in tri) + b"".join(struct.pack("<B3i", 3, *f) for f in faces)
+seed("fuzz_mesh_ply", "tetra-binary.ply", (ply_head % "binary_little_endian").encode() + binary_body)
+seed("fuzz_check_ply_structure", "tetra-ascii.ply", ply_head % "ascii" + ascii_body)
+seed("fuzz_check_ply_structure", "tetra-binary.ply", (ply_head % "binary_little_endian").encode() + binary_body)
+regression("fuzz_mesh_ply", "record-split-over-lines.ply", ply_head % "ascii" + "0 0\n0\n1 0 0\n0 1 0\n0 0 1\n" + "".join("3 %d %d %d\n" % f for f in faces))
+regression("fuzz_mesh_ply", "two-records-one-line.ply", ply_head % "ascii" + "0 0 0 1 0 0\n0 1 0\n0 0 1\n" + "".join("3 %d %d %d\n" % f for f in faces) + "3 0 1 2\n")
+regression("fuzz_mesh_ply", "comment-over-4k.ply", (ply_head % "ascii").replace("comment seed", "comment " + "c" * 5000) + ascii_body)
+regression("fuzz_mesh_ply", "trailing-spaces-over-4k.ply", ply_head % "ascii" + "0 0 0" + " " * 5000 + "\n" + ascii_body.split("\n", 1)[1])
+
+# --- legacy VTK
+pts = " ".join("%g %g %g" % p for p in tri)
+legacy3 = "# vtk DataFile Version 3.0\nseed\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n%s\nPOLYGONS 4 16\n%s\nPOINT_DATA 4\nSCALARS s float 1\nLOOKUP_TABLE default\n1 2 3 4\n" % (pts, " ".join("3 %d %d %d" % f for f in faces))
+legacy51 = "# vtk DataFile Version 5.1\nseed\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n%s\nPOLYGONS 5 12\nOFFSETS vtktypeint64\n0 3 6 9 12\nCONNECTIVITY vtktypeint64\n%s\nCELL_DATA 4\nFIELD FieldData 1\nRegion 1 4 int\n1 1 2 2\n" % (pts, " ".join("%d %d %d" % f for f in faces))
+def be(fmt, *v):
+    return struct.pack(">" + fmt, *v)
+legacybin = (b"# vtk DataFile Version 5.1\nseed\nBINARY\nDATASET POLYDATA\nPOINTS 4 double\n" + b"".join(be("3d", *p) for p in tri) +
+             b"\nPOLYGONS 5 12\nOFFSETS vtktypeint64\n" + be("5q", 0, 3, 6, 9, 12) + b"\nCONNECTIVITY vtktypeint64\n" +
+             b"".join(be("3q", *f) for f in faces) + b"\n")
+for h in ("fuzz_mesh_vtk", "fuzz_check_legacy_vtk"):
+    seed(h, "tetra-3.0.vtk", legacy3)
+    seed(h, "tetra-5.1.vtk", legacy51)
+    seed(h, "tetra-5.1-binary.vtk", legacybin)
+head3 = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+head51 = head3.replace("3.0", "5.1")
+regression("fuzz_mesh_vtk", "polygons-short.vtk", head3 + "POLYGONS 2 8\n3 0 1 2\n3 0\n")
+regression("fuzz_mesh_vtk", "polygons-non-numeric.vtk", head3 + "POLYGONS 1 4\n3 0 x 2\n")
+regression("fuzz_mesh_vtk", "offsets-out-of-range.vtk", head51 + "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 30\nCONNECTIVITY vtktypeint64\n0 1 2\n")
+regression("fuzz_mesh_vtk", "offsets-decreasing.vtk", head51 + "POLYGONS 3 3\nOFFSETS vtktypeint64\n0 3 1\nCONNECTIVITY vtktypeint64\n0 1 2\n")
+regression("fuzz_mesh_vtk", "bad-version-line.vtk", "# vtk DataFile Version x\nt\nBINARY\nDATASET POLYDATA\nPOINTS 3 float\n" + "\0" * 36 + "\n")
+
+# --- VTK XML PolyData: ASCII, and appended zlib-compressed data with UInt64 headers as the
+# project writes it.
+def vtp_ascii():
+    return ('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n'
+            '<PolyData>\n<Piece NumberOfPoints="4" NumberOfPolys="4">\n<Points>\n'
+            '<DataArray type="Float64" NumberOfComponents="3" format="ascii">%s</DataArray>\n</Points>\n<Polys>\n'
+            '<DataArray type="Int64" Name="connectivity" format="ascii">%s</DataArray>\n'
+            '<DataArray type="Int64" Name="offsets" format="ascii">3 6 9 12</DataArray>\n</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n'
+            % (pts, " ".join("%d %d %d" % f for f in faces)))
+def vtp_appended(header_type="UInt64"):
+    arrays = [("Float64", 3, "", struct.pack("<12d", *[c for p in tri for c in p]), "Points"),
+              ("Int64", 1, ' Name="connectivity"', struct.pack("<12q", *[i for f in faces for i in f]), "Polys"),
+              ("Int64", 1, ' Name="offsets"', struct.pack("<4q", 3, 6, 9, 12), "Polys")]
+    blob = b""
+    tags = {"Points": "", "Polys": ""}
+    for t, n, name, raw, section in arrays:
+        comp = zlib.compress(raw)
+        tags[section] += '<DataArray type="%s"%s NumberOfComponents="%d" format="appended" offset="%d"/>\n' % (t, name, n, len(blob))
+        blob += struct.pack("<4Q", 1, len(raw), len(raw), len(comp)) + comp
+    return (('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="%s" compressor="vtkZLibDataCompressor">\n'
+             '<PolyData>\n<Piece NumberOfPoints="4" NumberOfPolys="4">\n<Points>\n%s</Points>\n<Polys>\n%s</Polys>\n</Piece>\n</PolyData>\n'
+             '<AppendedData encoding="raw">\n_' % (header_type, tags["Points"], tags["Polys"])).encode() + blob + b"\n</AppendedData>\n</VTKFile>\n")
+for h in ("fuzz_mesh_vtp", "fuzz_check_vtk_xml"):
+    seed(h, "tetra-ascii.vtp", vtp_ascii())
+    seed(h, "tetra-appended.vtp", vtp_appended())
+regression("fuzz_mesh_vtp", "header-type-damaged.vtp", vtp_appended("UInt6"))
+regression("fuzz_mesh_vtp", "components-1e9.vtp", vtp_ascii().replace('NumberOfComponents="3"', 'NumberOfComponents="1000000000"'))
+regression("fuzz_mesh_vtp", "truncated.vtp", vtp_appended()[:-60])
+
+# --- OFF
+seed("fuzz_mesh_off", "tetra.off", "OFF\n4 4 0\n" + "".join("%g %g %g\n" % p for p in tri) + "".join("3 %d %d %d\n" % f for f in faces))
+
+# --- volumes: 3x2x2 float
+vox = struct.pack("<12f", *range(12))
+nrrd_head = "NRRD0004\ntype: float\ndimension: 3\nspace: left-posterior-superior\nsizes: 3 2 2\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nendian: little\nencoding: %s\nspace origin: (0,0,0)\n"
+seed("fuzz_check_nrrd", "raw.nrrd", (nrrd_head % "raw" + "\n").encode() + vox)
+seed("fuzz_check_nrrd", "gzip.nrrd", (nrrd_head % "gzip" + "\n").encode() + gzip.compress(vox))
+seed("fuzz_check_nrrd", "ascii.nrrd", nrrd_head % "ascii" + "\n" + " ".join(str(i) for i in range(12)) + "\n")
+seed("fuzz_check_nhdr", "detached.nhdr", nrrd_head % "raw" + "data file: detached.raw\n")
+regression("fuzz_check_nrrd", "header-line-2000.nrrd", (nrrd_head % "raw" + "content: " + "a" * 2000 + "\n\n").encode() + vox)
+regression("fuzz_check_nrrd", "ascii-value-100k.nrrd", nrrd_head % "ascii" + "\n" + "7" * 100000 + "\n")
+regression("fuzz_check_nrrd", "truncated-raw.nrrd", (nrrd_head % "raw" + "\n").encode() + vox[:-8])
+meta_head = "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\nCompressedData = %s\n%sTransformMatrix = 1 0 0 0 1 0 0 0 1\nOffset = 0 0 0\nElementSpacing = 1 1 1\nDimSize = 3 2 2\nElementType = MET_FLOAT\nElementDataFile = %s\n"
+comp = zlib.compress(vox)
+seed("fuzz_check_mha", "raw.mha", (meta_head % ("False", "", "LOCAL")).encode() + vox)
+seed("fuzz_check_mha", "zlib.mha", (meta_head % ("True", "CompressedDataSize = %d\n" % len(comp), "LOCAL")).encode() + comp)
+seed("fuzz_check_mhd", "detached.mhd", meta_head % ("False", "", "detached.raw"))
+regression("fuzz_check_mha", "field-name-300.mha", ("ObjectType = Image\n" + "K" * 300 + " = 1\n" + meta_head.split("\n", 1)[1] % ("False", "", "LOCAL")).encode() + vox)
+regression("fuzz_check_mha", "ndims-negative.mha", (meta_head % ("False", "", "LOCAL")).replace("NDims = 3", "NDims = -1").encode() + vox)
+regression("fuzz_check_mha", "ndims-huge.mha", (meta_head % ("False", "", "LOCAL")).replace("NDims = 3", "NDims = 2000000000").encode() + vox)
+regression("fuzz_check_mha", "truncated-zlib.mha", (meta_head % ("True", "", "LOCAL")).encode() + comp[:-6])
+regression("fuzz_check_mha", "truncated-raw.mha", (meta_head % ("False", "", "LOCAL")).encode() + vox[:-4])
+def nifti(datalen=None):
+    h = bytearray(352)
+    struct.pack_into("<i", h, 0, 348)
+    struct.pack_into("<8h", h, 40, 3, 3, 2, 2, 1, 1, 1, 1)
+    struct.pack_into("<hh", h, 70, 16, 32)
+    struct.pack_into("<8f", h, 76, 1, 1, 1, 1, 1, 1, 1, 1)
+    struct.pack_into("<f", h, 108, 352.0)
+    struct.pack_into("<hh", h, 252, 1, 1)
+    h[344:348] = b"n+1\0"
+    return bytes(h) + (vox if datalen is None else vox[:datalen])
+seed("fuzz_check_nii", "float.nii", nifti())
+seed("fuzz_check_niigz", "float.nii.gz", gzip.compress(nifti()))
+regression("fuzz_check_nii", "truncated.nii", nifti(40))
+regression("fuzz_check_niigz", "truncated.nii.gz", gzip.compress(nifti())[:-20])
+vti = ('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n'
+       '<ImageData WholeExtent="0 2 0 1 0 1" Origin="0 0 0" Spacing="1 1 1" Direction="1 0 0 0 1 0 0 0 1">\n<Piece Extent="0 2 0 1 0 1">\n'
+       '<PointData Scalars="s">\n<DataArray type="Float32" Name="s" format="ascii">%s</DataArray>\n</PointData>\n<CellData>\n</CellData>\n</Piece>\n</ImageData>\n</VTKFile>\n'
+       % " ".join(str(i) for i in range(12)))
+seed("fuzz_check_vti", "ascii.vti", vti)
+regression("fuzz_check_vti", "truncated.vti", vti[:-40])
+
+# --- replay timestamps for the harness's 256-byte recording; Fastrak; plans; messages
+seed("fuzz_replay", "valid.timestamps", "# bender tracking recording v1: offset bytes seconds\n0 64 0.1\n64 64 0.2\n128 128 0.35\n")
+regression("fuzz_replay", "size-wraps-64-bits.timestamps", "0 64 0.1\n64 18446744073709551600 0.2\n")
+regression("fuzz_replay", "time-1e300.timestamps", "0 128 0.1\n128 128 1e300\n")
+regression("fuzz_replay", "escape-sequences.timestamps", "0 64 \x1b[31mred\x1b]0;title\x07\n")
+seed("fuzz_message", "vtk.txt", "ERROR: In ./IO/XML/vtkXMLReader.cxx, line 521\nvtkXMLPolyDataReader (0x55d0c3a0): Error parsing XML\n\n")
+seed("fuzz_message", "itk.txt", "\x1b[1;31mITK ERROR: MetaImageIO(0x55d0c3a0): File cannot be read\x1b[0m\n[nrrd] nrrdLoad: trouble\n")
+seed("fuzz_fastrak", "binary-record", b"\x00" + b"01 " + struct.pack("<7f", 1, 2, 3, 1, 0, 0, 0) + b" 0 ")
+seed("fuzz_fastrak", "ascii-record", b"\x01" + b"01   30.01 -150.70   12.00 1.0000 0.0000 0.0000 0.0000 0 ")
