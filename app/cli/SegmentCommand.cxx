@@ -508,15 +508,11 @@ int RunPhantomCli(const std::vector<std::string>& args, std::ostream& out, std::
   }
   try
   {
-    vtkSmartPointer<vtkPolyData> surface = ReadMesh(request.input);
-    const Phantom phantom = MakeVesselPhantom(surface, request.phantom);
-    const std::filesystem::path parent = std::filesystem::path(request.output).parent_path();
-    if (!parent.empty())
-    {
-      std::filesystem::create_directories(parent);
-    }
-    // WriteVolume is all-or-nothing (temporary beside the target, then renamed).
-    WriteVolume(phantom.volume, request.output);
+    PhantomVolumeOptions options;
+    options.input = request.input;
+    options.output = request.output;
+    options.phantom = request.phantom;
+    const Phantom phantom = MakePhantomVolume(options);
     const ImageGeometry& g = phantom.volume.geometry;
     out << request.output << ": " << g.size[0] << "x" << g.size[1] << "x" << g.size[2]
         << " voxels of " << g.spacing[0] << " mm, lumen " << request.phantom.vesselIntensity

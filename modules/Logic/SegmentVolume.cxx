@@ -1,6 +1,14 @@
 #include "SegmentVolume.h"
 
+#include "BenderErrors.h"
+#include "MeshIO.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
 #include <chrono>
+#include <exception>
+#include <filesystem>
 
 namespace bender
 {
@@ -18,6 +26,32 @@ SurfaceResult SegmentVolume(const SegmentVolumeOptions& options)
     { { "read", std::chrono::duration<double>(t1 - t0).count() },
       { "segmentation", std::chrono::duration<double>(t2 - t1).count() } });
   return result;
+}
+
+Phantom MakePhantomVolume(const PhantomVolumeOptions& options)
+{
+  vtkSmartPointer<vtkPolyData> surface;
+  try
+  {
+    surface = ReadMesh(options.input);
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(e.what());
+  }
+  Phantom phantom = MakeVesselPhantom(surface, options.phantom, options.progress);
+  if (!options.output.empty())
+  {
+    const std::filesystem::path parent = std::filesystem::path(options.output).parent_path();
+    std::error_code error;
+    if (!parent.empty())
+    {
+      std::filesystem::create_directories(parent, error);
+    }
+    // All-or-nothing (temporary beside the target, then renamed).
+    WriteVolume(phantom.volume, options.output);
+  }
+  return phantom;
 }
 
 } // namespace bender

@@ -3,6 +3,7 @@
 
 #include "Progress.h"
 #include "SurfaceExtraction.h"
+#include "VesselPhantom.h"
 #include "VesselSegmentation.h"
 #include "VolumeIO.h"
 
@@ -26,6 +27,22 @@ struct SegmentVolumeOptions
 /// then the surface stages. Throws the segmentation module's errors (VolumeReadError,
 /// ParameterError, SeedError, SegmentationError; all bender::Error) and bender::Cancelled.
 SurfaceResult SegmentVolume(const SegmentVolumeOptions& options);
+
+/// Options of MakePhantomVolume: the vessel surface, the phantom's parameters, the output.
+struct PhantomVolumeOptions
+{
+  std::string input; ///< a vessel surface (stl, obj, ply, vtp, vtk, off), LPS mm
+  std::string
+    output; ///< the volume to write (.nrrd, .nhdr, .mha, .mhd, .nii, .nii.gz, .vti); may be empty
+  PhantomParameters phantom;
+  ProgressReporter progress;
+};
+
+/// The phantom workflow of bender-cli phantom: reads the surface, makes the MRA-like volume
+/// (MakeVesselPhantom) and, when options.output is set, writes it all-or-nothing (the output's
+/// folder is created). Throws InputError (unreadable surface), the segmentation module's errors
+/// (ParameterError, VolumeWriteError; all bender::Error) and bender::Cancelled.
+Phantom MakePhantomVolume(const PhantomVolumeOptions& options);
 
 } // namespace bender
 
