@@ -309,4 +309,34 @@ std::vector<std::string> ExportStl(vtkPolyData* mesh,
   return written;
 }
 
+bool WriteStlFile(vtkPolyData* mesh,
+  const std::string& path,
+  bool binary,
+  const std::string& header,
+  std::string& problem)
+{
+  std::vector<std::vector<Facet>> facets;
+  try
+  {
+    facets = Facets(mesh, StlFrame::LPS, 1);
+  }
+  catch (const StlExportError& e)
+  {
+    problem = e.what();
+    return false;
+  }
+  // One line; a binary header starting with "solid" would make readers take it for ASCII.
+  std::string line = header.substr(0, header.find_first_of("\r\n"));
+  if (binary && line.compare(0, 5, "solid") == 0)
+  {
+    line = "# " + line;
+  }
+  return Producer(
+    [&](std::FILE* f)
+    {
+      return binary ? WriteBinary(f, line, facets[0])
+                    : WriteSolid(f, line.empty() ? "mesh" : line, std::string(), facets[0]);
+    })(path, problem);
+}
+
 } // namespace bender

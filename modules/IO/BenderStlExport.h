@@ -62,6 +62,18 @@ std::vector<std::string> ExportStl(vtkPolyData* mesh,
   const std::string& path,
   const StlExportOptions& options);
 
+/// Writes one STL file of mesh's triangles (polygons fanned, strips converted) to path as it
+/// is (no frame change, not atomic: pass the temporary file of an AtomicWrite), binary (the
+/// first line of header in the 80-byte header, prefixed "# " when it starts with "solid") or
+/// ASCII (one solid named by that line, "mesh" when empty). The one STL writer of bender_io
+/// beside ExportStl. Returns false with problem set (no triangles, non-finite coordinates,
+/// write failure).
+bool WriteStlFile(vtkPolyData* mesh,
+  const std::string& path,
+  bool binary,
+  const std::string& header,
+  std::string& problem);
+
 } // namespace bender
 
 #endif

@@ -4,6 +4,7 @@
 
 #include "BenderMeshCheck.h"
 #include "BenderStlExport.h"
+#include "MeshIO.h"
 #include "VtkErrorWatch.h"
 #include "vtkBenderCapFilter.h"
 
@@ -338,4 +339,42 @@ TEST_F(CapExport, PatchFilesAreWrittenAllOrNothing)
     std::remove(file.c_str());
   }
   EXPECT_EQ(rmdir(dir.c_str()), 0); // no temporary or kept previous file left behind
+}
+
+// The plain STL writer (for MeshIO): binary and ASCII read back as the same triangles; a
+// binary header that starts with "solid" is prefixed so that readers do not take it for ASCII.
+TEST_F(CapExport, PlainStlFilesReadBack)
+{
+  auto tube = OpenTube();
+  const std::string dir = TempDir();
+  std::string problem;
+  ASSERT_TRUE(
+    bender::WriteStlFile(tube, dir + "/b.stl", true, "solid trouble\nsecond line", problem))
+    << problem;
+  ASSERT_TRUE(bender::WriteStlFile(tube, dir + "/a.stl", false, "tube", problem)) << problem;
+  std::ifstream binary(dir + "/b.stl", std::ios::binary);
+  char head[16] = {};
+  binary.read(head, 15);
+  EXPECT_EQ(std::string(head), "# solid trouble");
+  std::ifstream ascii(dir + "/a.stl");
+  std::string first;
+  std::getline(ascii, first);
+  EXPECT_EQ(first, "solid tube");
+  const auto triangles = static_cast<vtkIdType>(bender::CollectTriangles(tube).size() / 3);
+  for (const char* name : { "/b.stl", "/a.stl" })
+  {
+    const auto back = bender::ReadMesh(dir + name);
+    EXPECT_EQ(back->GetNumberOfPolys(), triangles) << name;
+    EXPECT_EQ(back->GetNumberOfPoints(), tube->GetNumberOfPoints()) << name; // welded again
+    std::remove((dir + name).c_str());
+  }
+  tube->GetPoints()->SetPoint(0, std::nan(""), 0, 0);
+  EXPECT_FALSE(bender::WriteStlFile(tube, dir + "/n.stl", true, "", problem));
+  EXPECT_NE(problem.find("non-finite"), std::string::npos) << problem;
+  vtkNew<vtkPolyData> empty;
+  EXPECT_FALSE(bender::WriteStlFile(empty, dir + "/e.stl", true, "", problem));
+  EXPECT_EQ(problem, "the mesh has no triangles");
+  std::remove((dir + "/n.stl").c_str());
+  std::remove((dir + "/e.stl").c_str());
+  EXPECT_EQ(rmdir(dir.c_str()), 0);
 }
