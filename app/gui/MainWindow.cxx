@@ -3,7 +3,6 @@
 #include "BendPanel.h"
 #include "BenderView.h"
 #include "DataPanel.h"
-#include "DemoPipeline.h"
 #include "ExportPanel.h"
 #include "MainActions.h"
 #include "MeshIO.h"
@@ -12,7 +11,6 @@
 #include "SliceViews.h"
 #include "TrackersPanel.h"
 #include "VolumeConversion.h"
-#include "WarpPlanIO.h"
 #include "WorkRunner.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
@@ -536,50 +534,30 @@ void MainWindow::startDemo()
   {
     return;
   }
+  auto job = std::make_shared<bender::SegmentationSession::DemoJob>();
   this->runInBackground("Demo",
-    [this](const bender::ProgressReporter& progress)
+    [this, job](const bender::ProgressReporter& progress)
     {
-      auto demo = std::make_shared<bender::DemoVessel>();
-      std::string fallback;
-      try
-      {
-        *demo = bender::SegmentDemoVessel(bender::DemoVesselPath(), {}, progress);
-      }
-      catch (const bender::Cancelled&)
-      {
-        throw;
-      }
-      catch (const std::exception& e)
-      {
-        // Without the segmentation the demo still bends the vessel surface itself.
-        fallback = e.what();
-        demo->surface = bender::ReadMesh(bender::DemoVesselPath());
-      }
-      auto plan = std::make_shared<bender::WarpPlan>(bender::ReadWarpPlan(bender::DemoPlanPath()));
+      job->Run(progress);
       return Finisher(
-        [this, demo, plan, fallback]()
+        [this, job]()
         {
-          if (!fallback.empty())
+          if (!job->fallback.empty())
           {
             this->Session.AddMessage(bender::MessageSeverity::Warning,
-              "Demo: segmentation unavailable (" + fallback + "); using the vessel surface");
+              "Demo: segmentation unavailable (" + job->fallback + "); using the vessel surface");
           }
-          if (demo->volume.voxels.size() > 0)
-          {
-            this->Segmentation.SetVolume(
-              std::make_shared<const bender::Volume>(std::move(demo->volume)),
-              "demo MRA volume",
-              std::make_shared<const bender::LabelMap>(std::move(demo->mask)));
-            this->showSlices();
-          }
+          this->Segmentation.FinishDemo(*job);
+          this->showSlices();
           if (!this->Session.SetSurface(
-                demo->surface, fallback.empty() ? "demo vessel (segmented)" : "demo vessel"))
+                job->surface, job->fallback.empty() ? "demo vessel (segmented)" : "demo vessel"))
           {
             return;
           }
-          if (!plan->warps.empty())
+          if (!job->plan.warps.empty())
           {
-            const bender::WarpSpec& warp = plan->warps.front();
+            // The ribbon and parameters of the demo plan's first warp, ready to grab.
+            const bender::WarpSpec& warp = job->plan.warps.front();
             bender::WarpParameters parameters = this->Bend->parameters();
             parameters.radius = warp.radius;
             parameters.decay = warp.decay;
@@ -595,9 +573,10 @@ void MainWindow::startDemo()
           this->View->resetCamera();
           this->Panels->setCurrentWidget(this->Bend);
           this->Session.AddMessage(bender::MessageSeverity::Info,
-            (fallback.empty() ? demo->summary + ". " : std::string()) +
+            (job->fallback.empty() ? job->summary + ". " : std::string()) +
               "Ribbon placed on a branch: press G (or hold Space), drag the end handles, press G "
-              "to release");
+              "to "
+              "release");
         });
     });
 }

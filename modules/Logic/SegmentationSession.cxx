@@ -1,6 +1,9 @@
 #include "SegmentationSession.h"
 
+#include "DemoPipeline.h"
+#include "MeshIO.h"
 #include "VolumeIO.h"
+#include "WarpPlanIO.h"
 
 #include <exception>
 
@@ -19,6 +22,38 @@ void SegmentationSession::SegmentJob::Run(const ProgressReporter& progress)
   SurfaceResult result = ExtractSurface(*labels, this->settings.surface, progress);
   this->mask = labels;
   this->surface = result.surface;
+}
+
+void SegmentationSession::DemoJob::Run(const ProgressReporter& progress)
+{
+  DemoVessel demo;
+  try
+  {
+    demo = SegmentDemoVessel(DemoVesselPath(), {}, progress);
+  }
+  catch (const Cancelled&)
+  {
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    // Without the segmentation the demo still bends the vessel surface itself.
+    this->fallback = e.what();
+    demo.surface = ReadMesh(DemoVesselPath());
+  }
+  this->plan = ReadWarpPlan(DemoPlanPath());
+  if (!demo.volume.voxels.empty())
+  {
+    this->volume = std::make_shared<const Volume>(std::move(demo.volume));
+    this->mask = std::make_shared<const LabelMap>(std::move(demo.mask));
+  }
+  this->surface = demo.surface;
+  this->summary = demo.summary;
+}
+
+void SegmentationSession::FinishDemo(const DemoJob& job)
+{
+  this->SetVolume(job.volume, "demo MRA volume", job.mask);
 }
 
 void SegmentationSession::SetVolume(std::shared_ptr<const Volume> volume,

@@ -5,6 +5,7 @@
 #include "SurfaceExtraction.h"
 #include "VesselSegmentation.h"
 #include "Volume.h"
+#include "WarpPlan.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -52,6 +53,21 @@ public:
     void Run(const ProgressReporter& progress);
   };
 
+  /// The built-in demo (DemoPipeline): the MRA-like volume made from the demo vessel, its
+  /// segmentation and surface, and the demo plan. Without the segmentation (missing ITK data,
+  /// a failure) it falls back to the vessel surface itself and says why in `fallback`.
+  struct DemoJob
+  {
+    std::shared_ptr<const Volume> volume; ///< null in the fallback
+    std::shared_ptr<const LabelMap> mask;
+    vtkSmartPointer<vtkPolyData> surface;
+    WarpPlan plan;
+    std::string summary;
+    std::string fallback;
+    /// Throws bender::Cancelled, and the readers' errors when even the fallback fails.
+    void Run(const ProgressReporter& progress);
+  };
+
   bool HasVolume() const { return this->LoadedVolume != nullptr; }
   const std::shared_ptr<const Volume>& GetVolume() const { return this->LoadedVolume; }
   /// The mask of the last segmentation of the loaded volume; null before one.
@@ -76,6 +92,8 @@ public:
   std::shared_ptr<SegmentJob> BeginSegment(std::string& problem) const;
   /// Keeps the mask when the job segmented the volume still loaded.
   void FinishSegment(const SegmentJob& job);
+  /// Takes the demo's volume and mask (none in the fallback: the loaded volume is dropped).
+  void FinishDemo(const DemoJob& job);
 
 private:
   std::shared_ptr<const Volume> LoadedVolume;
