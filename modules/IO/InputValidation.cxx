@@ -1427,6 +1427,8 @@ bool CheckVtkXml(std::string_view data,
   std::size_t pos = 0;
   bool sawRoot = false;
   std::string headerType = "UInt32";
+  std::string byteOrder = "LittleEndian";
+  bool compressed = false;
   std::uint64_t points = 0, cells = 0, extentTuples = 0, pieceCount = 0;
   std::string section;
   long double totalBytes = 0;
@@ -1479,6 +1481,10 @@ bool CheckVtkXml(std::string_view data,
         problem = "VTK XML file with byte_order \"" + QuoteBytes(*order) + "\"";
         return false;
       }
+      if (order)
+      {
+        byteOrder = *order;
+      }
       if (const std::string* header = tag.Get("header_type"))
       {
         if (*header != "UInt32" && *header != "UInt64")
@@ -1497,6 +1503,7 @@ bool CheckVtkXml(std::string_view data,
           problem = "VTK XML file with compressor \"" + QuoteBytes(*compressor) + "\"";
           return false;
         }
+        compressed = true;
       }
       continue;
     }
@@ -1647,14 +1654,67 @@ bool CheckVtkXml(std::string_view data,
     const std::uint64_t end = last - closing.size();
     if (encoding && *encoding == "raw")
     {
-      // Each block starts with a header of header_type words; its first word must lie inside.
+      // Each block starts with a header of header_type words: the byte count (uncompressed),
+      // or "blocks, block size, last block size, compressed sizes..." (compressed).
+      // vtkXMLDataParser allocates what they say: they must fit the budget and the file.
       const std::uint64_t word = headerType == "UInt64" ? 8 : 4;
+      const bool bigEndian = byteOrder == "BigEndian";
+      auto readWord = [&](std::uint64_t at)
+      {
+        std::uint64_t value = 0;
+        for (std::uint64_t b = 0; b < word; ++b)
+        {
+          const auto byte = static_cast<unsigned char>(data[at + b]);
+          value |= static_cast<std::uint64_t>(byte) << (8 * (bigEndian ? word - 1 - b : b));
+        }
+        return value;
+      };
       for (const std::uint64_t o : offsets)
       {
         if (o > end - start || start + o + word > end)
         {
           problem = "truncated VTK XML file (an appended block at offset " + std::to_string(o) +
             " lies past the end of the data)";
+          return false;
+        }
+        const std::uint64_t at = start + o;
+        if (!compressed)
+        {
+          if (readWord(at) > end - at - word)
+          {
+            problem = "truncated VTK XML file (an appended array at offset " + std::to_string(o) +
+              " announces more bytes than the file holds)";
+            return false;
+          }
+          continue;
+        }
+        if (at + 3 * word > end)
+        {
+          problem = "truncated VTK XML file (a compressed block header at offset " +
+            std::to_string(o) + ")";
+          return false;
+        }
+        const std::uint64_t blocks = readWord(at);
+        const std::uint64_t blockSize = readWord(at + word);
+        const std::uint64_t lastSize = readWord(at + 2 * word);
+        if (blocks > (end - at) / word || at + (3 + blocks) * word > end ||
+          blockSize > budgetBytes || lastSize > blockSize ||
+          static_cast<long double>(blocks) * blockSize > static_cast<long double>(budgetBytes))
+        {
+          problem = "VTK XML compressed block header at offset " + std::to_string(o) +
+            " announces " + std::to_string(blocks) + " blocks of " + std::to_string(blockSize) +
+            " bytes (beyond the file or the memory budget)";
+          return false;
+        }
+        long double compressedTotal = 0;
+        for (std::uint64_t b = 0; b < blocks; ++b)
+        {
+          compressedTotal += static_cast<long double>(readWord(at + (3 + b) * word));
+        }
+        if (compressedTotal > static_cast<long double>(end - at - (3 + blocks) * word))
+        {
+          problem = "truncated VTK XML file (compressed blocks at offset " + std::to_string(o) +
+            " end past the data)";
           return false;
         }
       }

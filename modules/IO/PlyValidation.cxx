@@ -131,7 +131,25 @@ bool CheckPlyStructure(const std::string& path, std::string& problem)
   return CheckPlyBytes(data, problem);
 }
 
+namespace
+{
+bool CheckPlyBytesUnescaped(const std::string& data, std::string& problem);
+}
+
 bool CheckPlyBytes(const std::string& data, std::string& problem)
+{
+  // Names in the problem come from the file: escape whatever is not printable.
+  if (CheckPlyBytesUnescaped(data, problem))
+  {
+    return true;
+  }
+  problem = QuoteBytes(problem, 400);
+  return false;
+}
+
+namespace
+{
+bool CheckPlyBytesUnescaped(const std::string& data, std::string& problem)
 {
 
   // Header: text lines up to "end_header".
@@ -161,6 +179,18 @@ bool CheckPlyBytes(const std::string& data, std::string& problem)
     if (!line.empty() && line.back() == '\r')
     {
       line.pop_back();
+    }
+    // vtkPLY splits header lines at spaces and tabs only: any other control byte (a vertical
+    // tab) makes it see other words than a stream reader does.
+    for (const char c : line)
+    {
+      const auto u = static_cast<unsigned char>(c);
+      if ((u < 32 && c != '\t') || u >= 127)
+      {
+        problem = "PLY header line " + std::to_string(lineNumber) +
+          ": control or non-ASCII byte in the header";
+        return false;
+      }
     }
     std::istringstream words(line);
     std::string keyword;
@@ -525,6 +555,7 @@ bool CheckPlyBytes(const std::string& data, std::string& problem)
   }
   return true;
 }
+} // namespace
 
 } // namespace io_detail
 } // namespace bender

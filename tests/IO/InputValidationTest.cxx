@@ -407,3 +407,30 @@ TEST(InputValidation, MalformedAsciiStlIsRefused)
     "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
   EXPECT_EQ(ReadMesh(dir / "good.stl")->GetNumberOfPolys(), 1);
 }
+
+// Found by fuzz_mesh_ply: a vertical tab in a header line made vtkPLY see another element
+// list than a stream reader (null dereference in find_element).
+TEST(InputValidation, PlyHeaderControlBytesAreRefused)
+{
+  TempDir dir;
+  WriteText(dir / "vt.ply",
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+    "property float y\nproperty float z\x0b"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  ExpectRefused(dir / "vt.ply", "control or non-ASCII byte in the header");
+}
+
+// Found by fuzz_mesh_vtp: a compressed block header announcing a 2^62-byte block made
+// vtkXMLDataParser allocate it.
+TEST(InputValidation, VtpCompressedBlockHeadersAreBounded)
+{
+  TempDir dir;
+  WriteMesh(Triangle(), dir / "ok.vtp");
+  std::string bytes = ReadText(dir / "ok.vtp");
+  const std::size_t data = bytes.find('_', bytes.find("<AppendedData")) + 1;
+  ASSERT_LT(data + 16, bytes.size());
+  bytes[data + 8 + 7] = 0x73; // block size word (UInt64, little endian): top byte
+  WriteText(dir / "block.vtp", bytes);
+  ExpectRefused(dir / "block.vtp", "compressed block header at offset 0");
+}
