@@ -395,7 +395,8 @@ TEST(InputValidation, MalformedAsciiStlIsRefused)
 {
   TempDir dir;
   WriteText(dir / "broken.stl",
-    "solid broken\n  facet normal 0 0 \x89\x89\x89 1\n    ou\x16er l 0\n"
+    "solid broken\n  facet normal 0 0 \x89\x89\x89 1\n    ou\x16"
+    "er l 0\n"
     "      vertex 1 0\n");
   ExpectRefused(dir / "broken.stl", "expected \"facet normal x y z\"");
   WriteText(dir / "cut.stl",
