@@ -1312,7 +1312,9 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     for (std::size_t l = 0; l < wall.Loops.size(); ++l)
     {
       const auto& loop = wall.Loops[l];
-      if (!loop.IsEnd)
+      // A hole in the wall is flat too, but the lumen's sphere that touches its centre is much
+      // larger than the hole; at a vessel end it is about the end's radius.
+      if (!loop.IsEnd || (loopStartNode[l] >= 0 && loopStartRadius[l] > 2.0 * loop.MeanRadius))
       {
         ++holes;
         continue;
@@ -1334,7 +1336,8 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     if (holes > 0)
     {
       result.Warnings.push_back(std::to_string(holes) +
-        " boundary loop(s) are not planar: taken for holes in the wall, not vessel ends");
+        " boundary loop(s) taken for holes in the wall, not vessel ends (not planar, or much "
+        "smaller than the lumen behind them)");
     }
     if (!wall.Loops.empty() && ends.size() == 1)
     {

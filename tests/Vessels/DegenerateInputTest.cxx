@@ -128,3 +128,29 @@ TEST(VesselDegenerate, MeasuresNeedTheRadius)
   EXPECT_FALSE(m.Message.empty());
   EXPECT_TRUE(m.Branches.empty());
 }
+
+TEST(VesselDegenerate, HoleInTheWallIsNotAnEnd)
+{
+  const bender::test::Curve line = [](double t) { return Point3{ { 0, 0, t } }; };
+  auto tube = bender::test::SweptTube(line, 0, 30, 61, 48, 2.0);
+  // Remove two triangles in the middle of the wall: a small, nearly flat hole.
+  vtkNew<vtkCellArray> kept;
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType cell = 0;
+  tube->GetPolys()->InitTraversal();
+  while (tube->GetPolys()->GetNextCell(n, ids))
+  {
+    if (cell != 30 * 96 + 10 && cell != 30 * 96 + 11)
+    {
+      kept->InsertNextCell(n, ids);
+    }
+    ++cell;
+  }
+  tube->SetPolys(kept);
+  const CenterlineResult result = ComputeCenterlines(tube);
+  ASSERT_TRUE(result.Ok) << result.Message;
+  EXPECT_EQ(result.Endpoints.size(), 2u);
+  EXPECT_EQ(result.Branches->GetNumberOfCells(), 1);
+  EXPECT_FALSE(result.Warnings.empty());
+}
