@@ -25,8 +25,9 @@ const std::vector<CliCommand>& CliCommandTable()
     { "export", "export a surface for CFD meshing (caps, patches, frame)", RunExportCommand },
     { "render", "render a mesh (optionally with a plan's ribbons) to a PNG", RunRenderCommand },
     { "tracker",
-      "stream poses from a Polhemus Fastrak, a recording or the simulator",
+      "stream poses from a Polhemus Fastrak, OpenIGTLink, a recording or the simulator",
       RunTrackerCommand },
+    { "igtl-send", "send a surface to 3D Slicer (OpenIGTLink POLYDATA, RAS)", RunIgtlSendCommand },
   };
   return commands;
 }

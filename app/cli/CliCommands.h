@@ -17,6 +17,7 @@ int RunWarpCommand(const std::vector<std::string>& args);
 int RunSegmentCommand(const std::vector<std::string>& args);
 int RunPhantomCommand(const std::vector<std::string>& args);
 int RunTrackerCommand(const std::vector<std::string>& args);
+int RunIgtlSendCommand(const std::vector<std::string>& args);
 int RunCheckCommand(const std::vector<std::string>& args);
 int RunExportCommand(const std::vector<std::string>& args);
 int RunRenderCommand(const std::vector<std::string>& args);

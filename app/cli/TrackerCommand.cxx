@@ -1,6 +1,7 @@
 #include "TrackerCommand.h"
 
 #include "FastrakEncoding.h"
+#include "IgtlDevice.h"
 #include "RibbonEndMapping.h"
 #include "StreamRecorder.h"
 #include "TrackerDeviceFactory.h"
@@ -85,15 +86,22 @@ double Rounded(double value, double scale)
   return std::round(value * scale) / scale + 0.0;
 }
 
-std::string PoseJson(const TrackerPose& p)
+std::string PoseJson(const TrackerPose& p, const std::string* deviceName = nullptr)
 {
   nlohmann::ordered_json line;
   line["t"] = Rounded(p.time, 1e6);
   line["station"] = p.station;
-  line["position"] = { Rounded(p.position.x, 1e4), Rounded(p.position.y, 1e4),
-    Rounded(p.position.z, 1e4) };
-  line["quaternion"] = { Rounded(p.orientation.w, 1e6), Rounded(p.orientation.x, 1e6),
-    Rounded(p.orientation.y, 1e6), Rounded(p.orientation.z, 1e6) };
+  if (deviceName)
+  {
+    line["device"] = *deviceName;
+  }
+  line["position"] = {
+    Rounded(p.position.x, 1e4), Rounded(p.position.y, 1e4), Rounded(p.position.z, 1e4)
+  };
+  line["quaternion"] = { Rounded(p.orientation.w, 1e6),
+    Rounded(p.orientation.x, 1e6),
+    Rounded(p.orientation.y, 1e6),
+    Rounded(p.orientation.z, 1e6) };
   line["button"] = p.button ? 1 : 0;
   return line.dump();
 }
@@ -145,8 +153,10 @@ void PrintSummary(std::ostream& err,
 
 std::string TrackerCliUsage()
 {
-  return "usage: bender-cli tracker --device usb|usb:N|serial:PATH[@BAUD[,8N1]]|replay:FILE|sim\n"
+  return "usage: bender-cli tracker --device usb|usb:N|serial:PATH[@BAUD[,8N1]]|replay:FILE|sim|\n"
+         "                                   igtl:HOST:PORT\n"
          "                          [--record FILE] [--count N] [--stations 1,2]\n"
+         "                          [--tools NAME1,NAME2]\n"
          "                          [--format binary|ascii] [--realtime] [--duration S]\n"
          "                          [--timeout S] [--reset]\n\n"
          "Streams poses from a Polhemus Fastrak (USB or serial), a recording or the simulator\n"
@@ -158,7 +168,12 @@ std::string TrackerCliUsage()
          "  --device SPEC    usb: first Fastrak on USB (vendor 0x0f44); serial:/dev/ttyUSB0 at\n"
          "                   115200 8N1 unless @BAUD[,8N1] says otherwise; replay:FILE plays raw\n"
          "                   bytes recorded in binary mode (FILE.timestamps used when present);\n"
-         "                   sim: two scripted hands bending a ribbon\n"
+         "                   sim: two scripted hands bending a ribbon; igtl:HOST:PORT: an\n"
+         "                   OpenIGTLink server (PLUS, 3D Slicer): every TRANSFORM, POSITION,\n"
+         "                   QTDATA or TDATA pose is printed with its \"device\" name (station 1\n"
+         "                   and 2 for the --tools names, 0 for others), converted RAS -> LPS\n"
+         "  --tools A,B      OpenIGTLink device names of hand 1 and hand 2\n"
+         "                   (default StylusToTracker,Stylus2ToTracker)\n"
          "  --record FILE    write what the device sends to FILE (+ FILE.timestamps)\n"
          "  --count N        stop after N poses\n"
          "  --stations LIST  stations to activate and print (default 1,2)\n"
@@ -187,12 +202,13 @@ int RunTrackerCli(const std::vector<std::string>& args,
     CLI::App app("", "bender-cli tracker");
     app.set_help_flag();
     bool help = false;
-    std::string countText, stationsText, formatText, durationText, timeoutText;
+    std::string countText, stationsText, formatText, durationText, timeoutText, toolsText;
     app.add_flag("-h,--help", help);
     app.add_option("--device", deviceText);
     app.add_option("--record", options.recordPath);
     app.add_option("--count", countText);
     app.add_option("--stations", stationsText);
+    app.add_option("--tools", toolsText);
     app.add_option("--format", formatText);
     app.add_flag("--realtime", options.realtime);
     app.add_option("--duration", durationText);
@@ -222,6 +238,15 @@ int RunTrackerCli(const std::vector<std::string>& args,
     if (app.count("--stations"))
     {
       options.stations = ParseStationList(stationsText);
+    }
+    if (app.count("--tools"))
+    {
+      const std::size_t comma = toolsText.find(',');
+      if (comma == std::string::npos || toolsText.find(',', comma + 1) != std::string::npos)
+      {
+        throw UsageError("--tools '" + toolsText + "': expected two names separated by a comma");
+      }
+      options.igtlToolNames = { toolsText.substr(0, comma), toolsText.substr(comma + 1) };
     }
     if (app.count("--format"))
     {
@@ -261,9 +286,10 @@ int RunTrackerCli(const std::vector<std::string>& args,
     err << "bender-cli tracker: " << e.what() << "\n";
     return 2;
   }
-  const bool live =
-    spec.kind == TrackerDeviceSpec::Kind::Usb || spec.kind == TrackerDeviceSpec::Kind::Serial;
+  const bool live = spec.kind == TrackerDeviceSpec::Kind::Usb ||
+    spec.kind == TrackerDeviceSpec::Kind::Serial || spec.kind == TrackerDeviceSpec::Kind::Igtl;
   const bool simulated = spec.kind == TrackerDeviceSpec::Kind::Simulator;
+  const bool igtl = spec.kind == TrackerDeviceSpec::Kind::Igtl;
 
   // Recording over the file being replayed would truncate it before it is read.
   if (spec.kind == TrackerDeviceSpec::Kind::Replay && !options.recordPath.empty())
@@ -287,9 +313,10 @@ int RunTrackerCli(const std::vector<std::string>& args,
   int status = 0;
   try
   {
-    // The simulator sends no bytes: its recording is the binary records it would have sent.
+    // The simulator and OpenIGTLink send no Fastrak bytes: their recording is the binary
+    // records a Fastrak would have sent for the two hands (so replay:FILE plays it back).
     TrackerDeviceOptions deviceOptions = options;
-    if (simulated && !options.recordPath.empty())
+    if ((simulated || igtl) && !options.recordPath.empty())
     {
       simRecorder = std::make_unique<StreamRecorder>(options.recordPath);
       deviceOptions.recordPath.clear();
@@ -297,6 +324,12 @@ int RunTrackerCli(const std::vector<std::string>& args,
     device = CreateTrackerDevice(spec, deviceOptions);
     // Replay: lose nothing (the reader waits for us); live: keep the newest.
     device->EnablePoseQueue(4096, !live);
+    // OpenIGTLink: print every pose with its device name, hands or not.
+    IgtlDevice* igtlDevice = dynamic_cast<IgtlDevice*>(device.get());
+    if (igtlDevice)
+    {
+      igtlDevice->EnableNamedQueue(4096);
+    }
     device->Open();
     device->Start();
     const auto started = std::chrono::steady_clock::now();
@@ -311,15 +344,28 @@ int RunTrackerCli(const std::vector<std::string>& args,
       device->WaitForActivity(std::chrono::milliseconds(100));
       const std::vector<TrackerEvent> events = device->TakeEvents();
       const std::vector<TrackerPose> poses = device->TakePoses();
-      for (const TrackerPose& pose : poses)
+      std::vector<IgtlNamedPose> named;
+      if (igtlDevice)
       {
+        named = igtlDevice->TakeNamedPoses();
+      }
+      else
+      {
+        for (const TrackerPose& pose : poses)
+        {
+          named.push_back({ {}, pose });
+        }
+      }
+      for (const IgtlNamedPose& item : named)
+      {
+        const TrackerPose& pose = item.pose;
         if (duration > 0.0 && pose.time > duration)
         {
           done = true;
           break;
         }
-        out << PoseJson(pose) << '\n';
-        if (simRecorder)
+        out << PoseJson(pose, igtlDevice ? &item.name : nullptr) << '\n';
+        if (simRecorder && pose.station >= 1)
         {
           const std::vector<std::uint8_t> record = EncodeFastrakRecord(pose, FastrakFormat::Binary);
           simRecorder->Append(record.data(), record.size(), pose.time);
@@ -360,13 +406,38 @@ int RunTrackerCli(const std::vector<std::string>& args,
         std::chrono::steady_clock::now() - started > std::chrono::duration<double>(timeout))
       {
         err << "bender-cli tracker: " << device->Name() << ": no pose within " << timeout
-            << " s; is the Fastrak switched on, its receivers plugged in and streaming?\n";
+            << (igtl ? " s; does the server stream TRANSFORM, POSITION, QTDATA or TDATA messages?\n"
+                     : " s; is the Fastrak switched on, its receivers plugged in and streaming?\n");
         status = 1;
         done = true;
       }
     }
     device->Stop();
     PrintSummary(err, spec.ToString(), device->Statistics(), printed);
+    if (igtlDevice)
+    {
+      const IgtlStatistics s = igtlDevice->IgtlStats();
+      err << "  igtl: " << s.decoder.messages << " messages, " << s.poses << " poses, "
+          << s.invalidPoses << " invalid, " << s.decoder.crcErrors << " CRC errors, "
+          << s.decoder.malformed << " malformed, " << s.unknownTypes << " skipped ("
+          << s.buttonMessages << " button, " << s.statusMessages << " status messages)\n";
+      for (const auto& [name, n] : s.names)
+      {
+        err << "  device '" << name << "': " << n << " poses"
+            << (name == options.igtlToolNames[0]      ? " (hand 1)"
+                   : name == options.igtlToolNames[1] ? " (hand 2)"
+                                                      : " (not a hand: see --tools)")
+            << "\n";
+      }
+      for (const auto& [type, n] : s.skippedTypes)
+      {
+        err << "  skipped " << type << ": " << n << "\n";
+      }
+      if (!s.lastStatus.empty())
+      {
+        err << "  last problem: " << s.lastStatus << "\n";
+      }
+    }
     device->Close();
     if (status == 0 && printed == 0 && spec.kind == TrackerDeviceSpec::Kind::Replay)
     {

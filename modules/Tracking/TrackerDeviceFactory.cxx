@@ -1,6 +1,8 @@
 #include "TrackerDeviceFactory.h"
 
 #include "FastrakDevice.h"
+#include "IgtlDevice.h"
+#include "IgtlSocket.h"
 #include "LibusbBackend.h"
 #include "LibusbTransport.h"
 #include "RecordingTransport.h"
@@ -14,9 +16,10 @@ namespace bender
 TrackerDeviceSpec TrackerDeviceSpec::Parse(const std::string& text)
 {
   TrackerDeviceSpec spec;
-  const auto bad = [&](const std::string& why) {
+  const auto bad = [&](const std::string& why)
+  {
     return TrackingConfigurationError("device '" + text + "': " + why +
-      " (expected usb, usb:N, serial:PATH[@BAUD[,8N1]], replay:FILE or sim)");
+      " (expected usb, usb:N, serial:PATH[@BAUD[,8N1]], replay:FILE, igtl:HOST:PORT or sim)");
   };
   if (text == "sim" || text == "simulator")
   {
@@ -28,7 +31,8 @@ TrackerDeviceSpec TrackerDeviceSpec::Parse(const std::string& text)
     if (text.size() > 4)
     {
       const std::string index = text.substr(4);
-      if (index.empty() || index.size() > 2 || index.find_first_not_of("0123456789") != std::string::npos)
+      if (index.empty() || index.size() > 2 ||
+        index.find_first_not_of("0123456789") != std::string::npos)
       {
         throw bad("'" + index + "' is not a device number");
       }
@@ -60,6 +64,11 @@ TrackerDeviceSpec TrackerDeviceSpec::Parse(const std::string& text)
       throw bad("no recording file");
     }
   }
+  else if (text.rfind("igtl:", 0) == 0)
+  {
+    spec.kind = Kind::Igtl;
+    ParseHostPort(text.substr(5), "device", spec.host, spec.port);
+  }
   else
   {
     throw bad("unknown device");
@@ -79,12 +88,16 @@ std::string TrackerDeviceSpec::ToString() const
       return "replay:" + this->path;
     case Kind::Simulator:
       return "sim";
+    case Kind::Igtl:
+      return "igtl:" +
+        (this->host.find(':') != std::string::npos ? "[" + this->host + "]" : this->host) + ":" +
+        std::to_string(this->port);
   }
   return "?";
 }
 
-std::unique_ptr<TrackerDevice> CreateTrackerDevice(
-  const TrackerDeviceSpec& spec, const TrackerDeviceOptions& options)
+std::unique_ptr<TrackerDevice> CreateTrackerDevice(const TrackerDeviceSpec& spec,
+  const TrackerDeviceOptions& options)
 {
   if (spec.kind == TrackerDeviceSpec::Kind::Simulator)
   {
@@ -94,6 +107,19 @@ std::unique_ptr<TrackerDevice> CreateTrackerDevice(
     sim.duration = options.simulatorDuration;
     sim.realtime = options.simulatorRealtime;
     return std::make_unique<SimulatedDevice>(sim);
+  }
+  if (spec.kind == TrackerDeviceSpec::Kind::Igtl)
+  {
+    if (!options.recordPath.empty())
+    {
+      throw TrackingConfigurationError(
+        spec.ToString() + ": recording the raw stream is only for Fastrak devices");
+    }
+    IgtlDevice::Options igtl;
+    igtl.host = spec.host;
+    igtl.port = spec.port;
+    igtl.toolNames = options.igtlToolNames;
+    return std::make_unique<IgtlDevice>(igtl);
   }
   FastrakOptions fastrak;
   fastrak.stations = options.stations;
@@ -106,7 +132,8 @@ std::unique_ptr<TrackerDevice> CreateTrackerDevice(
     {
       auto backend = std::make_shared<std::shared_ptr<UsbBackend>>(options.usbBackend);
       const int index = spec.usbIndex;
-      open = [backend, index]() -> std::unique_ptr<Transport> {
+      open = [backend, index]() -> std::unique_ptr<Transport>
+      {
         if (!*backend)
         {
           *backend = std::make_shared<LibusbBackend>();
@@ -121,9 +148,8 @@ std::unique_ptr<TrackerDevice> CreateTrackerDevice(
     {
       const std::string path = spec.path;
       const SerialSettings serial = spec.serial;
-      open = [path, serial]() -> std::unique_ptr<Transport> {
-        return std::make_unique<SerialTransport>(path, serial);
-      };
+      open = [path, serial]() -> std::unique_ptr<Transport>
+      { return std::make_unique<SerialTransport>(path, serial); };
       break;
     }
     case TrackerDeviceSpec::Kind::Replay:
@@ -133,20 +159,19 @@ std::unique_ptr<TrackerDevice> CreateTrackerDevice(
       ReplayTransport::Options replay;
       replay.realtime = options.realtime;
       const std::string path = spec.path;
-      open = [path, replay]() -> std::unique_ptr<Transport> {
-        return std::make_unique<ReplayTransport>(path, replay);
-      };
+      open = [path, replay]() -> std::unique_ptr<Transport>
+      { return std::make_unique<ReplayTransport>(path, replay); };
       break;
     }
     case TrackerDeviceSpec::Kind::Simulator:
+    case TrackerDeviceSpec::Kind::Igtl:
       break;
   }
   if (!options.recordPath.empty())
   {
     const std::string record = options.recordPath;
-    open = [open, record]() -> std::unique_ptr<Transport> {
-      return std::make_unique<RecordingTransport>(open(), record);
-    };
+    open = [open, record]() -> std::unique_ptr<Transport>
+    { return std::make_unique<RecordingTransport>(open(), record); };
   }
   return std::make_unique<FastrakDevice>(spec.ToString(), open, fastrak);
 }

@@ -1,0 +1,147 @@
+// bender-cli igtl-send SURFACE --to HOST:PORT [--name NAME]: sends a surface to an
+// OpenIGTLink server (3D Slicer's OpenIGTLinkIF connector in server mode) as POLYDATA in RAS.
+// The sending itself is bender::IgtlSender (modules/Tracking), which the application uses too.
+
+#include "CliCommands.h"
+#include "CliParsing.h"
+
+#include "IgtlSender.h"
+#include "IgtlSocket.h"
+#include "MeshIO.h"
+#include "TrackingErrors.h"
+
+#include <vtkCellArray.h>
+#include <vtkIdList.h>
+#include <vtkOutputWindow.h>
+#include <vtkPolyData.h>
+
+#include <cstdio>
+#include <limits>
+#include <string>
+
+namespace
+{
+const char* const Usage =
+  "usage: bender-cli igtl-send SURFACE --to HOST:PORT [options]\n"
+  "\n"
+  "Sends a surface (.stl .obj .ply .vtp .vtk .off, LPS millimetres) to an OpenIGTLink server\n"
+  "as one POLYDATA message in RAS millimetres (x and y negated), e.g. to 3D Slicer: add an\n"
+  "OpenIGTLinkIF connector of type Server on port 18944, activate it, then run\n"
+  "  bender-cli igtl-send vessel.vtp --to 127.0.0.1:18944 --name BenderVessel\n"
+  "Polygons are sent as polygons; triangle strips, lines and vertices are not sent.\n"
+  "\n"
+  "options:\n"
+  "  --to HOST:PORT   the server (required)\n"
+  "  --name NAME      device name of the message, 1 to 20 characters (default BenderSurface)\n"
+  "  --timeout S      seconds allowed to connect and to send (default 5)\n"
+  "  -h, --help       this help\n"
+  "\n"
+  "exit status: 0 sent, 1 unreadable surface or the server cannot be reached, 2 usage error\n"
+  "See docs/tracking.md (OpenIGTLink).\n";
+} // namespace
+
+int RunIgtlSendCommand(const std::vector<std::string>& args)
+{
+  bender::CommandLine cli("igtl-send", Usage);
+  std::vector<std::string> positional;
+  std::string to, name = "BenderSurface";
+  double timeout = 5.0;
+  cli.App.add_option("surface", positional);
+  cli.App.add_option("--to", to);
+  cli.App.add_option("--name", name);
+  cli.App.add_option("--timeout", timeout);
+  if (const int status = cli.Parse(args); status >= 0)
+  {
+    return status;
+  }
+  if (positional.size() != 1)
+  {
+    return cli.UsageError("expected one SURFACE");
+  }
+  if (to.empty())
+  {
+    return cli.UsageError("--to HOST:PORT is required");
+  }
+  if (name.empty() || name.size() > 20)
+  {
+    return cli.UsageError("--name '" + name + "': expected 1 to 20 characters");
+  }
+  if (!(timeout > 0.0 && timeout <= 3600.0))
+  {
+    return cli.UsageError("--timeout: expected seconds in (0, 3600]");
+  }
+  bender::IgtlSender::Options options;
+  try
+  {
+    bender::ParseHostPort(to, "--to", options.host, options.port);
+  }
+  catch (const bender::TrackingError& e)
+  {
+    return cli.UsageError(e.what());
+  }
+  options.connectTimeout = std::chrono::milliseconds(long(timeout * 1000.0));
+  options.writeTimeout = options.connectTimeout;
+
+  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  bender::IgtlSurface surface;
+  try
+  {
+    vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(positional[0]);
+    if (mesh->GetNumberOfPoints() > vtkIdType(std::numeric_limits<std::uint32_t>::max()))
+    {
+      std::fprintf(stderr,
+        "bender-cli igtl-send: %s: too many points for OpenIGTLink\n",
+        positional[0].c_str());
+      return 1;
+    }
+    surface.points.reserve(std::size_t(mesh->GetNumberOfPoints()));
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      mesh->GetPoint(i, p);
+      surface.points.push_back({ p[0], p[1], p[2] });
+    }
+    vtkCellArray* polys = mesh->GetPolys();
+    surface.polygons.reserve(std::size_t(polys->GetNumberOfCells()));
+    vtkNew<vtkIdList> ids;
+    for (polys->InitTraversal(); polys->GetNextCell(ids);)
+    {
+      std::vector<std::uint32_t> polygon;
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        polygon.push_back(std::uint32_t(ids->GetId(k)));
+      }
+      surface.polygons.push_back(std::move(polygon));
+    }
+    if (surface.polygons.empty())
+    {
+      std::fprintf(
+        stderr, "bender-cli igtl-send: %s: no polygons to send\n", positional[0].c_str());
+      return 1;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "bender-cli igtl-send: %s\n", e.what());
+    return 1;
+  }
+  try
+  {
+    bender::IgtlSender sender(options);
+    sender.Connect();
+    sender.SendSurface(surface, name);
+    std::printf("sent POLYDATA '%s' (%zu points, %zu polygons, %llu bytes) to %s:%d\n",
+      name.c_str(),
+      surface.points.size(),
+      surface.polygons.size(),
+      static_cast<unsigned long long>(sender.BytesSent()),
+      options.host.c_str(),
+      options.port);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "bender-cli igtl-send: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

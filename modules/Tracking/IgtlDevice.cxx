@@ -1,0 +1,301 @@
+#include "IgtlDevice.h"
+
+#include "TrackingErrors.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace bender
+{
+
+namespace
+{
+std::string Lowered(const std::string& text)
+{
+  std::string out;
+  for (char c : text)
+  {
+    if (!std::isspace(static_cast<unsigned char>(c)))
+    {
+      out.push_back(char(std::tolower(static_cast<unsigned char>(c))));
+    }
+  }
+  return out;
+}
+} // namespace
+
+IgtlDevice::IgtlDevice(Options options)
+  : Opts(std::move(options))
+{
+  const std::string prefix = "igtl:" + this->Opts.host + ":" + std::to_string(this->Opts.port);
+  for (const std::string& name : this->Opts.toolNames)
+  {
+    if (name.empty() || name.size() > 20)
+    {
+      throw TrackingConfigurationError(
+        prefix + ": tool name '" + name + "' must have 1 to 20 characters");
+    }
+  }
+  if (this->Opts.toolNames[0] == this->Opts.toolNames[1])
+  {
+    throw TrackingConfigurationError(
+      prefix + ": both hands use the tool name '" + this->Opts.toolNames[0] + "'");
+  }
+  if (this->Opts.port < 1 || this->Opts.port > 65535 || this->Opts.host.empty())
+  {
+    throw TrackingConfigurationError(prefix + ": expected a host and a port in 1..65535");
+  }
+}
+
+IgtlDevice::~IgtlDevice()
+{
+  this->Close();
+}
+
+void IgtlDevice::Open()
+{
+  if (this->Link.IsOpen())
+  {
+    return;
+  }
+  this->Link.Connect(this->Opts.host, this->Opts.port, this->Opts.connectTimeout);
+  this->Decoder.Reset();
+  this->Store.Clear();
+  this->Buttons = {};
+  this->LastPoses = {};
+  std::lock_guard<std::mutex> lock(this->StatsMutex);
+  this->Stats = IgtlStatistics{};
+  this->Filtered = 0;
+  this->Named.clear();
+}
+
+void IgtlDevice::Start()
+{
+  if (!this->Link.IsOpen())
+  {
+    throw TrackingError(this->Name() + ": Start() before Open()");
+  }
+  if (this->Reader.joinable())
+  {
+    if (this->Streaming.load())
+    {
+      return;
+    }
+    this->Reader.join();
+  }
+  this->StopRequested = false;
+  this->Store.Rearm();
+  this->StartTime = std::chrono::steady_clock::now();
+  this->Streaming = true;
+  this->Reader = std::thread([this] { this->ReaderLoop(); });
+}
+
+void IgtlDevice::Stop()
+{
+  this->StopRequested = true;
+  this->Store.Cancel();
+  if (this->Reader.joinable())
+  {
+    this->Reader.join();
+  }
+  this->Streaming = false;
+}
+
+void IgtlDevice::Close()
+{
+  this->Stop();
+  this->Link.Close();
+}
+
+double IgtlDevice::Now() const
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->StartTime).count();
+}
+
+void IgtlDevice::ReaderLoop()
+{
+  std::vector<std::uint8_t> buffer(65536);
+  try
+  {
+    while (!this->StopRequested.load())
+    {
+      std::size_t received = 0;
+      const IgtlConnection::ReadResult result =
+        this->Link.Read(buffer.data(), buffer.size(), received, this->Opts.readTimeout);
+      if (result == IgtlConnection::ReadResult::Timeout)
+      {
+        continue;
+      }
+      if (result == IgtlConnection::ReadResult::Closed)
+      {
+        std::string message = "the server closed the connection";
+        if (this->Decoder.Pending() > 0)
+        {
+          message += " in the middle of a message (" + this->Decoder.PendingDescription() + ")";
+          std::lock_guard<std::mutex> lock(this->StatsMutex);
+          ++this->Stats.truncated;
+        }
+        this->Streaming = false;
+        this->Store.PublishEvent({ TrackerEventType::Disconnected, 0, this->Now(), message });
+        return;
+      }
+      this->Decoder.Feed(buffer.data(), received);
+      while (std::optional<IgtlMessage> message = this->Decoder.Next())
+      {
+        this->Handle(*message);
+      }
+      std::lock_guard<std::mutex> lock(this->StatsMutex);
+      this->Stats.decoder = this->Decoder.Statistics();
+    }
+  }
+  catch (const std::exception& e)
+  {
+    this->Streaming = false;
+    this->Store.PublishEvent({ TrackerEventType::ReadError, 0, this->Now(), e.what() });
+    return;
+  }
+  this->Streaming = false;
+}
+
+void IgtlDevice::Handle(const IgtlMessage& message)
+{
+  const double now = this->Now();
+  const auto hand = [this](const std::string& name)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      if (name == this->Opts.toolNames[std::size_t(i)])
+      {
+        return i;
+      }
+    }
+    return -1;
+  };
+  if (message.type == "STRING")
+  {
+    const int h = hand(message.deviceName);
+    const std::optional<std::string> text = DecodeIgtlString(message);
+    const std::string word = text ? Lowered(*text) : std::string();
+    const bool down = word == "down" || word == "pressed" || word == "1";
+    const bool up = word == "up" || word == "released" || word == "0";
+    if (h < 0 || !(down || up))
+    {
+      std::lock_guard<std::mutex> lock(this->StatsMutex);
+      ++this->Stats.unknownTypes;
+      ++this->Stats.skippedTypes["STRING"];
+      return;
+    }
+    {
+      std::lock_guard<std::mutex> lock(this->StatsMutex);
+      ++this->Stats.buttonMessages;
+    }
+    this->Buttons[std::size_t(h)] = down;
+    if (std::optional<TrackerPose>& last = this->LastPoses[std::size_t(h)])
+    {
+      last->button = down;
+      last->time = now;
+      this->Store.Publish(*last);
+    }
+    return;
+  }
+  if (message.type == "STATUS")
+  {
+    const std::optional<IgtlStatus> status = DecodeIgtlStatus(message);
+    std::lock_guard<std::mutex> lock(this->StatsMutex);
+    ++this->Stats.statusMessages;
+    if (status && status->code != 1)
+    {
+      this->Stats.lastStatus = "'" + message.deviceName + "' code " + std::to_string(status->code) +
+        (status->errorName.empty() ? "" : " " + status->errorName) +
+        (status->text.empty() ? "" : ": " + status->text);
+    }
+    return;
+  }
+  if (message.type != "TRANSFORM" && message.type != "POSITION" && message.type != "QTDATA" &&
+    message.type != "TDATA")
+  {
+    std::lock_guard<std::mutex> lock(this->StatsMutex);
+    ++this->Stats.unknownTypes;
+    ++this->Stats.skippedTypes[message.type];
+    return;
+  }
+  std::vector<IgtlToolPose> poses;
+  std::string problem;
+  if (!DecodeIgtlPoses(message, poses, problem))
+  {
+    std::lock_guard<std::mutex> lock(this->StatsMutex);
+    ++this->Stats.invalidPoses;
+    this->Stats.lastStatus = problem;
+    return;
+  }
+  for (const IgtlToolPose& tool : poses)
+  {
+    const int h = hand(tool.name);
+    TrackerPose pose;
+    pose.station = h + 1;
+    pose.position = RasToLps(tool.position);
+    pose.orientation = RasToLps(tool.orientation);
+    pose.time = now;
+    if (h >= 0)
+    {
+      pose.button = this->Buttons[std::size_t(h)];
+      this->LastPoses[std::size_t(h)] = pose;
+    }
+    {
+      std::lock_guard<std::mutex> lock(this->StatsMutex);
+      ++this->Stats.poses;
+      ++this->Stats.names[tool.name];
+      if (h < 0)
+      {
+        ++this->Filtered;
+      }
+      if (this->NamedCapacity > 0)
+      {
+        if (this->Named.size() >= this->NamedCapacity)
+        {
+          this->Named.pop_front();
+        }
+        this->Named.push_back({ tool.name, pose });
+      }
+    }
+    if (h >= 0)
+    {
+      this->Store.Publish(pose);
+    }
+  }
+}
+
+TrackerStatistics IgtlDevice::Statistics() const
+{
+  TrackerStatistics s = this->Store.Statistics();
+  std::lock_guard<std::mutex> lock(this->StatsMutex);
+  s.parser.records = this->Stats.poses;
+  s.parser.dropped = this->Stats.invalidPoses;
+  s.parser.malformed = this->Stats.decoder.crcErrors + this->Stats.decoder.malformed;
+  s.parser.garbageBytes = this->Stats.decoder.garbageBytes;
+  s.parser.truncated = this->Stats.truncated;
+  s.filtered = this->Filtered;
+  return s;
+}
+
+IgtlStatistics IgtlDevice::IgtlStats() const
+{
+  std::lock_guard<std::mutex> lock(this->StatsMutex);
+  return this->Stats;
+}
+
+void IgtlDevice::EnableNamedQueue(std::size_t capacity)
+{
+  std::lock_guard<std::mutex> lock(this->StatsMutex);
+  this->NamedCapacity = capacity;
+}
+
+std::vector<IgtlNamedPose> IgtlDevice::TakeNamedPoses()
+{
+  std::lock_guard<std::mutex> lock(this->StatsMutex);
+  std::vector<IgtlNamedPose> out(this->Named.begin(), this->Named.end());
+  this->Named.clear();
+  return out;
+}
+
+} // namespace bender

@@ -1,0 +1,126 @@
+#ifndef bender_IgtlDevice_h
+#define bender_IgtlDevice_h
+
+#include "IgtlProtocol.h"
+#include "IgtlSocket.h"
+#include "TrackerDevice.h"
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace bender
+{
+
+/// What an OpenIGTLink device counted since Open().
+struct IgtlStatistics
+{
+  IgtlDecoderStatistics decoder;
+  std::uint64_t poses = 0;          ///< tool poses decoded (any device name)
+  std::uint64_t invalidPoses = 0;   ///< tracking messages refused (size, NaN, not a rotation)
+  std::uint64_t unknownTypes = 0;   ///< messages of other types (IMAGE, POLYDATA, ...) skipped
+  std::uint64_t buttonMessages = 0; ///< STRING messages understood as a button state
+  std::uint64_t statusMessages = 0;
+  std::uint64_t truncated = 0;                ///< 1 when the peer closed the connection mid-message
+  std::map<std::string, std::uint64_t> names; ///< poses per device name
+  std::map<std::string, std::uint64_t> skippedTypes; ///< unknown messages per type
+  std::string lastStatus; ///< the last STATUS that was not OK, "" when none
+};
+
+/// A pose as received, with its device name, in LPS millimetres (see IgtlDevice).
+struct IgtlNamedPose
+{
+  std::string name;
+  TrackerPose pose; ///< station 1/2 for the two hands' names, 0 for any other name
+};
+
+/// A tracker reached over OpenIGTLink: a TCP client of a PLUS server, 3D Slicer or any peer
+/// that sends tracking messages (`--device igtl:HOST:PORT`).
+///
+/// - Poses: TRANSFORM, POSITION, QTDATA and TDATA messages; the device name (or the element
+///   name of QTDATA/TDATA) `toolNames[0]` is station 1 (first hand), `toolNames[1]` station 2.
+///   Other names are counted (Statistics().filtered, IgtlStats().names) and, with
+///   EnableNamedQueue(), handed out by TakeNamedPoses() so that a user sees what a server
+///   sends.
+/// - Frame: OpenIGTLink is RAS millimetres; poses are converted to LPS (x and y negated, the
+///   rotation pre-multiplied by diag(-1,-1,1)). TrackerPose::time is seconds since Start()
+///   (receive time, steady clock).
+/// - Button: a STRING message whose device name is a hand's name and whose text is "down",
+///   "pressed", "1" or "up", "released", "0" (any case, surrounding blanks ignored) sets that
+///   hand's button; the new state is published at once with the hand's last pose and then
+///   carried by every following pose, so grab/release events come from the PoseStore as for
+///   the Fastrak. Without such messages the application uses a key instead.
+/// - Robustness: header version 1 and 2 (extended header + metadata) are read; CRC errors,
+///   garbage and unknown types are skipped and counted; a connection closed by the peer (also
+///   in the middle of a message, which the event message says) is a Disconnected event;
+///   Close() and Open() reconnect.
+class IgtlDevice : public TrackerDevice
+{
+public:
+  struct Options
+  {
+    std::string host = "127.0.0.1";
+    int port = 18944; ///< the OpenIGTLink default (PLUS and Slicer)
+    std::array<std::string, 2> toolNames{ "StylusToTracker", "Stylus2ToTracker" };
+    std::chrono::milliseconds connectTimeout{ 3000 };
+    std::chrono::milliseconds readTimeout{ 50 }; ///< reader poll; bounds Stop()
+  };
+
+  /// Throws TrackingConfigurationError for an empty or over-long (> 20 characters) tool name,
+  /// two equal names, or a port outside 1..65535.
+  explicit IgtlDevice(Options options);
+  ~IgtlDevice() override;
+  IgtlDevice(const IgtlDevice&) = delete;
+  IgtlDevice& operator=(const IgtlDevice&) = delete;
+
+  std::string Name() const override
+  {
+    return "igtl:" + this->Opts.host + ":" + std::to_string(this->Opts.port);
+  }
+  /// Connects (DeviceNotFoundError when refused or unanswered within connectTimeout).
+  void Open() override;
+  void Start() override;
+  void Stop() override;
+  void Close() override;
+  bool IsOpen() const override { return this->Link.IsOpen(); }
+  bool IsStreaming() const override { return this->Streaming.load(); }
+  TrackerStatistics Statistics() const override;
+
+  IgtlStatistics IgtlStats() const;
+  /// Keep every received pose, whatever its name (bounded, oldest dropped).
+  void EnableNamedQueue(std::size_t capacity);
+  std::vector<IgtlNamedPose> TakeNamedPoses();
+
+  const Options& GetOptions() const { return this->Opts; }
+
+private:
+  void ReaderLoop();
+  void Handle(const IgtlMessage& message);
+  double Now() const;
+
+  Options Opts;
+  IgtlConnection Link;
+  IgtlStreamDecoder Decoder;
+  std::thread Reader;
+  std::atomic<bool> StopRequested{ false };
+  std::atomic<bool> Streaming{ false };
+  std::chrono::steady_clock::time_point StartTime;
+  std::array<bool, 2> Buttons{};
+  std::array<std::optional<TrackerPose>, 2> LastPoses;
+  mutable std::mutex StatsMutex;
+  IgtlStatistics Stats;
+  std::uint64_t Filtered = 0;
+  std::deque<IgtlNamedPose> Named;
+  std::size_t NamedCapacity = 0;
+};
+
+} // namespace bender
+
+#endif

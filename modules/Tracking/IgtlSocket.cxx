@@ -1,0 +1,199 @@
+#include "IgtlSocket.h"
+
+#include "TrackingErrors.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+namespace bender
+{
+
+void ParseHostPort(const std::string& text, const std::string& what, std::string& host, int& port)
+{
+  const auto bad = [&](const std::string& why) {
+    return TrackingConfigurationError(what + " '" + text + "': " + why + " (expected HOST:PORT)");
+  };
+  const std::size_t colon = text.rfind(':');
+  if (colon == std::string::npos || colon == 0)
+  {
+    throw bad("no host or no port");
+  }
+  host = text.substr(0, colon);
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']')
+  {
+    host = host.substr(1, host.size() - 2);
+  }
+  const std::string portText = text.substr(colon + 1);
+  if (portText.empty() || portText.size() > 5 ||
+    portText.find_first_not_of("0123456789") != std::string::npos)
+  {
+    throw bad("'" + portText + "' is not a port number");
+  }
+  port = std::stoi(portText);
+  if (port < 1 || port > 65535)
+  {
+    throw bad("port " + portText + " is outside 1..65535");
+  }
+}
+
+IgtlConnection::~IgtlConnection()
+{
+  this->Close();
+}
+
+void IgtlConnection::Close()
+{
+  if (this->Fd >= 0)
+  {
+    ::close(this->Fd);
+    this->Fd = -1;
+  }
+}
+
+void IgtlConnection::Connect(const std::string& host, int port, std::chrono::milliseconds timeout)
+{
+  this->Close();
+  this->PeerName = host + ":" + std::to_string(port);
+  const std::string prefix = "igtl " + this->PeerName + ": ";
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const int rc = ::getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found);
+  if (rc != 0 || !found)
+  {
+    throw TrackingConfigurationError(prefix + "cannot resolve host (" + ::gai_strerror(rc) + ")");
+  }
+  std::string lastProblem = "no address";
+  for (addrinfo* a = found; a; a = a->ai_next)
+  {
+    const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+    if (fd < 0)
+    {
+      lastProblem = std::strerror(errno);
+      continue;
+    }
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
+    int error = 0;
+    if (::connect(fd, a->ai_addr, a->ai_addrlen) != 0)
+    {
+      error = errno;
+      if (error == EINPROGRESS)
+      {
+        pollfd p{ fd, POLLOUT, 0 };
+        const int ready = ::poll(&p, 1, int(timeout.count()));
+        if (ready == 0)
+        {
+          error = ETIMEDOUT;
+        }
+        else
+        {
+          socklen_t len = sizeof error;
+          ::getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &len);
+        }
+      }
+    }
+    if (error == 0)
+    {
+      const int one = 1;
+      ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+      this->Fd = fd;
+      ::freeaddrinfo(found);
+      return;
+    }
+    ::close(fd);
+    lastProblem = error == ETIMEDOUT ? "no answer within " + std::to_string(timeout.count()) + " ms"
+                                     : std::strerror(error);
+  }
+  ::freeaddrinfo(found);
+  throw DeviceNotFoundError(prefix + lastProblem + " (is the OpenIGTLink server running?)");
+}
+
+IgtlConnection::ReadResult IgtlConnection::Read(std::uint8_t* buffer,
+  std::size_t capacity,
+  std::size_t& received,
+  std::chrono::milliseconds timeout)
+{
+  received = 0;
+  if (this->Fd < 0)
+  {
+    return ReadResult::Closed;
+  }
+  pollfd p{ this->Fd, POLLIN, 0 };
+  const int ready = ::poll(&p, 1, int(timeout.count()));
+  if (ready < 0)
+  {
+    if (errno == EINTR)
+    {
+      return ReadResult::Timeout;
+    }
+    throw TransportError("igtl " + this->PeerName + ": poll: " + std::strerror(errno));
+  }
+  if (ready == 0)
+  {
+    return ReadResult::Timeout;
+  }
+  const ssize_t n = ::recv(this->Fd, buffer, capacity, 0);
+  if (n > 0)
+  {
+    received = std::size_t(n);
+    return ReadResult::Data;
+  }
+  if (n == 0 || errno == ECONNRESET)
+  {
+    return ReadResult::Closed;
+  }
+  if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
+  {
+    return ReadResult::Timeout;
+  }
+  throw TransportError("igtl " + this->PeerName + ": recv: " + std::strerror(errno));
+}
+
+void IgtlConnection::WriteAll(const std::uint8_t* data,
+  std::size_t size,
+  std::chrono::milliseconds timeout)
+{
+  const std::string prefix = "igtl " + this->PeerName + ": ";
+  if (this->Fd < 0)
+  {
+    throw DeviceDisconnectedError(prefix + "not connected");
+  }
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::size_t sent = 0;
+  while (sent < size)
+  {
+    const ssize_t n = ::send(this->Fd, data + sent, size - sent, MSG_NOSIGNAL);
+    if (n > 0)
+    {
+      sent += std::size_t(n);
+      continue;
+    }
+    if (n < 0 && (errno == EPIPE || errno == ECONNRESET))
+    {
+      throw DeviceDisconnectedError(prefix + "the peer closed the connection");
+    }
+    if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
+    {
+      throw TransportError(prefix + "send: " + std::strerror(errno));
+    }
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+      deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0)
+    {
+      throw TransportError(prefix + "the peer took only " + std::to_string(sent) + " of " +
+        std::to_string(size) + " bytes within " + std::to_string(timeout.count()) + " ms");
+    }
+    pollfd p{ this->Fd, POLLOUT, 0 };
+    ::poll(&p, 1, int(left.count()));
+  }
+}
+
+} // namespace bender

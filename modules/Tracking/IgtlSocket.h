@@ -1,0 +1,59 @@
+#ifndef bender_IgtlSocket_h
+#define bender_IgtlSocket_h
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace bender
+{
+
+/// "HOST:PORT" (HOST a name, an IPv4 address or [IPv6]); throws TrackingConfigurationError
+/// naming `what` and the text when it does not parse or the port is outside 1..65535.
+void ParseHostPort(const std::string& text, const std::string& what, std::string& host, int& port);
+
+/// A TCP client connection for OpenIGTLink (POSIX sockets, every wait bounded by a poll
+/// timeout so that a reader thread can be stopped). Not copyable; closes on destruction.
+class IgtlConnection
+{
+public:
+  IgtlConnection() = default;
+  ~IgtlConnection();
+  IgtlConnection(const IgtlConnection&) = delete;
+  IgtlConnection& operator=(const IgtlConnection&) = delete;
+
+  /// Connects within `timeout`. Throws DeviceNotFoundError when the peer refuses or does
+  /// not answer ("igtl HOST:PORT: connection refused (is the server running?)"), and
+  /// TrackingConfigurationError when the host name does not resolve.
+  void Connect(const std::string& host, int port, std::chrono::milliseconds timeout);
+  bool IsOpen() const { return this->Fd >= 0; }
+  void Close();
+
+  enum class ReadResult
+  {
+    Data,    ///< `received` bytes were read
+    Timeout, ///< nothing within the timeout
+    Closed   ///< the peer closed the connection (or reset it)
+  };
+  /// Reads what is available, waiting at most `timeout`. Throws TransportError on other
+  /// socket errors.
+  ReadResult Read(std::uint8_t* buffer,
+    std::size_t capacity,
+    std::size_t& received,
+    std::chrono::milliseconds timeout);
+  /// Writes everything within `timeout`; throws DeviceDisconnectedError when the peer went
+  /// away and TransportError when it does not take the bytes in time.
+  void WriteAll(const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout);
+
+  /// "HOST:PORT", for messages.
+  const std::string& Peer() const { return this->PeerName; }
+
+private:
+  int Fd = -1;
+  std::string PeerName;
+};
+
+} // namespace bender
+
+#endif
