@@ -10,6 +10,7 @@
 #include "TrackerCommand.h"
 #include "TrackerDeviceFactory.h"
 #include "TrackingErrors.h"
+#include "TwoHandRibbonInput.h"
 
 #include <igtlMessageHeader.h>
 #include <igtlPolyDataMessage.h>
@@ -749,4 +750,68 @@ TEST(IgtlSender, SendSurfaceIfDueKeepsTheRateBounded)
   EXPECT_NEAR(poses[0].position.x, -1, 1e-6); // sent in RAS
   EXPECT_NEAR(poses[0].position.y, -2, 1e-6);
   EXPECT_NEAR(poses[0].position.z, 3, 1e-6);
+}
+
+// The same gesture path as the Fastrak: two hands streamed over OpenIGTLink (in RAS, as
+// PLUS sends them), a STRING button press and release, TwoHandRibbonInput gives one warp
+// whose ribbon ends are in LPS and keep their orientation (no flip).
+TEST(IgtlDevice, StreamedHandsDriveAGrabBendRelease)
+{
+  LoopbackServer server;
+  server.Serve({ [](int fd)
+    {
+      const Quaternion facing{ 0, 0, 0, 1 }; // right hand: local +x towards the left hand
+      Bytes stream;
+      for (int k = 0; k <= 12; ++k)
+      {
+        const double lift = k <= 2 ? 0.0 : 3.0 * (k - 2);
+        Append(stream, bender::EncodeIgtlTransformMessage("StylusToTracker", { -100, 0, 0 }, {}));
+        Append(
+          stream, bender::EncodeIgtlTransformMessage("Stylus2ToTracker", { 100, 0, lift }, facing));
+        if (k == 1)
+        {
+          Append(stream, LibraryString("StylusToTracker", "down"));
+        }
+      }
+      Append(stream, LibraryString("StylusToTracker", "up"));
+      SendBytes(fd, stream);
+    } });
+  bender::IgtlDevice device(DeviceOptions(server.Port()));
+  device.EnablePoseQueue(1000, false);
+  device.Open();
+  device.Start();
+  const Collected c = Collect(
+    device, [](const Collected& c) { return HasEvent(c, bender::TrackerEventType::Disconnected); });
+  device.Close();
+  server.Join();
+
+  bender::TwoHandRibbonInput input;
+  std::vector<bender::TwoHandRibbonInput::Gesture> gestures;
+  bool button = false;
+  for (const bender::TrackerPose& pose : c.poses)
+  {
+    input.UpdatePose(pose);
+    if (pose.station == 1 && pose.button != button)
+    {
+      button = pose.button;
+      const auto type = button ? bender::TrackerEventType::Grab : bender::TrackerEventType::Release;
+      if (auto g = input.HandleEvent({ type, 1, pose.time, {} }))
+      {
+        gestures.push_back(*g);
+      }
+    }
+  }
+  ASSERT_EQ(gestures.size(), 2u);
+  EXPECT_EQ(gestures[0].kind, bender::TwoHandRibbonInput::Gesture::Kind::Grabbed);
+  ASSERT_EQ(gestures[1].kind, bender::TwoHandRibbonInput::Gesture::Kind::Released);
+  const bender::RibbonSpec& a = gestures[1].initial;
+  const bender::RibbonSpec& b = gestures[1].final;
+  EXPECT_NEAR(bender::Distance(a.start.position, { -100, 0, 0 }), 0.0, 1e-4);
+  EXPECT_NEAR(bender::Distance(a.end.position, { 100, 0, 0 }), 0.0, 1e-4);
+  EXPECT_NEAR(bender::Distance(b.end.position, { 100, 0, 30 }), 0.0, 1e-4);
+  for (const bender::RibbonEnd* end : { &a.start, &a.end, &b.start, &b.end })
+  {
+    EXPECT_NEAR(end->tangent.x, 1.0, 1e-6); // along the ribbon at both ends: no flip
+    EXPECT_NEAR(end->normal.z, 1.0, 1e-6);  // up stays up
+  }
 }
