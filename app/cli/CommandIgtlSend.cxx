@@ -9,6 +9,7 @@
 #include "IgtlSocket.h"
 #include "MeshIO.h"
 #include "TrackingErrors.h"
+#include "WarpPlanIO.h"
 
 #include <vtkCellArray.h>
 #include <vtkIdList.h>
@@ -17,6 +18,7 @@
 
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace
@@ -34,6 +36,9 @@ const char* const Usage =
   "  --to HOST:PORT   the server (required)\n"
   "  --name NAME      device name of the message, 1 to 20 characters (default BenderSurface)\n"
   "  --timeout S      seconds allowed to connect and to send (default 5)\n"
+  "  --plan PLAN      also send the final ribbon of the plan's last warp as two TRANSFORMs,\n"
+  "                   <NAME>RibbonStart and <NAME>RibbonEnd (NAME cut to 9 characters;\n"
+  "                   x = tangent, z = normal, in RAS)\n"
   "  -h, --help       this help\n"
   "\n"
   "exit status: 0 sent, 1 unreadable surface or the server cannot be reached, 2 usage error\n"
@@ -44,12 +49,13 @@ int RunIgtlSendCommand(const std::vector<std::string>& args)
 {
   bender::CommandLine cli("igtl-send", Usage);
   std::vector<std::string> positional;
-  std::string to, name = "BenderSurface";
+  std::string to, name = "BenderSurface", planPath;
   double timeout = 5.0;
   cli.App.add_option("surface", positional);
   cli.App.add_option("--to", to);
   cli.App.add_option("--name", name);
   cli.App.add_option("--timeout", timeout);
+  cli.App.add_option("--plan", planPath);
   if (const int status = cli.Parse(args); status >= 0)
   {
     return status;
@@ -84,8 +90,21 @@ int RunIgtlSendCommand(const std::vector<std::string>& args)
 
   vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
   bender::IgtlSurface surface;
+  std::optional<bender::RibbonSpec> ribbon;
   try
   {
+    if (!planPath.empty())
+    {
+      const bender::WarpPlan plan = bender::ReadWarpPlan(planPath);
+      if (plan.warps.empty())
+      {
+        std::fprintf(stderr, "bender-cli igtl-send: %s: the plan has no warp\n", planPath.c_str());
+        return 1;
+      }
+      ribbon = plan.warps.back().final;
+      bender::IgtlRibbonEndFrame(ribbon->start); // refuse a degenerate frame before sending
+      bender::IgtlRibbonEndFrame(ribbon->end);
+    }
     vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(positional[0]);
     if (mesh->GetNumberOfPoints() > vtkIdType(std::numeric_limits<std::uint32_t>::max()))
     {
@@ -130,6 +149,10 @@ int RunIgtlSendCommand(const std::vector<std::string>& args)
     bender::IgtlSender sender(options);
     sender.Connect();
     sender.SendSurface(surface, name);
+    if (ribbon)
+    {
+      sender.SendRibbonEnds(*ribbon, name.substr(0, 9) + "Ribbon");
+    }
     std::printf("sent POLYDATA '%s' (%zu points, %zu polygons, %llu bytes) to %s:%d\n",
       name.c_str(),
       surface.points.size(),

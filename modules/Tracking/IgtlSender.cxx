@@ -103,6 +103,24 @@ std::vector<std::uint8_t> EncodeIgtlTransformMessage(const std::string& name,
   return PackedBytes(message);
 }
 
+Quaternion IgtlRibbonEndFrame(const RibbonEnd& end)
+{
+  const double tl = Norm(end.tangent);
+  if (!(tl > 1e-12) || !IsFinite(end.tangent) || !IsFinite(end.normal))
+  {
+    throw TrackingConfigurationError("igtl: ribbon end has no tangent");
+  }
+  const Vec3 x = end.tangent * (1.0 / tl);
+  const Vec3 n = end.normal - x * Dot(end.normal, x);
+  const double nl = Norm(n);
+  if (!(nl > 1e-9))
+  {
+    throw TrackingConfigurationError("igtl: ribbon end normal is parallel to its tangent");
+  }
+  const Vec3 z = n * (1.0 / nl);
+  return QuaternionFromColumns(x, Cross(z, x), z);
+}
+
 IgtlSender::IgtlSender(Options options)
   : Opts(std::move(options))
 {
@@ -164,6 +182,14 @@ void IgtlSender::SendTransform(const std::string& name,
   const Quaternion& orientationLps)
 {
   this->Send(EncodeIgtlTransformMessage(name, positionLps, orientationLps));
+}
+
+void IgtlSender::SendRibbonEnds(const RibbonSpec& ribbon, const std::string& prefix)
+{
+  const Quaternion start = IgtlRibbonEndFrame(ribbon.start);
+  const Quaternion end = IgtlRibbonEndFrame(ribbon.end);
+  this->SendTransform(prefix + "Start", ribbon.start.position, start);
+  this->SendTransform(prefix + "End", ribbon.end.position, end);
 }
 
 } // namespace bender

@@ -4,6 +4,7 @@
 #include "IgtlSocket.h"
 #include "Quaternion.h"
 #include "Vec3.h"
+#include "WarpPlan.h"
 
 #include <chrono>
 #include <cstdint>
@@ -32,6 +33,11 @@ std::vector<std::uint8_t> EncodeIgtlPolyData(const IgtlSurface& surface, const s
 std::vector<std::uint8_t> EncodeIgtlTransformMessage(const std::string& name,
   const Vec3& positionLps,
   const Quaternion& orientationLps);
+
+/// The frame of a ribbon end as a rotation: x = tangent, z = normal (made orthogonal to the
+/// tangent), y = z cross x. Throws TrackingConfigurationError when the tangent is zero or the
+/// normal is parallel to it.
+Quaternion IgtlRibbonEndFrame(const RibbonEnd& end);
 
 /// Sends surfaces and frames to an OpenIGTLink server (3D Slicer's OpenIGTLinkIF connector in
 /// server mode, or any peer that listens). Every call is synchronous with a bounded write
@@ -64,6 +70,9 @@ public:
   void SendTransform(const std::string& name,
     const Vec3& positionLps,
     const Quaternion& orientationLps);
+  /// Sends the ribbon's two end frames as TRANSFORMs named `prefix` + "Start" and `prefix` +
+  /// "End" (see IgtlRibbonEndFrame); `prefix` has at most 15 characters.
+  void SendRibbonEnds(const RibbonSpec& ribbon, const std::string& prefix = "Ribbon");
 
   std::uint64_t MessagesSent() const { return this->Messages; }
   std::uint64_t BytesSent() const { return this->Bytes; }

@@ -815,3 +815,47 @@ TEST(IgtlDevice, StreamedHandsDriveAGrabBendRelease)
     EXPECT_NEAR(end->normal.z, 1.0, 1e-6);  // up stays up
   }
 }
+
+TEST(IgtlCli, IgtlSendWithAPlanSendsTheRibbonEndFramesInRas)
+{
+  const auto dir =
+    std::filesystem::temp_directory_path() / ("bender-igtl-plan-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "triangle.off").string();
+  {
+    std::ofstream off(path);
+    off << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  }
+  LoopbackServer server;
+  Bytes received;
+  server.Serve({ [&received](int fd) { received = ReadUntilClosed(fd); } });
+  // The last warp's final ribbon: start (0,0,0) tangent +x, end (30,20,0) tangent +y, normal +z.
+  const int status = bender::RunBenderCli({ "igtl-send",
+    path,
+    "--to",
+    "127.0.0.1:" + std::to_string(server.Port()),
+    "--name",
+    "Vessel",
+    "--plan",
+    std::string(BENDER_TEST_DATA_DIR) + "/io/example.bender.json" });
+  server.Join();
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(status, 0);
+  IgtlStreamDecoder decoder;
+  const auto messages = DecodeAll(decoder, received, received.size());
+  ASSERT_EQ(messages.size(), 3u);
+  EXPECT_EQ(messages[0].type, "POLYDATA");
+  EXPECT_EQ(messages[1].deviceName, "VesselRibbonStart");
+  EXPECT_EQ(messages[2].deviceName, "VesselRibbonEnd");
+  std::vector<bender::IgtlToolPose> poses;
+  std::string problem;
+  ASSERT_TRUE(bender::DecodeIgtlPoses(messages[2], poses, problem)) << problem;
+  ASSERT_EQ(poses.size(), 1u);
+  // RAS: (-30, -20, 0); the frame's x axis (the tangent +y in LPS) is -y in RAS.
+  EXPECT_NEAR(poses[0].position.x, -30, 1e-5);
+  EXPECT_NEAR(poses[0].position.y, -20, 1e-5);
+  const Vec3 x = bender::RotateByQuaternion(poses[0].orientation, { 1, 0, 0 });
+  const Vec3 z = bender::RotateByQuaternion(poses[0].orientation, { 0, 0, 1 });
+  EXPECT_NEAR(x.y, -1.0, 1e-6);
+  EXPECT_NEAR(z.z, 1.0, 1e-6);
+}
