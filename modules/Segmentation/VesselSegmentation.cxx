@@ -6,14 +6,12 @@
 #include <itkBinaryFillholeImageFilter.h>
 #include <itkBinaryMorphologicalClosingImageFilter.h>
 #include <itkBinaryThresholdImageFilter.h>
-#include <itkConnectedComponentImageFilter.h>
 #include <itkExtractImageFilter.h>
 #include <itkGeodesicActiveContourLevelSetImageFilter.h>
 #include <itkGradientMagnitudeRecursiveGaussianImageFilter.h>
 #include <itkHessianToObjectnessMeasureImageFilter.h>
 #include <itkMinimumMaximumImageCalculator.h>
 #include <itkMultiScaleHessianBasedMeasureImageFilter.h>
-#include <itkRelabelComponentImageFilter.h>
 #include <itkSigmoidImageFilter.h>
 #include <itkSignedMaurerDistanceMapImageFilter.h>
 #include <itkSymmetricSecondRankTensor.h>
@@ -32,7 +30,6 @@ namespace
 
 using detail::FloatImage;
 using detail::MaskImage;
-using LabelImage = itk::Image<unsigned int, 3>;
 
 std::string Format(const Point3& p)
 {
@@ -50,13 +47,15 @@ void Require(bool ok, const std::string& message)
   }
 }
 
-FloatImage::Pointer NormalisedVesselness(
-  FloatImage* input, const SegmentationParameters& p, const ProgressReporter& progress)
+FloatImage::Pointer NormalisedVesselness(FloatImage* input,
+  const SegmentationParameters& p,
+  const ProgressReporter& progress)
 {
   using HessianPixel = itk::SymmetricSecondRankTensor<double, 3>;
   using HessianImage = itk::Image<HessianPixel, 3>;
   using Objectness = itk::HessianToObjectnessMeasureImageFilter<HessianImage, FloatImage>;
-  using MultiScale = itk::MultiScaleHessianBasedMeasureImageFilter<FloatImage, HessianImage, FloatImage>;
+  using MultiScale =
+    itk::MultiScaleHessianBasedMeasureImageFilter<FloatImage, HessianImage, FloatImage>;
 
   auto objectness = Objectness::New();
   objectness->SetObjectDimension(1);
@@ -90,75 +89,6 @@ FloatImage::Pointer NormalisedVesselness(
   return vesselness;
 }
 
-MaskImage::Pointer LargestComponent(
-  FloatImage* source, double lower, double upper, const ProgressReporter& progress)
-{
-  auto threshold = itk::BinaryThresholdImageFilter<FloatImage, MaskImage>::New();
-  threshold->SetInput(source);
-  threshold->SetLowerThreshold(static_cast<float>(lower));
-  threshold->SetUpperThreshold(static_cast<float>(std::min<double>(upper, std::numeric_limits<float>::max())));
-  threshold->SetInsideValue(1);
-  threshold->SetOutsideValue(0);
-  auto components = itk::ConnectedComponentImageFilter<MaskImage, LabelImage>::New();
-  components->SetInput(threshold->GetOutput());
-  detail::WatchFilter(components, progress, "components");
-  auto relabel = itk::RelabelComponentImageFilter<LabelImage, LabelImage>::New();
-  relabel->SetInput(components->GetOutput());
-  auto largest = itk::BinaryThresholdImageFilter<LabelImage, MaskImage>::New();
-  largest->SetInput(relabel->GetOutput());
-  largest->SetLowerThreshold(1);
-  largest->SetUpperThreshold(1);
-  largest->SetInsideValue(1);
-  largest->SetOutsideValue(0);
-  largest->Update();
-  MaskImage::Pointer mask = largest->GetOutput();
-  mask->DisconnectPipeline();
-  return mask;
-}
-
-/// The bounding region of the mask's voxels, grown by `pad` voxels and clipped to the image.
-MaskImage::RegionType BoundingRegion(const MaskImage* mask, const std::array<long, 3>& pad)
-{
-  const auto size = mask->GetBufferedRegion().GetSize();
-  long lo[3] = { static_cast<long>(size[0]), static_cast<long>(size[1]), static_cast<long>(size[2]) };
-  long hi[3] = { -1, -1, -1 };
-  const unsigned char* p = mask->GetBufferPointer();
-  for (long k = 0; k < static_cast<long>(size[2]); ++k)
-  {
-    for (long j = 0; j < static_cast<long>(size[1]); ++j)
-    {
-      const unsigned char* row = p + size[0] * (j + size[1] * k);
-      const unsigned char* first = std::find(row, row + size[0], 1);
-      if (first == row + size[0])
-      {
-        continue;
-      }
-      const long iFirst = static_cast<long>(first - row);
-      long iLast = static_cast<long>(size[0]) - 1;
-      while (row[iLast] == 0)
-      {
-        --iLast;
-      }
-      lo[0] = std::min(lo[0], iFirst);
-      hi[0] = std::max(hi[0], iLast);
-      lo[1] = std::min(lo[1], j);
-      hi[1] = std::max(hi[1], j);
-      lo[2] = std::min(lo[2], k);
-      hi[2] = std::max(hi[2], k);
-    }
-  }
-  MaskImage::RegionType region;
-  for (unsigned c = 0; c < 3; ++c)
-  {
-    const long a = std::max(0L, lo[c] - pad[c]);
-    const long b = std::min(static_cast<long>(size[c]) - 1, hi[c] + pad[c]);
-    region.SetIndex(c, a);
-    region.SetSize(c, static_cast<itk::SizeValueType>(std::max(0L, b - a + 1)));
-  }
-  return region;
-}
-
-
 /// Voxel index box [lo, hi] (inclusive); empty while hi < lo.
 struct VoxelBox
 {
@@ -173,9 +103,13 @@ struct VoxelBox
 /// fillable() false). Touches only the filled voxels and their neighbours, not the whole volume.
 /// Returns the bounding box of the marked voxels. Reports progress (fraction of the box marked)
 /// and honours cancellation about every million voxels.
-template <typename Fillable, typename Mark>
-VoxelBox ScanlineFill(const std::array<std::size_t, 3>& size, const VoxelBox& box,
-  std::vector<std::array<long, 3>> seeds, Fillable fillable, Mark mark, const ProgressReporter& progress,
+template<typename Fillable, typename Mark>
+VoxelBox ScanlineFill(const std::array<std::size_t, 3>& size,
+  const VoxelBox& box,
+  std::vector<std::array<long, 3>> seeds,
+  Fillable fillable,
+  Mark mark,
+  const ProgressReporter& progress,
   const std::string& stage)
 {
   VoxelBox filled;
@@ -225,7 +159,9 @@ VoxelBox ScanlineFill(const std::array<std::size_t, 3>& size, const VoxelBox& bo
     filled.hi[1] = std::max(filled.hi[1], s[1]);
     filled.lo[2] = std::min(filled.lo[2], s[2]);
     filled.hi[2] = std::max(filled.hi[2], s[2]);
-    const long neighbours[4][2] = { { s[1] - 1, s[2] }, { s[1] + 1, s[2] }, { s[1], s[2] - 1 }, { s[1], s[2] + 1 } };
+    const long neighbours[4][2] = {
+      { s[1] - 1, s[2] }, { s[1] + 1, s[2] }, { s[1], s[2] - 1 }, { s[1], s[2] + 1 }
+    };
     for (const auto& n : neighbours)
     {
       if (n[0] < box.lo[1] || n[0] > box.hi[1] || n[1] < box.lo[2] || n[1] > box.hi[2])
@@ -281,6 +217,155 @@ void UniteRuns(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_
   }
 }
 
+/// The largest face-connected component of the window [lo, hi] of `values` (a raw buffer of
+/// `size` voxels), written as 1 into `out` (all zero on entry). Same component as
+/// itk::ConnectedComponentImageFilter (FullyConnected off) + RelabelComponentImageFilter label 1,
+/// but on runs instead of voxels: every x-row is cut into runs of in-window voxels, runs of
+/// face-adjacent rows (j - 1 and k - 1) that overlap in x are joined (union-find, the root of a
+/// set is its first run in raster order), and the runs of the largest set (ties: the set that
+/// starts first in raster order) are written out. One read of the volume; rows without an
+/// in-window voxel cost one vectorised pass. Returns the bounding box of the component (empty
+/// when no voxel is in the window). Reports progress and honours cancellation every few rows.
+VoxelBox LargestComponentInPlace(const float* values,
+  const std::array<std::size_t, 3>& size,
+  float lo,
+  float hi,
+  std::uint8_t* out,
+  const ProgressReporter& progress)
+{
+  const std::string stage = "components";
+  progress.Report(stage, 0.0);
+  progress.ThrowIfCancelled(stage);
+  const std::size_t nx = size[0];
+  const std::size_t rows = size[1] * size[2];
+  if (size[0] * rows >= std::size_t(std::numeric_limits<std::uint32_t>::max()))
+  {
+    throw SegmentationError("segmentation: the volume has more than 2^32 voxels");
+  }
+  struct Run
+  {
+    std::uint32_t a, b; // x, inclusive
+  };
+  std::vector<Run> runs;
+  std::vector<std::uint32_t> parent;
+  std::vector<std::uint32_t> first(rows + 1, 0);
+  const auto joinRows = [&](std::size_t r, std::size_t s)
+  {
+    std::uint32_t p = first[r];
+    std::uint32_t q = first[s];
+    while (p < first[r + 1] && q < first[s + 1])
+    {
+      if (runs[p].a <= runs[q].b && runs[q].a <= runs[p].b)
+      {
+        UniteRuns(parent, p, q);
+      }
+      if (runs[p].b < runs[q].b)
+      {
+        ++p;
+      }
+      else
+      {
+        ++q;
+      }
+    }
+  };
+  const std::size_t reportRows =
+    std::max<std::size_t>(1, (std::size_t(1) << 20) / std::max<std::size_t>(nx, 1));
+  for (std::size_t r = 0; r < rows; ++r)
+  {
+    const float* row = values + r * nx;
+    // Vectorisable test for an in-window voxel (NaN is never in the window).
+    int any = 0;
+    for (std::size_t i = 0; i < nx; ++i)
+    {
+      any |= int(row[i] >= lo) & int(row[i] <= hi);
+    }
+    if (any)
+    {
+      for (std::size_t i = 0; i < nx;)
+      {
+        while (i < nx && !(row[i] >= lo && row[i] <= hi))
+        {
+          ++i;
+        }
+        if (i == nx)
+        {
+          break;
+        }
+        const std::size_t a = i;
+        while (i < nx && row[i] >= lo && row[i] <= hi)
+        {
+          ++i;
+        }
+        parent.push_back(static_cast<std::uint32_t>(runs.size()));
+        runs.push_back({ std::uint32_t(a), std::uint32_t(i - 1) });
+      }
+    }
+    first[r + 1] = static_cast<std::uint32_t>(runs.size());
+    if (first[r + 1] > first[r])
+    {
+      if (r % size[1] > 0)
+      {
+        joinRows(r, r - 1);
+      }
+      if (r >= size[1])
+      {
+        joinRows(r, r - size[1]);
+      }
+    }
+    if ((r + 1) % reportRows == 0)
+    {
+      progress.Report(stage, 0.9 * double(r + 1) / double(rows));
+      progress.ThrowIfCancelled(stage);
+    }
+  }
+  VoxelBox box;
+  if (runs.empty())
+  {
+    progress.Report(stage, 1.0);
+    return box;
+  }
+  // Every parent precedes its child (UniteRuns links the later root under the earlier), so
+  // one forward pass points every run at its root, and sums the sets' voxel counts.
+  std::vector<std::uint64_t> voxels(runs.size(), 0);
+  for (std::size_t p = 0; p < runs.size(); ++p)
+  {
+    parent[p] = parent[parent[p]];
+    voxels[parent[p]] += runs[p].b - runs[p].a + 1;
+  }
+  std::uint32_t largest = 0;
+  for (std::size_t p = 1; p < runs.size(); ++p)
+  {
+    if (voxels[p] > voxels[largest])
+    {
+      largest = static_cast<std::uint32_t>(p);
+    }
+  }
+  box.lo = { { long(nx), long(size[1]), long(size[2]) } };
+  box.hi = { { -1, -1, -1 } };
+  for (std::size_t r = 0; r < rows; ++r)
+  {
+    for (std::uint32_t p = first[r]; p < first[r + 1]; ++p)
+    {
+      if (parent[p] != largest)
+      {
+        continue;
+      }
+      std::fill(out + r * nx + runs[p].a, out + r * nx + runs[p].b + 1, std::uint8_t(1));
+      const long j = long(r % size[1]);
+      const long k = long(r / size[1]);
+      box.lo[0] = std::min(box.lo[0], long(runs[p].a));
+      box.hi[0] = std::max(box.hi[0], long(runs[p].b));
+      box.lo[1] = std::min(box.lo[1], j);
+      box.hi[1] = std::max(box.hi[1], j);
+      box.lo[2] = std::min(box.lo[2], k);
+      box.hi[2] = std::max(box.hi[2], k);
+    }
+  }
+  progress.Report(stage, 1.0);
+  return box;
+}
+
 /// Fills the cavities of the 0/1 mask inside `box` in place: background voxels that are not
 /// face-connected to the box's faces through background become foreground. Same result as
 /// itk::BinaryFillholeImageFilter (FullyConnected off) on the box, but on runs instead of voxels:
@@ -288,7 +373,9 @@ void UniteRuns(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_
 /// face-adjacent rows that overlap in x are joined (union-find), and the runs not joined to the
 /// box's faces are the holes. One read of the box; the background (most of the box) is never
 /// flood-filled voxel by voxel.
-void FillHolesInPlace(std::uint8_t* voxels, const std::array<std::size_t, 3>& size, const VoxelBox& box,
+void FillHolesInPlace(std::uint8_t* voxels,
+  const std::array<std::size_t, 3>& size,
+  const VoxelBox& box,
   const ProgressReporter& progress)
 {
   progress.Report("fill holes", 0.0);
@@ -296,7 +383,8 @@ void FillHolesInPlace(std::uint8_t* voxels, const std::array<std::size_t, 3>& si
   const long nx = box.hi[0] - box.lo[0] + 1;
   const long ny = box.hi[1] - box.lo[1] + 1;
   const long nz = box.hi[2] - box.lo[2] + 1;
-  const auto rowPointer = [&](long j, long k) {
+  const auto rowPointer = [&](long j, long k)
+  {
     return voxels + std::size_t(box.lo[0]) +
       size[0] * (std::size_t(box.lo[1] + j) + size[1] * std::size_t(box.lo[2] + k));
   };
@@ -351,7 +439,8 @@ void FillHolesInPlace(std::uint8_t* voxels, const std::array<std::size_t, 3>& si
   {
     parent[i] = static_cast<std::uint32_t>(i);
   }
-  const auto joinRows = [&](std::size_t r, std::size_t s) {
+  const auto joinRows = [&](std::size_t r, std::size_t s)
+  {
     std::size_t p = first[r];
     std::size_t q = first[s];
     while (p < first[r + 1] && q < first[s + 1])
@@ -412,8 +501,10 @@ void FillHolesInPlace(std::uint8_t* voxels, const std::array<std::size_t, 3>& si
   progress.Report("fill holes", 1.0);
 }
 
-MaskImage::Pointer RefineWithLevelSet(FloatImage* intensity, MaskImage* mask,
-  const SegmentationParameters& p, const ProgressReporter& progress)
+MaskImage::Pointer RefineWithLevelSet(FloatImage* intensity,
+  MaskImage* mask,
+  const SegmentationParameters& p,
+  const ProgressReporter& progress)
 {
   auto distance = itk::SignedMaurerDistanceMapImageFilter<MaskImage, FloatImage>::New();
   distance->SetInput(mask);
@@ -460,7 +551,7 @@ MaskImage::Pointer RefineWithLevelSet(FloatImage* intensity, MaskImage* mask,
   return refined;
 }
 
-template <typename TImage>
+template<typename TImage>
 typename TImage::Pointer Crop(TImage* image, const typename TImage::RegionType& region)
 {
   auto extract = itk::ExtractImageFilter<TImage, TImage>::New();
@@ -473,7 +564,9 @@ typename TImage::Pointer Crop(TImage* image, const typename TImage::RegionType& 
   return out;
 }
 
-LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const ProgressReporter& progress)
+LabelMap Segment(const Volume& volume,
+  const SegmentationParameters& p,
+  const ProgressReporter& progress)
 {
   FloatImage::Pointer input = detail::WrapVolume(volume);
   FloatImage::Pointer source = input;
@@ -493,6 +586,8 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
   LabelMap result;
   result.geometry = g;
   VoxelBox found;
+  const float lo = static_cast<float>(std::max<double>(lower, -std::numeric_limits<float>::max()));
+  const float hi = static_cast<float>(std::min<double>(upper, std::numeric_limits<float>::max()));
   if (!p.seeds.empty())
   {
     std::vector<std::array<long, 3>> seeds;
@@ -501,9 +596,11 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
       if (!g.ContainsPhysical(seed))
       {
         const Point3 a = g.IndexToPhysical({ { 0, 0, 0 } });
-        const Point3 b = g.IndexToPhysical({ { double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1) } });
-        throw SeedError("seed " + Format(seed) + " mm (LPS) is outside the volume, whose voxel centres run from " +
-          Format(a) + " to " + Format(b));
+        const Point3 b = g.IndexToPhysical(
+          { { double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1) } });
+        throw SeedError("seed " + Format(seed) +
+          " mm (LPS) is outside the volume, whose voxel centres run from " + Format(a) + " to " +
+          Format(b));
       }
       const Point3 ci = g.PhysicalToIndex(seed);
       FloatImage::IndexType index;
@@ -517,15 +614,14 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
         std::ostringstream msg;
         msg << "seed " << Format(seed) << " mm (LPS), voxel (" << index[0] << ", " << index[1]
             << ", " << index[2] << "), is in background: " << quantity << " " << value
-            << " is outside [" << lower << ", " << (upper >= 1e30 ? std::string("inf") : std::to_string(upper)) << "]";
+            << " is outside [" << lower << ", "
+            << (upper >= 1e30 ? std::string("inf") : std::to_string(upper)) << "]";
         throw SeedError(msg.str());
       }
       seeds.push_back({ { index[0], index[1], index[2] } });
     }
     // Seeded region growing (face connectivity, as itk::ConnectedThresholdImageFilter): a
     // scan-line flood fill that touches only the region and its neighbours, not all voxels.
-    const float lo = static_cast<float>(std::max<double>(lower, -std::numeric_limits<float>::max()));
-    const float hi = static_cast<float>(std::min<double>(upper, std::numeric_limits<float>::max()));
     const float* values = source->GetBufferPointer();
     result.voxels.assign(g.VoxelCount(), 0);
     std::uint8_t* out = result.voxels.data();
@@ -536,21 +632,21 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
       all.hi[c] = static_cast<long>(g.size[c]) - 1;
     }
     found = ScanlineFill(
-      g.size, all, std::move(seeds),
-      [values, out, lo, hi](std::size_t i) { return out[i] == 0 && values[i] >= lo && values[i] <= hi; },
-      [out](std::size_t i) { out[i] = 1; }, progress, "connected region");
+      g.size,
+      all,
+      std::move(seeds),
+      [values, out, lo, hi](std::size_t i)
+      { return out[i] == 0 && values[i] >= lo && values[i] <= hi; },
+      [out](std::size_t i) { out[i] = 1; },
+      progress,
+      "connected region");
   }
   else
   {
-    MaskImage::Pointer mask = LargestComponent(source, lower, upper, progress);
-    const MaskImage::RegionType bounds = BoundingRegion(mask, { { 0, 0, 0 } });
-    for (unsigned c = 0; c < 3; ++c)
-    {
-      found.lo[c] = bounds.GetIndex(c);
-      found.hi[c] = bounds.GetIndex(c) + static_cast<long>(bounds.GetSize(c)) - 1;
-    }
-    const unsigned char* buffer = mask->GetBufferPointer();
-    result.voxels.assign(buffer, buffer + g.VoxelCount());
+    // The largest component (no seed, e.g. a head MRI): run-based labelling of the window.
+    result.voxels.assign(g.VoxelCount(), 0);
+    found = LargestComponentInPlace(
+      source->GetBufferPointer(), g.size, lo, hi, result.voxels.data(), progress);
   }
   source = nullptr;
   progress.ThrowIfCancelled("segmentation");
@@ -619,8 +715,11 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
     {
       for (long j = box.lo[1]; j <= box.hi[1]; ++j, src += nx)
       {
-        std::copy(src, src + nx,
-          result.voxels.begin() + static_cast<std::ptrdiff_t>(g.LinearIndex(std::size_t(box.lo[0]), std::size_t(j), std::size_t(k))));
+        std::copy(src,
+          src + nx,
+          result.voxels.begin() +
+            static_cast<std::ptrdiff_t>(
+              g.LinearIndex(std::size_t(box.lo[0]), std::size_t(j), std::size_t(k))));
       }
     }
   }
@@ -636,8 +735,10 @@ LabelMap Segment(const Volume& volume, const SegmentationParameters& p, const Pr
   {
     for (long j = box.lo[1]; j <= box.hi[1] && !any; ++j)
     {
-      const std::uint8_t* row = result.voxels.data() + g.LinearIndex(std::size_t(box.lo[0]), std::size_t(j), std::size_t(k));
-      any = std::any_of(row, row + (box.hi[0] - box.lo[0] + 1), [](std::uint8_t v) { return v != 0; });
+      const std::uint8_t* row = result.voxels.data() +
+        g.LinearIndex(std::size_t(box.lo[0]), std::size_t(j), std::size_t(k));
+      any =
+        std::any_of(row, row + (box.hi[0] - box.lo[0] + 1), [](std::uint8_t v) { return v != 0; });
     }
   }
   if (!any)
@@ -655,7 +756,8 @@ void ValidateSegmentationParameters(const SegmentationParameters& p)
     "window: need finite lower <= upper");
   for (const Point3& s : p.seeds)
   {
-    Require(std::isfinite(s[0]) && std::isfinite(s[1]) && std::isfinite(s[2]), "seeds: non-finite coordinate");
+    Require(std::isfinite(s[0]) && std::isfinite(s[1]) && std::isfinite(s[2]),
+      "seeds: non-finite coordinate");
   }
   Require(p.closingRadius >= 0.0 && p.closingRadius <= 5.0, "closingRadius: must be in [0, 5] mm");
   Require(p.minRadius >= 0.1 && p.minRadius <= p.maxRadius && p.maxRadius <= 20.0,
@@ -674,8 +776,9 @@ void ValidateSegmentationParameters(const SegmentationParameters& p)
     "levelSetCurvature: must be in [0, 5]");
 }
 
-LabelMap SegmentVessels(
-  const Volume& volume, const SegmentationParameters& parameters, const ProgressReporter& progress)
+LabelMap SegmentVessels(const Volume& volume,
+  const SegmentationParameters& parameters,
+  const ProgressReporter& progress)
 {
   ValidateSegmentationParameters(parameters);
   if (volume.geometry.VoxelCount() == 0 || volume.voxels.size() != volume.geometry.VoxelCount())
@@ -698,8 +801,9 @@ LabelMap SegmentVessels(
   }
 }
 
-Volume ComputeVesselness(
-  const Volume& volume, const SegmentationParameters& parameters, const ProgressReporter& progress)
+Volume ComputeVesselness(const Volume& volume,
+  const SegmentationParameters& parameters,
+  const ProgressReporter& progress)
 {
   ValidateSegmentationParameters(parameters);
   try
