@@ -1,23 +1,34 @@
-// bench_segmentation [aneurysm.stl] [--no-large] [--vtk-only]
-// Builds the phantom (0.4 mm) and a 512x512x400 resampling of it, then times the default
-// pipeline (threshold + seeded region + fill holes, marching cubes, smoothing 0.5, normals) with
-// both extractors (--vtk-only: the default one only) and prints per-stage wall times (the
+// bench_segmentation [aneurysm.stl] [--no-large] [--vtk-only] [--seeding-only] [--ch2 FILE]
+// [--repeats K] Builds the phantom (0.4 mm) and a 512x512x400 resampling of it, then times the
+// default pipeline (threshold + seeded region + fill holes, marching cubes, smoothing 0.5, normals)
+// with both extractors (--vtk-only: the default one only) and prints per-stage wall times (the
 // segmentation's stages from its progress reports), wall and CPU time of each run, accuracy
-// against the STL and ITK/VTK ratios.
+// against the STL and ITK/VTK ratios. Then the segmentation without a seed (the largest
+// component, as for a head MRI) against the seeded segmentation of the same component (the
+// reference, measured in the same run, interleaved) on both phantoms and on ch2.nii.gz (the
+// Colin27 T1 head, data/external; window: 0.4 x its 99th intensity percentile to its maximum),
+// with a check that both masks are equal (--seeding-only: this part alone). Every figure:
+// median [min, max] over the runs.
 
 #include "MeshIO.h"
 #include "SurfaceExtraction.h"
 #include "SurfaceMetrics.h"
 #include "VesselPhantom.h"
 #include "VesselSegmentation.h"
+#include "VolumeIO.h"
+
+#include "BenchMachine.h"
 
 #include <vtkPolyData.h>
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <utility>
@@ -46,7 +57,8 @@ struct StageLog
   bender::ProgressReporter Reporter()
   {
     bender::ProgressReporter reporter;
-    reporter.onProgress = [this](const std::string& stage, double) {
+    reporter.onProgress = [this](const std::string& stage, double)
+    {
       if (this->starts.empty() || this->starts.back().first != stage)
       {
         this->starts.emplace_back(stage, Clock::now());
@@ -70,20 +82,19 @@ struct StageLog
 
 struct Run
 {
-  double segmentation = 0.0;
-  double marchingCubes = 0.0;
-  double surface = 0.0;
-  double cpu = 0.0;
+  std::vector<double> segmentation, marchingCubes, surface, total, cpu;
   std::size_t triangles = 0;
   bender::SurfaceAccuracy accuracy;
   bender::TriangleQuality quality;
 };
 
-Run Measure(const bender::Volume& volume, const bender::Phantom& phantom, vtkPolyData* truth,
-  bender::SurfaceExtractor extractor, int repeats)
+Run Measure(const bender::Volume& volume,
+  const bender::Phantom& phantom,
+  vtkPolyData* truth,
+  bender::SurfaceExtractor extractor,
+  int repeats)
 {
-  Run best;
-  best.segmentation = best.marchingCubes = best.surface = best.cpu = 1e300;
+  Run runs;
   for (int r = 0; r < repeats; ++r)
   {
     bender::SegmentationParameters segmentation;
@@ -100,11 +111,15 @@ Run Measure(const bender::Volume& volume, const bender::Phantom& phantom, vtkPol
     const bender::SurfaceResult result = bender::ExtractSurface(mask, parameters);
     const Clock::time_point t2 = Clock::now();
     const double c2 = CpuSeconds();
-    best.cpu = std::min(best.cpu, c2 - c0);
-    best.segmentation = std::min(best.segmentation, Seconds(t0, t1));
-    best.surface = std::min(best.surface, Seconds(t1, t2));
-    std::printf("    %s run %d: segmentation %.3f s (cpu %.3f s) [", extractor == bender::SurfaceExtractor::Vtk ? "vtk" : "itk",
-      r + 1, Seconds(t0, t1), c1 - c0);
+    runs.cpu.push_back(c2 - c0);
+    runs.segmentation.push_back(Seconds(t0, t1));
+    runs.surface.push_back(Seconds(t1, t2));
+    runs.total.push_back(Seconds(t0, t2));
+    std::printf("    %s run %d: segmentation %.3f s (cpu %.3f s) [",
+      extractor == bender::SurfaceExtractor::Vtk ? "vtk" : "itk",
+      r + 1,
+      Seconds(t0, t1),
+      c1 - c0);
     log.Print(t0, t1);
     std::printf(" ] surface %.3f s (cpu %.3f s) |", Seconds(t1, t2), c2 - c1);
     for (const bender::StageTime& t : result.timings)
@@ -112,48 +127,169 @@ Run Measure(const bender::Volume& volume, const bender::Phantom& phantom, vtkPol
       std::printf(" %s %.3f", t.stage.c_str(), t.seconds);
       if (t.stage == "marching cubes")
       {
-        best.marchingCubes = std::min(best.marchingCubes, t.seconds);
+        runs.marchingCubes.push_back(t.seconds);
       }
     }
     std::printf(" | total %.3f s, cpu %.3f s\n", Seconds(t0, t2), c2 - c0);
     if (r == repeats - 1)
     {
-      best.triangles = std::size_t(result.surface->GetNumberOfPolys());
-      best.accuracy = bender::MeasureSurfaceAccuracy(result.surface, truth, phantom.caps, 1.0);
-      best.quality = bender::MeasureTriangleQuality(result.surface);
+      runs.triangles = std::size_t(result.surface->GetNumberOfPolys());
+      runs.accuracy = bender::MeasureSurfaceAccuracy(result.surface, truth, phantom.caps, 1.0);
+      runs.quality = bender::MeasureTriangleQuality(result.surface);
     }
   }
-  return best;
+  return runs;
 }
 
-void Compare(const char* name, const bender::Volume& volume, const bender::Phantom& phantom, vtkPolyData* truth, int repeats,
+void Compare(const char* name,
+  const bender::Volume& volume,
+  const bender::Phantom& phantom,
+  vtkPolyData* truth,
+  int repeats,
   bool withItk)
 {
   const auto& g = volume.geometry;
-  std::printf("\n== %s: %zux%zux%zu voxels of %.3f x %.3f x %.3f mm (best of %d)\n", name, g.size[0], g.size[1],
-    g.size[2], g.spacing[0], g.spacing[1], g.spacing[2], repeats);
+  std::printf("\n== %s: %zux%zux%zu voxels of %.3f x %.3f x %.3f mm (%d runs each)\n",
+    name,
+    g.size[0],
+    g.size[1],
+    g.size[2],
+    g.spacing[0],
+    g.spacing[1],
+    g.spacing[2],
+    repeats);
   const Run vtk = Measure(volume, phantom, truth, bender::SurfaceExtractor::Vtk, repeats);
-  const Run itk = withItk ? Measure(volume, phantom, truth, bender::SurfaceExtractor::Itk, repeats) : Run{};
-  std::printf("  %-4s %10s %10s %10s %10s %10s %10s %9s %9s %9s %9s %8s %8s\n", "", "segment s", "MC s", "surface s",
-    "total s", "cpu s", "triangles", "to mean", "to p95", "from mean", "from p95", "minang", "<10deg%");
+  const Run itk =
+    withItk ? Measure(volume, phantom, truth, bender::SurfaceExtractor::Itk, repeats) : Run{};
+  std::printf("  times in s, median [min, max] of %d runs\n", repeats);
+  std::printf("  %-4s %-24s %-24s %-24s %-24s %10s %9s %9s %9s %9s %8s %8s\n",
+    "",
+    "segment s",
+    "MC s",
+    "surface s",
+    "total s",
+    "triangles",
+    "to mean",
+    "to p95",
+    "from mean",
+    "from p95",
+    "minang",
+    "<10deg%");
   for (const auto* r : { &vtk, &itk })
   {
     if (r == &itk && !withItk)
     {
       continue;
     }
-    std::printf("  %-4s %10.3f %10.3f %10.3f %10.3f %10.3f %10zu %9.4f %9.4f %9.4f %9.4f %8.2f %8.4f\n",
-      r == &vtk ? "vtk" : "itk", r->segmentation, r->marchingCubes, r->surface, r->segmentation + r->surface,
-      r->cpu, r->triangles, r->accuracy.toTruth.mean, r->accuracy.toTruth.p95, r->accuracy.fromTruth.mean,
-      r->accuracy.fromTruth.p95, r->quality.meanMinAngle, 100.0 * r->quality.fractionBelow10Deg);
+    using bender_bench::Format;
+    using bender_bench::Summarise;
+    std::printf("  %-4s %-24s %-24s %-24s %-24s %10zu %9.4f %9.4f %9.4f %9.4f %8.2f %8.4f\n",
+      r == &vtk ? "vtk" : "itk",
+      Format(Summarise(r->segmentation), 3).c_str(),
+      Format(Summarise(r->marchingCubes), 3).c_str(),
+      Format(Summarise(r->surface), 3).c_str(),
+      Format(Summarise(r->total), 3).c_str(),
+      r->triangles,
+      r->accuracy.toTruth.mean,
+      r->accuracy.toTruth.p95,
+      r->accuracy.fromTruth.mean,
+      r->accuracy.fromTruth.p95,
+      r->quality.meanMinAngle,
+      100.0 * r->quality.fractionBelow10Deg);
   }
+  std::printf("  cpu s (all threads, whole pipeline): vtk %s",
+    bender_bench::Format(bender_bench::Summarise(vtk.cpu), 3).c_str());
   if (!withItk)
   {
+    std::printf("\n");
     return;
   }
-  std::printf("  ITK/VTK marching cubes time: %.2fx; surface stage: %.2fx; whole pipeline: %.2fx\n",
-    itk.marchingCubes / vtk.marchingCubes, itk.surface / vtk.surface,
-    (itk.segmentation + itk.surface) / (vtk.segmentation + vtk.surface));
+  std::printf(", itk %s\n", bender_bench::Format(bender_bench::Summarise(itk.cpu), 3).c_str());
+  const auto median = [](const std::vector<double>& v)
+  { return bender_bench::Summarise(v).median; };
+  std::printf(
+    "  ITK/VTK marching cubes time: %.2fx; surface stage: %.2fx; whole pipeline: %.2fx (medians)\n",
+    median(itk.marchingCubes) / median(vtk.marchingCubes),
+    median(itk.surface) / median(vtk.surface),
+    median(itk.total) / median(vtk.total));
+}
+
+/// The segmentation without a seed (largest component) against the seeded segmentation of the
+/// same component, the reference, in the same run: the two alternate, `repeats` runs each.
+/// Without `seed`, the seed is the first voxel (raster order) of the no-seed result.
+void CompareSeeding(const char* name,
+  const bender::Volume& volume,
+  bender::SegmentationParameters parameters,
+  const bender::Point3* seed,
+  int repeats)
+{
+  const auto& g = volume.geometry;
+  parameters.seeds.clear();
+  const bender::LabelMap first = bender::SegmentVessels(volume, parameters);
+  bender::SegmentationParameters seeded = parameters;
+  if (seed)
+  {
+    seeded.seeds = { *seed };
+  }
+  else
+  {
+    // A voxel of the largest component that is in the window (a filled hole is not).
+    for (std::size_t i = 0; i < first.voxels.size(); ++i)
+    {
+      if (first.voxels[i] && volume.voxels[i] >= parameters.lower &&
+        volume.voxels[i] <= parameters.upper)
+      {
+        const std::size_t x = i % g.size[0], y = (i / g.size[0]) % g.size[1],
+                          z = i / (g.size[0] * g.size[1]);
+        seeded.seeds = { g.IndexToPhysical({ { double(x), double(y), double(z) } }) };
+        break;
+      }
+    }
+  }
+  std::vector<double> withSeed, withoutSeed;
+  bool same = true;
+  for (int r = 0; r < repeats; ++r)
+  {
+    bender::LabelMap a, b;
+    withSeed.push_back(
+      bender_bench::TimeRunsMs(1, [&] { a = bender::SegmentVessels(volume, seeded); })[0]);
+    withoutSeed.push_back(
+      bender_bench::TimeRunsMs(1, [&] { b = bender::SegmentVessels(volume, parameters); })[0]);
+    same = same && a.voxels == b.voxels;
+  }
+  const bender_bench::Spread s = bender_bench::Summarise(withSeed);
+  const bender_bench::Spread n = bender_bench::Summarise(withoutSeed);
+  std::printf("  %-34s %4zux%4zux%4zu %10zu %-26s %-26s %7.2f %s\n",
+    name,
+    g.size[0],
+    g.size[1],
+    g.size[2],
+    first.CountInside(),
+    bender_bench::Format(s, 1).c_str(),
+    bender_bench::Format(n, 1).c_str(),
+    n.median / s.median,
+    same ? "yes" : "NO");
+}
+
+/// The q-quantile of the finite voxel values.
+double Quantile(const bender::Volume& volume, double q)
+{
+  std::vector<float> v;
+  v.reserve(volume.voxels.size());
+  for (float x : volume.voxels)
+  {
+    if (std::isfinite(x))
+    {
+      v.push_back(x);
+    }
+  }
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size())));
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+  return v[k];
 }
 
 } // namespace
@@ -161,8 +297,11 @@ void Compare(const char* name, const bender::Volume& volume, const bender::Phant
 int main(int argc, char** argv)
 {
   std::string stl = std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl";
+  std::string ch2 = std::string(BENDER_EXTERNAL_DATA_DIR) + "/ch2.nii.gz";
   bool large = true;
   bool withItk = true;
+  bool pipeline = true;
+  int repeats = 5;
   for (int i = 1; i < argc; ++i)
   {
     if (std::strcmp(argv[i], "--no-large") == 0)
@@ -173,6 +312,18 @@ int main(int argc, char** argv)
     {
       withItk = false;
     }
+    else if (std::strcmp(argv[i], "--seeding-only") == 0)
+    {
+      pipeline = false;
+    }
+    else if (std::strcmp(argv[i], "--ch2") == 0 && i + 1 < argc)
+    {
+      ch2 = argv[++i];
+    }
+    else if (std::strcmp(argv[i], "--repeats") == 0 && i + 1 < argc)
+    {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    }
     else
     {
       stl = argv[i];
@@ -180,18 +331,57 @@ int main(int argc, char** argv)
   }
   try
   {
-    std::printf("bench_segmentation: %u hardware threads\n", std::thread::hardware_concurrency());
+    std::printf("bench_segmentation: %s\n", bender_bench::MachineLine().c_str());
     vtkSmartPointer<vtkPolyData> truth = bender::ReadMesh(stl);
     const Clock::time_point t0 = Clock::now();
     const bender::Phantom phantom = bender::MakeVesselPhantom(truth);
     std::printf("phantom (0.4 mm) built in %.3f s\n", Seconds(t0, Clock::now()));
-    Compare("phantom 0.4 mm", phantom.volume, phantom, truth, 3, withItk);
+    if (pipeline)
+    {
+      Compare("phantom 0.4 mm", phantom.volume, phantom, truth, repeats, withItk);
+    }
+    bender::Volume big;
     if (large)
     {
       const Clock::time_point t1 = Clock::now();
-      const bender::Volume big = bender::ResampleVolume(phantom.volume, { { 512, 512, 400 } });
+      big = bender::ResampleVolume(phantom.volume, { { 512, 512, 400 } });
       std::printf("\nresampled to 512x512x400 in %.3f s\n", Seconds(t1, Clock::now()));
-      Compare("phantom resampled 512x512x400", big, phantom, truth, 2, withItk);
+      if (pipeline)
+      {
+        Compare(
+          "phantom resampled 512x512x400", big, phantom, truth, std::max(1, repeats / 2), withItk);
+      }
+    }
+
+    std::printf(
+      "\n== segmentation without a seed (largest component) vs the seeded reference, same "
+      "component, same run; ms, median [min, max] of %d runs each\n",
+      repeats);
+    std::printf("  %-34s %14s %10s %-26s %-26s %7s %s\n",
+      "volume",
+      "voxels",
+      "component",
+      "seeded ms (reference)",
+      "no seed ms",
+      "ratio",
+      "same mask");
+    bender::SegmentationParameters threshold; // the default window (lower 250) fits the phantom
+    CompareSeeding("phantom 0.4 mm", phantom.volume, threshold, &phantom.seed, repeats);
+    if (large)
+    {
+      CompareSeeding("phantom resampled", big, threshold, &phantom.seed, repeats);
+    }
+    if (std::filesystem::exists(ch2))
+    {
+      const bender::Volume head = bender::ReadVolume(ch2);
+      bender::SegmentationParameters headWindow;
+      headWindow.lower = 0.4 * Quantile(head, 0.99);
+      CompareSeeding("ch2.nii.gz (head T1)", head, headWindow, nullptr, repeats);
+      std::printf("  ch2 window: [%.1f, max] (0.4 x the 99th percentile)\n", headWindow.lower);
+    }
+    else
+    {
+      std::printf("  ch2: %s not found (run scripts/fetch-data)\n", ch2.c_str());
     }
   }
   catch (const std::exception& e)

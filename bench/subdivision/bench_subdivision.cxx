@@ -2,11 +2,14 @@
 // about 1 M triangles, against VTK's one-level linear subdivision of the same mesh measured in
 // the same run (the reference: a uniform 1 -> 4 split with no warp evaluation at all).
 //
-// usage: bench_subdivision [TRIANGLES] [REPEATS]   (defaults 1000000 and 3; prints the best)
+// usage: bench_subdivision [TRIANGLES] [REPEATS]   (defaults 1000000 and 5; prints medians
+// with min and max, the ratio of medians)
 
 #include "WarpPlan.h"
 #include "vtkBenderAdaptiveSubdivisionFilter.h"
 #include "vtkBenderWarpFilter.h"
+
+#include "BenchMachine.h"
 
 #include <vtkLinearSubdivisionFilter.h>
 #include <vtkNew.h>
@@ -21,28 +24,21 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
-#include <limits>
 
 namespace
 {
-double BestMs(int repeats, const std::function<void()>& run)
+using bender_bench::Spread;
+
+Spread TimeMs(int repeats, const std::function<void()>& run)
 {
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < repeats; ++i)
-  {
-    const auto t0 = std::chrono::steady_clock::now();
-    run();
-    const auto t1 = std::chrono::steady_clock::now();
-    best = std::min(best, std::chrono::duration<double, std::milli>(t1 - t0).count());
-  }
-  return best;
+  return bender_bench::Summarise(bender_bench::TimeRunsMs(repeats, run));
 }
 } // namespace
 
 int main(int argc, char* argv[])
 {
   const long target = argc > 1 ? std::atol(argv[1]) : 1000000;
-  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
   if (target < 2)
   {
     std::fprintf(stderr, "usage: bench_subdivision [TRIANGLES >= 2] [REPEATS]\n");
@@ -70,46 +66,65 @@ int main(int argc, char* argv[])
   warp.decay.shape = bender::DecayShape::Bell;
   const double tolerance = 2e-6;
 
-  std::printf("bench_subdivision: %lld triangles, %lld points (grid %d x %d), best of %d\n",
+  std::printf("bench_subdivision: %s\n", bender_bench::MachineLine().c_str());
+  std::printf("%lld triangles, %lld points (grid %d x %d), ms: median [min, max] of %d runs\n",
     static_cast<long long>(mesh->GetNumberOfPolys()),
-    static_cast<long long>(mesh->GetNumberOfPoints()), n, n, repeats);
+    static_cast<long long>(mesh->GetNumberOfPoints()),
+    n,
+    n,
+    repeats);
 
   vtkIdType warpedCount = 0;
-  const double warpMs = BestMs(repeats, [&] {
-    vtkNew<vtkBenderWarpFilter> filter;
-    filter->SetInputData(mesh);
-    filter->SetWarp(warp);
-    filter->Update();
-    warpedCount = filter->GetOutput()->GetNumberOfPolys();
-  });
+  const Spread warpMs = TimeMs(repeats,
+    [&]
+    {
+      vtkNew<vtkBenderWarpFilter> filter;
+      filter->SetInputData(mesh);
+      filter->SetWarp(warp);
+      filter->Update();
+      warpedCount = filter->GetOutput()->GetNumberOfPolys();
+    });
   vtkIdType onePassCount = 0, splits = 0;
-  const double onePassMs = BestMs(repeats, [&] {
-    vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivide;
-    subdivide->SetInputData(mesh);
-    subdivide->SetWarp(warp);
-    subdivide->SetTolerance(tolerance);
-    subdivide->SetMaxPasses(1);
-    subdivide->Update();
-    onePassCount = subdivide->GetOutput()->GetNumberOfPolys();
-    splits = subdivide->GetSplitsPerPass().empty() ? 0 : subdivide->GetSplitsPerPass()[0];
-  });
+  const Spread onePassMs = TimeMs(repeats,
+    [&]
+    {
+      vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivide;
+      subdivide->SetInputData(mesh);
+      subdivide->SetWarp(warp);
+      subdivide->SetTolerance(tolerance);
+      subdivide->SetMaxPasses(1);
+      subdivide->Update();
+      onePassCount = subdivide->GetOutput()->GetNumberOfPolys();
+      splits = subdivide->GetSplitsPerPass().empty() ? 0 : subdivide->GetSplitsPerPass()[0];
+    });
   vtkIdType linearCount = 0;
-  const double linearMs = BestMs(repeats, [&] {
-    vtkNew<vtkLinearSubdivisionFilter> linear;
-    linear->SetInputData(mesh);
-    linear->SetNumberOfSubdivisions(1);
-    linear->Update();
-    linearCount = linear->GetOutput()->GetNumberOfPolys();
-  });
+  const Spread linearMs = TimeMs(repeats,
+    [&]
+    {
+      vtkNew<vtkLinearSubdivisionFilter> linear;
+      linear->SetInputData(mesh);
+      linear->SetNumberOfSubdivisions(1);
+      linear->Update();
+      linearCount = linear->GetOutput()->GetNumberOfPolys();
+    });
 
-  std::printf("  %-46s %9.1f ms  %9lld triangles\n", "warp (vtkBenderWarpFilter, exact)", warpMs,
+  std::printf("  %-58s %24s  %9lld triangles\n",
+    "warp (vtkBenderWarpFilter, exact)",
+    bender_bench::Format(warpMs).c_str(),
     static_cast<long long>(warpedCount));
-  std::printf("  %-46s %9.1f ms  %9lld triangles (%lld edges split, tolerance %g)\n",
-    "warp + 1 adaptive pass (Bender subdivision)", onePassMs,
-    static_cast<long long>(onePassCount), static_cast<long long>(splits), tolerance);
-  std::printf("  %-46s %9.1f ms  %9lld triangles\n",
-    "reference: vtkLinearSubdivisionFilter, 1 level", linearMs, static_cast<long long>(linearCount));
-  std::printf("  ratio adaptive pass / reference: %.2f; adaptive pass alone (minus warp): %.1f ms\n",
-    onePassMs / linearMs, onePassMs - warpMs);
+  std::printf("  %-58s %24s  %9lld triangles (%lld edges split, tolerance %g)\n",
+    "warp + 1 adaptive pass (Bender subdivision)",
+    bender_bench::Format(onePassMs).c_str(),
+    static_cast<long long>(onePassCount),
+    static_cast<long long>(splits),
+    tolerance);
+  std::printf("  %-58s %24s  %9lld triangles\n",
+    "reference (same run): vtkLinearSubdivisionFilter, 1 level",
+    bender_bench::Format(linearMs).c_str(),
+    static_cast<long long>(linearCount));
+  std::printf("  ratio adaptive pass / reference: %.2f; adaptive pass alone (minus warp): %.1f ms "
+              "(medians)\n",
+    onePassMs.median / linearMs.median,
+    onePassMs.median - warpMs.median);
   return 0;
 }

@@ -7,6 +7,8 @@
 
 #include "vtkBenderWarpFilter.h"
 
+#include "BenchMachine.h"
+
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
@@ -22,9 +24,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace
@@ -36,11 +36,8 @@ double Ms(Clock::time_point a, Clock::time_point b)
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bender_bench::Spread;
+using bender_bench::Summarise;
 
 // A tube of radius 5 along x, from x0 to x1, with `rings` x `sides` vertices (triangulated).
 vtkSmartPointer<vtkPolyData> MakeTube(double x0, double x1, int rings, int sides)
@@ -94,9 +91,10 @@ bender::WarpSpec Bend(double x0, double length, double angle, double radius)
 
 struct Figures
 {
-  double bind = 0.0;
-  double evalExact = 0.0;
-  double evalTable = 0.0;
+  // Medians over the runs (the table's figures) with their min and max.
+  Spread bind;
+  Spread evalExact;
+  Spread evalTable;
   vtkIdType bound = 0;
 };
 
@@ -133,13 +131,17 @@ Figures MeasureWarp(vtkPolyData* mesh, bender::WarpSpec spec, int repeats)
       filter->Update();
       times.push_back(Ms(t0, Clock::now()));
     }
-    (precision == bender::WarpPrecision::Table ? f.evalTable : f.evalExact) = Median(times);
+    (precision == bender::WarpPrecision::Table ? f.evalTable : f.evalExact) = Summarise(times);
   }
-  f.bind = std::max(0.0, Median(bindTimes) - f.evalTable);
+  for (double& t : bindTimes)
+  {
+    t = std::max(0.0, t - f.evalTable.median);
+  }
+  f.bind = Summarise(bindTimes);
   return f;
 }
 
-double MeasureWarpVector(vtkPolyData* mesh, int repeats)
+Spread MeasureWarpVector(vtkPolyData* mesh, int repeats)
 {
   vtkNew<vtkPolyData> withVectors;
   withVectors->ShallowCopy(mesh);
@@ -159,26 +161,21 @@ double MeasureWarpVector(vtkPolyData* mesh, int repeats)
   std::vector<double> times;
   for (int r = 0; r < repeats; ++r)
   {
-    warp->SetScaleFactor(1.0 + 0.01 * (r % 2));
+    // A new factor every run (the warm-up used 1.0), so that every sample executes the filter.
+    warp->SetScaleFactor(1.0 + 0.01 * ((r + 1) % 2));
     const auto t0 = Clock::now();
     warp->Update();
     times.push_back(Ms(t0, Clock::now()));
   }
-  return Median(times);
+  return Summarise(times);
 }
 
-std::string CpuName()
+/// The spread of one row: "case: bind ms med [min, max], ..." printed below the table.
+std::string SpreadLine(const std::string& name, const Figures& f, const Spread& wv, int decimals)
 {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-  {
-    if (line.rfind("model name", 0) == 0)
-    {
-      return line.substr(line.find(':') + 2);
-    }
-  }
-  return "unknown CPU";
+  using bender_bench::Format;
+  return name + ": bind " + Format(f.bind, decimals) + ", eval " + Format(f.evalTable, decimals) +
+    ", exact " + Format(f.evalExact, decimals) + ", warpvec " + Format(wv, decimals);
 }
 } // namespace
 
@@ -197,31 +194,54 @@ int main(int argc, char** argv)
       repeats = std::max(1, std::atoi(argv[++i]));
     }
   }
-  std::printf("bench_warp: %s, %u hardware threads, vtkSMPTools backend %s (%d threads)\n",
-    CpuName().c_str(), std::thread::hardware_concurrency(), vtkSMPTools::GetBackend(),
+  std::printf("bench_warp: %s; vtkSMPTools backend %s (%d threads)\n",
+    bender_bench::MachineLine().c_str(),
+    vtkSMPTools::GetBackend(),
     vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::vector<std::string> spreads;
 
   const int sides = 1000;
   const int rings = std::max(2, vertices / sides);
-  std::printf("\n%-34s %9s %10s %10s %10s %10s %8s %8s\n", "case", "bound", "bind ms",
-    "eval ms", "exact ms", "warpvec ms", "eval/wv", "exact/wv");
+  std::printf("\n%-34s %9s %10s %10s %10s %10s %8s %8s\n",
+    "case",
+    "bound",
+    "bind ms",
+    "eval ms",
+    "exact ms",
+    "warpvec ms",
+    "eval/wv",
+    "exact/wv");
   // All inside: a tube of radius 5 along the whole 40 mm wire, R = 12.
   {
     auto mesh = MakeTube(0.0, 40.0, rings, sides);
     const Figures f = MeasureWarp(mesh, Bend(0.0, 40.0, 1.2, 12.0), repeats);
-    const double wv = MeasureWarpVector(mesh, repeats);
+    const Spread wv = MeasureWarpVector(mesh, repeats);
     std::printf("%-34s %9lld %10.1f %10.1f %10.1f %10.1f %8.2f %8.2f\n",
-      ("1M vertices, all inside R"), static_cast<long long>(f.bound), f.bind, f.evalTable,
-      f.evalExact, wv, f.evalTable / wv, f.evalExact / wv);
+      ("1M vertices, all inside R"),
+      static_cast<long long>(f.bound),
+      f.bind.median,
+      f.evalTable.median,
+      f.evalExact.median,
+      wv.median,
+      f.evalTable.median / wv.median,
+      f.evalExact.median / wv.median);
+    spreads.push_back(SpreadLine("1M vertices, all inside R", f, wv, 1));
   }
   // About 10% inside: the same wire on a tube ten times longer.
   {
     auto mesh = MakeTube(-180.0, 220.0, rings, sides);
     const Figures f = MeasureWarp(mesh, Bend(0.0, 40.0, 1.2, 12.0), repeats);
-    const double wv = MeasureWarpVector(mesh, repeats);
+    const Spread wv = MeasureWarpVector(mesh, repeats);
     std::printf("%-34s %9lld %10.1f %10.1f %10.1f %10.1f %8.2f %8.2f\n",
-      "1M vertices, ~10% inside R", static_cast<long long>(f.bound), f.bind, f.evalTable,
-      f.evalExact, wv, f.evalTable / wv, f.evalExact / wv);
+      "1M vertices, ~10% inside R",
+      static_cast<long long>(f.bound),
+      f.bind.median,
+      f.evalTable.median,
+      f.evalExact.median,
+      wv.median,
+      f.evalTable.median / wv.median,
+      f.evalExact.median / wv.median);
+    spreads.push_back(SpreadLine("1M vertices, ~10% inside R", f, wv, 1));
   }
   // The paper's speed case: the bunny (69,666 triangles), a ribbon through the ear region.
   {
@@ -247,18 +267,31 @@ int main(int argc, char** argv)
     spec.final.end.tangent = { 0.6, 0.8, 0.0 };
     spec.radius = 0.3 * size;
     const Figures f = MeasureWarp(bunny, spec, repeats);
-    const double wv = MeasureWarpVector(bunny, repeats);
+    const Spread wv = MeasureWarpVector(bunny, repeats);
     std::printf("%-34s %9lld %10.2f %10.2f %10.2f %10.2f %8.2f %8.2f\n",
       ("bunny (" + std::to_string(bunny->GetNumberOfPolys()) + " triangles)").c_str(),
-      static_cast<long long>(f.bound), f.bind, f.evalTable, f.evalExact, wv, f.evalTable / wv,
-      f.evalExact / wv);
+      static_cast<long long>(f.bound),
+      f.bind.median,
+      f.evalTable.median,
+      f.evalExact.median,
+      wv.median,
+      f.evalTable.median / wv.median,
+      f.evalExact.median / wv.median);
+    spreads.push_back(SpreadLine("bunny", f, wv, 2));
     std::printf("\nbunny evaluation rate: %.0f warps/s (table), %.0f warps/s (exact); the paper "
                 "reported 10 frames/s including rendering\n",
-      1000.0 / f.evalTable, 1000.0 / f.evalExact);
+      1000.0 / f.evalTable.median,
+      1000.0 / f.evalExact.median);
   }
   std::printf("\nbind ms: per grab (projection of every vertex); eval ms: per move, table "
               "precision; exact ms: per move, exact precision; warpvec ms: vtkWarpVector on the "
-              "same mesh (memory-bound reference); medians of %d runs\n",
-    repeats);
+              "same mesh (memory-bound reference, same run); medians of %d runs (bind: %d runs)\n",
+    repeats,
+    std::max(3, repeats / 3));
+  std::printf("\nspread, ms, median [min, max]:\n");
+  for (const std::string& line : spreads)
+  {
+    std::printf("  %s\n", line.c_str());
+  }
   return 0;
 }
