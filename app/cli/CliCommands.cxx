@@ -24,6 +24,8 @@ const std::vector<CliCommand>& CliCommandTable()
       RunCheckCommand },
     { "export", "export a surface for CFD meshing (caps, patches, frame)", RunExportCommand },
     { "render", "render a mesh (optionally with a plan's ribbons) to a PNG", RunRenderCommand },
+    { "centerline", "vessel centerlines with the inscribed-sphere radius", RunCenterlineCommand },
+    { "measure", "per-branch vessel measures, before and after a warp", RunMeasureCommand },
     { "tracker",
       "stream poses from a Polhemus Fastrak, OpenIGTLink, a recording or the simulator",
       RunTrackerCommand },

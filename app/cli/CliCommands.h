@@ -21,6 +21,8 @@ int RunIgtlSendCommand(const std::vector<std::string>& args);
 int RunCheckCommand(const std::vector<std::string>& args);
 int RunExportCommand(const std::vector<std::string>& args);
 int RunRenderCommand(const std::vector<std::string>& args);
+int RunCenterlineCommand(const std::vector<std::string>& args);
+int RunMeasureCommand(const std::vector<std::string>& args);
 
 namespace bender
 {
