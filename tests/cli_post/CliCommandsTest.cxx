@@ -3,6 +3,7 @@
 // and exit 2 (CLI11 parsing, the same contract for all).
 
 #include "CliCommands.h"
+#include "InProcessCli.h"
 
 #include <gtest/gtest.h>
 
@@ -10,30 +11,8 @@
 #include <iostream>
 #include <string>
 
-namespace
-{
-struct Captured
-{
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-Captured RunInProcess(const std::vector<std::string>& args)
-{
-  Captured c;
-  ::testing::internal::CaptureStdout();
-  ::testing::internal::CaptureStderr();
-  c.status = bender::RunBenderCli(args);
-  std::cout.flush();
-  std::cerr.flush();
-  std::fflush(stdout);
-  std::fflush(stderr);
-  c.out = ::testing::internal::GetCapturedStdout();
-  c.err = ::testing::internal::GetCapturedStderr();
-  return c;
-}
-} // namespace
+using bendertest::RunInProcess;
+using Captured = bendertest::CliRun;
 
 TEST(CliCommands, EveryCommandHasItsOwnHelp)
 {
