@@ -23,8 +23,11 @@
 #include <nlohmann/json.hpp>
 
 #include <arpa/inet.h>
+#include <csignal>
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -294,8 +297,14 @@ TEST(IgtlProtocol, VersionTwoHeaderWithMetadataGivesContentAndMetadata)
   EXPECT_EQ(messages[0].metadata[0].first, "TransformStatus");
   EXPECT_EQ(messages[0].metadata[0].second, "OK");
   EXPECT_EQ(messages[0].metadata[1].second, "mm");
-  // The same message without metadata, version 1, is byte-identical to the library's.
-  EXPECT_EQ(bender::EncodeIgtlMessage("TRANSFORM", "StylusToTracker", content), v1);
+  // The same message without metadata, version 1 and with the library's time stamp, is
+  // byte-identical to the library's (header layout and CRC agree).
+  IgtlStreamDecoder libraryDecoder;
+  const auto library = DecodeAll(libraryDecoder, v1, v1.size());
+  ASSERT_EQ(library.size(), 1u);
+  EXPECT_EQ(
+    bender::EncodeIgtlMessage("TRANSFORM", "StylusToTracker", content, 1, {}, library[0].timestamp),
+    v1);
 }
 
 TEST(IgtlProtocol, CrcErrorsAndGarbageAreSkippedAndCounted)
@@ -858,4 +867,66 @@ TEST(IgtlCli, IgtlSendWithAPlanSendsTheRibbonEndFramesInRas)
   const Vec3 z = bender::RotateByQuaternion(poses[0].orientation, { 0, 0, 1 });
   EXPECT_NEAR(x.y, -1.0, 1e-6);
   EXPECT_NEAR(z.z, 1.0, 1e-6);
+}
+
+// The TrackerServer example of openigtlink-examples (a real peer, not ours) streams its
+// known trajectory: pose i at RAS 50 (cos 0.2i, sin 0.2i, cos 0.2i) mm, device "Tracker".
+TEST(IgtlCli, TrackerReadsTheOpenIgtlinkExampleServerInLps)
+{
+#ifndef BENDER_IGTL_TRACKER_SERVER
+  GTEST_SKIP() << "openigtlink-examples is not installed";
+#else
+  int port = 0;
+  {
+    LoopbackServer probe; // an ephemeral port that is free once the probe closes
+    port = probe.Port();
+  }
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0)
+  {
+    const int devNull = ::open("/dev/null", O_WRONLY); // the example prints every matrix
+    ::dup2(devNull, STDOUT_FILENO);
+    const std::string portText = std::to_string(port);
+    ::execl(BENDER_IGTL_TRACKER_SERVER,
+      BENDER_IGTL_TRACKER_SERVER,
+      portText.c_str(),
+      "200",
+      static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  std::ostringstream out, err;
+  int status = 1;
+  // The server needs a moment to listen: retry a refused connection (bounded).
+  for (int attempt = 0; attempt < 100; ++attempt)
+  {
+    out.str("");
+    err.str("");
+    status = bender::RunTrackerCli(
+      { "--device", "igtl:127.0.0.1:" + std::to_string(port), "--count", "10" }, out, err);
+    if (status == 0 || err.str().find("refused") == std::string::npos)
+    {
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(pid, SIGTERM);
+  int exitStatus = 0;
+  ::waitpid(pid, &exitStatus, 0);
+  ASSERT_EQ(status, 0) << err.str();
+  std::istringstream lines(out.str());
+  std::string line;
+  int i = 0;
+  for (; std::getline(lines, line); ++i)
+  {
+    const nlohmann::json pose = nlohmann::json::parse(line);
+    EXPECT_EQ(pose["device"], "Tracker");
+    EXPECT_EQ(pose["station"], 0);
+    const double phi = 0.2 * i;
+    EXPECT_NEAR(pose["position"][0].get<double>(), -50.0 * std::cos(phi), 1e-3) << i;
+    EXPECT_NEAR(pose["position"][1].get<double>(), -50.0 * std::sin(phi), 1e-3) << i;
+    EXPECT_NEAR(pose["position"][2].get<double>(), 50.0 * std::cos(phi), 1e-3) << i;
+  }
+  EXPECT_EQ(i, 10);
+#endif
 }
