@@ -114,13 +114,13 @@ void BendPanel::setParameters(const bender::WarpParameters& p)
   this->Updating = false;
 }
 
-void BendPanel::showState(const bender::BenderSession& session)
+void BendPanel::showState(const bender::BenderSession& session, bool placingRibbon)
 {
   const bool grabbed = session.GetState() == bender::GrabState::Grabbed;
   const bool busy = session.IsBusy();
   this->Actions->Grab->setText(grabbed ? "Release (G)" : "Grab (G, or hold Space)");
   this->Actions->Grab->setEnabled(session.HasSurface() && !busy);
-  this->Actions->CancelBend->setEnabled(grabbed && !busy);
+  this->Actions->CancelBend->setEnabled((grabbed || placingRibbon) && !busy);
   this->Actions->PlaceRibbon->setEnabled(session.HasSurface() && !grabbed && !busy);
   // The toggle is offered once a flip occurred, and stays so that it can be turned back off.
   this->ReverseScrews->setEnabled(

@@ -25,8 +25,9 @@ public:
 
   bender::WarpParameters parameters() const;
   void setParameters(const bender::WarpParameters& parameters);
-  /// Refreshes the live information (r_min, risk, flip, state) from the session.
-  void showState(const bender::BenderSession& session);
+  /// Refreshes the live information (r_min, risk, flip, state) from the session;
+  /// `placingRibbon`: "place ribbon" waits for a click (Esc cancels it).
+  void showState(const bender::BenderSession& session, bool placingRibbon = false);
 
 signals:
   void parametersChanged();

@@ -57,7 +57,25 @@ BenderView::~BenderView()
 
 void BenderView::render()
 {
-  this->Window->Render();
+  if (this->Quiet == 0)
+  {
+    this->Window->Render();
+  }
+}
+
+void BenderView::quietly(const std::function<void()>& call)
+{
+  ++this->Quiet;
+  try
+  {
+    call();
+  }
+  catch (...)
+  {
+    --this->Quiet;
+    throw;
+  }
+  --this->Quiet;
 }
 
 void BenderView::resetCamera()

@@ -5,6 +5,8 @@
 
 #include <vtkNew.h>
 
+#include <functional>
+
 class vtkActor;
 class vtkAlgorithmOutput;
 class vtkBenderRibbonWidget;
@@ -27,7 +29,11 @@ public:
 
   vtkRenderer* renderer() const { return this->Renderer; }
   vtkBenderRibbonWidget* ribbonWidget() const { return this->RibbonWidget; }
+  /// Draws a frame, unless inside quietly().
   void render();
+  /// Runs `call` with render() doing nothing (the session's change callbacks during a widget
+  /// interaction or a tracker poll): the caller draws one frame itself.
+  void quietly(const std::function<void()>& call);
   void resetCamera();
 
   /// The next left click on the surface emits surfacePicked (else pickMissed) instead of
@@ -53,6 +59,7 @@ private:
   vtkNew<vtkCallbackCommand> RibbonObserver;
   vtkNew<vtkCallbackCommand> PickObserver;
   bool Picking = false;
+  int Quiet = 0;
 };
 
 #endif

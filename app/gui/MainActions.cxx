@@ -18,8 +18,11 @@ QAction* Make(QWidget* window, const QString& text, const QKeySequence& shortcut
   auto* action = new QAction(text, window);
   action->setObjectName(name);
   action->setShortcut(shortcut);
-  // Shortcuts work wherever the focus is in the window (the 3D view included).
-  action->setShortcutContext(Qt::WindowShortcut);
+  // Shortcuts work wherever the focus is (the 3D view, a panel's button, a floating panel);
+  // a text field being typed in keeps its letters (it takes the shortcut override). A held key
+  // triggers once: G held must not grab, release and grab again.
+  action->setShortcutContext(Qt::ApplicationShortcut);
+  action->setAutoRepeat(false);
   window->addAction(action);
   return action;
 }
@@ -44,6 +47,8 @@ MainActions::MainActions(QWidget* window)
   this->CancelBend = Make(window, "&Cancel bend", QKeySequence("Esc"), "cancelBendAction");
   this->Segment = Make(window, "&Segment the loaded volume", QKeySequence(), "segmentAction");
   this->ResetCamera = Make(window, "&Reset camera", QKeySequence("Ctrl+R"), "resetCameraAction");
+  this->Undo->setAutoRepeat(true);
+  this->Redo->setAutoRepeat(true);
   this->PlaceRibbon->setToolTip("Then click on the vessel: a straight ribbon along its axis");
   this->Grab->setToolTip(
     "Capture the ribbon (G, or hold Space) and drag its handles; G again commits");

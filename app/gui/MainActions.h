@@ -11,7 +11,8 @@ class QWidget;
 
 /// The window's commands, one QAction each, shared by the menus, the panels' buttons and the
 /// keyboard shortcuts (a button is a QToolButton showing its action, so that text, shortcut,
-/// tooltip and enabled state are the same everywhere). MainWindow connects `triggered`.
+/// tooltip and enabled state are the same everywhere). The shortcuts are application-wide and do
+/// not auto-repeat (but Undo/Redo). MainWindow and its controllers connect `triggered`.
 class MainActions : public QObject
 {
   Q_OBJECT

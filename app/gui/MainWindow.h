@@ -14,7 +14,10 @@
 class BendPanel;
 class BenderView;
 class DataPanel;
+class ExportFlow;
 class ExportPanel;
+class FileOpener;
+class GestureController;
 class MainActions;
 class QLabel;
 class QSplitter;
@@ -44,12 +47,17 @@ struct MainWindowOptions
 
 /// The Bender main window. It composes and holds no state of its own: the surface, the gesture,
 /// the history and the jobs are bender::BenderSession's, the volume and its segmentation
-/// bender::SegmentationSession's, the trackers bender::TrackerSession's. It shows them in the 3D
-/// view (BenderView) and the slice views, with the Data / Segment / Bend / Trackers / Export
-/// panels, menus and buttons sharing one set of actions (MainActions), drag and drop and a status
-/// bar with the logic layer's messages. Long work (reading, segmentation, release, replay,
-/// recovery, check, export) runs on a worker thread with progress and Cancel; the window keeps
-/// drawing meanwhile.
+/// bender::SegmentationSession's, the trackers bender::TrackerSession's. It lays out the 3D view
+/// (BenderView), the slice views, the Data / Segment / Bend / Trackers / Export panels, the menus
+/// (MainActions, one set of actions shared by menus, buttons and application-wide shortcuts) and
+/// the status bar, and hands the work to focused parts:
+/// - WorkRunner: long work on a worker thread with progress and Cancel (the window keeps drawing);
+/// - FileOpener: open by file kind (bender::ClassifyFile), drag and drop, demo, segmentation,
+///   recovery;
+/// - GestureController: grab, release (a job), Space held, ribbon moves, place ribbon, keys;
+/// - ExportFlow: check, export (asks on problems), save plan;
+/// - TrackersPanel: the tracker device, polled at the display rate (its stylus release goes
+///   through the gesture's release job).
 ///
 /// Adding a panel: write a QWidget class in app/gui that takes the window's MainActions (for
 /// buttons) and shows the sessions' state in a `showState(...)`; create it in buildPanels()
@@ -65,6 +73,9 @@ public:
   bender::SegmentationSession& segmentation() { return this->Segmentation; }
   bender::TrackerSession& trackers() { return *this->Trackers; }
   MainActions* actions() { return this->Actions; }
+  GestureController* gesture() { return this->Gesture; }
+  FileOpener* files() { return this->Files; }
+  ExportFlow* exports() { return this->Exports; }
   vtkBenderRibbonWidget* ribbonWidget();
   vtkRenderer* renderer();
   QVTKOpenGLNativeWidget* view();
@@ -74,10 +85,10 @@ public:
   /// Adds a panel as a tab of the panel dock.
   void addPanel(QWidget* panel, const QString& title);
 
-  /// Opens a file by its kind: mesh (.stl .obj .ply .vtp .vtk .off), plan (.bender.json),
-  /// session (.bender-session.json), volume (.nrrd .nhdr .nii .nii.gz .mha .mhd .vti or a
-  /// folder). Everything but a plan's parsing runs on the worker; returns false when refused
-  /// at once (unknown type, unreadable plan, busy).
+  /// Opens a file by its kind (bender::ClassifyFile): mesh (.stl .obj .ply .vtp .vtk .off),
+  /// plan (.bender.json), session (.bender-session.json), volume (.nrrd .nhdr .nii .nii.gz
+  /// .mha .mhd .vti or a folder). Everything but a plan's parsing runs on the worker; returns
+  /// false when refused at once (unknown type, unreadable plan, busy).
   bool openFile(const QString& path);
   /// Starts the built-in demo on the worker: MRA-like volume, segmentation, ribbon on a branch.
   void startDemo();
@@ -89,8 +100,8 @@ public:
   /// timeout. The window itself never waits.
   bool waitUntilIdle(int milliseconds);
 
-  /// The gesture, as the buttons and keys do it. release() starts the commit (exact warp,
-  /// subdivision, autosave) on the worker and returns whether it started.
+  /// The gesture, as the buttons and keys do it (GestureController). release() starts the
+  /// commit (exact warp, subdivision, autosave) on the worker and returns whether it started.
   bool grab();
   bool release();
   /// Places a straight ribbon along the vessel at a model point (the "place ribbon" helper).
@@ -100,9 +111,9 @@ public:
   /// Sets the ribbon of the widget (and moves the live warp when grabbed).
   void setRibbon(const bender::RibbonSpec& ribbon);
 
-  /// Checks, then exports the committed surface, on the worker. With problems: asks when
-  /// interactive, else writes only when `proceedOnProblems`. Returns whether the job started;
-  /// workFinished says whether the file was written.
+  /// Checks, then exports the committed surface, on the worker (ExportFlow). With problems:
+  /// asks when interactive, else writes only when `proceedOnProblems`. Returns whether the job
+  /// started; workFinished says whether the file was written.
   bool exportSurface(const QString& path, bool proceedOnProblems = false);
   /// Checks the committed surface on the worker and shows the report in the Export panel.
   bool checkSurface();
@@ -125,30 +136,14 @@ signals:
   void workFinished(bool succeeded);
 
 protected:
-  void dragEnterEvent(QDragEnterEvent* event) override;
-  void dropEvent(QDropEvent* event) override;
-  void keyPressEvent(QKeyEvent* event) override;
-  void keyReleaseEvent(QKeyEvent* event) override;
   void closeEvent(QCloseEvent* event) override;
-  bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
-  using Finisher = std::function<void()>;
-  using Work = std::function<Finisher(const bender::ProgressReporter&)>;
-
   void buildPanels();
   void connectActions();
-  bool refuseWhenBusy();
-  bool runInBackground(const QString& title, Work work);
-  bool runSessionJob(const std::shared_ptr<bender::SessionJob>& job,
-    std::function<void(bender::SessionJob&, bool)> then = {});
   void showMessage(const bender::LogicMessage& message);
   void refresh();
-  void applyParameters();
-  void onRibbonInteraction();
-  void offerRecovery();
   void showSlices();
-  void exportWithOptions(const QString& path, bool proceedOnProblems);
 
   MainWindowOptions Options;
   bender::BenderSession Session;
@@ -166,10 +161,11 @@ private:
   TrackersPanel* TrackersUi = nullptr;
   ExportPanel* Export = nullptr;
   QLabel* StatusText = nullptr;
-  int RenderSuppressed = 0; // > 0 while a caller renders itself after the session's change
-  bool SpaceHeld = false;
 
   WorkRunner* Worker = nullptr;
+  GestureController* Gesture = nullptr;
+  FileOpener* Files = nullptr;
+  ExportFlow* Exports = nullptr;
 };
 
 #endif

@@ -1,6 +1,7 @@
 #include "TrackersPanel.h"
 
 #include "BenderSession.h"
+#include "BenderView.h"
 #include "TrackerSession.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
@@ -88,7 +89,7 @@ TrackersPanel::TrackersPanel(QWidget* parent)
     [this]()
     {
       if (this->Trackers)
-        this->Trackers->AlignTo(this->Widget->GetRibbonRepresentation()->GetRibbon());
+        this->Trackers->AlignTo(this->View->ribbonWidget()->GetRibbonRepresentation()->GetRibbon());
     });
   connect(this->Clutch,
     &QCheckBox::toggled,
@@ -153,15 +154,13 @@ void TrackersPanel::setStatus(const QString& status)
 
 void TrackersPanel::attach(bender::TrackerSession* trackers,
   bender::BenderSession* session,
-  vtkBenderRibbonWidget* widget,
-  std::function<void()> render,
-  std::function<void(const std::function<void()>&)> quietly)
+  BenderView* view,
+  std::function<bool()> release)
 {
   this->Trackers = trackers;
   this->Session = session;
-  this->Widget = widget;
-  this->Render = std::move(render);
-  this->Quietly = std::move(quietly);
+  this->View = view;
+  this->Trackers->SetReleaseHandler(std::move(release));
 }
 
 bool TrackersPanel::connectDevice()
@@ -211,25 +210,24 @@ void TrackersPanel::poll()
     return;
   }
   bender::TrackerSession::PollResult result;
-  this->Quietly([this, &result]() { result = this->Trackers->Poll(); });
+  // The session's changes during the poll do not render: one frame at its end.
+  this->View->quietly([this, &result]() { result = this->Trackers->Poll(); });
+  vtkBenderRibbonWidget* widget = this->View->ribbonWidget();
   if (const auto ribbon = this->Trackers->CurrentRibbon())
   {
     // The widget shows what the hands hold; the live warp already moved in Poll.
-    this->Widget->GetRibbonRepresentation()->SetRibbon(*ribbon);
-    if (!this->Widget->GetEnabled() && this->Session->HasSurface())
+    widget->GetRibbonRepresentation()->SetRibbon(*ribbon);
+    if (!widget->GetEnabled() && this->Session->HasSurface())
     {
-      this->Widget->On();
+      widget->On();
     }
   }
-  if (result.released)
-  {
-    this->Widget->GetRibbonRepresentation()->SetRibbon(this->Session->GetFinalRibbon());
-  }
+  // A release started the commit on the worker; its end shows the committed ribbon.
   this->setStatus(QString::fromStdString(this->Trackers->StatusText()));
   if (result.ended)
   {
     this->Timer->stop();
     this->setConnected(false);
   }
-  this->Render();
+  this->View->render();
 }

@@ -11,7 +11,7 @@ class BenderSession;
 class TrackerSession;
 }
 class QTimer;
-class vtkBenderRibbonWidget;
+class BenderView;
 
 class QCheckBox;
 class QDoubleSpinBox;
@@ -24,7 +24,8 @@ class QSpinBox;
 /// stations the two hands hold, the motion scale, connect/disconnect, the clutch, alignment of
 /// the hands onto the current ribbon, and the device's status and rates. Once attached, the panel
 /// drives the tracker session itself: connect, poll at the display rate (the live warp follows
-/// the hands, the widget shows their ribbon), disconnect, align.
+/// the hands, the widget shows their ribbon; a stylus release starts the window's release job),
+/// disconnect, align.
 class TrackersPanel : public QWidget
 {
   Q_OBJECT
@@ -40,13 +41,13 @@ public:
   void setConnected(bool connected);
   void setStatus(const QString& status);
 
-  /// What the panel drives. `render` draws a frame; `quietly` runs a call during which the
-  /// session's changes do not render (one frame per poll).
+  /// What the panel drives: the tracker session, the session it bends, the view (the widget
+  /// shows the hands' ribbon; one frame per poll) and how a stylus release commits (the
+  /// window's release job on its worker, as the G key does).
   void attach(bender::TrackerSession* trackers,
     bender::BenderSession* session,
-    vtkBenderRibbonWidget* widget,
-    std::function<void()> render,
-    std::function<void(const std::function<void()>&)> quietly);
+    BenderView* view,
+    std::function<bool()> release);
   /// Connects the device as the panel says and starts polling.
   bool connectDevice();
   void disconnectDevice();
@@ -66,9 +67,7 @@ private:
   QTimer* Timer = nullptr;
   bender::TrackerSession* Trackers = nullptr;
   bender::BenderSession* Session = nullptr;
-  vtkBenderRibbonWidget* Widget = nullptr;
-  std::function<void()> Render;
-  std::function<void(const std::function<void()>&)> Quietly;
+  BenderView* View = nullptr;
 };
 
 #endif

@@ -1,5 +1,7 @@
 #include "WorkRunner.h"
 
+#include "BenderSession.h"
+
 #include <QApplication>
 #include <QLabel>
 #include <QPointer>
@@ -8,6 +10,7 @@
 #include <QStatusBar>
 #include <QtConcurrent/QtConcurrent>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 
@@ -111,7 +114,74 @@ bool WorkRunner::run(const QString& title, Work work)
         };
       }
     }));
+  emit this->started();
   return true;
+}
+
+bool WorkRunner::refuseWhenBusy(bender::BenderSession& session)
+{
+  if (!this->Pending)
+  {
+    return false;
+  }
+  session.AddMessage(
+    bender::MessageSeverity::Error, "Busy: wait for the current task or cancel it");
+  return true;
+}
+
+bool WorkRunner::runReporting(bender::BenderSession& session, const QString& title, Work work)
+{
+  bender::BenderSession* s = &session;
+  return this->run(title,
+    [this, s, work](const bender::ProgressReporter& progress)
+    {
+      Finisher finisher = work(progress);
+      // A finisher that reports an error (a surface refused, ...) fails the job.
+      return Finisher(
+        [this, s, finisher]()
+        {
+          const std::size_t before = s->GetMessages().size();
+          finisher();
+          const auto& messages = s->GetMessages();
+          if (std::any_of(messages.begin() + static_cast<std::ptrdiff_t>(before),
+                messages.end(),
+                [](const bender::LogicMessage& m)
+                { return m.severity == bender::MessageSeverity::Error; }))
+          {
+            this->markFailed();
+          }
+        });
+    });
+}
+
+bool WorkRunner::runSessionJob(bender::BenderSession& session,
+  const std::shared_ptr<bender::SessionJob>& job,
+  std::function<void(bender::SessionJob&, bool)> then)
+{
+  if (!job)
+  {
+    return false;
+  }
+  bender::BenderSession* s = &session;
+  return this->runReporting(session,
+    QString::fromStdString(job->GetTitle()),
+    [this, s, job, then](const bender::ProgressReporter& progress)
+    {
+      job->Run(progress);
+      return Finisher(
+        [this, s, job, then]()
+        {
+          const bool ok = s->Finish(*job);
+          if (!ok)
+          {
+            this->markFailed();
+          }
+          if (then)
+          {
+            then(*job, ok);
+          }
+        });
+    });
 }
 
 void WorkRunner::finish()

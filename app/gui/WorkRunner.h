@@ -9,6 +9,13 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
+
+namespace bender
+{
+class BenderSession;
+class SessionJob;
+}
 
 class QLabel;
 class QProgressBar;
@@ -42,7 +49,21 @@ public:
   /// Called on the worker at the start of every job (tests).
   std::function<void(const bender::ProgressReporter&)> Hook;
 
+  ///@{ Jobs of a session (its messages say why a job failed)
+  /// True, with an error message in `session`, while a job runs.
+  bool refuseWhenBusy(bender::BenderSession& session);
+  /// Like run(); the job also fails when its finisher adds an error message to `session`.
+  bool runReporting(bender::BenderSession& session, const QString& title, Work work);
+  /// A SessionJob: Run on the worker, BenderSession::Finish on the GUI thread, then `then`
+  /// (with whether it succeeded). False when `job` is null (the session refused it).
+  bool runSessionJob(bender::BenderSession& session,
+    const std::shared_ptr<bender::SessionJob>& job,
+    std::function<void(bender::SessionJob&, bool)> then = {});
+  ///@}
+
 signals:
+  /// A job started (the window disables what a busy session refuses).
+  void started();
   void finished(bool succeeded);
 
 private:

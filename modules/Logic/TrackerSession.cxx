@@ -135,7 +135,8 @@ TrackerSession::PollResult TrackerSession::Poll()
         if (this->Session.GetState() == GrabState::Grabbed)
         {
           this->Session.MoveFinal(gesture.final);
-          result.released = this->Session.Release();
+          result.released =
+            this->ReleaseHandler ? this->ReleaseHandler() : this->Session.Release();
         }
         break;
       case TwoHandRibbonInput::Gesture::Kind::Cancelled:

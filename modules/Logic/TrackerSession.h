@@ -7,6 +7,7 @@
 #include "TrackerStatistics.h"
 #include "TwoHandRibbonInput.h"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -55,6 +56,11 @@ public:
   /// Takes the device's latest poses and events and drives the session.
   PollResult Poll();
 
+  /// How a stylus release commits: by default BenderSession::Release() at once; a window sets a
+  /// handler that starts the release job on its worker (as its G key does) and returns whether
+  /// it started (PollResult::released then means "the commit started").
+  void SetReleaseHandler(std::function<bool()> handler) { this->ReleaseHandler = std::move(handler); }
+
   /// The ribbon the hands hold now (model space), if both hands have been seen.
   std::optional<RibbonSpec> CurrentRibbon() const;
   /// The clutch: the ribbon stays while the hands move freely (re-anchors on release).
@@ -82,6 +88,7 @@ private:
   std::unique_ptr<TrackerDevice> Device;
   std::unique_ptr<TwoHandRibbonInput> Input;
   std::string DeviceName;
+  std::function<bool()> ReleaseHandler;
 };
 
 } // namespace bender

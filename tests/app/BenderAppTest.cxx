@@ -17,14 +17,17 @@
 #include <QAbstractButton>
 #include <QApplication>
 #include <QDir>
+#include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMimeData>
 #include <QProcess>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QtTest>
@@ -116,6 +119,13 @@ private:
   std::atomic<int> Ticks{ 0 };
   std::atomic<int> Stalls{ 0 };
   std::atomic<int> SlowJobsRun{ 0 };
+
+  void showPanel(QWidget* panel)
+  {
+    auto* panels = this->Window->findChild<QTabWidget*>("panels");
+    QVERIFY(panels);
+    panels->setCurrentWidget(panel);
+  }
 
   QString artefact(const QString& name)
   {
@@ -477,6 +487,7 @@ private slots:
     this->Window->trackersPanel()->setDeviceSpec(
       QString("replay:%1/tracking/two-hands.fastrak").arg(BENDER_TEST_DATA_DIR));
     this->Window->trackersPanel()->setMotionScale(1.0);
+    QSignalSpy jobs(this->Window.get(), &MainWindow::workFinished);
     QVERIFY(this->Window->connectTrackers());
     bool sawGrab = false;
     QElapsedTimer timer;
@@ -490,6 +501,11 @@ private slots:
     }
     QVERIFY(!this->Window->trackers().IsConnected());
     QVERIFY(sawGrab);
+    // The stylus release committed through the release job on the worker (as G does), not
+    // on the GUI thread inside the poll: the job ended with workFinished(true).
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    QVERIFY(jobs.count() >= 1);
+    QCOMPARE(jobs.last().first().toBool(), true);
     QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
     QVERIFY(MaxDifference(session.GetSurface(), original) > 5.0);
     // Seen from the side: the recorded hands arched the tube upwards and twisted it.
@@ -537,6 +553,119 @@ private slots:
     QVERIFY(std::abs(this->Window->session().GetParameters().radius - 22.0) < 3.0);
     QVERIFY(this->Window->grab());
     this->Window->session().CancelGrab("test");
+  }
+
+  // Holding Space: the window system sends auto-repeat release/press pairs while the key is
+  // down. One press grabs, the pairs change nothing, the real release commits one warp; the
+  // same with a button of the panel holding the focus (Space would click it).
+  void holdingSpaceWithAutoRepeatRecordsOneWarp()
+  {
+    bender::BenderSession& session = this->Window->session();
+    QVERIFY(session.GetState() != bender::GrabState::Grabbed);
+    auto* rep = this->Window->ribbonWidget()->GetRibbonRepresentation();
+    const bender::RibbonSpec placed = rep->GetRibbon();
+    QWidget* button = this->Window->findChild<QWidget*>("grab");
+    QVERIFY(button);
+    for (QWidget* focus : { static_cast<QWidget*>(this->Window->view()), button })
+    {
+      this->showPanel(this->Window->bendPanel());
+      focus->setFocus();
+      QCOMPARE(QApplication::focusWidget(), focus);
+      const std::size_t position = session.GetHistoryPosition();
+      const std::size_t messages = session.GetMessages().size();
+      QTest::simulateEvent(focus, true, Qt::Key_Space, Qt::NoModifier, " ", false);
+      QCOMPARE(session.GetState(), bender::GrabState::Grabbed);
+      bender::RibbonSpec moved = placed;
+      for (int repeat = 1; repeat <= 12; ++repeat)
+      {
+        moved.end.position.y = placed.end.position.y + 0.5 * repeat;
+        this->Window->setRibbon(moved);
+        QTest::simulateEvent(focus, false, Qt::Key_Space, Qt::NoModifier, " ", true);
+        QTest::simulateEvent(focus, true, Qt::Key_Space, Qt::NoModifier, " ", true);
+        QCOMPARE(session.GetState(), bender::GrabState::Grabbed);
+        QVERIFY(!this->Window->isBusy());
+      }
+      QVERIFY(session.GetLiveProblem().empty());
+      QTest::simulateEvent(focus, false, Qt::Key_Space, Qt::NoModifier, " ", false);
+      QVERIFY(this->Window->waitUntilIdle(60000));
+      QCOMPARE(session.GetHistoryPosition(), position + 1);
+      QCOMPARE(session.GetState(), bender::GrabState::Released);
+      QCOMPARE(session.GetPlan().warps.size(), position + 1);
+      // The committed warp is the whole drag (to the last move), not a piece of it.
+      QVERIFY(bender::Distance(
+                session.GetPlan().warps.back().final.end.position, moved.end.position) < 1e-9);
+      for (std::size_t i = messages; i < session.GetMessages().size(); ++i)
+        QVERIFY2(session.GetMessages()[i].severity != bender::MessageSeverity::Error,
+          session.GetMessages()[i].text.c_str());
+      QVERIFY(session.Undo());
+      this->Window->setRibbon(placed);
+    }
+  }
+
+  // G and P are application-wide: they work from a checkbox, a button, the 3D view and a
+  // floating panel, but a text field being typed in keeps its letters.
+  void grabAndPlaceKeysWorkWhateverHasFocusButTextFields()
+  {
+    bender::BenderSession& session = this->Window->session();
+    this->showPanel(this->Window->bendPanel());
+    auto* subdivide = this->Window->bendPanel()->findChild<QWidget*>("subdivide");
+    auto* place = this->Window->findChild<QWidget*>("placeRibbon");
+    QVERIFY(subdivide && place);
+    for (QWidget* focus : { subdivide, place, static_cast<QWidget*>(this->Window->view()) })
+    {
+      focus->setFocus();
+      QCOMPARE(QApplication::focusWidget(), focus);
+      QTest::keyClick(focus, Qt::Key_P);
+      QVERIFY2(this->Window->isPlacingRibbon(), focus->metaObject()->className());
+      QTest::keyClick(focus, Qt::Key_Escape);
+      QVERIFY(!this->Window->isPlacingRibbon());
+      QTest::keyClick(focus, Qt::Key_G);
+      QCOMPARE(session.GetState(), bender::GrabState::Grabbed);
+      QTest::keyClick(focus, Qt::Key_G); // released without moving: no warp, no longer grabbed
+      QVERIFY(this->Window->waitUntilIdle(60000));
+      QVERIFY(session.GetState() != bender::GrabState::Grabbed);
+    }
+
+    // Typing into the Radius field: P and G are text, not commands.
+    auto* radius = this->Window->bendPanel()->findChild<QDoubleSpinBox*>("radius");
+    QVERIFY(radius);
+    const double r = radius->value();
+    radius->setFocus();
+    QCOMPARE(QApplication::focusWidget(), radius);
+    QTest::keyClick(radius, Qt::Key_P);
+    QTest::keyClick(radius, Qt::Key_G);
+    QVERIFY(!this->Window->isPlacingRibbon());
+    QVERIFY(session.GetState() != bender::GrabState::Grabbed);
+    QCOMPARE(radius->value(), r);
+    // And the tracker device's line edit takes the letters.
+    this->showPanel(this->Window->trackersPanel());
+    auto* device = this->Window->trackersPanel()->findChild<QLineEdit*>("trackerDevice");
+    QVERIFY(device);
+    const QString spec = device->text();
+    device->setFocus();
+    device->end(false);
+    QTest::keyClick(device, Qt::Key_G);
+    QTest::keyClick(device, Qt::Key_P);
+    QCOMPARE(device->text(), spec + "gp");
+    QVERIFY(!this->Window->isPlacingRibbon());
+    QVERIFY(session.GetState() != bender::GrabState::Grabbed);
+    device->setText(spec);
+
+    // A floating panel dock is a window of its own: G still grabs from there.
+    auto* dock = this->Window->findChild<QDockWidget*>("panelsDock");
+    QVERIFY(dock);
+    this->showPanel(this->Window->bendPanel());
+    dock->setFloating(true);
+    QVERIFY(QTest::qWaitForWindowExposed(dock));
+    dock->activateWindow();
+    subdivide->setFocus();
+    QTest::keyClick(subdivide, Qt::Key_G);
+    QCOMPARE(session.GetState(), bender::GrabState::Grabbed);
+    QTest::keyClick(subdivide, Qt::Key_Escape);
+    QCOMPARE(session.GetState(), bender::GrabState::Idle);
+    dock->setFloating(false);
+    this->Window->activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(this->Window.get()));
   }
 };
 

@@ -1,0 +1,298 @@
+#include "FileOpener.h"
+
+#include "BendPanel.h"
+#include "BenderSession.h"
+#include "BenderView.h"
+#include "FileKind.h"
+#include "GestureController.h"
+#include "MainActions.h"
+#include "MeshIO.h"
+#include "SegmentPanel.h"
+#include "SegmentationSession.h"
+#include "WorkRunner.h"
+
+#include <QAction>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QUrl>
+
+#include <vtkPolyData.h>
+
+namespace
+{
+std::string Name(const QString& path)
+{
+  return QFileInfo(path).fileName().toStdString();
+}
+}
+
+FileOpener::FileOpener(bender::BenderSession& session,
+  bender::SegmentationSession& segmentation,
+  WorkRunner* worker,
+  MainActions* actions,
+  BenderView* view,
+  GestureController* gesture,
+  BendPanel* bend,
+  SegmentPanel* segment,
+  QWidget* window)
+  : QObject(window)
+  , Session(session)
+  , Segmentation(segmentation)
+  , Worker(worker)
+  , Actions(actions)
+  , View(view)
+  , Gesture(gesture)
+  , Bend(bend)
+  , Segment(segment)
+  , Window(window)
+{
+  connect(actions->Open,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString file = QFileDialog::getOpenFileName(this->Window,
+        "Open",
+        QString(),
+        "All supported (*.stl *.obj *.ply *.vtp *.vtk *.off *.json *.nrrd *.nhdr *.nii *.nii.gz "
+        "*.mha *.mhd *.vti);;All files (*)");
+      if (!file.isEmpty())
+        this->openFile(file);
+    });
+  connect(actions, &MainActions::recentFileChosen, this, &FileOpener::openFile);
+  connect(actions->Demo, &QAction::triggered, this, &FileOpener::startDemo);
+  connect(actions->LoadPlan,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString f = QFileDialog::getOpenFileName(
+        this->Window, "Load plan", QString(), "Plans (*.bender.json *.json)");
+      if (!f.isEmpty())
+        this->openFile(f);
+    });
+  connect(actions->Segment, &QAction::triggered, this, &FileOpener::segmentVolume);
+  window->setAcceptDrops(true);
+  window->installEventFilter(this);
+}
+
+bool FileOpener::openFile(const QString& path)
+{
+  if (this->Worker->refuseWhenBusy(this->Session))
+  {
+    return false;
+  }
+  const std::string file = path.toStdString();
+  switch (bender::ClassifyFile(file, QFileInfo(path).isDir()))
+  {
+    case bender::FileKind::Session:
+      return this->Worker->runSessionJob(this->Session,
+        this->Session.BeginRecover(file),
+        [this](bender::SessionJob&, bool ok)
+        {
+          if (ok)
+            this->View->resetCamera();
+        });
+    case bender::FileKind::Plan:
+      return this->Worker->runSessionJob(this->Session,
+        this->Session.BeginLoadPlan(file),
+        [this, path](bender::SessionJob&, bool ok)
+        {
+          if (ok)
+            this->Actions->addRecentFile(path);
+        });
+    case bender::FileKind::Mesh:
+      return this->openMesh(path);
+    case bender::FileKind::Volume:
+      return this->openVolume(path);
+    case bender::FileKind::Unknown:
+      break;
+  }
+  this->Session.AddMessage(
+    bender::MessageSeverity::Error, bender::UnknownFileTypeMessage(Name(path)));
+  return false;
+}
+
+bool FileOpener::openMesh(const QString& path)
+{
+  this->Actions->addRecentFile(path);
+  return this->Worker->runReporting(this->Session,
+    "Reading " + QFileInfo(path).fileName(),
+    [this, path](const bender::ProgressReporter&)
+    {
+      vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(path.toStdString());
+      return WorkRunner::Finisher(
+        [this, mesh, path]()
+        {
+          if (this->Session.SetSurface(
+                mesh, Name(path), QFileInfo(path).absoluteFilePath().toStdString()))
+          {
+            // A mesh file has no volume behind it.
+            this->Segmentation.Clear();
+            emit this->volumeChanged();
+            this->View->resetCamera();
+          }
+        });
+    });
+}
+
+bool FileOpener::openVolume(const QString& path)
+{
+  this->Actions->addRecentFile(path);
+  auto job = this->Segmentation.BeginRead(path.toStdString());
+  return this->Worker->runReporting(this->Session,
+    "Reading " + QFileInfo(path).fileName(),
+    [this, job, path](const bender::ProgressReporter& progress)
+    {
+      job->Run(progress);
+      return WorkRunner::Finisher(
+        [this, job, path]()
+        {
+          this->Segmentation.FinishRead(*job);
+          emit this->volumeChanged();
+          emit this->panelWanted(this->Segment);
+          const auto& size = job->volume->geometry.size;
+          this->Session.AddMessage(bender::MessageSeverity::Info,
+            QString("Loaded volume %1: %2x%3x%4; segment it in the Segment panel")
+              .arg(QFileInfo(path).fileName())
+              .arg(size[0])
+              .arg(size[1])
+              .arg(size[2])
+              .toStdString());
+        });
+    });
+}
+
+bool FileOpener::segmentVolume()
+{
+  std::string problem;
+  if (this->Worker->refuseWhenBusy(this->Session) ||
+    !this->Segmentation.SetSettings(this->Segment->settings(), problem))
+  {
+    if (!problem.empty())
+      this->Session.AddMessage(bender::MessageSeverity::Error, "Segment: " + problem);
+    return false;
+  }
+  auto job = this->Segmentation.BeginSegment(problem);
+  if (!job)
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error, problem);
+    return false;
+  }
+  return this->Worker->runReporting(this->Session,
+    "Segmenting",
+    [this, job](const bender::ProgressReporter& progress)
+    {
+      job->Run(progress);
+      return WorkRunner::Finisher(
+        [this, job]()
+        {
+          this->Segmentation.FinishSegment(*job);
+          emit this->volumeChanged();
+          if (this->Session.SetSurface(job->surface, "segmented vessel"))
+          {
+            this->View->resetCamera();
+            emit this->panelWanted(this->Bend);
+          }
+        });
+    });
+}
+
+void FileOpener::startDemo()
+{
+  if (this->Worker->refuseWhenBusy(this->Session))
+  {
+    return;
+  }
+  auto job = std::make_shared<bender::SegmentationSession::DemoJob>();
+  this->Worker->runReporting(this->Session,
+    "Demo",
+    [this, job](const bender::ProgressReporter& progress)
+    {
+      job->Run(progress);
+      return WorkRunner::Finisher(
+        [this, job]()
+        {
+          if (!job->fallback.empty())
+          {
+            this->Session.AddMessage(bender::MessageSeverity::Warning,
+              "Demo: segmentation unavailable (" + job->fallback + "); using the vessel surface");
+          }
+          this->Segmentation.FinishDemo(*job);
+          emit this->volumeChanged();
+          if (!this->Session.SetSurface(
+                job->surface, job->fallback.empty() ? "demo vessel (segmented)" : "demo vessel"))
+          {
+            return;
+          }
+          if (!job->plan.warps.empty())
+          {
+            // The ribbon and parameters of the demo plan's first warp, ready to grab; handles
+            // sized for the demo's branches (about 3.3 mm).
+            const bender::WarpSpec& warp = job->plan.warps.front();
+            bender::WarpParameters parameters = this->Bend->parameters();
+            parameters.radius = warp.radius;
+            parameters.decay = warp.decay;
+            this->Bend->setParameters(parameters);
+            this->Gesture->applyParameters();
+            this->Gesture->showRibbon(warp.initial, 4.0 / 1.2);
+          }
+          this->View->resetCamera();
+          emit this->panelWanted(this->Bend);
+          this->Session.AddMessage(bender::MessageSeverity::Info,
+            (job->fallback.empty() ? job->summary + ". " : std::string()) +
+              "Ribbon placed on a branch: press G (or hold Space), drag the end handles, press G "
+              "to release");
+        });
+    });
+}
+
+void FileOpener::offerRecovery()
+{
+  const auto answer = QMessageBox::question(this->Window,
+    "Recover the last session?",
+    "Bender did not close cleanly last time. Recover the surface and the warps of that session?",
+    QMessageBox::Yes | QMessageBox::No,
+    QMessageBox::Yes);
+  if (answer == QMessageBox::Yes)
+  {
+    this->openFile(QString::fromStdString(this->Session.GetAutosavePath()));
+  }
+  else
+  {
+    this->Session.DiscardAutosave();
+  }
+}
+
+bool FileOpener::eventFilter(QObject* watched, QEvent* event)
+{
+  if (watched == this->Window && event->type() == QEvent::DragEnter)
+  {
+    auto* enter = static_cast<QDragEnterEvent*>(event);
+    if (enter->mimeData()->hasUrls())
+    {
+      enter->acceptProposedAction();
+      return true;
+    }
+  }
+  else if (watched == this->Window && event->type() == QEvent::Drop)
+  {
+    auto* drop = static_cast<QDropEvent*>(event);
+    for (const QUrl& url : drop->mimeData()->urls())
+    {
+      if (url.isLocalFile())
+      {
+        this->openFile(url.toLocalFile());
+        // One file at a time: the worker takes one task.
+        break;
+      }
+    }
+    drop->acceptProposedAction();
+    return true;
+  }
+  return QObject::eventFilter(watched, event);
+}

@@ -1,0 +1,264 @@
+#include "GestureController.h"
+
+#include "BendPanel.h"
+#include "BenderSession.h"
+#include "BenderView.h"
+#include "MainActions.h"
+#include "RibbonPlacement.h"
+#include "WorkRunner.h"
+#include "vtkBenderRibbonRepresentation.h"
+#include "vtkBenderRibbonWidget.h"
+
+#include <QAbstractSpinBox>
+#include <QAction>
+#include <QApplication>
+#include <QDockWidget>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPlainTextEdit>
+#include <QTextEdit>
+
+#include <exception>
+
+namespace
+{
+/// A widget the user types text into: its keys are its own.
+bool IsTextField(QObject* object)
+{
+  return qobject_cast<QLineEdit*>(object) || qobject_cast<QAbstractSpinBox*>(object) ||
+    qobject_cast<QTextEdit*>(object) || qobject_cast<QPlainTextEdit*>(object);
+}
+}
+
+GestureController::GestureController(bender::BenderSession& session,
+  BenderView* view,
+  BendPanel* bend,
+  WorkRunner* worker,
+  MainActions* actions,
+  QLabel* status,
+  QWidget* window)
+  : QObject(window)
+  , Session(session)
+  , View(view)
+  , Bend(bend)
+  , Worker(worker)
+  , Status(status)
+  , Window(window)
+{
+  connect(actions->PlaceRibbon,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      this->View->setPicking(true);
+      this->Bend->showState(this->Session, true);
+      this->Status->setText("Click on the vessel to place the ribbon along it (Esc cancels)");
+    });
+  connect(actions->Grab,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      if (this->Session.GetState() == bender::GrabState::Grabbed)
+        this->release();
+      else
+        this->grab();
+    });
+  connect(actions->CancelBend,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      this->View->setPicking(false);
+      this->Bend->showState(this->Session);
+      this->Session.CancelGrab("cancelled by the user");
+    });
+  connect(
+    this->View, &BenderView::ribbonInteraction, this, &GestureController::onRibbonInteraction);
+  connect(this->View,
+    &BenderView::surfacePicked,
+    this,
+    [this](double x, double y, double z)
+    {
+      const double point[3] = { x, y, z };
+      this->placeRibbonAt(point);
+    });
+  connect(this->View,
+    &BenderView::pickMissed,
+    this,
+    [this]()
+    {
+      this->Session.AddMessage(
+        bender::MessageSeverity::Warning, "Place ribbon: click on the surface");
+    });
+  connect(this->Bend, &BendPanel::parametersChanged, this, &GestureController::applyParameters);
+  qApp->installEventFilter(this);
+}
+
+GestureController::~GestureController()
+{
+  qApp->removeEventFilter(this);
+}
+
+bool GestureController::isPlacingRibbon() const
+{
+  return this->View->isPicking();
+}
+
+bool GestureController::grab()
+{
+  auto* widget = this->View->ribbonWidget();
+  auto* rep = widget->GetRibbonRepresentation();
+  if (!widget->GetEnabled() || !rep->GetValid())
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error,
+      widget->GetEnabled() ? "Grab refused: the ribbon is invalid (" + rep->GetLastError() + ")"
+                           : "Grab: place the ribbon first (P, then click on the vessel)");
+    return false;
+  }
+  return this->Session.Grab(rep->GetRibbon());
+}
+
+bool GestureController::release()
+{
+  if (this->Session.GetState() != bender::GrabState::Grabbed ||
+    this->Worker->refuseWhenBusy(this->Session))
+  {
+    return false;
+  }
+  return this->Worker->runSessionJob(this->Session,
+    this->Session.BeginRelease(),
+    [this](bender::SessionJob&, bool ok)
+    {
+      if (ok)
+      {
+        // The ribbon stays where the hands left it: the committed (final) ribbon.
+        this->View->ribbonWidget()->GetRibbonRepresentation()->SetRibbon(
+          this->Session.GetFinalRibbon());
+      }
+      this->View->render();
+    });
+}
+
+void GestureController::showRibbon(const bender::RibbonSpec& ribbon, double vesselRadius)
+{
+  auto* rep = this->View->ribbonWidget()->GetRibbonRepresentation();
+  rep->SetHandleLength(1.2 * vesselRadius);
+  rep->SetHandleRadius(0.22 * vesselRadius);
+  rep->SetStripWidth(0.3 * vesselRadius);
+  this->setRibbon(ribbon);
+  this->View->ribbonWidget()->On();
+}
+
+bool GestureController::placeRibbonAt(const double point[3])
+{
+  this->View->setPicking(false);
+  this->Bend->showState(this->Session);
+  try
+  {
+    const bender::RibbonPlacement placement =
+      bender::PlaceRibbonOnSurface(this->Session.GetSurface(), { point[0], point[1], point[2] });
+    bender::WarpParameters parameters = this->Bend->parameters();
+    parameters.radius = placement.suggestedRadius;
+    this->Bend->setParameters(parameters);
+    this->applyParameters();
+    this->showRibbon(placement.ribbon, placement.vesselRadius);
+    this->Session.AddMessage(bender::MessageSeverity::Info,
+      QString("Ribbon placed along the vessel (local radius %1 mm, R = %2 mm): press G to grab")
+        .arg(placement.vesselRadius, 0, 'f', 2)
+        .arg(placement.suggestedRadius, 0, 'f', 2)
+        .toStdString());
+    this->View->render();
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error, e.what());
+    return false;
+  }
+}
+
+void GestureController::setRibbon(const bender::RibbonSpec& ribbon)
+{
+  auto* rep = this->View->ribbonWidget()->GetRibbonRepresentation();
+  rep->SetRibbon(ribbon);
+  rep->SetRadius(this->Session.GetParameters().radius);
+  if (this->Session.GetState() == bender::GrabState::Grabbed)
+  {
+    this->Session.MoveFinal(ribbon);
+  }
+  this->View->render();
+}
+
+void GestureController::applyParameters()
+{
+  const bender::WarpParameters parameters = this->Bend->parameters();
+  if (this->Session.SetParameters(parameters))
+  {
+    this->View->ribbonWidget()->GetRibbonRepresentation()->SetRadius(parameters.radius);
+  }
+  this->Bend->showState(this->Session, this->isPlacingRibbon());
+  this->View->render();
+}
+
+void GestureController::onRibbonInteraction()
+{
+  if (this->Session.GetState() == bender::GrabState::Grabbed)
+  {
+    // The widget renders after this event: one frame per move, not two.
+    auto* rep = this->View->ribbonWidget()->GetRibbonRepresentation();
+    this->View->quietly([this, rep]() { this->Session.MoveFinal(rep->GetRibbon()); });
+  }
+}
+
+bool GestureController::isOurs(QObject* watched) const
+{
+  // A widget of the window or of a floating panel dock; not of a dialog.
+  for (auto* widget = qobject_cast<QWidget*>(watched); widget; widget = widget->parentWidget())
+  {
+    if (widget == this->Window)
+    {
+      return true;
+    }
+    if (widget->isWindow() && !qobject_cast<QDockWidget*>(widget))
+    {
+      return false; // a dialog of the window: its keys are its own
+    }
+  }
+  return false;
+}
+
+bool GestureController::eventFilter(QObject* watched, QEvent* event)
+{
+  if (event->type() != QEvent::KeyPress && event->type() != QEvent::KeyRelease)
+  {
+    return QObject::eventFilter(watched, event);
+  }
+  auto* key = static_cast<QKeyEvent*>(event);
+  if (key->key() != Qt::Key_Space || key->modifiers() != Qt::NoModifier || !this->isOurs(watched) ||
+    IsTextField(watched))
+  {
+    return QObject::eventFilter(watched, event);
+  }
+  // Space is the gesture's, whatever has the focus (a focused button would click instead).
+  // Auto-repeat sends press/release pairs while the key is held: none of them is a new grab
+  // or a release.
+  if (key->isAutoRepeat())
+  {
+    return true;
+  }
+  if (event->type() == QEvent::KeyPress)
+  {
+    if (!this->SpaceHeld && this->Session.GetState() != bender::GrabState::Grabbed)
+    {
+      this->SpaceHeld = this->grab();
+    }
+  }
+  else if (this->SpaceHeld)
+  {
+    this->SpaceHeld = false;
+    this->release();
+  }
+  return true;
+}
