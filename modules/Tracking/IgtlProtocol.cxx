@@ -153,6 +153,33 @@ bool MatrixPose(const std::uint8_t* p, IgtlToolPose& pose, std::string& problem)
   return RotationFromColumns(
     { m[0], m[1], m[2] }, { m[3], m[4], m[5] }, { m[6], m[7], m[8] }, pose.orientation, problem);
 }
+// Version-1 messages of the tracking types have known content sizes; a header of such a type
+// with another size is garbage (so a false header cannot make the decoder wait for a body).
+bool PlausibleBodySize(const std::uint8_t* header, std::uint64_t body)
+{
+  if (ReadBig(header, 2) != 1)
+  {
+    return true;
+  }
+  const std::string type = Field(header + 2, TypeSize);
+  if (type == "TRANSFORM")
+  {
+    return body == 48;
+  }
+  if (type == "POSITION")
+  {
+    return body == 12 || body == 24 || body == 28;
+  }
+  if (type == "QTDATA")
+  {
+    return body % 50 == 0;
+  }
+  if (type == "TDATA")
+  {
+    return body % 70 == 0;
+  }
+  return true;
+}
 } // namespace
 
 void IgtlStreamDecoder::Feed(const std::uint8_t* data, std::size_t size)
@@ -212,7 +239,7 @@ std::optional<IgtlMessage> IgtlStreamDecoder::Next()
     }
     const std::uint8_t* h = this->Buffer.data() + this->Start;
     const std::uint64_t bodySize = ReadBig(h + 42, 8);
-    if (bodySize > this->MaxBody)
+    if (bodySize > this->MaxBody || !PlausibleBodySize(h, bodySize))
     {
       // Most likely garbage that looks like a header: hunt on from the next byte.
       ++this->Stats.oversized;
@@ -231,12 +258,16 @@ std::optional<IgtlMessage> IgtlStreamDecoder::Next()
     message.type = Field(h + 2, TypeSize);
     message.deviceName = Field(h + 14, NameSize);
     message.timestamp = ReadBig(h + 34, 8);
-    this->Start += HeaderSize + std::size_t(bodySize);
     if (Crc(body, std::size_t(bodySize)) != crc)
     {
+      // Either a damaged message or garbage that looked like a header: hunt again from the
+      // next byte, so that a false header never swallows the real messages after it.
       ++this->Stats.crcErrors;
+      ++this->Stats.garbageBytes;
+      ++this->Start;
       continue;
     }
+    this->Start += HeaderSize + std::size_t(bodySize);
     if (message.headerVersion == 1)
     {
       message.content.assign(body, body + bodySize);

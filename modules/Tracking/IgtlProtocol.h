@@ -35,7 +35,7 @@ struct IgtlMessage
 struct IgtlDecoderStatistics
 {
   std::uint64_t messages = 0;     ///< messages passed on (any type)
-  std::uint64_t crcErrors = 0;    ///< complete messages whose body CRC did not match: skipped
+  std::uint64_t crcErrors = 0;    ///< headers whose body CRC did not match (bytes skipped)
   std::uint64_t malformed = 0;    ///< v2 bodies whose extended header/metadata do not fit
   std::uint64_t garbageBytes = 0; ///< bytes skipped while hunting for a valid header
   std::uint64_t oversized = 0;    ///< headers announcing a body above the size limit
@@ -45,10 +45,12 @@ struct IgtlDecoderStatistics
 ///
 /// Feed() takes bytes as they arrive, in pieces of any size; Next() returns the complete
 /// messages in order. A header is accepted when its version is 1 or 2, its type and device
-/// name are printable ASCII padded with NULs, and its body size is at most `maxBodyBytes`;
-/// anything else is skipped one byte at a time (counted in garbageBytes) until a valid header
-/// appears, so that a stream recovers from garbage. A message whose CRC does not match is
-/// dropped whole (crcErrors) and decoding goes on after it.
+/// name are printable ASCII padded with NULs, its body size is at most `maxBodyBytes` and, for
+/// version-1 TRANSFORM/POSITION/QTDATA/TDATA, the size of that content; anything else is
+/// skipped one byte at a time (counted in garbageBytes) until a valid header appears, so that
+/// a stream recovers from garbage. A message whose CRC does not match is counted (crcErrors)
+/// and the hunt resumes at the byte after its header's start (its bytes then count as
+/// garbage), so that a false header found in garbage never swallows the messages after it.
 class IgtlStreamDecoder
 {
 public:

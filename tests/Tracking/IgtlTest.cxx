@@ -324,9 +324,32 @@ TEST(IgtlProtocol, CrcErrorsAndGarbageAreSkippedAndCounted)
     EXPECT_EQ(messages[0].deviceName, "StylusToTracker");
     EXPECT_EQ(messages[1].deviceName, "Stylus2ToTracker");
     EXPECT_EQ(decoder.Statistics().crcErrors, 1u);
-    EXPECT_EQ(decoder.Statistics().garbageBytes, 107u);
+    // 7 + 100 bytes of garbage and the 106 bytes of the damaged message.
+    EXPECT_EQ(decoder.Statistics().garbageBytes, 213u);
     EXPECT_EQ(decoder.Pending(), 0u);
   }
+}
+
+TEST(IgtlProtocol, AFalseHeaderInGarbageDoesNotSwallowTheNextMessage)
+{
+  // Garbage that happens to look like a header announcing 100 body bytes, then a real
+  // message: the CRC of the false one fails and the real one is still decoded.
+  Bytes stream = bender::EncodeIgtlMessage("BLOB", "x", Bytes(100, 0));
+  stream.resize(58); // keep only the header (its CRC is that of 100 zeros)
+  stream[57] ^= 0xff;
+  Append(stream, LibraryTransform("StylusToTracker", { 1, 2, 3 }, 0.0));
+  Append(stream, Bytes(60, 0)); // enough for the false body to be complete
+  IgtlStreamDecoder decoder;
+  const auto messages = DecodeAll(decoder, stream, 5);
+  ASSERT_EQ(messages.size(), 1u);
+  EXPECT_EQ(messages[0].deviceName, "StylusToTracker");
+  EXPECT_EQ(decoder.Statistics().crcErrors, 1u);
+  // A version-1 TRANSFORM header with a body size other than 48 is not a header at all.
+  Bytes wrong = LibraryTransform("StylusToTracker", { 1, 2, 3 }, 0.0);
+  wrong[49] = 47;
+  IgtlStreamDecoder strict;
+  EXPECT_TRUE(DecodeAll(strict, wrong, wrong.size()).empty());
+  EXPECT_EQ(strict.Statistics().crcErrors, 0u);
 }
 
 TEST(IgtlProtocol, RefusesScaledMatricesAndWrongSizes)
@@ -499,7 +522,7 @@ TEST(IgtlDevice, VersionTwoMetadataUnknownTypesCrcErrorsAndGarbage)
   EXPECT_NEAR(c.poses[0].position.x, -1, 1e-5);
   EXPECT_EQ(c.poses[1].station, 2);
   EXPECT_EQ(s.decoder.crcErrors, 1u);
-  EXPECT_EQ(s.decoder.garbageBytes, 9u);
+  EXPECT_EQ(s.decoder.garbageBytes, 9u + 106u); // garbage + the damaged TRANSFORM
   EXPECT_EQ(s.unknownTypes, 1u);
   EXPECT_EQ(s.skippedTypes.at("IMAGE"), 1u);
   EXPECT_EQ(s.statusMessages, 1u);
