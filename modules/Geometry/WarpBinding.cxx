@@ -33,8 +33,7 @@ WarpBinding::WarpBinding(const WarpSpec& spec, BlendMode blend)
   }
   catch (const InvalidRibbonError& e)
   {
-    throw InvalidRibbonError(
-      e.field().empty() ? "initial" : "initial." + e.field(), e.problem());
+    throw InvalidRibbonError(e.field().empty() ? "initial" : "initial." + e.field(), e.problem());
   }
   // The tube of radius R around the wire lies in the box of the wire's points grown by R.
   // The wire is sampled densely enough that the sagitta between samples (at most
@@ -51,6 +50,45 @@ WarpBinding::WarpBinding(const WarpSpec& spec, BlendMode blend)
   const double margin = this->R + w.Length() / n + 1e-9 * std::max(1.0, Norm(hi - lo));
   this->BoxMin = lo - Vec3{ margin, margin, margin };
   this->BoxMax = hi + Vec3{ margin, margin, margin };
+  // Capsules: each arc lies within `deviation` of its chord, measured at n + 1 samples; a point
+  // of the arc between two samples is within L / (2 n) of one of them. A point within R of the
+  // arc is then within R + deviation + L / (2 n) of the chord; the radius adds L / n and a
+  // relative 1e-9 so that rounding never rejects a point the projection would keep.
+  const Arc* arcs[2] = { &w.FirstArc(), &w.SecondArc() };
+  for (int a = 0; a < 2; ++a)
+  {
+    const Arc& arc = *arcs[a];
+    Capsule& c = this->Capsules[a];
+    c.start = arc.start;
+    const Vec3 chord = arc.PointAt(1.0) - arc.start;
+    c.length = Norm(chord);
+    c.axis = c.length > 0.0 ? chord / c.length : Vec3{ 0.0, 0.0, 0.0 };
+    double deviation = 0.0;
+    for (int i = 0; i <= n; ++i)
+    {
+      const Vec3 rel = arc.PointAt(static_cast<double>(i) / n) - c.start;
+      const double t = std::clamp(Dot(rel, c.axis), 0.0, c.length);
+      deviation = std::max(deviation, Norm(rel - c.axis * t));
+    }
+    const double r =
+      (this->R + deviation + arc.length / n) * (1.0 + 1e-9) + 1e-9 * std::max(1.0, Norm(hi - lo));
+    c.radiusSquared = r * r;
+  }
+}
+
+bool WarpBinding::InCapsules(const Vec3& p) const
+{
+  for (const Capsule& c : this->Capsules)
+  {
+    const Vec3 rel = p - c.start;
+    const double t = std::clamp(Dot(rel, c.axis), 0.0, c.length);
+    const Vec3 off = rel - c.axis * t;
+    if (Dot(off, off) <= c.radiusSquared)
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 bool WarpBinding::Matches(const WarpSpec& spec, BlendMode blend) const
@@ -66,6 +104,10 @@ bool WarpBinding::Bind(const Vec3& p, BoundPoint& out) const
 {
   if (!(p.x >= this->BoxMin.x && p.x <= this->BoxMax.x && p.y >= this->BoxMin.y &&
         p.y <= this->BoxMax.y && p.z >= this->BoxMin.z && p.z <= this->BoxMax.z))
+  {
+    return false;
+  }
+  if (!this->InCapsules(p))
   {
     return false;
   }
@@ -94,23 +136,31 @@ bool WarpBinding::Bind(const Vec3& p, BoundPoint& out) const
   return true;
 }
 
-template <typename T>
-void WarpBinding::BindRange(const T* xyz, std::size_t begin, std::size_t end,
-  BoundPoint* records, std::uint8_t* bound) const
+template<typename T>
+void WarpBinding::BindRange(const T* xyz,
+  std::size_t begin,
+  std::size_t end,
+  BoundPoint* records,
+  std::uint8_t* bound) const
 {
   for (std::size_t i = begin; i < end; ++i)
   {
     const T* q = xyz + 3 * i;
-    const Vec3 p{ static_cast<double>(q[0]), static_cast<double>(q[1]),
-      static_cast<double>(q[2]) };
+    const Vec3 p{ static_cast<double>(q[0]), static_cast<double>(q[1]), static_cast<double>(q[2]) };
     bound[i] = this->Bind(p, records[i]) ? 1 : 0;
   }
 }
 
-template void WarpBinding::BindRange<float>(
-  const float*, std::size_t, std::size_t, BoundPoint*, std::uint8_t*) const;
-template void WarpBinding::BindRange<double>(
-  const double*, std::size_t, std::size_t, BoundPoint*, std::uint8_t*) const;
+template void WarpBinding::BindRange<float>(const float*,
+  std::size_t,
+  std::size_t,
+  BoundPoint*,
+  std::uint8_t*) const;
+template void WarpBinding::BindRange<double>(const double*,
+  std::size_t,
+  std::size_t,
+  BoundPoint*,
+  std::uint8_t*) const;
 
 WarpEvaluator::WarpEvaluator(const RibbonWarp& warp, WarpPrecision precision)
   : Warp(warp)
@@ -137,16 +187,19 @@ Vec3 WarpEvaluator::Apply(const Vec3& p, const BoundPoint& rec) const
     ApplyScrewFraction(this->MotionAt(rec.s1), p, rec.f) * (1.0 - rec.lambda0);
 }
 
-template <typename T>
-void WarpEvaluator::EvaluateRange(const T* in, T* out, const BoundPoint* records,
-  const std::int64_t* ids, std::size_t begin, std::size_t end) const
+template<typename T>
+void WarpEvaluator::EvaluateRange(const T* in,
+  T* out,
+  const BoundPoint* records,
+  const std::int64_t* ids,
+  std::size_t begin,
+  std::size_t end) const
 {
   for (std::size_t k = begin; k < end; ++k)
   {
     const std::int64_t i = ids[k];
     const T* q = in + 3 * i;
-    const Vec3 p{ static_cast<double>(q[0]), static_cast<double>(q[1]),
-      static_cast<double>(q[2]) };
+    const Vec3 p{ static_cast<double>(q[0]), static_cast<double>(q[1]), static_cast<double>(q[2]) };
     const Vec3 r = this->Apply(p, records[i]);
     T* o = out + 3 * i;
     o[0] = static_cast<T>(r.x);
@@ -155,9 +208,17 @@ void WarpEvaluator::EvaluateRange(const T* in, T* out, const BoundPoint* records
   }
 }
 
-template void WarpEvaluator::EvaluateRange<float>(const float*, float*, const BoundPoint*,
-  const std::int64_t*, std::size_t, std::size_t) const;
-template void WarpEvaluator::EvaluateRange<double>(const double*, double*, const BoundPoint*,
-  const std::int64_t*, std::size_t, std::size_t) const;
+template void WarpEvaluator::EvaluateRange<float>(const float*,
+  float*,
+  const BoundPoint*,
+  const std::int64_t*,
+  std::size_t,
+  std::size_t) const;
+template void WarpEvaluator::EvaluateRange<double>(const double*,
+  double*,
+  const BoundPoint*,
+  const std::int64_t*,
+  std::size_t,
+  std::size_t) const;
 
 } // namespace bender

@@ -40,8 +40,11 @@ public:
 
   /// Binds points [begin, end) of the xyz array (3 values each); bound[i] = 1 when point i
   /// is inside the region of influence. Safe to call concurrently on disjoint ranges.
-  template <typename T>
-  void BindRange(const T* xyz, std::size_t begin, std::size_t end, BoundPoint* records,
+  template<typename T>
+  void BindRange(const T* xyz,
+    std::size_t begin,
+    std::size_t end,
+    BoundPoint* records,
     std::uint8_t* bound) const;
 
   const Ribbon& InitialRibbon() const { return this->Initial; }
@@ -54,6 +57,17 @@ private:
   DecaySpec Decay;
   BlendMode Blend;
   Vec3 BoxMin, BoxMax; // bounds of the region of influence, for quick rejection
+  /// A capsule around each arc's chord holding every point within R of the arc: a point
+  /// outside both is outside the region of influence, rejected before any projection.
+  struct Capsule
+  {
+    Vec3 start;
+    Vec3 axis;           ///< unit chord direction (zero for a zero-length chord)
+    double length = 0.0; ///< chord length
+    double radiusSquared = 0.0;
+  };
+  Capsule Capsules[2];
+  bool InCapsules(const Vec3& p) const;
 };
 
 /// How the screws are evaluated per point.
@@ -80,9 +94,13 @@ public:
 
   /// out[i] = warp(in[i]) for the points listed in ids[begin, end), with their records
   /// records[ids[k]]. Safe to call concurrently on disjoint ranges.
-  template <typename T>
-  void EvaluateRange(const T* in, T* out, const BoundPoint* records, const std::int64_t* ids,
-    std::size_t begin, std::size_t end) const;
+  template<typename T>
+  void EvaluateRange(const T* in,
+    T* out,
+    const BoundPoint* records,
+    const std::int64_t* ids,
+    std::size_t begin,
+    std::size_t end) const;
 
 private:
   const RibbonWarp& Warp;
