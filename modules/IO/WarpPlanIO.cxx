@@ -2,6 +2,7 @@
 
 #include "FileUtilities.h"
 #include "GeometryErrors.h"
+#include "InputValidation.h"
 #include "RibbonWarp.h"
 
 #include <nlohmann/json.hpp>
@@ -343,11 +344,13 @@ private:
   }
 };
 
-// "[json.exception.parse_error.101] parse error at line 3, column 7: ..." without the tag.
+// "[json.exception.parse_error.101] parse error at line 3, column 7: ..." without the tag, as
+// one printable line: nlohmann quotes the bytes it last read ("last read: '...'"), which come
+// from the file and may be anything (found by fuzz/fuzz_plan).
 std::string ParseErrorText(const std::string& what)
 {
   const std::size_t tag = what.find("] ");
-  return tag == std::string::npos ? what : what.substr(tag + 2);
+  return io_detail::CleanMessage(tag == std::string::npos ? what : what.substr(tag + 2), 300);
 }
 
 struct TooDeep

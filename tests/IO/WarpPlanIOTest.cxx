@@ -586,3 +586,19 @@ TEST(WarpPlanIORejects, InvalidRibbonsThroughTheGeometryCore)
   message = ErrorOf([&] { ParseWarpPlan(plan.dump(), Source); });
   EXPECT_EQ(message.rfind("plan.bender.json: warps[0].final.end.tangent: ", 0), 0u) << message;
 }
+
+TEST(WarpPlanIO, MalformedJsonErrorsQuoteNoRawBytes)
+{
+  // nlohmann's parse errors quote the bytes last read; from a file they may be control bytes or
+  // invalid UTF-8, which must not reach a terminal (issue 13, found by fuzz/fuzz_plan).
+  const std::string text =
+    std::string("{\"format\": \"bender-warps\", \"version\": 1, \x1b[31m\xdb") + "\x07 }";
+  const std::string message = ErrorOf([&] { ParseWarpPlan(text, Source); });
+  ASSERT_NE(message.find("malformed JSON"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  for (const char c : message)
+  {
+    const unsigned char u = static_cast<unsigned char>(c);
+    EXPECT_TRUE(u >= 0x20 && u < 0x7f) << "byte " << int(u) << " in: " << message;
+  }
+}
