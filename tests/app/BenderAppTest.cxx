@@ -645,8 +645,9 @@ private slots:
     device->setFocus();
     device->end(false);
     QTest::keyClick(device, Qt::Key_G);
+    QTest::keyClick(device, Qt::Key_Space);
     QTest::keyClick(device, Qt::Key_P);
-    QCOMPARE(device->text(), spec + "gp");
+    QCOMPARE(device->text(), spec + "g p"); // Space too is the text field's
     QVERIFY(!this->Window->isPlacingRibbon());
     QVERIFY(session.GetState() != bender::GrabState::Grabbed);
     device->setText(spec);
