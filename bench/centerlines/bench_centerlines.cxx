@@ -1,14 +1,17 @@
 // bench_centerlines: centerlines (Voronoi diagram, minimal paths, smoothing, branches) of the
 // gmsh aneurysm (about 20 k triangles, 3 open ends) and of the demo segmentation (about 55 k
 // triangles, closed), with the time of each stage. Prints the machine, every run and the
-// median of each stage. Target (issue 10): at most 1 s for the 55 k-triangle surface on a
-// 2-core machine. Figures taken on a loaded machine are not final: say so when quoting them.
+// median, min and max of each stage. Target (issue 10): at most 1 s for the 55 k-triangle
+// surface on a 2-core machine. Figures taken on a loaded machine are not final: say so when
+// quoting them.
 //
 // usage: bench_centerlines [REPEATS] [SURFACE ...]   (default 5 repeats, the two surfaces)
 
 #include "DemoPipeline.h"
 #include "MeshIO.h"
 #include "VesselCenterlines.h"
+
+#include "BenchMachine.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -17,33 +20,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace
 {
-std::string CpuName()
-{
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-  {
-    if (line.rfind("model name", 0) == 0)
-    {
-      return line.substr(line.find(':') + 2);
-    }
-  }
-  return "unknown CPU";
-}
-
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 void Run(const std::string& name, vtkPolyData* surface, int repeats)
 {
   std::printf("\n%s: %lld points, %lld triangles\n",
@@ -85,22 +66,20 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
   const char* names[8] = {
     "prep", "delaunay", "voronoi", "endpoints", "paths", "smoothing", "branches", "total"
   };
-  std::printf("  median:");
+  std::printf("  s, median [min, max]:");
   for (int k = 0; k < 8; ++k)
   {
-    std::printf(" %s %.3f", names[k], Median(stages[k]));
+    const std::string spread = bender_bench::Format(bender_bench::Summarise(stages[k]), 3);
+    std::printf(" %s %s", names[k], spread.c_str());
   }
-  std::printf(" s\n");
+  std::printf("\n");
 }
 } // namespace
 
 int main(int argc, char* argv[])
 {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-  std::printf("bench_centerlines: %s, %u hardware threads; medians of %d runs\n",
-    CpuName().c_str(),
-    std::thread::hardware_concurrency(),
-    repeats);
+  std::printf("bench_centerlines: %s; medians of %d runs\n", bender_bench::MachineLine().c_str(), repeats);
   try
   {
     if (argc > 2)
