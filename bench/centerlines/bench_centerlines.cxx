@@ -79,7 +79,8 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
 int main(int argc, char* argv[])
 {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-  std::printf("bench_centerlines: %s; medians of %d runs\n", bender_bench::MachineLine().c_str(), repeats);
+  std::printf(
+    "bench_centerlines: %s; medians of %d runs\n", bender_bench::MachineLine().c_str(), repeats);
   try
   {
     if (argc > 2)
