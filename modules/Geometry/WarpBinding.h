@@ -67,7 +67,10 @@ private:
     double radiusSquared = 0.0;
   };
   Capsule Capsules[2];
+  bool InBox(const Vec3& p) const;
   bool InCapsules(const Vec3& p) const;
+  /// Bind() for a point that passed the box (and optionally the capsule) test.
+  bool BindProjected(const Vec3& p, BoundPoint& out) const;
 };
 
 /// How the screws are evaluated per point.
