@@ -1,0 +1,432 @@
+#include "VesselSession.h"
+
+#include "BenderSession.h"
+#include "RibbonWarp.h"
+#include "VesselArrayNames.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <sstream>
+
+namespace bender
+{
+namespace
+{
+constexpr double Degrees = 180.0 / 3.14159265358979323846;
+
+vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* surface)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(surface);
+  return copy;
+}
+
+/// The points of one polyline cell of `lines`.
+std::vector<vtkIdType> CellIds(vtkPolyData* lines, vtkIdType cell)
+{
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  lines->GetLines()->GetCellAtId(cell, n, ids);
+  return std::vector<vtkIdType>(ids, ids + n);
+}
+
+Vec3 PointOf(vtkPolyData* data, vtkIdType id)
+{
+  double p[3];
+  data->GetPoint(id, p);
+  return { p[0], p[1], p[2] };
+}
+
+double AngleBetween(const Vec3& a, const Vec3& b)
+{
+  const double na = Norm(a), nb = Norm(b);
+  if (!(na > 0) || !(nb > 0))
+  {
+    return 0.0;
+  }
+  return std::acos(std::clamp(Dot(a, b) / (na * nb), -1.0, 1.0)) * Degrees;
+}
+} // namespace
+
+void CenterlineJob::Run(const ProgressReporter& progress)
+{
+  try
+  {
+    progress.Report("centerlines", 0.0);
+    if (this->OriginalResult)
+    {
+      this->Before = *this->OriginalResult;
+    }
+    else
+    {
+      this->Before = ComputeCenterlines(this->Original);
+    }
+    if (!this->Before.Ok)
+    {
+      this->Problem = "Centerlines: " + this->Before.Message;
+      return;
+    }
+    progress.ThrowIfCancelled("centerlines");
+    if (this->Current)
+    {
+      progress.Report("centerlines of the bent vessel", 0.5);
+      CenterlineOptions options;
+      options.Seeds = MatchedSeeds(this->Original, this->Current, this->Before.Endpoints);
+      this->After = ComputeCenterlines(this->Current, options);
+      if (!this->After->Ok)
+      {
+        this->Problem = "Centerlines of the bent vessel: " + this->After->Message;
+        return;
+      }
+      progress.ThrowIfCancelled("centerlines");
+      this->Comparison = CompareVessels(this->Before.Branches, this->After->Branches);
+    }
+    progress.Report("centerlines", 1.0);
+    this->Ok = true;
+  }
+  catch (const std::exception& e)
+  {
+    this->Problem = std::string("Centerlines: ") + e.what();
+  }
+}
+
+bool VesselSession::IsUpToDate(const BenderSession& session) const
+{
+  vtkPolyData* surface = session.GetSurface();
+  if (!surface)
+  {
+    return !this->Shown && !this->Pending;
+  }
+  return this->Key == surface && this->KeyTime == surface->GetMTime();
+}
+
+std::shared_ptr<CenterlineJob> VesselSession::BeginCenterlines(const BenderSession& session)
+{
+  vtkPolyData* surface = session.GetSurface();
+  vtkPolyData* original = session.GetOriginalSurface();
+  if (!surface || !original)
+  {
+    this->Clear();
+    return nullptr;
+  }
+  if (this->IsUpToDate(session))
+  {
+    return nullptr;
+  }
+  auto job = std::make_shared<CenterlineJob>();
+  job->Key = surface;
+  job->KeyTime = surface->GetMTime();
+  job->OriginalKey = original;
+  job->OriginalTime = original->GetMTime();
+  const bool sameOriginal =
+    this->OriginalKey == original && this->OriginalTime == original->GetMTime();
+  if (sameOriginal && this->OriginalResult)
+  {
+    job->OriginalResult = this->OriginalResult;
+  }
+  job->Original = Copy(original);
+  if (surface != original)
+  {
+    job->Current = Copy(surface);
+  }
+  // A new surface (a load, a segmentation) drops what was shown for the previous one.
+  if (!sameOriginal)
+  {
+    this->Shown.reset();
+    this->OriginalResult.reset();
+    this->Comparison.reset();
+    this->Measures = {};
+    this->DropBranch();
+  }
+  this->Key = job->Key;
+  this->KeyTime = job->KeyTime;
+  this->Pending = job;
+  return job;
+}
+
+bool VesselSession::Finish(CenterlineJob& job, std::string& message)
+{
+  if (this->Pending.get() != &job)
+  {
+    message = "Centerlines of an older surface: ignored";
+    return this->HasCenterlines();
+  }
+  this->Pending.reset();
+  if (!job.Ok)
+  {
+    message = job.Problem;
+    this->Shown.reset();
+    this->Comparison.reset();
+    this->Measures = {};
+    this->DropBranch();
+    return false;
+  }
+  this->OriginalKey = job.OriginalKey;
+  this->OriginalTime = job.OriginalTime;
+  this->OriginalResult = job.Before;
+  this->Shown = job.After ? *job.After : job.Before;
+  this->Comparison = job.Comparison;
+  this->Measures = MeasureBranches(this->Shown->Branches);
+  std::ostringstream text;
+  text << "Centerlines: " << this->Shown->Paths->GetNumberOfCells() << " path(s), "
+       << this->Measures.Branches.size() << " branch(es)";
+  if (!this->Shown->Warnings.empty())
+  {
+    text << " (" << this->Shown->Warnings.front() << ")";
+  }
+  message = text.str();
+  return true;
+}
+
+vtkPolyData* VesselSession::GetPaths() const
+{
+  return this->Shown ? this->Shown->Paths.GetPointer() : nullptr;
+}
+
+vtkPolyData* VesselSession::GetBranches() const
+{
+  return this->Shown ? this->Shown->Branches.GetPointer() : nullptr;
+}
+
+void VesselSession::Clear()
+{
+  this->Shown.reset();
+  this->OriginalResult.reset();
+  this->Comparison.reset();
+  this->Measures = {};
+  this->Key = nullptr;
+  this->KeyTime = 0;
+  this->OriginalKey = nullptr;
+  this->OriginalTime = 0;
+  this->Pending.reset();
+  this->DropBranch();
+}
+
+RibbonPlacement VesselSession::PlaceRibbon(const Vec3& first,
+  const Vec3& second,
+  const CenterlineRibbonOptions& options) const
+{
+  return PlaceRibbonOnCenterline(this->GetPaths(), first, second, options);
+}
+
+void VesselSession::DropBranch()
+{
+  this->Held.clear();
+  this->HeldStart = this->HeldEnd = 0;
+}
+
+bool VesselSession::HoldBranch(const RibbonSpec& ribbon, vtkPolyData* surface)
+{
+  this->DropBranch();
+  vtkPolyData* paths = this->GetPaths();
+  if (!paths || !surface || surface->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  vtkDataArray* radius =
+    paths->GetPointData()->GetArray(VesselArrays::MaximumInscribedSphereRadius);
+  if (!radius)
+  {
+    return false;
+  }
+  // The path nearest to both ends of the ribbon.
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<vtkIdType> bestIds;
+  std::size_t bestA = 0, bestB = 0;
+  for (vtkIdType c = 0; c < paths->GetNumberOfCells(); ++c)
+  {
+    const std::vector<vtkIdType> ids = CellIds(paths, c);
+    double da = std::numeric_limits<double>::infinity(), db = da;
+    std::size_t ia = 0, ib = 0;
+    for (std::size_t i = 0; i < ids.size(); ++i)
+    {
+      const Vec3 p = PointOf(paths, ids[i]);
+      const double r = std::max(radius->GetComponent(ids[i], 0), 1e-9);
+      const double a = Distance(p, ribbon.start.position) / r;
+      const double b = Distance(p, ribbon.end.position) / r;
+      if (a < da)
+      {
+        da = a;
+        ia = i;
+      }
+      if (b < db)
+      {
+        db = b;
+        ib = i;
+      }
+    }
+    if (da <= 2 && db <= 2 && da + db < best && ia != ib)
+    {
+      best = da + db;
+      bestIds = ids;
+      bestA = ia;
+      bestB = ib;
+    }
+  }
+  if (bestIds.empty())
+  {
+    return false;
+  }
+  // Samples in the ribbon's order.
+  const bool forward = bestA < bestB;
+  const std::size_t lo = std::min(bestA, bestB), hi = std::max(bestA, bestB);
+  std::vector<HeldSample> samples;
+  for (std::size_t i = lo; i <= hi; ++i)
+  {
+    const vtkIdType id = bestIds[forward ? i : hi - (i - lo)];
+    samples.push_back({ PointOf(paths, id), radius->GetComponent(id, 0), {} });
+  }
+  // Wall points: each surface point near the stretch goes to its nearest sample; each sample
+  // keeps its 16 nearest (the smallest distance is the local radius, before and after a bend).
+  double largest = 0;
+  for (const auto& s : samples)
+  {
+    largest = std::max(largest, s.radius);
+  }
+  std::vector<std::vector<std::pair<double, Vec3>>> near(samples.size());
+  for (vtkIdType k = 0; k < surface->GetNumberOfPoints(); ++k)
+  {
+    const Vec3 q = PointOf(surface, k);
+    double d = std::numeric_limits<double>::infinity();
+    std::size_t nearest = 0;
+    for (std::size_t i = 0; i < samples.size(); ++i)
+    {
+      const double di = Distance(q, samples[i].position);
+      if (di < d)
+      {
+        d = di;
+        nearest = i;
+      }
+    }
+    if (d <= 1.5 * samples[nearest].radius && d <= 1.5 * largest)
+    {
+      near[nearest].emplace_back(d, q);
+    }
+  }
+  for (std::size_t i = 0; i < samples.size(); ++i)
+  {
+    auto& list = near[i];
+    std::sort(list.begin(),
+      list.end(),
+      [](const std::pair<double, Vec3>& a, const std::pair<double, Vec3>& b)
+      { return a.first < b.first; });
+    for (std::size_t j = 0; j < list.size() && j < 16; ++j)
+    {
+      samples[i].wall.push_back(list[j].second);
+    }
+  }
+  this->Held = std::move(samples);
+  this->HeldStart = 0;
+  this->HeldEnd = static_cast<int>(this->Held.size()) - 1;
+  return this->Held.size() >= 3;
+}
+
+HeldBranchMeasures VesselSession::Measure(const std::vector<Vec3>& centers,
+  const std::vector<std::vector<Vec3>>& walls) const
+{
+  HeldBranchMeasures m;
+  const int n = static_cast<int>(centers.size());
+  if (n < 3)
+  {
+    return m;
+  }
+  for (int i = 1; i < n; ++i)
+  {
+    m.Length += Distance(centers[i - 1], centers[i]);
+  }
+  // End directions over a quarter of the local radius of arc (at least one sample, at most a
+  // third of the stretch): the centerline is smooth there, and the warp near the ribbon's ends
+  // is the end screws' own (farther in, it is already the interpolated screws').
+  auto reach = [&](int from, int step)
+  {
+    const double wanted = 0.25 * this->Held[from].radius;
+    double travelled = 0;
+    int i = from;
+    while (
+      i + step >= 0 && i + step < n && travelled < wanted && std::abs(i + step - from) <= n / 3)
+    {
+      travelled += Distance(centers[i], centers[i + step]);
+      i += step;
+    }
+    return i == from ? from + step : i;
+  };
+  const Vec3 startDirection = centers[reach(0, +1)] - centers[0];
+  const Vec3 endDirection = centers[n - 1] - centers[reach(n - 1, -1)];
+  m.BendAngle = AngleBetween(startDirection, endDirection);
+  m.MinRadius = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i)
+  {
+    for (const Vec3& w : walls[i])
+    {
+      m.MinRadius = std::min(m.MinRadius, Distance(w, centers[i]));
+    }
+  }
+  if (!std::isfinite(m.MinRadius))
+  {
+    m.MinRadius = 0;
+  }
+  m.Samples = n;
+  m.Valid = std::isfinite(m.Length) && std::isfinite(m.BendAngle);
+  return m;
+}
+
+HeldBranchMeasures VesselSession::MeasureHeld() const
+{
+  std::vector<Vec3> centers;
+  std::vector<std::vector<Vec3>> walls;
+  for (const auto& s : this->Held)
+  {
+    centers.push_back(s.position);
+    walls.push_back(s.wall);
+  }
+  return this->Measure(centers, walls);
+}
+
+HeldBranchMeasures VesselSession::MeasureHeld(const WarpSpec& warp) const
+{
+  if (this->Held.empty())
+  {
+    return {};
+  }
+  try
+  {
+    const RibbonWarp moved(warp);
+    std::vector<Vec3> centers;
+    std::vector<std::vector<Vec3>> walls;
+    for (const auto& s : this->Held)
+    {
+      centers.push_back(moved.Apply(s.position));
+      std::vector<Vec3> wall;
+      for (const Vec3& w : s.wall)
+      {
+        wall.push_back(moved.Apply(w));
+      }
+      walls.push_back(std::move(wall));
+    }
+    return this->Measure(centers, walls);
+  }
+  catch (const std::exception&)
+  {
+    return {}; // an invalid live warp: the session does not apply it either
+  }
+}
+
+WarpSpec LiveWarpOf(const BenderSession& session)
+{
+  WarpSpec warp;
+  warp.initial = session.GetInitialRibbon();
+  warp.final = session.GetFinalRibbon();
+  warp.radius = session.GetParameters().radius;
+  warp.decay = session.GetParameters().decay;
+  warp.reverseScrews = session.GetParameters().reverseScrews;
+  return warp;
+}
+
+} // namespace bender

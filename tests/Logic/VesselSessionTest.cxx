@@ -1,0 +1,194 @@
+// VesselSession on the gmsh aneurysm (data/external/aneurysm_data.stl): centerlines as a job of
+// the committed surface, the ribbon on the centerline (a pick on the sac refused), the held
+// branch measured live with the live warp, and the before/after comparison after a release.
+
+#include "VesselSession.h"
+#include "BenderSession.h"
+#include "VesselArrayNames.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+using namespace bender;
+
+namespace
+{
+const std::string Aneurysm = std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl";
+constexpr double Degrees = 180.0 / 3.14159265358979323846;
+
+double TangentAngle(const RibbonSpec& ribbon)
+{
+  return std::acos(std::clamp(Dot(ribbon.start.tangent, ribbon.end.tangent), -1.0, 1.0)) * Degrees;
+}
+
+class VesselSessionTest : public ::testing::Test
+{
+protected:
+  static void SetUpTestSuite()
+  {
+    Session = new BenderSession;
+    ASSERT_TRUE(Session->LoadSurface(Aneurysm));
+    Vessels = new VesselSession;
+    EXPECT_FALSE(Vessels->IsUpToDate(*Session));
+    auto job = Vessels->BeginCenterlines(*Session);
+    ASSERT_TRUE(job);
+    job->Run({});
+    std::string message;
+    ASSERT_TRUE(Vessels->Finish(*job, message)) << message;
+  }
+  static void TearDownTestSuite()
+  {
+    delete Vessels;
+    delete Session;
+  }
+
+  /// A point on the wall beside sample i of the first path (pushed out by the radius).
+  static Vec3 WallPick(vtkIdType i)
+  {
+    vtkPolyData* paths = Vessels->GetPaths();
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    paths->GetLines()->GetCellAtId(0, n, ids);
+    double p[3], nn[3];
+    paths->GetPoint(ids[i], p);
+    paths->GetPointData()->GetArray(VesselArrays::FrenetNormal)->GetTuple(ids[i], nn);
+    const double r = paths->GetPointData()
+                       ->GetArray(VesselArrays::MaximumInscribedSphereRadius)
+                       ->GetComponent(ids[i], 0);
+    return { p[0] + r * nn[0], p[1] + r * nn[1], p[2] + r * nn[2] };
+  }
+
+  static BenderSession* Session;
+  static VesselSession* Vessels;
+};
+BenderSession* VesselSessionTest::Session = nullptr;
+VesselSession* VesselSessionTest::Vessels = nullptr;
+} // namespace
+
+TEST_F(VesselSessionTest, CentrelinesOfTheLoadedSurface)
+{
+  ASSERT_TRUE(Vessels->HasCenterlines());
+  EXPECT_TRUE(Vessels->IsUpToDate(*Session));
+  EXPECT_FALSE(Vessels->BeginCenterlines(*Session)) << "up to date: no new job";
+  EXPECT_EQ(Vessels->GetPaths()->GetNumberOfCells(), 2);
+  EXPECT_GE(Vessels->GetMeasures().Branches.size(), 3u);
+  EXPECT_FALSE(Vessels->GetComparison()) << "nothing bent yet";
+}
+
+TEST_F(VesselSessionTest, RibbonOnTheCenterlineAndTheSacRefused)
+{
+  const RibbonPlacement placed = Vessels->PlaceRibbon(WallPick(30), WallPick(150));
+  EXPECT_GT(placed.vesselRadius, 1.0);
+  // The sac: the surface point farthest from the centerlines relative to the local radius.
+  vtkPolyData* surface = Session->GetSurface();
+  vtkPolyData* paths = Vessels->GetPaths();
+  vtkDataArray* radius =
+    paths->GetPointData()->GetArray(VesselArrays::MaximumInscribedSphereRadius);
+  Vec3 sac{ 0, 0, 0 };
+  double worst = 0.0;
+  for (vtkIdType s = 0; s < surface->GetNumberOfPoints(); s += 3)
+  {
+    double q[3];
+    surface->GetPoint(s, q);
+    double ratio = 1e300;
+    for (vtkIdType k = 0; k < paths->GetNumberOfPoints(); k += 5)
+    {
+      double c[3];
+      paths->GetPoint(k, c);
+      ratio = std::min(
+        ratio, std::hypot(q[0] - c[0], q[1] - c[1], q[2] - c[2]) / radius->GetComponent(k, 0));
+    }
+    if (ratio > worst)
+    {
+      worst = ratio;
+      sac = { q[0], q[1], q[2] };
+    }
+  }
+  EXPECT_THROW(Vessels->PlaceRibbon(sac, WallPick(150)), RibbonPlacementError);
+  VesselSession empty;
+  EXPECT_THROW(empty.PlaceRibbon(WallPick(30), WallPick(150)), RibbonPlacementError);
+}
+
+// The held stretch measured live follows the plan: its bend angle changes by the change of the
+// angle between the ribbon's end tangents; after the release, the whole-plan comparison.
+TEST_F(VesselSessionTest, HeldBranchFollowsTheBendAndThePlanIsCompared)
+{
+  const RibbonPlacement placed = Vessels->PlaceRibbon(WallPick(40), WallPick(160));
+  ASSERT_TRUE(Vessels->HoldBranch(placed.ribbon, Session->GetSurface()));
+  const HeldBranchMeasures before = Vessels->MeasureHeld();
+  ASSERT_TRUE(before.Valid);
+  EXPECT_GT(before.Length, Distance(placed.ribbon.start.position, placed.ribbon.end.position));
+  EXPECT_GT(before.MinRadius, 0.5 * placed.vesselRadius);
+  EXPECT_LT(before.MinRadius, 1.2 * placed.vesselRadius);
+  // Unchanged by the identity warp.
+  WarpParameters parameters = Session->GetParameters();
+  parameters.radius = placed.suggestedRadius;
+  ASSERT_TRUE(Session->SetParameters(parameters));
+  ASSERT_TRUE(Session->Grab(placed.ribbon));
+  const HeldBranchMeasures still = Vessels->MeasureHeld(LiveWarpOf(*Session));
+  EXPECT_NEAR(still.BendAngle, before.BendAngle, 0.5);
+  EXPECT_NEAR(still.Length, before.Length, 0.01 * before.Length);
+  EXPECT_NEAR(still.MinRadius, before.MinRadius, 0.01 * before.MinRadius);
+  // Turn the end frame by 30 degrees about the start normal, around the start.
+  RibbonSpec bent = placed.ribbon;
+  const Vec3 axis = Normalized(placed.ribbon.start.normal);
+  const double angle = 30.0 / Degrees;
+  const Vec3 arm = bent.end.position - bent.start.position;
+  bent.end.position = bent.start.position + Rotate(axis, angle, arm);
+  bent.end.tangent = Rotate(axis, angle, bent.end.tangent);
+  bent.end.normal = Rotate(axis, angle, bent.end.normal);
+  ASSERT_TRUE(Session->MoveFinal(bent)) << Session->GetLiveProblem();
+  const double plan = TangentAngle(Session->GetFinalRibbon()) - TangentAngle(placed.ribbon);
+  ASSERT_GT(std::abs(plan), 10.0);
+  const HeldBranchMeasures live = Vessels->MeasureHeld(LiveWarpOf(*Session));
+  ASSERT_TRUE(live.Valid);
+  EXPECT_NEAR(live.BendAngle - before.BendAngle, plan, 4.0);
+  // The carried axis to the carried wall: positive, no wider than before this bend.
+  EXPECT_GT(live.MinRadius, 0.0);
+  EXPECT_LT(live.MinRadius, 1.05 * before.MinRadius);
+  std::cout << "held stretch: bend " << before.BendAngle << " -> " << live.BendAngle
+            << " deg (plan " << plan << "), min radius " << before.MinRadius << " -> "
+            << live.MinRadius << " mm\n";
+
+  ASSERT_TRUE(Session->Release());
+  EXPECT_FALSE(Vessels->IsUpToDate(*Session)) << "the committed surface changed";
+  auto job = Vessels->BeginCenterlines(*Session);
+  ASSERT_TRUE(job);
+  job->Run({});
+  std::string message;
+  ASSERT_TRUE(Vessels->Finish(*job, message)) << message;
+  ASSERT_TRUE(Vessels->GetComparison());
+  const VesselComparison& comparison = *Vessels->GetComparison();
+  ASSERT_FALSE(comparison.Pairs.empty());
+  double largestTurn = 0;
+  for (const BranchChange& pair : comparison.Pairs)
+  {
+    if (pair.BeforeIndex >= 0 && pair.AfterIndex >= 0)
+    {
+      const auto& b = comparison.Before.Branches[pair.BeforeIndex];
+      const auto& a = comparison.After.Branches[pair.AfterIndex];
+      largestTurn = std::max(largestTurn,
+        std::acos(std::clamp(Dot(Vec3{ b.EndTangent[0], b.EndTangent[1], b.EndTangent[2] },
+                               Vec3{ a.EndTangent[0], a.EndTangent[1], a.EndTangent[2] }),
+          -1.0,
+          1.0)) *
+          Degrees);
+    }
+  }
+  EXPECT_GT(largestTurn, 5.0) << "a branch end turned with the bend";
+  // Undo: back to the original surface, whose centerlines need no comparison.
+  ASSERT_TRUE(Session->Undo());
+  auto back = Vessels->BeginCenterlines(*Session);
+  ASSERT_TRUE(back);
+  back->Run({});
+  ASSERT_TRUE(Vessels->Finish(*back, message)) << message;
+  EXPECT_FALSE(Vessels->GetComparison());
+}
