@@ -50,8 +50,32 @@ bool NearestOnArc(const Arc& arc, const Vec3& p, double& u, Vec3& q)
 
 WireProjections ProjectOntoWire(const Biarc& wire, const Vec3& p, double radius)
 {
-  WireProjection cand[4];
-  int n = 0;
+  // Candidates in the order arc 1, arc 2, start, end; the two nearest with distance < radius
+  // kept in place, nearest first, ties by smaller s (a stable insertion: same result as
+  // sorting all candidates), without candidate arrays to initialise and copy.
+  WireProjections out;
+  const auto offer = [&out, radius](double s, double distance, const Vec3& foot)
+  {
+    if (!(distance < radius))
+    {
+      return;
+    }
+    int i = out.count < 2 ? out.count++ : 2;
+    while (i > 0 &&
+      (distance < out.items[i - 1].distance ||
+        (distance == out.items[i - 1].distance && s < out.items[i - 1].s)))
+    {
+      if (i < 2)
+      {
+        out.items[i] = out.items[i - 1];
+      }
+      --i;
+    }
+    if (i < 2)
+    {
+      out.items[i] = { s, distance, foot };
+    }
+  };
   const double sJ = wire.JunctionParameter();
   const double h0 = Dot(p - wire.Start(), wire.StartTangent());
   const double hJ = Dot(p - wire.Junction(), wire.JunctionTangent());
@@ -60,51 +84,19 @@ WireProjections ProjectOntoWire(const Biarc& wire, const Vec3& p, double radius)
   Vec3 q;
   if (h0 >= 0.0 && hJ < 0.0 && NearestOnArc(wire.FirstArc(), p, u, q))
   {
-    cand[n++] = { sJ * u, Distance(p, q), q };
+    offer(sJ * u, Distance(p, q), q);
   }
   if (hJ >= 0.0 && h1 <= 0.0 && NearestOnArc(wire.SecondArc(), p, u, q))
   {
-    cand[n++] = { sJ + (1.0 - sJ) * u, Distance(p, q), q };
+    offer(sJ + (1.0 - sJ) * u, Distance(p, q), q);
   }
   if (h0 < 0.0)
   {
-    cand[n++] = { 0.0, Distance(p, wire.Start()), wire.Start() };
+    offer(0.0, Distance(p, wire.Start()), wire.Start());
   }
   if (h1 > 0.0)
   {
-    cand[n++] = { 1.0, Distance(p, wire.End()), wire.End() };
-  }
-  WireProjections out;
-  WireProjection kept[4];
-  int k = 0;
-  for (int i = 0; i < n; ++i)
-  {
-    if (cand[i].distance < radius)
-    {
-      kept[k++] = cand[i];
-    }
-  }
-  // Nearest first, ties by smaller s (insertion sort of at most four).
-  for (int i = 1; i < k; ++i)
-  {
-    for (int j = i; j > 0; --j)
-    {
-      const WireProjection& a = kept[j];
-      const WireProjection& b = kept[j - 1];
-      if (a.distance < b.distance || (a.distance == b.distance && a.s < b.s))
-      {
-        std::swap(kept[j], kept[j - 1]);
-      }
-      else
-      {
-        break;
-      }
-    }
-  }
-  out.count = std::min(k, 2);
-  for (int i = 0; i < out.count; ++i)
-  {
-    out.items[i] = kept[i];
+    offer(1.0, Distance(p, wire.End()), wire.End());
   }
   return out;
 }

@@ -926,3 +926,61 @@ TEST(Warp, InvalidParametersAreRejected)
 }
 
 } // namespace
+
+TEST(WarpBinding, CapsulePreFilterRejectsOnlyPointsNoProjectionKeeps)
+{
+  // The binding rejects points outside capsules around the arcs' chords before projecting
+  // (issue 14). The capsules must be conservative: a point is bound exactly when the projection
+  // onto the initial wire finds a foot within R, and then with the same nearest foot. Points fill
+  // the box around the wire grown by R, where most fall between the box test and the capsules.
+  std::mt19937_64 rng(1414);
+  long long compared = 0, bound = 0;
+  for (int i = 0; i < 120; ++i)
+  {
+    const auto warp = RandomWarp(rng, 4.0, 1.0, 0.3 + 0.6 * (i % 4) / 3.0);
+    const double R = warp->Spec().radius;
+    const bender::Biarc& wire = warp->Initial().Wire();
+    const bender::WarpBinding binding(warp->Spec(), BlendMode::TwoProjections);
+    Vec3 lo = wire.Start(), hi = wire.Start();
+    for (int k = 0; k <= 64; ++k)
+    {
+      const Vec3 q = wire.PointAt(k / 64.0);
+      lo = { std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z) };
+      hi = { std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z) };
+    }
+    std::vector<double> xyz;
+    std::vector<Vec3> pts;
+    for (int k = 0; k < 2000; ++k)
+    {
+      const Vec3 p{ bendertest::Uniform(rng, lo.x - R, hi.x + R),
+        bendertest::Uniform(rng, lo.y - R, hi.y + R), bendertest::Uniform(rng, lo.z - R, hi.z + R) };
+      pts.push_back(p);
+      xyz.insert(xyz.end(), { p.x, p.y, p.z });
+    }
+    std::vector<bender::BoundPoint> recs(pts.size());
+    std::vector<std::uint8_t> flags(pts.size());
+    binding.BindRange(xyz.data(), 0, pts.size(), recs.data(), flags.data());
+    for (std::size_t k = 0; k < pts.size(); ++k)
+    {
+      const bender::WireProjections pr = bender::ProjectOntoWire(wire, pts[k], R);
+      if (pr.count > 0 && std::abs(pr.items[0].distance - R) < 1e-9 * R)
+      {
+        continue; // on the boundary of R: the weight is zero to rounding
+      }
+      ++compared;
+      bender::BoundPoint single;
+      const bool one = binding.Bind(pts[k], single);
+      ASSERT_EQ(one, pr.count > 0) << "wire " << i << " point " << k;
+      ASSERT_EQ(flags[k] != 0, one) << "wire " << i << " point " << k;
+      if (one)
+      {
+        ++bound;
+        EXPECT_EQ(single.s0, pr.items[0].s);
+        EXPECT_EQ(recs[k].s0, single.s0);
+        EXPECT_EQ(recs[k].f, single.f);
+      }
+    }
+  }
+  EXPECT_GT(bound, compared / 20);
+  EXPECT_LT(bound, compared);
+}
