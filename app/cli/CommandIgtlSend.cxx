@@ -7,17 +7,15 @@
 
 #include "IgtlSender.h"
 #include "IgtlSocket.h"
+#include "IgtlSurfaceFromMesh.h"
 #include "MeshIO.h"
 #include "TrackingErrors.h"
 #include "WarpPlanIO.h"
 
-#include <vtkCellArray.h>
-#include <vtkIdList.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 
 #include <cstdio>
-#include <limits>
 #include <optional>
 #include <string>
 
@@ -105,39 +103,7 @@ int RunIgtlSendCommand(const std::vector<std::string>& args)
       bender::IgtlRibbonEndFrame(ribbon->start); // refuse a degenerate frame before sending
       bender::IgtlRibbonEndFrame(ribbon->end);
     }
-    vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(positional[0]);
-    if (mesh->GetNumberOfPoints() > vtkIdType(std::numeric_limits<std::uint32_t>::max()))
-    {
-      std::fprintf(stderr,
-        "bender-cli igtl-send: %s: too many points for OpenIGTLink\n",
-        positional[0].c_str());
-      return 1;
-    }
-    surface.points.reserve(std::size_t(mesh->GetNumberOfPoints()));
-    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      mesh->GetPoint(i, p);
-      surface.points.push_back({ p[0], p[1], p[2] });
-    }
-    vtkCellArray* polys = mesh->GetPolys();
-    surface.polygons.reserve(std::size_t(polys->GetNumberOfCells()));
-    vtkNew<vtkIdList> ids;
-    for (polys->InitTraversal(); polys->GetNextCell(ids);)
-    {
-      std::vector<std::uint32_t> polygon;
-      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-      {
-        polygon.push_back(std::uint32_t(ids->GetId(k)));
-      }
-      surface.polygons.push_back(std::move(polygon));
-    }
-    if (surface.polygons.empty())
-    {
-      std::fprintf(
-        stderr, "bender-cli igtl-send: %s: no polygons to send\n", positional[0].c_str());
-      return 1;
-    }
+    surface = bender::MakeIgtlSurface(bender::ReadMesh(positional[0]), positional[0]);
   }
   catch (const std::exception& e)
   {

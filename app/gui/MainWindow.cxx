@@ -186,6 +186,7 @@ void MainWindow::refresh()
   this->Data->showState(this->Session, this->Segmentation);
   this->Actions->Undo->setEnabled(this->Session.CanUndo() && !this->Session.IsBusy());
   this->Actions->Redo->setEnabled(this->Session.CanRedo() && !this->Session.IsBusy());
+  this->TrackersUi->sessionChanged(); // "Send to Slicer"
   // Inside a widget interaction or a tracker poll the view draws once itself (quietly).
   this->render();
 }

@@ -2,14 +2,21 @@
 
 #include "BenderSession.h"
 #include "BenderView.h"
+#include "IgtlDevice.h"
+#include "IgtlSender.h"
+#include "IgtlSurfaceFromMesh.h"
 #include "TrackerSession.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
 #include <QCheckBox>
+#include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QFormLayout>
+#include <QFutureWatcher>
+#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
@@ -17,6 +24,163 @@
 #include <QSpinBox>
 #include <QTimer>
 #include <QVBoxLayout>
+#include <QtConcurrent/QtConcurrent>
+
+#include <vtkPolyData.h>
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+namespace
+{
+const char* const SlicerSurfaceName = "BenderVessel";
+const char* const SlicerRibbonPrefix = "BenderRibbon";
+constexpr double SlicerRateHz = 10.0;
+
+// What a connect on the pool thread hands back to the GUI thread.
+struct OpenedDevice
+{
+  std::unique_ptr<bender::TrackerDevice> device;
+  std::string problem;
+};
+
+bender::HandMapping Hands(int left, int right)
+{
+  bender::HandMapping hands;
+  hands.leftStation = left;
+  hands.rightStation = right;
+  return hands;
+}
+
+bender::TrackerCalibration Calibration(double scale)
+{
+  return bender::TrackerCalibration(bender::Quaternion{}, bender::Vec3{}, scale);
+}
+}
+
+/// The sender thread of "Send to Slicer": connects, then sends the newest frame handed to it
+/// (Submit replaces a frame not yet sent, so nothing queues up). A live frame goes through
+/// IgtlSender::SendSurfaceIfDue; when it is not due the thread waits the rest of the interval
+/// (or for a newer frame) and tries again, so the last frame of a bend is always sent. A final
+/// frame (after a change of the committed surface) is sent at once.
+class TrackersPanel::SlicerLink
+{
+public:
+  struct Frame
+  {
+    bender::IgtlSurface surface;
+    std::optional<bender::RibbonSpec> ribbon;
+    bool final = false;
+  };
+
+  SlicerLink(bender::IgtlSender::Options options, std::function<void(std::string)> onError)
+    : Options(std::move(options))
+    , OnError(std::move(onError))
+  {
+    this->Thread = std::thread([this]() { this->Loop(); });
+  }
+  ~SlicerLink()
+  {
+    this->RequestStop();
+    this->Thread.join();
+  }
+  void RequestStop()
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    this->Stop = true;
+    this->Wake.notify_all();
+  }
+  void Submit(std::shared_ptr<Frame> frame)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    if (this->Pending && this->Pending->final)
+    {
+      frame->final = true; // a newer shape replaces a final one: still sent without waiting
+    }
+    this->Pending = std::move(frame);
+    this->Wake.notify_all();
+  }
+  bool Ended() const { return this->Done.load(); }
+
+  std::atomic<unsigned long long> Messages{ 0 };
+  std::atomic<unsigned long long> Bytes{ 0 };
+  std::atomic<unsigned long long> Surfaces{ 0 };
+  std::atomic<bool> Connected{ false };
+
+private:
+  void Loop()
+  {
+    try
+    {
+      bender::IgtlSender sender(this->Options);
+      sender.Connect();
+      this->Connected = true;
+      std::unique_lock<std::mutex> lock(this->Mutex);
+      for (;;)
+      {
+        this->Wake.wait(lock, [this]() { return this->Stop || this->Pending; });
+        if (this->Stop)
+        {
+          break;
+        }
+        const std::shared_ptr<Frame> frame = this->Pending;
+        lock.unlock();
+        bool sent = true;
+        if (frame->final)
+        {
+          sender.SendSurface(frame->surface, SlicerSurfaceName);
+        }
+        else
+        {
+          sent = sender.SendSurfaceIfDue(frame->surface, SlicerSurfaceName);
+        }
+        if (sent && frame->ribbon)
+        {
+          sender.SendRibbonEnds(*frame->ribbon, SlicerRibbonPrefix);
+        }
+        this->Messages = sender.MessagesSent();
+        this->Bytes = sender.BytesSent();
+        lock.lock();
+        if (sent)
+        {
+          ++this->Surfaces;
+          if (this->Pending == frame)
+          {
+            this->Pending.reset();
+          }
+        }
+        else
+        {
+          this->Wake.wait_for(lock,
+            std::chrono::milliseconds(int(1000.0 / SlicerRateHz) / 4 + 1),
+            [this, &frame]() { return this->Stop || this->Pending != frame; });
+        }
+      }
+    }
+    catch (const std::exception& e)
+    {
+      this->Connected = false;
+      this->Done = true;
+      this->OnError(e.what());
+      return;
+    }
+    this->Connected = false;
+    this->Done = true;
+  }
+
+  bender::IgtlSender::Options Options;
+  std::function<void(std::string)> OnError;
+  std::mutex Mutex;
+  std::condition_variable Wake;
+  std::shared_ptr<Frame> Pending;
+  bool Stop = false;
+  std::atomic<bool> Done{ false };
+  std::thread Thread;
+};
 
 TrackersPanel::TrackersPanel(QWidget* parent)
   : QWidget(parent)
@@ -24,6 +188,11 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   auto* layout = new QVBoxLayout(this);
   auto* form = new QFormLayout;
   layout->addLayout(form);
+  this->Kind = new QComboBox(this);
+  this->Kind->setObjectName("trackerKind");
+  this->Kind->addItem("Fastrak, replay or simulator");
+  this->Kind->addItem("OpenIGTLink (PLUS, 3D Slicer)");
+  form->addRow("Source", this->Kind);
   auto* deviceRow = new QHBoxLayout;
   this->Device = new QLineEdit("sim", this);
   this->Device->setObjectName("trackerDevice");
@@ -32,6 +201,26 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   auto* browse = new QPushButton("Replay...", this);
   deviceRow->addWidget(browse);
   form->addRow("Device", deviceRow);
+  this->IgtlHost = new QLineEdit("127.0.0.1", this);
+  this->IgtlHost->setObjectName("igtlHost");
+  this->IgtlHost->setToolTip("Host of the OpenIGTLink server (PLUS Server, or 3D Slicer's "
+                             "OpenIGTLinkIF connector in server mode)");
+  form->addRow("OpenIGTLink host", this->IgtlHost);
+  this->IgtlPort = new QSpinBox(this);
+  this->IgtlPort->setObjectName("igtlPort");
+  this->IgtlPort->setRange(1, 65535);
+  this->IgtlPort->setValue(18944);
+  form->addRow("OpenIGTLink port", this->IgtlPort);
+  this->IgtlTool1 = new QLineEdit("StylusToTracker", this);
+  this->IgtlTool1->setObjectName("igtlTool1");
+  this->IgtlTool1->setMaxLength(20);
+  this->IgtlTool1->setToolTip("Device name of the left hand's TRANSFORM messages (station 1)");
+  form->addRow("Left hand tool name", this->IgtlTool1);
+  this->IgtlTool2 = new QLineEdit("Stylus2ToTracker", this);
+  this->IgtlTool2->setObjectName("igtlTool2");
+  this->IgtlTool2->setMaxLength(20);
+  this->IgtlTool2->setToolTip("Device name of the right hand's TRANSFORM messages (station 2)");
+  form->addRow("Right hand tool name", this->IgtlTool2);
   this->Left = new QSpinBox(this);
   this->Left->setRange(1, 4);
   this->Left->setValue(1);
@@ -66,8 +255,47 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   this->Status->setObjectName("trackerStatus");
   this->Status->setWordWrap(true);
   layout->addWidget(this->Status);
+  this->IgtlCounters = new QLabel(this);
+  this->IgtlCounters->setObjectName("igtlCounters");
+  this->IgtlCounters->setWordWrap(true);
+  layout->addWidget(this->IgtlCounters);
+
+  auto* slicer = new QGroupBox("3D Slicer (OpenIGTLink)", this);
+  auto* slicerForm = new QFormLayout(slicer);
+  this->SendToSlicer = new QCheckBox("Send to Slicer", slicer);
+  this->SendToSlicer->setObjectName("sendToSlicer");
+  this->SendToSlicer->setToolTip(
+    "Sends the vessel (POLYDATA BenderVessel, RAS) and the ribbon's end frames "
+    "(BenderRibbonStart/End) to an OpenIGTLinkIF connector in server mode, live during a bend");
+  slicerForm->addRow(this->SendToSlicer);
+  this->SlicerHost = new QLineEdit("127.0.0.1", slicer);
+  this->SlicerHost->setObjectName("slicerHost");
+  slicerForm->addRow("Host", this->SlicerHost);
+  this->SlicerPort = new QSpinBox(slicer);
+  this->SlicerPort->setObjectName("slicerPort");
+  this->SlicerPort->setRange(1, 65535);
+  this->SlicerPort->setValue(18944);
+  slicerForm->addRow("Port", this->SlicerPort);
+  this->SlicerCounters = new QLabel("not sending", slicer);
+  this->SlicerCounters->setObjectName("slicerCounters");
+  this->SlicerCounters->setWordWrap(true);
+  slicerForm->addRow(this->SlicerCounters);
+  layout->addWidget(slicer);
   layout->addStretch(1);
   this->setConnected(false);
+
+  connect(this->Kind,
+    QOverload<int>::of(&QComboBox::currentIndexChanged),
+    this,
+    [this]() { this->setConnected(this->Trackers && this->Trackers->IsConnected()); });
+  connect(this->SendToSlicer, &QCheckBox::toggled, this, &TrackersPanel::setSendToSlicer);
+  this->SnapshotTimer = new QTimer(this);
+  this->SnapshotTimer->setSingleShot(true);
+  connect(this->SnapshotTimer, &QTimer::timeout, this, [this]() { this->sendSnapshot(false); });
+  this->CountersTimer = new QTimer(this);
+  this->CountersTimer->setInterval(250);
+  connect(this->CountersTimer, &QTimer::timeout, this, &TrackersPanel::showCounters);
+  this->CountersTimer->start();
 
   connect(browse,
     &QPushButton::clicked,
@@ -104,8 +332,19 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   connect(this->Timer, &QTimer::timeout, this, &TrackersPanel::poll);
 }
 
+TrackersPanel::~TrackersPanel()
+{
+  // The sender threads end within their connect/write timeouts.
+  this->Link.reset();
+  this->Retired.clear();
+}
+
 QString TrackersPanel::deviceSpec() const
 {
+  if (this->Kind->currentIndex() == 1)
+  {
+    return QString("igtl:%1:%2").arg(this->IgtlHost->text().trimmed()).arg(this->IgtlPort->value());
+  }
   return this->Device->text().trimmed();
 }
 
@@ -136,11 +375,18 @@ void TrackersPanel::setMotionScale(double scale)
 
 void TrackersPanel::setConnected(bool connected)
 {
-  this->ConnectButton->setEnabled(!connected);
+  const bool idle = !connected && !this->Connecting;
+  const bool igtl = this->Kind->currentIndex() == 1;
+  this->ConnectButton->setEnabled(idle);
   this->DisconnectButton->setEnabled(connected);
   this->AlignButton->setEnabled(connected);
   this->Clutch->setEnabled(connected);
-  this->Device->setEnabled(!connected);
+  this->Kind->setEnabled(idle);
+  this->Device->setEnabled(idle && !igtl);
+  this->IgtlHost->setEnabled(idle && igtl);
+  this->IgtlPort->setEnabled(idle && igtl);
+  this->IgtlTool1->setEnabled(idle && igtl);
+  this->IgtlTool2->setEnabled(idle && igtl);
   if (!connected)
   {
     this->Clutch->setChecked(false);
@@ -165,33 +411,87 @@ void TrackersPanel::attach(bender::TrackerSession* trackers,
 
 bool TrackersPanel::connectDevice()
 {
-  if (!this->Trackers)
+  if (!this->Trackers || this->Connecting || this->Trackers->IsConnected())
     return false;
   bender::TrackerDeviceOptions options;
   options.stations = { this->leftStation(), this->rightStation() };
   options.realtime = true;
   options.simulatorRealtime = true;
-  bender::HandMapping hands;
-  hands.leftStation = this->leftStation();
-  hands.rightStation = this->rightStation();
-  bender::TrackerCalibration calibration;
+  options.igtlToolNames = { this->IgtlTool1->text().trimmed().toStdString(),
+    this->IgtlTool2->text().trimmed().toStdString() };
+  const std::string spec = this->deviceSpec().toStdString();
   try
   {
-    calibration =
-      bender::TrackerCalibration(bender::Quaternion{}, bender::Vec3{}, this->motionScale());
+    // Refused here, before any thread: a bad spec, scale or tool names.
+    bender::TrackerCalibration(bender::Quaternion{}, bender::Vec3{}, this->motionScale());
+    const bender::TrackerDeviceSpec parsed = bender::TrackerDeviceSpec::Parse(spec);
+    if (parsed.kind == bender::TrackerDeviceSpec::Kind::Replay ||
+      parsed.kind == bender::TrackerDeviceSpec::Kind::Simulator)
+    {
+      // Files and the simulator open at once.
+      if (!this->Trackers->Connect(spec,
+            options,
+            Hands(this->leftStation(), this->rightStation()),
+            Calibration(this->motionScale())))
+        return false;
+      this->finishConnect(true);
+      return true;
+    }
+    bender::CreateTrackerDevice(parsed, options); // validates names and port; opens nothing
   }
   catch (const std::exception& e)
   {
-    this->Session->AddMessage(bender::MessageSeverity::Error, e.what());
+    this->Session->AddMessage(bender::MessageSeverity::Error, "Tracker " + spec + ": " + e.what());
     return false;
   }
-  if (!this->Trackers->Connect(this->deviceSpec().toStdString(), options, hands, calibration))
-  {
-    return false;
-  }
-  this->setConnected(true);
-  this->Timer->start();
+  this->Connecting = true;
+  this->setConnected(false);
+  this->setStatus(QString("connecting to %1 ...").arg(QString::fromStdString(spec)));
+  auto opened = std::make_shared<OpenedDevice>();
+  auto* watcher = new QFutureWatcher<void>(this);
+  connect(watcher,
+    &QFutureWatcher<void>::finished,
+    this,
+    [this, watcher, opened]()
+    {
+      watcher->deleteLater();
+      this->Connecting = false;
+      if (!opened->device)
+      {
+        this->Session->AddMessage(bender::MessageSeverity::Error, opened->problem);
+        this->setStatus(QString::fromStdString(opened->problem));
+        this->finishConnect(false);
+        return;
+      }
+      this->finishConnect(this->Trackers->Connect(std::move(opened->device),
+        Hands(this->leftStation(), this->rightStation()),
+        Calibration(this->motionScale())));
+    });
+  watcher->setFuture(QtConcurrent::run(
+    [spec, options, opened]()
+    {
+      try
+      {
+        opened->device = bender::TrackerSession::OpenDevice(spec, options);
+      }
+      catch (const std::exception& e)
+      {
+        opened->problem = e.what();
+      }
+    }));
   return true;
+}
+
+void TrackersPanel::finishConnect(bool connected)
+{
+  this->setConnected(connected);
+  if (connected)
+  {
+    this->Timer->start();
+    this->setStatus(QString::fromStdString(this->Trackers->StatusText()));
+  }
+  this->showCounters();
+  emit this->connectFinished(connected);
 }
 
 void TrackersPanel::disconnectDevice()
@@ -201,6 +501,7 @@ void TrackersPanel::disconnectDevice()
     this->Trackers->Disconnect();
   this->setConnected(false);
   this->setStatus("not connected");
+  this->showCounters();
 }
 
 void TrackersPanel::poll()
@@ -230,4 +531,191 @@ void TrackersPanel::poll()
     this->setConnected(false);
   }
   this->View->render();
+}
+
+void TrackersPanel::showCounters()
+{
+  this->pruneRetired();
+  const auto* igtl =
+    this->Trackers ? dynamic_cast<const bender::IgtlDevice*>(this->Trackers->GetDevice()) : nullptr;
+  if (igtl)
+  {
+    const bender::IgtlStatistics stats = igtl->IgtlStats();
+    std::ostringstream text;
+    text << "OpenIGTLink: ";
+    if (stats.names.empty())
+    {
+      text << "no poses yet";
+    }
+    else
+    {
+      text << "names seen:";
+      const char* separator = " ";
+      for (const auto& [name, count] : stats.names)
+      {
+        text << separator << name << " (" << count << ")";
+        separator = ", ";
+      }
+    }
+    text << "\nCRC errors " << stats.decoder.crcErrors << ", garbage bytes "
+         << stats.decoder.garbageBytes << ", skipped messages " << stats.unknownTypes
+         << ", invalid poses " << stats.invalidPoses;
+    text << "\nlast STATUS: " << (stats.lastStatus.empty() ? "OK" : stats.lastStatus);
+    this->IgtlCounters->setText(QString::fromStdString(text.str()));
+    this->IgtlCounters->show();
+  }
+  else
+  {
+    this->IgtlCounters->clear();
+    this->IgtlCounters->hide();
+  }
+  if (this->Link)
+  {
+    this->SlicerCounters->setText(QString("%1 %2:%3: %4 surfaces, %5 messages, %6 kB sent")
+                                    .arg(this->Link->Connected ? "connected to" : "connecting to")
+                                    .arg(this->SlicerHost->text().trimmed())
+                                    .arg(this->SlicerPort->value())
+                                    .arg(this->Link->Surfaces.load())
+                                    .arg(this->Link->Messages.load())
+                                    .arg(double(this->Link->Bytes.load()) / 1024.0, 0, 'f', 1));
+  }
+}
+
+void TrackersPanel::pruneRetired()
+{
+  for (auto it = this->Retired.begin(); it != this->Retired.end();)
+  {
+    it = (*it)->Ended() ? this->Retired.erase(it) : it + 1;
+  }
+}
+
+bool TrackersPanel::isSendingToSlicer() const
+{
+  return this->Link != nullptr;
+}
+
+unsigned long long TrackersPanel::slicerMessagesSent() const
+{
+  return this->Link ? this->Link->Messages.load() : 0;
+}
+
+void TrackersPanel::setSendToSlicer(bool on)
+{
+  this->SnapshotTimer->stop();
+  if (this->Link)
+  {
+    // Its thread may still be connecting or writing (bounded by the timeouts): it ends on its
+    // own and is joined later, never on the GUI thread's time.
+    this->Link->RequestStop();
+    this->Retired.push_back(std::move(this->Link));
+  }
+  this->SlicerHost->setEnabled(!on);
+  this->SlicerPort->setEnabled(!on);
+  if (!on)
+  {
+    this->SlicerCounters->setText("not sending");
+    return;
+  }
+  bender::IgtlSender::Options options;
+  options.host = this->SlicerHost->text().trimmed().toStdString();
+  options.port = this->SlicerPort->value();
+  options.maxSurfaceRateHz = SlicerRateHz;
+  if (options.host.empty())
+  {
+    this->Session->AddMessage(bender::MessageSeverity::Error, "Send to Slicer: no host");
+    QTimer::singleShot(0, this, [this]() { this->SendToSlicer->setChecked(false); });
+    return;
+  }
+  this->Link = std::make_unique<SlicerLink>(options,
+    [this](std::string problem)
+    {
+      QMetaObject::invokeMethod(
+        this,
+        [this, problem]()
+        {
+          if (!this->Link)
+            return; // switched off meanwhile
+          this->Session->AddMessage(bender::MessageSeverity::Error, "Send to Slicer: " + problem);
+          this->SendToSlicer->setChecked(false);
+        },
+        Qt::QueuedConnection);
+    });
+  this->SentSurface = nullptr;
+  this->showCounters();
+  this->sendSnapshot(true);
+}
+
+void TrackersPanel::sessionChanged()
+{
+  if (!this->Link || !this->Session || this->Session->IsBusy() || !this->Session->HasSurface())
+    return;
+  if (this->Session->GetState() == bender::GrabState::Grabbed)
+  {
+    // At most SlicerRateHz snapshots a second on the GUI thread; the newest shape is taken
+    // when the timer fires.
+    if (!this->SnapshotTimer->isActive())
+    {
+      this->SnapshotTimer->start(int(1000.0 / SlicerRateHz));
+    }
+    this->SentWhileGrabbed = true;
+    return;
+  }
+  vtkPolyData* committed = this->Session->GetSurface();
+  if (this->SentWhileGrabbed || committed != this->SentSurface ||
+    committed->GetMTime() != this->SentSurfaceTime ||
+    this->Session->GetHistoryPosition() != this->SentHistoryPosition)
+  {
+    this->sendSnapshot(true);
+  }
+}
+
+void TrackersPanel::sendSnapshot(bool final)
+{
+  if (!this->Link || !this->Session || this->Session->IsBusy() || !this->Session->HasSurface())
+    return;
+  const bool grabbed = this->Session->GetState() == bender::GrabState::Grabbed;
+  auto frame = std::make_shared<SlicerLink::Frame>();
+  try
+  {
+    frame->surface = bender::MakeIgtlSurface(this->Session->GetDisplaySurface(),
+      this->Session->GetSurfaceName().empty() ? "the surface" : this->Session->GetSurfaceName());
+  }
+  catch (const std::exception& e)
+  {
+    this->Session->AddMessage(
+      bender::MessageSeverity::Error, std::string("Send to Slicer: ") + e.what());
+    this->SendToSlicer->setChecked(false);
+    return;
+  }
+  std::optional<bender::RibbonSpec> ribbon;
+  if (grabbed)
+  {
+    ribbon = this->Session->GetFinalRibbon();
+  }
+  else if (this->View && this->View->ribbonWidget()->GetEnabled())
+  {
+    ribbon = this->View->ribbonWidget()->GetRibbonRepresentation()->GetRibbon();
+  }
+  if (ribbon)
+  {
+    try
+    {
+      bender::IgtlRibbonEndFrame(ribbon->start); // a degenerate frame is not sent
+      bender::IgtlRibbonEndFrame(ribbon->end);
+      frame->ribbon = ribbon;
+    }
+    catch (const std::exception&)
+    {
+    }
+  }
+  frame->final = final && !grabbed;
+  if (!grabbed)
+  {
+    vtkPolyData* committed = this->Session->GetSurface();
+    this->SentSurface = committed;
+    this->SentSurfaceTime = committed->GetMTime();
+    this->SentHistoryPosition = this->Session->GetHistoryPosition();
+    this->SentWhileGrabbed = false;
+  }
+  this->Link->Submit(std::move(frame));
 }

@@ -4,6 +4,8 @@
 #include <QWidget>
 
 #include <functional>
+#include <memory>
+#include <vector>
 
 namespace bender
 {
@@ -11,7 +13,9 @@ class BenderSession;
 class TrackerSession;
 }
 class QTimer;
+class vtkObjectBase;
 class BenderView;
+class QComboBox;
 
 class QCheckBox;
 class QDoubleSpinBox;
@@ -20,17 +24,28 @@ class QLineEdit;
 class QPushButton;
 class QSpinBox;
 
-/// The Trackers panel: which device (usb, usb:N, serial:PATH[@BAUD], replay:FILE, sim), which
-/// stations the two hands hold, the motion scale, connect/disconnect, the clutch, alignment of
-/// the hands onto the current ribbon, and the device's status and rates. Once attached, the panel
-/// drives the tracker session itself: connect, poll at the display rate (the live warp follows
-/// the hands, the widget shows their ribbon; a stylus release starts the window's release job),
-/// disconnect, align.
+/// The Trackers panel: which device (usb, usb:N, serial:PATH[@BAUD], replay:FILE, sim, or an
+/// OpenIGTLink server: host, port and the two tools' device names), which stations the two
+/// hands hold, the motion scale, connect/disconnect, the clutch, alignment of the hands onto the
+/// current ribbon, and the device's status and rates (for OpenIGTLink also the device names
+/// seen, CRC errors, garbage bytes, skipped messages and the last STATUS). Once attached, the
+/// panel drives the tracker session itself: connect (opened on a pool thread for OpenIGTLink,
+/// USB and serial devices, so the GUI thread never waits for a host), poll at the display rate
+/// (the live warp follows the hands, the widget shows their ribbon; a stylus release starts the
+/// window's release job), disconnect, align.
+///
+/// "Send to Slicer" sends the surface shown (POLYDATA "BenderVessel") and the ribbon's end
+/// frames (TRANSFORMs "BenderRibbonStart"/"BenderRibbonEnd") to an OpenIGTLink server (3D
+/// Slicer's OpenIGTLinkIF connector, default port 18944): at once when switched on, after each
+/// change of the committed surface, and during a bend at most 10 times a second. A sender
+/// thread does the network work with the newest snapshot only (older frames not yet sent are
+/// dropped); an error shows one line in the status bar and switches the toggle off.
 class TrackersPanel : public QWidget
 {
   Q_OBJECT
 public:
   explicit TrackersPanel(QWidget* parent = nullptr);
+  ~TrackersPanel() override;
 
   QString deviceSpec() const;
   void setDeviceSpec(const QString& spec);
@@ -48,14 +63,52 @@ public:
     bender::BenderSession* session,
     BenderView* view,
     std::function<bool()> release);
-  /// Connects the device as the panel says and starts polling.
+  /// Connects the device as the panel says and starts polling. OpenIGTLink, USB and serial
+  /// devices are opened on a pool thread: true means the connection started (connectFinished
+  /// tells how it ended); replay and sim connect at once (true: connected).
   bool connectDevice();
+  bool isConnecting() const { return this->Connecting; }
   void disconnectDevice();
   /// One poll (the timer's; tests may call it).
   void poll();
+  /// The session's surface, state or history changed (the window's refresh): sends to
+  /// Slicer when that is on.
+  void sessionChanged();
+  /// Whether "Send to Slicer" is on, and the messages the sender has sent so far.
+  bool isSendingToSlicer() const;
+  unsigned long long slicerMessagesSent() const;
+
+signals:
+  void connectFinished(bool connected);
 
 private:
+  class SlicerLink;
+  void finishConnect(bool connected);
+  void setSendToSlicer(bool on);
+  void sendSnapshot(bool final);
+  void showCounters();
+  void pruneRetired();
+
+  QComboBox* Kind;
   QLineEdit* Device;
+  QLineEdit* IgtlHost;
+  QSpinBox* IgtlPort;
+  QLineEdit* IgtlTool1;
+  QLineEdit* IgtlTool2;
+  QLabel* IgtlCounters;
+  QCheckBox* SendToSlicer;
+  QLineEdit* SlicerHost;
+  QSpinBox* SlicerPort;
+  QLabel* SlicerCounters;
+  QTimer* SnapshotTimer = nullptr;
+  QTimer* CountersTimer = nullptr;
+  std::unique_ptr<SlicerLink> Link;
+  std::vector<std::unique_ptr<SlicerLink>> Retired; ///< switched off, thread still ending
+  bool Connecting = false;
+  bool SentWhileGrabbed = false;
+  vtkObjectBase* SentSurface = nullptr; ///< the committed surface last sent (identity only)
+  unsigned long SentSurfaceTime = 0;
+  std::size_t SentHistoryPosition = 0;
   QSpinBox* Left;
   QSpinBox* Right;
   QDoubleSpinBox* Scale;

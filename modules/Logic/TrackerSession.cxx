@@ -1,5 +1,6 @@
 #include "TrackerSession.h"
 
+#include "BenderErrors.h"
 #include "BenderSession.h"
 #include "TrackerDevice.h"
 
@@ -26,8 +27,10 @@ TrackerSession::~TrackerSession()
   }
 }
 
-bool TrackerSession::Connect(const std::string& deviceSpec, const TrackerDeviceOptions& options,
-  const HandMapping& hands, const TrackerCalibration& calibration)
+bool TrackerSession::Connect(const std::string& deviceSpec,
+  const TrackerDeviceOptions& options,
+  const HandMapping& hands,
+  const TrackerCalibration& calibration)
 {
   std::unique_ptr<TrackerDevice> device;
   try
@@ -42,8 +45,9 @@ bool TrackerSession::Connect(const std::string& deviceSpec, const TrackerDeviceO
   return this->Connect(std::move(device), hands, calibration);
 }
 
-bool TrackerSession::Connect(
-  std::unique_ptr<TrackerDevice> device, const HandMapping& hands, const TrackerCalibration& calibration)
+bool TrackerSession::Connect(std::unique_ptr<TrackerDevice> device,
+  const HandMapping& hands,
+  const TrackerCalibration& calibration)
 {
   this->Disconnect();
   if (!device)
@@ -55,7 +59,10 @@ bool TrackerSession::Connect(
   try
   {
     auto input = std::make_unique<TwoHandRibbonInput>(hands, calibration);
-    device->Open();
+    if (!device->IsOpen())
+    {
+      device->Open();
+    }
     device->Start();
     this->Input = std::move(input);
   }
@@ -70,6 +77,26 @@ bool TrackerSession::Connect(
   this->DeviceName = name;
   this->Session.AddMessage(MessageSeverity::Info, "Tracker " + name + " connected");
   return true;
+}
+
+std::unique_ptr<TrackerDevice> TrackerSession::OpenDevice(const std::string& deviceSpec,
+  const TrackerDeviceOptions& options)
+{
+  std::unique_ptr<TrackerDevice> device;
+  try
+  {
+    device = CreateTrackerDevice(TrackerDeviceSpec::Parse(deviceSpec), options);
+    device->Open();
+  }
+  catch (const std::exception& e)
+  {
+    if (device)
+    {
+      device->Close();
+    }
+    throw Error("Tracker " + deviceSpec + ": " + e.what());
+  }
+  return device;
 }
 
 void TrackerSession::Disconnect()
@@ -97,7 +124,8 @@ void TrackerSession::Fail(const std::string& reason)
   }
   else
   {
-    this->Session.AddMessage(MessageSeverity::Warning, "Tracker " + this->DeviceName + ": " + reason);
+    this->Session.AddMessage(
+      MessageSeverity::Warning, "Tracker " + this->DeviceName + ": " + reason);
   }
   this->Disconnect();
 }
@@ -135,8 +163,7 @@ TrackerSession::PollResult TrackerSession::Poll()
         if (this->Session.GetState() == GrabState::Grabbed)
         {
           this->Session.MoveFinal(gesture.final);
-          result.released =
-            this->ReleaseHandler ? this->ReleaseHandler() : this->Session.Release();
+          result.released = this->ReleaseHandler ? this->ReleaseHandler() : this->Session.Release();
         }
         break;
       case TwoHandRibbonInput::Gesture::Kind::Cancelled:
@@ -236,7 +263,8 @@ bool TrackerSession::AlignTo(const RibbonSpec& target)
     this->Session.AddMessage(MessageSeverity::Error, "Align: both hands must be seen first");
     return false;
   }
-  auto landmarks = [](const RibbonSpec& r) {
+  auto landmarks = [](const RibbonSpec& r)
+  {
     const double arm = std::max(1.0, 0.5 * Distance(r.start.position, r.end.position));
     const Vec3 t = Normalized(r.start.tangent);
     const Vec3 n = Normalized(r.start.normal - t * Dot(r.start.normal, t));
@@ -249,7 +277,8 @@ bool TrackerSession::AlignTo(const RibbonSpec& target)
       TrackerCalibration::FromThreePoints(landmarks(*hands), landmarks(target), 1.0);
     // align(current(x)) = Ra (Rc s x + tc) + ta
     const TrackerCalibration composed(align.Rotation() * current.Rotation(),
-      align.MapPoint(current.Translation()), current.MotionScale());
+      align.MapPoint(current.Translation()),
+      current.MotionScale());
     if (!this->SetCalibration(composed))
     {
       return false;

@@ -35,11 +35,24 @@ public:
 
   /// Opens and starts the device named by `deviceSpec` (usb, usb:N, serial:PATH[@BAUD],
   /// replay:FILE, sim). False with a message naming the device on failure.
-  bool Connect(const std::string& deviceSpec, const TrackerDeviceOptions& options = {},
-    const HandMapping& hands = {}, const TrackerCalibration& calibration = {});
-  /// Same with a device made by the caller (tests, custom devices); takes ownership.
-  bool Connect(std::unique_ptr<TrackerDevice> device, const HandMapping& hands = {},
+  bool Connect(const std::string& deviceSpec,
+    const TrackerDeviceOptions& options = {},
+    const HandMapping& hands = {},
     const TrackerCalibration& calibration = {});
+  /// Same with a device made by the caller (tests, custom devices); takes ownership. A device
+  /// that is already open (see OpenDevice) is only started.
+  bool Connect(std::unique_ptr<TrackerDevice> device,
+    const HandMapping& hands = {},
+    const TrackerCalibration& calibration = {});
+  /// Creates and opens the device named by `deviceSpec` without touching any session, so that
+  /// a window can open it on a worker thread (IgtlDevice::Open waits up to its connect timeout
+  /// for a host that does not answer) and then hand it to Connect on its own thread. Throws
+  /// (one line naming the device and the problem) on failure.
+  static std::unique_ptr<TrackerDevice> OpenDevice(const std::string& deviceSpec,
+    const TrackerDeviceOptions& options = {});
+  /// The connected device (its own statistics, e.g. IgtlDevice::IgtlStats()); null when not
+  /// connected.
+  const TrackerDevice* GetDevice() const { return this->Device.get(); }
   /// Stops and closes; a live warp is cancelled.
   void Disconnect();
   bool IsConnected() const { return this->Device != nullptr; }
@@ -51,7 +64,7 @@ public:
     bool grabbed = false;  ///< a grab started
     bool released = false; ///< a warp was committed
     bool cancelled = false;
-    bool ended = false;    ///< the device stopped (failure or end of a replay); disconnected
+    bool ended = false; ///< the device stopped (failure or end of a replay); disconnected
   };
   /// Takes the device's latest poses and events and drives the session.
   PollResult Poll();
@@ -59,7 +72,10 @@ public:
   /// How a stylus release commits: by default BenderSession::Release() at once; a window sets a
   /// handler that starts the release job on its worker (as its G key does) and returns whether
   /// it started (PollResult::released then means "the commit started").
-  void SetReleaseHandler(std::function<bool()> handler) { this->ReleaseHandler = std::move(handler); }
+  void SetReleaseHandler(std::function<bool()> handler)
+  {
+    this->ReleaseHandler = std::move(handler);
+  }
 
   /// The ribbon the hands hold now (model space), if both hands have been seen.
   std::optional<RibbonSpec> CurrentRibbon() const;

@@ -1,0 +1,487 @@
+// The Trackers panel's OpenIGTLink side on the real window (QTest under Xvfb): a loopback
+// server streams TRANSFORMs for two tool names and the panel, connected through its own
+// widgets, moves the ribbon; a connect to a port that does not answer leaves the event loop
+// turning; "Send to Slicer" makes a loopback receiver get the session's surface as POLYDATA and
+// a newer one during and after a bend. Loopback 127.0.0.1 on ephemeral ports only.
+
+#include "BenderSession.h"
+#include "IgtlProtocol.h"
+#include "IgtlSender.h"
+#include "MainWindow.h"
+#include "TrackersPanel.h"
+#include "vtkBenderRibbonRepresentation.h"
+#include "vtkBenderRibbonWidget.h"
+
+#include <QApplication>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDir>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QSpinBox>
+#include <QSurfaceFormat>
+#include <QTabWidget>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QtTest>
+
+#include <vtkCellArray.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace
+{
+
+// A tube along x, radius r, from x0 to x1.
+vtkSmartPointer<vtkPolyData> Tube(double x0, double x1, double r)
+{
+  const int rings = 61, sides = 16;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < sides; ++k)
+    {
+      const double a = 2 * 3.14159265358979 * k / sides;
+      points->InsertNextPoint(x0 + (x1 - x0) * i / (rings - 1), r * std::cos(a), r * std::sin(a));
+    }
+  vtkNew<vtkCellArray> cells;
+  for (int i = 0; i + 1 < rings; ++i)
+    for (int k = 0; k < sides; ++k)
+    {
+      const vtkIdType a = i * sides + k, b = i * sides + (k + 1) % sides;
+      const vtkIdType t1[3] = { a, b, b + sides }, t2[3] = { a, b + sides, a + sides };
+      cells->InsertNextCell(3, t1);
+      cells->InsertNextCell(3, t2);
+    }
+  auto tube = vtkSmartPointer<vtkPolyData>::New();
+  tube->SetPoints(points);
+  tube->SetPolys(cells);
+  return tube;
+}
+
+// A loopback listening socket on an ephemeral port.
+int ListenLoopback(int backlog, int& port)
+{
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = 0;
+  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
+    ::listen(fd, backlog) != 0)
+  {
+    return -1;
+  }
+  socklen_t len = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  port = ntohs(a.sin_port);
+  return fd;
+}
+
+// Accepts one client, polling `stop` every 50 ms; -1 when stopped.
+int AcceptUnlessStopped(int listenFd, const std::atomic<bool>& stop)
+{
+  while (!stop)
+  {
+    pollfd p{ listenFd, POLLIN, 0 };
+    if (::poll(&p, 1, 50) > 0)
+    {
+      return ::accept(listenFd, nullptr, nullptr);
+    }
+  }
+  return -1;
+}
+
+bool SendAll(int fd, const std::vector<std::uint8_t>& bytes)
+{
+  std::size_t sent = 0;
+  while (sent < bytes.size())
+  {
+    const ssize_t n = ::send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0)
+      return false;
+    sent += std::size_t(n);
+  }
+  return true;
+}
+
+// A PLUS-like server: streams TRANSFORMs (LPS given, sent in RAS) for two tool names, plus
+// one message of a type the device does not read, until stopped or the client goes away.
+class TrackerServer
+{
+public:
+  TrackerServer(std::string left, std::string right)
+    : Left(std::move(left))
+    , Right(std::move(right))
+  {
+    this->Listen = ListenLoopback(4, this->PortNumber);
+    this->Thread = std::thread([this]() { this->Run(); });
+  }
+  ~TrackerServer()
+  {
+    this->Stop = true;
+    this->Thread.join();
+    ::close(this->Listen);
+  }
+  int Port() const { return this->PortNumber; }
+  std::atomic<double> LeftX{ -100.0 };
+
+private:
+  void Run()
+  {
+    const int fd = AcceptUnlessStopped(this->Listen, this->Stop);
+    if (fd < 0)
+      return;
+    SendAll(fd, bender::EncodeIgtlMessage("IMAGE", "Ultrasound", std::vector<std::uint8_t>(16, 0)));
+    const bender::Quaternion facing{ 0, 0, 0, 1 }; // the right hand's x towards the left hand
+    while (!this->Stop)
+    {
+      std::vector<std::uint8_t> bytes =
+        bender::EncodeIgtlTransformMessage(this->Left, { this->LeftX.load(), 0, 0 }, {});
+      const auto right = bender::EncodeIgtlTransformMessage(this->Right, { 100, 0, 0 }, facing);
+      bytes.insert(bytes.end(), right.begin(), right.end());
+      if (!SendAll(fd, bytes))
+        break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ::close(fd);
+  }
+
+  std::string Left, Right;
+  int Listen = -1;
+  int PortNumber = 0;
+  std::atomic<bool> Stop{ false };
+  std::thread Thread;
+};
+
+// A Slicer-like receiver: accepts one sender and keeps every message it decodes.
+class Receiver
+{
+public:
+  Receiver()
+  {
+    this->Listen = ListenLoopback(4, this->PortNumber);
+    this->Thread = std::thread([this]() { this->Run(); });
+  }
+  ~Receiver()
+  {
+    this->Stop = true;
+    this->Thread.join();
+    ::close(this->Listen);
+  }
+  int Port() const { return this->PortNumber; }
+  std::vector<bender::IgtlMessage> Messages(const std::string& type)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    std::vector<bender::IgtlMessage> out;
+    for (const auto& m : this->Received)
+      if (m.type == type)
+        out.push_back(m);
+    return out;
+  }
+
+private:
+  void Run()
+  {
+    const int fd = AcceptUnlessStopped(this->Listen, this->Stop);
+    if (fd < 0)
+      return;
+    bender::IgtlStreamDecoder decoder;
+    std::uint8_t buffer[65536];
+    while (!this->Stop)
+    {
+      pollfd p{ fd, POLLIN, 0 };
+      if (::poll(&p, 1, 50) <= 0)
+        continue;
+      const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
+      if (n <= 0)
+        break;
+      decoder.Feed(buffer, std::size_t(n));
+      while (auto message = decoder.Next())
+      {
+        std::lock_guard<std::mutex> lock(this->Mutex);
+        this->Received.push_back(std::move(*message));
+      }
+    }
+    ::close(fd);
+  }
+
+  int Listen = -1;
+  int PortNumber = 0;
+  std::atomic<bool> Stop{ false };
+  std::thread Thread;
+  std::mutex Mutex;
+  std::vector<bender::IgtlMessage> Received;
+};
+
+// NPOINTS, the first field of a POLYDATA body (big-endian uint32, OpenIGTLink v2 POLYDATA).
+std::uint32_t PolyDataPointCount(const bender::IgtlMessage& message)
+{
+  if (message.content.size() < 4)
+    return 0;
+  const auto* b = message.content.data();
+  return (std::uint32_t(b[0]) << 24) | (std::uint32_t(b[1]) << 16) | (std::uint32_t(b[2]) << 8) |
+    std::uint32_t(b[3]);
+}
+
+bender::RibbonSpec StraightRibbon(double x0, double x1)
+{
+  bender::RibbonSpec ribbon;
+  ribbon.start.position = { x0, 0, 0 };
+  ribbon.end.position = { x1, 0, 0 };
+  return ribbon;
+}
+
+} // namespace
+
+class IgtlAppTest : public QObject
+{
+  Q_OBJECT
+
+private:
+  QTemporaryDir Folder;
+  std::unique_ptr<MainWindow> Window;
+  std::unique_ptr<TrackerServer> Server;
+
+  TrackersPanel* panel() { return this->Window->trackersPanel(); }
+  template<typename T>
+  T* child(const char* name)
+  {
+    T* widget = this->panel()->findChild<T*>(name);
+    if (!widget)
+      qFatal("no widget %s in the Trackers panel", name);
+    return widget;
+  }
+  QString artefact(const QString& name)
+  {
+    QDir().mkpath(BENDER_ARTIFACT_DIR);
+    return QString(BENDER_ARTIFACT_DIR) + "/" + name;
+  }
+  // A click on the check box's indicator (the box spans the panel's width).
+  void clickToggle()
+  {
+    auto* toggle = this->child<QCheckBox>("sendToSlicer");
+    QTest::mouseClick(toggle, Qt::LeftButton, {}, QPoint(8, toggle->height() / 2));
+  }
+  void fillIgtl(int port)
+  {
+    this->child<QComboBox>("trackerKind")->setCurrentIndex(1);
+    this->child<QLineEdit>("igtlHost")->setText("127.0.0.1");
+    this->child<QSpinBox>("igtlPort")->setValue(port);
+    this->child<QLineEdit>("igtlTool1")->setText("LeftToolToTracker");
+    this->child<QLineEdit>("igtlTool2")->setText("RightToolToTracker");
+  }
+
+private slots:
+  void initTestCase()
+  {
+    QVERIFY(this->Folder.isValid());
+    MainWindowOptions options;
+    options.autosavePath = this->Folder.filePath("autosave.bender-session.json");
+    options.offerRecovery = false;
+    options.interactive = false;
+    this->Window = std::make_unique<MainWindow>(options);
+    this->Window->resize(1280, 900);
+    this->Window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));
+    auto* panels = this->Window->findChild<QTabWidget*>("panels");
+    QVERIFY(panels);
+    panels->setCurrentWidget(this->panel());
+    bender::BenderSession& session = this->Window->session();
+    QVERIFY(session.SetSurface(Tube(-150, 150, 10), "tube"));
+    bender::WarpParameters parameters = session.GetParameters();
+    parameters.radius = 30;
+    QVERIFY(session.SetParameters(parameters));
+  }
+
+  void cleanupTestCase()
+  {
+    this->Window->close();
+    this->Window.reset();
+    this->Server.reset();
+  }
+
+  void connectingToASilentPortKeepsTheEventLoopTurning()
+  {
+    // A listener with a full backlog that never accepts: the kernel drops the device's SYNs,
+    // so its connect waits for its timeout (3 s).
+    int port = 0;
+    const int silent = ListenLoopback(0, port);
+    QVERIFY(silent >= 0);
+    std::vector<int> fillers;
+    for (int i = 0; i < 3; ++i)
+    {
+      const int c = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+      sockaddr_in a{};
+      a.sin_family = AF_INET;
+      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      a.sin_port = htons(std::uint16_t(port));
+      ::connect(c, reinterpret_cast<sockaddr*>(&a), sizeof a);
+      fillers.push_back(c);
+    }
+    this->fillIgtl(port);
+    QSignalSpy finished(this->panel(), &TrackersPanel::connectFinished);
+    int turnsWhileConnecting = 0;
+    QTimer ticker;
+    ticker.setInterval(0);
+    connect(&ticker,
+      &QTimer::timeout,
+      [this, &turnsWhileConnecting]()
+      {
+        if (this->panel()->isConnecting())
+          ++turnsWhileConnecting;
+      });
+    ticker.start();
+    QTest::mouseClick(this->child<QPushButton>("trackerConnect"), Qt::LeftButton);
+    QVERIFY(this->panel()->isConnecting());
+    QVERIFY(!this->child<QPushButton>("trackerConnect")->isEnabled());
+    QVERIFY(finished.wait(20000));
+    ticker.stop();
+    QCOMPARE(finished.last().first().toBool(), false);
+    QVERIFY(!this->Window->trackers().IsConnected());
+    // The GUI thread ran its timers while the device waited for the host.
+    QVERIFY(turnsWhileConnecting > 10);
+    QVERIFY(this->child<QLabel>("trackerStatus")->text().contains(QString::number(port)));
+    QVERIFY(this->child<QPushButton>("trackerConnect")->isEnabled());
+    for (int c : fillers)
+      ::close(c);
+    ::close(silent);
+  }
+
+  void igtlServerDrivesTheRibbon()
+  {
+    this->Server = std::make_unique<TrackerServer>("LeftToolToTracker", "RightToolToTracker");
+    this->fillIgtl(this->Server->Port());
+    QSignalSpy finished(this->panel(), &TrackersPanel::connectFinished);
+    QTest::mouseClick(this->child<QPushButton>("trackerConnect"), Qt::LeftButton);
+    QVERIFY(finished.wait(20000));
+    QCOMPARE(finished.last().first().toBool(), true);
+    QVERIFY(this->Window->trackers().IsConnected());
+    QVERIFY(this->Window->trackers().GetDevice()->Name().find(
+              ":" + std::to_string(this->Server->Port())) != std::string::npos);
+
+    // Both hands seen: the widget shows the hands' ribbon.
+    auto* representation = this->Window->ribbonWidget()->GetRibbonRepresentation();
+    QTRY_VERIFY_WITH_TIMEOUT(this->Window->trackers().CurrentRibbon().has_value(), 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(this->Window->ribbonWidget()->GetEnabled(), 20000);
+    const double before = representation->GetRibbon().start.position.x;
+    // The left hand moves 20 mm along LPS x: the ribbon's start follows (motion scale 1).
+    this->Server->LeftX = -80.0;
+    QTRY_VERIFY_WITH_TIMEOUT(
+      std::abs(representation->GetRibbon().start.position.x - (before + 20.0)) < 1e-3, 20000);
+    QCOMPARE(representation->GetRibbon().end.position.x,
+      this->Window->trackers().CurrentRibbon()->end.position.x);
+
+    // The panel shows the names seen and the skipped IMAGE.
+    QTRY_VERIFY_WITH_TIMEOUT(
+      this->child<QLabel>("igtlCounters")->text().contains("LeftToolToTracker"), 20000);
+    const QString counters = this->child<QLabel>("igtlCounters")->text();
+    QVERIFY(counters.contains("RightToolToTracker"));
+    QVERIFY2(counters.contains("skipped messages 1"), qPrintable(counters));
+    QVERIFY(!this->child<QComboBox>("trackerKind")->isEnabled());
+    QVERIFY(!this->child<QLineEdit>("igtlHost")->isEnabled());
+  }
+
+  void sendToSlicerSendsTheSurfaceAndTheBend()
+  {
+    bender::BenderSession& session = this->Window->session();
+    Receiver slicer;
+    this->child<QLineEdit>("slicerHost")->setText("127.0.0.1");
+    this->child<QSpinBox>("slicerPort")->setValue(slicer.Port());
+    this->clickToggle();
+    QVERIFY(this->panel()->isSendingToSlicer());
+    QTRY_VERIFY_WITH_TIMEOUT(slicer.Messages("POLYDATA").size() >= 1, 20000);
+    const auto first = slicer.Messages("POLYDATA").front();
+    QCOMPARE(first.deviceName, std::string("BenderVessel"));
+    QCOMPARE(std::int64_t(PolyDataPointCount(first)),
+      std::int64_t(session.GetSurface()->GetNumberOfPoints()));
+
+    // A bend: live frames while grabbed, then the committed shape after the release.
+    QVERIFY(session.Grab(StraightRibbon(-50, 50)));
+    bender::RibbonSpec bent = StraightRibbon(-50, 50);
+    bent.end.position = { 45, 20, 0 };
+    QVERIFY(session.MoveFinal(bent));
+    QTRY_VERIFY_WITH_TIMEOUT(slicer.Messages("POLYDATA").size() >= 2, 20000);
+    const auto live = slicer.Messages("POLYDATA").back();
+    QVERIFY(live.content != first.content);
+    QTRY_VERIFY_WITH_TIMEOUT(!slicer.Messages("TRANSFORM").empty(), 20000);
+    bool sawStart = false, sawEnd = false;
+    for (const auto& m : slicer.Messages("TRANSFORM"))
+    {
+      sawStart |= m.deviceName == "BenderRibbonStart";
+      sawEnd |= m.deviceName == "BenderRibbonEnd";
+    }
+    QVERIFY(sawStart && sawEnd);
+    const std::size_t beforeRelease = slicer.Messages("POLYDATA").size();
+    QVERIFY(session.Release());
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
+    QTRY_VERIFY_WITH_TIMEOUT(slicer.Messages("POLYDATA").size() > beforeRelease, 20000);
+    const auto committed = slicer.Messages("POLYDATA").back();
+    QVERIFY(committed.content != first.content);
+    QCOMPARE(std::int64_t(PolyDataPointCount(committed)),
+      std::int64_t(session.GetSurface()->GetNumberOfPoints()));
+    // Every surface sent arrived (the panel's counter catches up at its next refresh).
+    const QString sent = QString("connected to 127.0.0.1:%1: %2 surfaces")
+                           .arg(slicer.Port())
+                           .arg(slicer.Messages("POLYDATA").size());
+    QTRY_VERIFY_WITH_TIMEOUT(this->child<QLabel>("slicerCounters")->text().contains(sent), 20000);
+
+    // The panel with both sides of OpenIGTLink in use (docs/screenshots/trackers-openigtlink.png).
+    QVERIFY(this->panel()->grab().save(this->artefact("trackers-openigtlink.png")));
+
+    this->clickToggle();
+    QVERIFY(!this->panel()->isSendingToSlicer());
+    QVERIFY(this->child<QLineEdit>("slicerHost")->isEnabled());
+  }
+
+  void aSendErrorSwitchesTheToggleOff()
+  {
+    // Nobody listens on the port: one error line, the toggle goes off, and it can be retried.
+    int port = 0;
+    const int closed = ListenLoopback(1, port);
+    ::close(closed);
+    this->child<QSpinBox>("slicerPort")->setValue(port);
+    auto* toggle = this->child<QCheckBox>("sendToSlicer");
+    const std::size_t messages = this->Window->session().GetMessages().size();
+    this->clickToggle();
+    QTRY_VERIFY_WITH_TIMEOUT(!toggle->isChecked(), 20000);
+    QVERIFY(!this->panel()->isSendingToSlicer());
+    const auto& all = this->Window->session().GetMessages();
+    QVERIFY(all.size() > messages);
+    QVERIFY(all.back().text.rfind("Send to Slicer: ", 0) == 0);
+    QVERIFY(all.back().text.find(std::to_string(port)) != std::string::npos);
+    QVERIFY(toggle->isEnabled());
+
+    QTest::mouseClick(this->child<QPushButton>("trackerDisconnect"), Qt::LeftButton);
+    QVERIFY(!this->Window->trackers().IsConnected());
+    QVERIFY(this->child<QComboBox>("trackerKind")->isEnabled());
+  }
+};
+
+int main(int argc, char** argv)
+{
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication application(argc, argv);
+  QCoreApplication::setOrganizationName("BenderTests");
+  QCoreApplication::setApplicationName("IgtlAppTest");
+  IgtlAppTest test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "IgtlAppTest.moc"
