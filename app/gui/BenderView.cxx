@@ -9,6 +9,7 @@
 #include <vtkCommand.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
@@ -36,6 +37,15 @@ BenderView::BenderView(vtkAlgorithmOutput* surface, QWidget* parent)
   this->SurfaceActor->GetProperty()->SetSpecular(0.3);
   this->SurfaceActor->GetProperty()->SetSpecularPower(20);
   this->Renderer->AddActor(this->SurfaceActor);
+  // The centerlines: thick lines drawn as tubes, light so that they read through the wall.
+  this->CenterlineMapper->ScalarVisibilityOff();
+  this->CenterlineActor->SetMapper(this->CenterlineMapper);
+  this->CenterlineActor->GetProperty()->SetColor(0.98, 0.92, 0.45);
+  this->CenterlineActor->GetProperty()->SetLineWidth(4.0);
+  this->CenterlineActor->GetProperty()->SetRenderLinesAsTubes(true);
+  this->CenterlineActor->PickableOff();
+  this->CenterlineActor->VisibilityOff();
+  this->Renderer->AddActor(this->CenterlineActor);
 
   this->RibbonWidget->SetInteractor(this->Window->GetInteractor());
   this->RibbonWidget->SetCurrentRenderer(this->Renderer);
@@ -53,6 +63,35 @@ BenderView::BenderView(vtkAlgorithmOutput* surface, QWidget* parent)
 BenderView::~BenderView()
 {
   this->RibbonWidget->Off();
+}
+
+void BenderView::setCenterlines(vtkPolyData* lines)
+{
+  if (lines)
+  {
+    this->CenterlineMapper->SetInputData(lines);
+  }
+  else
+  {
+    this->CenterlineMapper->RemoveAllInputs();
+  }
+  this->CenterlineActor->SetVisibility(lines != nullptr);
+  this->setCenterlinesVisible(this->CenterlinesVisible);
+}
+
+void BenderView::setCenterlinesVisible(bool visible)
+{
+  this->CenterlinesVisible = visible;
+  const bool shown = visible && this->CenterlineMapper->GetNumberOfInputConnections(0) > 0;
+  this->CenterlineActor->SetVisibility(shown);
+  // Translucent enough to see the line inside, opaque enough to keep the shape readable.
+  this->SurfaceActor->GetProperty()->SetOpacity(shown ? 0.45 : 1.0);
+  this->render();
+}
+
+bool BenderView::centerlinesShown() const
+{
+  return this->CenterlineActor->GetVisibility() != 0;
 }
 
 void BenderView::render()

@@ -13,6 +13,7 @@ class vtkBenderRibbonWidget;
 class vtkCallbackCommand;
 class vtkGenericOpenGLRenderWindow;
 class vtkObject;
+class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkRenderer;
 
@@ -28,6 +29,12 @@ public:
   ~BenderView() override;
 
   vtkRenderer* renderer() const { return this->Renderer; }
+  vtkActor* surfaceActor() const { return this->SurfaceActor; }
+  /// The vessel centerlines (polylines) drawn inside the surface; null hides them. While they
+  /// are shown, the surface is drawn translucent so that they can be seen through it.
+  void setCenterlines(vtkPolyData* lines);
+  void setCenterlinesVisible(bool visible);
+  bool centerlinesShown() const;
   vtkBenderRibbonWidget* ribbonWidget() const { return this->RibbonWidget; }
   /// Draws a frame, unless inside quietly().
   void render();
@@ -55,6 +62,9 @@ private:
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkPolyDataMapper> SurfaceMapper;
   vtkNew<vtkActor> SurfaceActor;
+  vtkNew<vtkPolyDataMapper> CenterlineMapper;
+  vtkNew<vtkActor> CenterlineActor;
+  bool CenterlinesVisible = true;
   vtkNew<vtkBenderRibbonWidget> RibbonWidget;
   vtkNew<vtkCallbackCommand> RibbonObserver;
   vtkNew<vtkCallbackCommand> PickObserver;

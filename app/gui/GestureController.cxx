@@ -5,6 +5,7 @@
 #include "BenderView.h"
 #include "MainActions.h"
 #include "RibbonPlacement.h"
+#include "VesselController.h"
 #include "WorkRunner.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
@@ -19,6 +20,7 @@
 #include <QPlainTextEdit>
 #include <QTextEdit>
 
+#include <algorithm>
 #include <exception>
 
 namespace
@@ -52,8 +54,18 @@ GestureController::GestureController(bender::BenderSession& session,
     [this]()
     {
       this->View->setPicking(true);
+      this->HasFirstPick = false;
       this->Bend->showState(this->Session, true);
-      this->Status->setText("Click on the vessel to place the ribbon along it (Esc cancels)");
+      this->Status->setStyleSheet("");
+      if (this->Vessels && this->Vessels->vessels().HasCenterlines())
+      {
+        this->Status->setText("Click on the vessel where the ribbon starts, then where it ends: "
+                              "the ribbon goes on the centerline (Esc cancels)");
+      }
+      else
+      {
+        this->Status->setText("Click on the vessel to place the ribbon along it (Esc cancels)");
+      }
     });
   connect(actions->Grab,
     &QAction::triggered,
@@ -71,6 +83,7 @@ GestureController::GestureController(bender::BenderSession& session,
     [this]()
     {
       this->View->setPicking(false);
+      this->HasFirstPick = false;
       this->Bend->showState(this->Session);
       this->Session.CancelGrab("cancelled by the user");
     });
@@ -82,7 +95,7 @@ GestureController::GestureController(bender::BenderSession& session,
     [this](double x, double y, double z)
     {
       const double point[3] = { x, y, z };
-      this->placeRibbonAt(point);
+      this->onPick(point);
     });
   connect(this->View,
     &BenderView::pickMissed,
@@ -117,7 +130,15 @@ bool GestureController::grab()
                            : "Grab: place the ribbon first (P, then click on the vessel)");
     return false;
   }
-  return this->Session.Grab(rep->GetRibbon());
+  if (!this->Session.Grab(rep->GetRibbon()))
+  {
+    return false;
+  }
+  if (this->Vessels)
+  {
+    this->Vessels->grabbed();
+  }
+  return true;
 }
 
 bool GestureController::release()
@@ -151,6 +172,83 @@ void GestureController::showRibbon(const bender::RibbonSpec& ribbon, double vess
   this->View->ribbonWidget()->On();
 }
 
+void GestureController::onPick(const double point[3])
+{
+  if (!this->Vessels || !this->Vessels->vessels().HasCenterlines())
+  {
+    this->placeRibbonAt(point);
+    return;
+  }
+  const bender::Vec3 picked{ point[0], point[1], point[2] };
+  if (!this->Vessels->vessels().IsOnVessel(picked))
+  {
+    // Still picking: the user clicks again, on the vessel.
+    this->Session.AddMessage(bender::MessageSeverity::Error,
+      "Place ribbon: that click is not on a vessel (an aneurysm's sac or a bulge has no "
+      "centerline): click on the vessel's wall");
+    return;
+  }
+  if (!this->HasFirstPick)
+  {
+    std::copy(point, point + 3, this->FirstPick);
+    this->HasFirstPick = true;
+    this->Status->setStyleSheet("");
+    this->Status->setText("Now click on the vessel where the ribbon ends (Esc cancels)");
+    return;
+  }
+  this->HasFirstPick = false;
+  if (!this->placeRibbonOnCenterline(this->FirstPick, point))
+  {
+    this->View->setPicking(true); // try again from the first click
+    this->Bend->showState(this->Session, true);
+  }
+}
+
+bool GestureController::placeRibbonOnCenterline(const double first[3], const double second[3])
+{
+  this->View->setPicking(false);
+  this->HasFirstPick = false;
+  this->Bend->showState(this->Session);
+  if (!this->Vessels)
+  {
+    this->Session.AddMessage(
+      bender::MessageSeverity::Error, "Place ribbon on the centerline: no centerlines");
+    return false;
+  }
+  try
+  {
+    const bender::RibbonPlacement placement = this->Vessels->vessels().PlaceRibbon(
+      { first[0], first[1], first[2] }, { second[0], second[1], second[2] });
+    this->placeSettled(placement.ribbon, placement.vesselRadius, placement.suggestedRadius);
+    this->Vessels->ribbonPlaced(placement.ribbon);
+    this->Session.AddMessage(bender::MessageSeverity::Info,
+      QString("Ribbon placed on the centerline (inscribed radius %1 mm, R = %2 mm): press G to "
+              "grab")
+        .arg(placement.vesselRadius, 0, 'f', 2)
+        .arg(placement.suggestedRadius, 0, 'f', 2)
+        .toStdString());
+    this->View->render();
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    this->Session.AddMessage(
+      bender::MessageSeverity::Error, std::string("Place ribbon: ") + e.what());
+    return false;
+  }
+}
+
+void GestureController::placeSettled(const bender::RibbonSpec& ribbon,
+  double vesselRadius,
+  double radius)
+{
+  bender::WarpParameters parameters = this->Bend->parameters();
+  parameters.radius = radius;
+  this->Bend->setParameters(parameters);
+  this->applyParameters();
+  this->showRibbon(ribbon, vesselRadius);
+}
+
 bool GestureController::placeRibbonAt(const double point[3])
 {
   this->View->setPicking(false);
@@ -159,11 +257,11 @@ bool GestureController::placeRibbonAt(const double point[3])
   {
     const bender::RibbonPlacement placement =
       bender::PlaceRibbonOnSurface(this->Session.GetSurface(), { point[0], point[1], point[2] });
-    bender::WarpParameters parameters = this->Bend->parameters();
-    parameters.radius = placement.suggestedRadius;
-    this->Bend->setParameters(parameters);
-    this->applyParameters();
-    this->showRibbon(placement.ribbon, placement.vesselRadius);
+    this->placeSettled(placement.ribbon, placement.vesselRadius, placement.suggestedRadius);
+    if (this->Vessels)
+    {
+      this->Vessels->ribbonPlaced(placement.ribbon);
+    }
     this->Session.AddMessage(bender::MessageSeverity::Info,
       QString("Ribbon placed along the vessel (local radius %1 mm, R = %2 mm): press G to grab")
         .arg(placement.vesselRadius, 0, 'f', 2)
@@ -187,6 +285,10 @@ void GestureController::setRibbon(const bender::RibbonSpec& ribbon)
   if (this->Session.GetState() == bender::GrabState::Grabbed)
   {
     this->Session.MoveFinal(ribbon);
+    if (this->Vessels)
+    {
+      this->Vessels->moved();
+    }
   }
   this->View->render();
 }
@@ -209,6 +311,10 @@ void GestureController::onRibbonInteraction()
     // The widget renders after this event: one frame per move, not two.
     auto* rep = this->View->ribbonWidget()->GetRibbonRepresentation();
     this->View->quietly([this, rep]() { this->Session.MoveFinal(rep->GetRibbon()); });
+    if (this->Vessels)
+    {
+      this->Vessels->moved();
+    }
   }
 }
 

@@ -14,12 +14,19 @@ class BenderView;
 class MainActions;
 class QLabel;
 class QWidget;
+class VesselController;
 class WorkRunner;
 
 /// The bend gesture as the user does it in a window: grab, the ribbon widget's moves while
 /// grabbed (the live warp), release (the commit, a job on the window's worker, the same for the
 /// G key, the Grab button, Space and a tracker's stylus), cancel, "place ribbon" (P, then a
 /// click on the surface) and the Bend panel's parameters.
+///
+/// With the vessel's centerlines (setVessels), "place ribbon" takes two clicks on the vessel's
+/// wall, the ribbon's start and end, and places the ribbon with its end frames on the
+/// centerline (bender::PlaceRibbonOnCenterline, R from the suggested radius); a click off the
+/// vessels (an aneurysm's sac) is refused with the reason in the status bar. Without
+/// centerlines, one click places a straight ribbon along the surface's local axis.
 ///
 /// Keys: G, P and Esc are the shared actions (application-wide shortcuts, so they work whatever
 /// widget of the window has the focus, floating panels included; a text field being typed in
@@ -45,6 +52,13 @@ public:
   bool release();
   /// Places a straight ribbon along the vessel at a model point, R from the local radius.
   bool placeRibbonAt(const double point[3]);
+  /// Places the ribbon on the centerline between two picks on the wall; false, with the reason
+  /// as an error message, without centerlines or for a pick off the vessels.
+  bool placeRibbonOnCenterline(const double first[3], const double second[3]);
+  /// The vessel side (centerlines, measurements); may be null.
+  void setVessels(VesselController* vessels) { this->Vessels = vessels; }
+  /// True after the first of the two clicks of "place ribbon" on a centerline.
+  bool hasFirstPick() const { return this->HasFirstPick; }
   bool isPlacingRibbon() const;
   /// Sets the widget's ribbon (and moves the live warp when grabbed).
   void setRibbon(const bender::RibbonSpec& ribbon);
@@ -60,6 +74,8 @@ protected:
 
 private:
   void onRibbonInteraction();
+  void onPick(const double point[3]);
+  void placeSettled(const bender::RibbonSpec& ribbon, double vesselRadius, double radius);
   bool isOurs(QObject* watched) const;
 
   bender::BenderSession& Session;
@@ -69,6 +85,9 @@ private:
   QLabel* Status;
   QWidget* Window;
   bool SpaceHeld = false;
+  VesselController* Vessels = nullptr;
+  bool HasFirstPick = false;
+  double FirstPick[3] = { 0, 0, 0 };
 };
 
 #endif

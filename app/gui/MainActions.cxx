@@ -47,9 +47,17 @@ MainActions::MainActions(QWidget* window)
   this->CancelBend = Make(window, "&Cancel bend", QKeySequence("Esc"), "cancelBendAction");
   this->Segment = Make(window, "&Segment the loaded volume", QKeySequence(), "segmentAction");
   this->ResetCamera = Make(window, "&Reset camera", QKeySequence("Ctrl+R"), "resetCameraAction");
+  this->ShowCenterline =
+    Make(window, "Show &centerline", QKeySequence("Ctrl+Shift+C"), "showCenterlineAction");
+  this->ShowCenterline->setCheckable(true);
+  this->ShowCenterline->setChecked(true);
+  this->ShowCenterline->setToolTip("The vessel's centerline inside the surface (the surface is "
+                                   "drawn translucent while it is shown)");
   this->Undo->setAutoRepeat(true);
   this->Redo->setAutoRepeat(true);
-  this->PlaceRibbon->setToolTip("Then click on the vessel: a straight ribbon along its axis");
+  this->PlaceRibbon->setToolTip("Then click on the vessel: with its centerline, two clicks (the "
+                                "ribbon's ends) place the ribbon on the centerline; without, "
+                                "one click places a straight ribbon along its axis");
   this->Grab->setToolTip(
     "Capture the ribbon (G, or hold Space) and drag its handles; G again commits");
 }
@@ -79,6 +87,7 @@ void MainActions::addMenus(QMenuBar* bar)
   bend->addAction(this->CancelBend);
   QMenu* view = bar->addMenu("&View");
   view->addAction(this->ResetCamera);
+  view->addAction(this->ShowCenterline);
 }
 
 void MainActions::addRecentFile(const QString& path)

@@ -39,6 +39,7 @@ public:
   QAction* CancelBend;
   QAction* Segment;
   QAction* ResetCamera;
+  QAction* ShowCenterline; ///< checkable, on by default
 
 signals:
   void recentFileChosen(const QString& path);

@@ -8,9 +8,11 @@
 #include "FileOpener.h"
 #include "GestureController.h"
 #include "MainActions.h"
+#include "MeasurementsPanel.h"
 #include "SegmentPanel.h"
 #include "SliceViews.h"
 #include "TrackersPanel.h"
+#include "VesselController.h"
 #include "VolumeConversion.h"
 #include "WorkRunner.h"
 
@@ -102,11 +104,13 @@ void MainWindow::buildPanels()
   this->Bend = new BendPanel(this->Actions, this);
   this->TrackersUi = new TrackersPanel(this);
   this->Export = new ExportPanel(this->Actions, this);
+  this->Measurements = new MeasurementsPanel(this->Actions, this);
   this->addPanel(this->Data, "Data");
   this->addPanel(this->Segment, "Segment");
   this->addPanel(this->Bend, "Bend");
   this->addPanel(this->TrackersUi, "Trackers");
   this->addPanel(this->Export, "Export");
+  this->addPanel(this->Measurements, "Measure");
   auto* dock = new QDockWidget("Panels", this);
   dock->setObjectName("panelsDock");
   dock->setWidget(this->Panels);
@@ -115,6 +119,9 @@ void MainWindow::buildPanels()
 
   this->Gesture = new GestureController(
     this->Session, this->View, this->Bend, this->Worker, this->Actions, this->StatusText, this);
+  this->Vessels = new VesselController(
+    this->Session, this->View, this->Worker, this->Actions, this->Measurements, this);
+  this->Gesture->setVessels(this->Vessels);
   this->Files = new FileOpener(this->Session,
     this->Segmentation,
     this->Worker,
@@ -186,6 +193,8 @@ void MainWindow::refresh()
   this->Data->showState(this->Session, this->Segmentation);
   this->Actions->Undo->setEnabled(this->Session.CanUndo() && !this->Session.IsBusy());
   this->Actions->Redo->setEnabled(this->Session.CanRedo() && !this->Session.IsBusy());
+  // A new committed surface (load, segmentation, release, undo): its centerlines.
+  this->Vessels->update();
   this->TrackersUi->sessionChanged(); // "Send to Slicer"
   // Inside a widget interaction or a tracker poll the view draws once itself (quietly).
   this->render();
@@ -234,6 +243,24 @@ QVTKOpenGLNativeWidget* MainWindow::view()
 bool MainWindow::isBusy() const
 {
   return this->Worker->isBusy();
+}
+
+bool MainWindow::waitForCenterlines(int milliseconds)
+{
+  QElapsedTimer timer;
+  timer.start();
+  // refresh() starts the job: also after a change that came without one.
+  this->Vessels->update();
+  while (this->Vessels->isComputing() || this->Worker->isBusy())
+  {
+    if (timer.elapsed() > milliseconds)
+    {
+      return false;
+    }
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+    this->Vessels->update();
+  }
+  return true;
 }
 
 bool MainWindow::waitUntilIdle(int milliseconds)

@@ -18,6 +18,7 @@ class ExportFlow;
 class ExportPanel;
 class FileOpener;
 class GestureController;
+class MeasurementsPanel;
 class MainActions;
 class QLabel;
 class QSplitter;
@@ -27,6 +28,7 @@ class QVTKOpenGLNativeWidget;
 class SegmentPanel;
 class SliceViews;
 class TrackersPanel;
+class VesselController;
 class vtkBenderRibbonWidget;
 class vtkImageData;
 class vtkRenderer;
@@ -56,6 +58,8 @@ struct MainWindowOptions
 ///   recovery;
 /// - GestureController: grab, release (a job), Space held, ribbon moves, place ribbon, keys;
 /// - ExportFlow: check, export (asks on problems), save plan;
+/// - VesselController: the centerlines of the committed surface (a background job after every
+///   change of it), drawn in the view, and the Measurements panel;
 /// - TrackersPanel: the tracker device, polled at the display rate (its stylus release goes
 ///   through the gesture's release job).
 ///
@@ -76,6 +80,12 @@ public:
   GestureController* gesture() { return this->Gesture; }
   FileOpener* files() { return this->Files; }
   ExportFlow* exports() { return this->Exports; }
+  /// The centerlines and the measurements (VesselController, MeasurementsPanel).
+  VesselController* vessels() { return this->Vessels; }
+  MeasurementsPanel* measurementsPanel() { return this->Measurements; }
+  /// For tests and scripts: waits (processing events) until the centerlines of the committed
+  /// surface have been computed (or failed); false on timeout.
+  bool waitForCenterlines(int milliseconds);
   vtkBenderRibbonWidget* ribbonWidget();
   vtkRenderer* renderer();
   QVTKOpenGLNativeWidget* view();
@@ -160,12 +170,14 @@ private:
   BendPanel* Bend = nullptr;
   TrackersPanel* TrackersUi = nullptr;
   ExportPanel* Export = nullptr;
+  MeasurementsPanel* Measurements = nullptr;
   QLabel* StatusText = nullptr;
 
   WorkRunner* Worker = nullptr;
   GestureController* Gesture = nullptr;
   FileOpener* Files = nullptr;
   ExportFlow* Exports = nullptr;
+  VesselController* Vessels = nullptr;
 };
 
 #endif

@@ -37,6 +37,19 @@ WorkRunner::WorkRunner(QStatusBar* bar, QLabel* status, Reporter report, QObject
       this->Status->setText("Cancelling...");
     });
   connect(&this->Watcher, &QFutureWatcher<Finisher>::finished, this, &WorkRunner::finish);
+  connect(&this->BackgroundWatcher,
+    &QFutureWatcher<Finisher>::finished,
+    this,
+    [this]()
+    {
+      Finisher finisher = this->BackgroundWatcher.result();
+      this->BackgroundPending = false;
+      if (finisher)
+      {
+        finisher();
+      }
+      emit this->backgroundFinished();
+    });
 }
 
 WorkRunner::~WorkRunner()
@@ -47,7 +60,41 @@ WorkRunner::~WorkRunner()
 void WorkRunner::cancelAndWait()
 {
   this->CancelFlag = true;
+  this->BackgroundCancel = true;
   this->Watcher.waitForFinished();
+  this->BackgroundWatcher.waitForFinished();
+}
+
+bool WorkRunner::runInBackground(Work work, std::function<void(const std::string&)> failed)
+{
+  if (this->BackgroundPending)
+  {
+    return false;
+  }
+  this->BackgroundCancel = false;
+  this->BackgroundPending = true;
+  bender::ProgressReporter reporter;
+  reporter.cancel = &this->BackgroundCancel;
+  this->BackgroundWatcher.setFuture(QtConcurrent::run(
+    [work, reporter, failed]() -> Finisher
+    {
+      try
+      {
+        return work(reporter);
+      }
+      catch (const std::exception& e)
+      {
+        const std::string what = e.what();
+        return [failed, what]()
+        {
+          if (failed)
+          {
+            failed(what);
+          }
+        };
+      }
+    }));
+  return true;
 }
 
 bool WorkRunner::run(const QString& title, Work work)

@@ -49,6 +49,14 @@ public:
   /// Called on the worker at the start of every job (tests).
   std::function<void(const bender::ProgressReporter&)> Hook;
 
+  /// A second lane for analysis that the user does not wait for (the vessel centerlines): one
+  /// such job at a time, beside the main job, no progress bar and no Cancel button (it does not
+  /// block the main job: a release is never refused because the centerlines are computing).
+  /// Its finisher runs on the GUI thread; an exception ends it with `failed(what)` called there.
+  /// False (nothing started) while one runs.
+  bool runInBackground(Work work, std::function<void(const std::string&)> failed);
+  bool isBackgroundBusy() const { return this->BackgroundPending; }
+
   ///@{ Jobs of a session (its messages say why a job failed)
   /// True, with an error message in `session`, while a job runs.
   bool refuseWhenBusy(bender::BenderSession& session);
@@ -62,6 +70,8 @@ public:
   ///@}
 
 signals:
+  /// The background job's finisher ran (or its failure was reported).
+  void backgroundFinished();
   /// A job started (the window disables what a busy session refuses).
   void started();
   void finished(bool succeeded);
@@ -70,6 +80,9 @@ private:
   void finish();
 
   QFutureWatcher<Finisher> Watcher;
+  QFutureWatcher<Finisher> BackgroundWatcher;
+  std::atomic<bool> BackgroundCancel{ false };
+  bool BackgroundPending = false;
   QProgressBar* Progress;
   QPushButton* Cancel;
   QLabel* Status;

@@ -216,10 +216,32 @@ RibbonPlacement VesselSession::PlaceRibbon(const Vec3& first,
   return PlaceRibbonOnCenterline(this->GetPaths(), first, second, options);
 }
 
+bool VesselSession::IsOnVessel(const Vec3& point, double factor) const
+{
+  vtkPolyData* paths = this->GetPaths();
+  vtkDataArray* radius =
+    paths ? paths->GetPointData()->GetArray(VesselArrays::MaximumInscribedSphereRadius) : nullptr;
+  if (!radius || !IsFinite(point))
+  {
+    return false;
+  }
+  double nearest = std::numeric_limits<double>::infinity();
+  vtkIdType nearestId = -1;
+  for (vtkIdType i = 0; i < paths->GetNumberOfPoints(); ++i)
+  {
+    const double d = Distance(PointOf(paths, i), point);
+    if (d < nearest)
+    {
+      nearest = d;
+      nearestId = i;
+    }
+  }
+  return nearestId >= 0 && nearest <= factor * radius->GetComponent(nearestId, 0);
+}
+
 void VesselSession::DropBranch()
 {
   this->Held.clear();
-  this->HeldStart = this->HeldEnd = 0;
 }
 
 bool VesselSession::HoldBranch(const RibbonSpec& ribbon, vtkPolyData* surface)
@@ -323,8 +345,6 @@ bool VesselSession::HoldBranch(const RibbonSpec& ribbon, vtkPolyData* surface)
     }
   }
   this->Held = std::move(samples);
-  this->HeldStart = 0;
-  this->HeldEnd = static_cast<int>(this->Held.size()) - 1;
   return this->Held.size() >= 3;
 }
 

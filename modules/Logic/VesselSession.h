@@ -99,6 +99,11 @@ public:
     const Vec3& second,
     const CenterlineRibbonOptions& options = {}) const;
 
+  /// Whether `point` (a pick on the wall) belongs to a vessel: its distance to the nearest
+  /// centerline sample is at most `factor` x the inscribed radius there (the rule of
+  /// PlaceRibbonOnCenterline; a pick on an aneurysm's sac is not). False without centerlines.
+  bool IsOnVessel(const Vec3& point, double factor = 1.5) const;
+
   ///@{ The branch held under the ribbon
   /// Takes the centerline stretch under `ribbon` (the path nearest to both its ends) and the
   /// wall points of `surface` around it; false when there is no centerline or the ribbon's ends
@@ -132,8 +137,7 @@ private:
   const void* OriginalKey = nullptr;
   vtkMTimeType OriginalTime = 0;
   std::shared_ptr<CenterlineJob> Pending;
-  std::vector<HeldSample> Held;
-  int HeldStart = 0, HeldEnd = 0; // ribbon ends' indices into Held
+  std::vector<HeldSample> Held; // from the ribbon's start to its end
 };
 
 /// The live warp of a grabbed session as a WarpSpec (its initial and final ribbons, R, decay,

@@ -113,6 +113,9 @@ TEST_F(VesselSessionTest, RibbonOnTheCenterlineAndTheSacRefused)
     }
   }
   EXPECT_THROW(Vessels->PlaceRibbon(sac, WallPick(150)), RibbonPlacementError);
+  EXPECT_FALSE(Vessels->IsOnVessel(sac));
+  EXPECT_TRUE(Vessels->IsOnVessel(WallPick(30)));
+  EXPECT_TRUE(Vessels->IsOnVessel(WallPick(150)));
   VesselSession empty;
   EXPECT_THROW(empty.PlaceRibbon(WallPick(30), WallPick(150)), RibbonPlacementError);
 }

@@ -9,6 +9,7 @@
 #include "Ribbon.h"
 #include "SliceViews.h"
 #include "TrackersPanel.h"
+#include "VesselController.h"
 #include "VolumeIO.h"
 #include "WarpPlanIO.h"
 #include "vtkBenderRibbonRepresentation.h"
@@ -517,9 +518,12 @@ private slots:
 
   void placeRibbonByClickingOnTheVessel()
   {
-    // Back to the straight tube; P, then a click on its wall at x = 120: a straight ribbon
-    // along the tube's axis, R from the local radius (10 mm).
+    // Back to the straight tube; its centerline is computed in the background. P, then two
+    // clicks on its wall at x = 100 and x = 140: the ribbon goes on the centerline between
+    // them (along the tube's axis), R from the inscribed radius (10 mm).
     QVERIFY(this->Window->session().Undo());
+    QVERIFY(this->Window->waitForCenterlines(60000));
+    QVERIFY(this->Window->vessels()->vessels().HasCenterlines());
     this->Window->renderer()->GetActiveCamera()->SetPosition(120, 0, 200);
     this->Window->renderer()->GetActiveCamera()->SetFocalPoint(120, 0, 0);
     this->Window->renderer()->GetActiveCamera()->SetViewUp(0, 1, 0);
@@ -528,14 +532,17 @@ private slots:
     this->Window->view()->setFocus();
     QTest::keyClick(this->Window->view(), Qt::Key_P);
     QVERIFY(this->Window->isPlacingRibbon());
-    double display[3];
-    vtkInteractorObserver::ComputeWorldToDisplay(this->Window->renderer(), 120, 0, 10, display);
-    const int x = static_cast<int>(std::lround(display[0]));
-    const int y = static_cast<int>(std::lround(display[1]));
     std::ostringstream log;
     log << "# StreamVersion 1.2\n";
-    log << "LeftButtonPressEvent " << x << " " << y << " 0 0 0 0 0\n";
-    log << "LeftButtonReleaseEvent " << x << " " << y << " 0 0 0 0 0\n";
+    for (const double at : { 100.0, 140.0 })
+    {
+      double display[3];
+      vtkInteractorObserver::ComputeWorldToDisplay(this->Window->renderer(), at, 0, 10, display);
+      const int x = static_cast<int>(std::lround(display[0]));
+      const int y = static_cast<int>(std::lround(display[1]));
+      log << "LeftButtonPressEvent " << x << " " << y << " 0 0 0 0 0\n";
+      log << "LeftButtonReleaseEvent " << x << " " << y << " 0 0 0 0 0\n";
+    }
     vtkNew<vtkInteractorEventRecorder> recorder;
     recorder->SetInteractor(this->Window->renderer()->GetRenderWindow()->GetInteractor());
     recorder->ReadFromInputStringOn();
