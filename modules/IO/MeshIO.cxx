@@ -874,30 +874,4 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   }
 }
 
-bool SameFile(const std::string& a, const std::string& b)
-{
-  if (a.empty() || b.empty())
-  {
-    return false;
-  }
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec))
-  {
-    const bool same = fs::equivalent(a, b, ec);
-    if (!ec)
-    {
-      return same;
-    }
-  }
-  const fs::path na = fs::weakly_canonical(fs::absolute(a, ec), ec);
-  std::error_code ec2;
-  const fs::path nb = fs::weakly_canonical(fs::absolute(b, ec2), ec2);
-  if (ec || ec2)
-  {
-    return fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
-  }
-  return na == nb;
-}
-
 } // namespace bender

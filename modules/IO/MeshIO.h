@@ -1,6 +1,8 @@
 #ifndef bender_MeshIO_h
 #define bender_MeshIO_h
 
+#include "FileIdentity.h"
+
 #include <vtkSmartPointer.h>
 
 #include <stdexcept>
@@ -61,10 +63,6 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path);
 /// folder at the target, a null mesh or one without points, non-finite coordinates, no
 /// triangles for STL, a writer error).
 void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOptions& options = {});
-
-/// True when both paths name the same existing file (same device and inode), or the same
-/// path after normalisation. Used to refuse overwriting an input.
-bool SameFile(const std::string& a, const std::string& b);
 
 } // namespace bender
 

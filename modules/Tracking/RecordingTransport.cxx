@@ -1,5 +1,6 @@
 #include "RecordingTransport.h"
 
+#include "FileIdentity.h"
 #include "ReplayTransport.h"
 #include "TrackingErrors.h"
 
@@ -11,25 +12,6 @@ namespace bender
 
 namespace
 {
-
-// Same existing file, or the same path once made absolute and normalised.
-bool SamePath(const std::string& a, const std::string& b)
-{
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec))
-  {
-    const bool same = fs::equivalent(a, b, ec);
-    if (!ec)
-    {
-      return same;
-    }
-  }
-  const fs::path na = fs::weakly_canonical(fs::absolute(a, ec), ec);
-  std::error_code ec2;
-  const fs::path nb = fs::weakly_canonical(fs::absolute(b, ec2), ec2);
-  return !ec && !ec2 && na == nb;
-}
 
 // The recorder truncates FILE and FILE.timestamps on creation: refuse before that when either
 // is a file of the replay being recorded (the replayed recording or its timestamps sidecar).
@@ -45,7 +27,7 @@ std::unique_ptr<Transport> RefuseRecordingOverInput(std::unique_ptr<Transport> i
     {
       for (const std::string& input : inputs)
       {
-        if (SamePath(output, input))
+        if (SameFile(output, input))
         {
           throw RecordingError("recording " + path + ": would overwrite " + input +
             ", a file of the replay being recorded");

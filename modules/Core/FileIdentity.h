@@ -1,0 +1,17 @@
+#ifndef bender_FileIdentity_h
+#define bender_FileIdentity_h
+
+#include <string>
+
+namespace bender
+{
+
+/// True when both paths name the same existing file (same device and inode: links and other
+/// spellings included), or, for paths that do not exist yet, the same path once made absolute
+/// and normalised. False when either is empty. Used everywhere an output must never overwrite an
+/// input (meshes, plans, recordings and their sidecars).
+bool SameFile(const std::string& a, const std::string& b);
+
+} // namespace bender
+
+#endif
