@@ -2,7 +2,8 @@
 // server streams TRANSFORMs for two tool names and the panel, connected through its own
 // widgets, moves the ribbon; a connect to a port that does not answer leaves the event loop
 // turning; "Send to Slicer" makes a loopback receiver get the session's surface as POLYDATA and
-// a newer one during and after a bend. Loopback 127.0.0.1 on ephemeral ports only.
+// a newer one during and after a bend; a server that goes away ends the connection and Connect
+// reconnects. Loopback 127.0.0.1 on ephemeral ports only.
 
 #include "BenderSession.h"
 #include "IgtlProtocol.h"
@@ -467,10 +468,33 @@ private slots:
     QVERIFY(all.back().text.rfind("Send to Slicer: ", 0) == 0);
     QVERIFY(all.back().text.find(std::to_string(port)) != std::string::npos);
     QVERIFY(toggle->isEnabled());
+  }
+
+  void aClosedServerDisconnectsAndConnectReconnects()
+  {
+    // The server goes away: the panel ends the connection, the committed shape stays, and
+    // Connect reconnects to a server that is back (here on a new port).
+    QVERIFY(this->Window->trackers().IsConnected());
+    const std::size_t position = this->Window->session().GetHistoryPosition();
+    this->Server.reset();
+    QTRY_VERIFY_WITH_TIMEOUT(!this->Window->trackers().IsConnected(), 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(this->child<QPushButton>("trackerConnect")->isEnabled(), 20000);
+    QVERIFY(!this->child<QPushButton>("trackerDisconnect")->isEnabled());
+    QCOMPARE(this->Window->session().GetHistoryPosition(), position);
+    QVERIFY(this->Window->session().GetState() != bender::GrabState::Grabbed);
+
+    this->Server = std::make_unique<TrackerServer>("LeftToolToTracker", "RightToolToTracker");
+    this->child<QSpinBox>("igtlPort")->setValue(this->Server->Port());
+    QSignalSpy finished(this->panel(), &TrackersPanel::connectFinished);
+    QTest::mouseClick(this->child<QPushButton>("trackerConnect"), Qt::LeftButton);
+    QVERIFY(finished.wait(20000));
+    QCOMPARE(finished.last().first().toBool(), true);
+    QTRY_VERIFY_WITH_TIMEOUT(this->Window->trackers().CurrentRibbon().has_value(), 20000);
 
     QTest::mouseClick(this->child<QPushButton>("trackerDisconnect"), Qt::LeftButton);
     QVERIFY(!this->Window->trackers().IsConnected());
     QVERIFY(this->child<QComboBox>("trackerKind")->isEnabled());
+    QVERIFY(this->child<QLineEdit>("igtlHost")->isEnabled());
   }
 };
 
