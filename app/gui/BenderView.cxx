@@ -79,6 +79,14 @@ void BenderView::setCenterlines(vtkPolyData* lines)
   this->setCenterlinesVisible(this->CenterlinesVisible);
 }
 
+void BenderView::moveCenterlines(vtkPolyData* lines)
+{
+  if (lines && this->CenterlineMapper->GetNumberOfInputConnections(0) > 0)
+  {
+    this->CenterlineMapper->SetInputData(lines);
+  }
+}
+
 void BenderView::setCenterlinesVisible(bool visible)
 {
   this->CenterlinesVisible = visible;

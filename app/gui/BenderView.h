@@ -34,6 +34,9 @@ public:
   /// are shown, the surface is drawn translucent so that they can be seen through it.
   void setCenterlines(vtkPolyData* lines);
   void setCenterlinesVisible(bool visible);
+  /// Replaces the drawn centerlines' data (the same lines carried by the live warp) without
+  /// drawing a frame (the caller's interaction draws it).
+  void moveCenterlines(vtkPolyData* lines);
   bool centerlinesShown() const;
   vtkBenderRibbonWidget* ribbonWidget() const { return this->RibbonWidget; }
   /// Draws a frame, unless inside quietly().

@@ -36,6 +36,13 @@ bool VesselController::isComputing() const
 
 void VesselController::update()
 {
+  if (this->LinesWarped && this->Session.GetState() != bender::GrabState::Grabbed &&
+    this->Vessels.IsUpToDate(this->Session))
+  {
+    // The bend was cancelled: the committed surface's centerline again.
+    this->LinesWarped = false;
+    this->View->setCenterlines(this->Vessels.GetPaths());
+  }
   if (this->Worker->isBackgroundBusy() || this->Vessels.IsUpToDate(this->Session) ||
     this->Session.GetState() == bender::GrabState::Grabbed)
   {
@@ -64,6 +71,7 @@ void VesselController::update()
         std::string message;
         const bool ok = this->Vessels.Finish(*job, message);
         this->State = QString::fromStdString(message);
+        this->LinesWarped = false;
         this->View->setCenterlines(ok ? this->Vessels.GetPaths() : nullptr);
         this->showState();
         emit this->centerlinesChanged(ok);
@@ -105,13 +113,19 @@ void VesselController::grabbed()
 
 void VesselController::moved()
 {
-  if (!this->Vessels.IsHolding() || this->Session.GetState() != bender::GrabState::Grabbed)
+  if (this->Session.GetState() != bender::GrabState::Grabbed || !this->Vessels.HasCenterlines())
   {
     return;
   }
-  const bender::HeldBranchMeasures live =
-    this->Vessels.MeasureHeld(bender::LiveWarpOf(this->Session));
-  if (live.Valid)
+  const bender::WarpSpec warp = bender::LiveWarpOf(this->Session);
+  // The drawn centerline follows the surface (the widget's interaction draws the frame).
+  if (auto lines = this->Vessels.WarpedPaths(warp))
+  {
+    this->View->moveCenterlines(lines);
+    this->LinesWarped = true;
+  }
+  const bender::HeldBranchMeasures live = this->Vessels.MeasureHeld(warp);
+  if (live.Valid && this->Vessels.IsHolding())
   {
     this->Now = live;
   }

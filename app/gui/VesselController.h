@@ -67,6 +67,7 @@ private:
   MainActions* Actions;
   MeasurementsPanel* Panel;
   QString State = "No centerlines: open a vessel surface";
+  bool LinesWarped = false; // the drawn centerline is the live warp's
   bender::HeldBranchMeasures Before;
   bender::HeldBranchMeasures Now;
 };

@@ -6,7 +6,9 @@
 
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
+#include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 
 #include <algorithm>
@@ -312,10 +314,28 @@ bool VesselSession::HoldBranch(const RibbonSpec& ribbon, vtkPolyData* surface)
   {
     largest = std::max(largest, s.radius);
   }
+  // Only the points in the stretch's box widened by 1.5 radii can be kept.
+  Vec3 low = samples.front().position, high = low;
+  for (const auto& s : samples)
+  {
+    low = {
+      std::min(low.x, s.position.x), std::min(low.y, s.position.y), std::min(low.z, s.position.z)
+    };
+    high = {
+      std::max(high.x, s.position.x), std::max(high.y, s.position.y), std::max(high.z, s.position.z)
+    };
+  }
+  const Vec3 margin{ 1.5 * largest, 1.5 * largest, 1.5 * largest };
+  low = low - margin;
+  high = high + margin;
   std::vector<std::vector<std::pair<double, Vec3>>> near(samples.size());
   for (vtkIdType k = 0; k < surface->GetNumberOfPoints(); ++k)
   {
     const Vec3 q = PointOf(surface, k);
+    if (q.x < low.x || q.y < low.y || q.z < low.z || q.x > high.x || q.y > high.y || q.z > high.z)
+    {
+      continue;
+    }
     double d = std::numeric_limits<double>::infinity();
     std::size_t nearest = 0;
     for (std::size_t i = 0; i < samples.size(); ++i)
@@ -435,6 +455,35 @@ HeldBranchMeasures VesselSession::MeasureHeld(const WarpSpec& warp) const
   catch (const std::exception&)
   {
     return {}; // an invalid live warp: the session does not apply it either
+  }
+}
+
+vtkSmartPointer<vtkPolyData> VesselSession::WarpedPaths(const WarpSpec& warp) const
+{
+  vtkPolyData* paths = this->GetPaths();
+  if (!paths)
+  {
+    return nullptr;
+  }
+  try
+  {
+    const RibbonWarp moved(warp);
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    points->SetNumberOfPoints(paths->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < paths->GetNumberOfPoints(); ++i)
+    {
+      const Vec3 p = moved.Apply(PointOf(paths, i));
+      points->SetPoint(i, p.x, p.y, p.z);
+    }
+    auto warped = vtkSmartPointer<vtkPolyData>::New();
+    warped->ShallowCopy(paths);
+    warped->SetPoints(points);
+    return warped;
+  }
+  catch (const std::exception&)
+  {
+    return nullptr;
   }
 }
 

@@ -118,6 +118,11 @@ public:
   HeldBranchMeasures MeasureHeld(const WarpSpec& warp) const;
   ///@}
 
+  /// The shown paths carried by `warp` (same lines and point data, points moved with
+  /// RibbonWarp's exact evaluation): the centerline drawn during a bend, cheap (no centerline
+  /// computed). Null without centerlines or for an invalid warp.
+  vtkSmartPointer<vtkPolyData> WarpedPaths(const WarpSpec& warp) const;
+
 private:
   struct HeldSample
   {

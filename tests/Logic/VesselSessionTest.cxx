@@ -161,6 +161,20 @@ TEST_F(VesselSessionTest, HeldBranchFollowsTheBendAndThePlanIsCompared)
             << " deg (plan " << plan << "), min radius " << before.MinRadius << " -> "
             << live.MinRadius << " mm\n";
 
+  // The drawn centerline follows the bend: its points moved, the ribbon's start stays.
+  auto warped = Vessels->WarpedPaths(LiveWarpOf(*Session));
+  ASSERT_TRUE(warped);
+  ASSERT_EQ(warped->GetNumberOfPoints(), Vessels->GetPaths()->GetNumberOfPoints());
+  double moved = 0;
+  for (vtkIdType i = 0; i < warped->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    warped->GetPoint(i, p);
+    Vessels->GetPaths()->GetPoint(i, q);
+    moved = std::max(moved, std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]));
+  }
+  EXPECT_GT(moved, 0.2 * Distance(placed.ribbon.start.position, placed.ribbon.end.position));
+
   ASSERT_TRUE(Session->Release());
   EXPECT_FALSE(Vessels->IsUpToDate(*Session)) << "the committed surface changed";
   auto job = Vessels->BeginCenterlines(*Session);
