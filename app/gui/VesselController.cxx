@@ -53,6 +53,12 @@ void VesselController::update()
   {
     this->View->setCenterlines(nullptr); // those of another surface
   }
+  if (!this->Vessels.IsHolding())
+  {
+    // Another surface: the last bend's measures are not this one's.
+    this->Before = {};
+    this->Now = {};
+  }
   if (!job)
   {
     this->State = "No centerlines: open a vessel surface";
