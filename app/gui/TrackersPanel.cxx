@@ -626,15 +626,16 @@ void TrackersPanel::setSendToSlicer(bool on)
     QTimer::singleShot(0, this, [this]() { this->SendToSlicer->setChecked(false); });
     return;
   }
+  const unsigned generation = ++this->LinkGeneration;
   this->Link = std::make_unique<SlicerLink>(options,
-    [this](std::string problem)
+    [this, generation](std::string problem)
     {
       QMetaObject::invokeMethod(
         this,
-        [this, problem]()
+        [this, problem, generation]()
         {
-          if (!this->Link)
-            return; // switched off meanwhile
+          if (!this->Link || generation != this->LinkGeneration)
+            return; // switched off meanwhile (perhaps on again: a newer sender)
           this->Session->AddMessage(bender::MessageSeverity::Error, "Send to Slicer: " + problem);
           this->SendToSlicer->setChecked(false);
         },

@@ -104,6 +104,7 @@ private:
   QTimer* CountersTimer = nullptr;
   std::unique_ptr<SlicerLink> Link;
   std::vector<std::unique_ptr<SlicerLink>> Retired; ///< switched off, thread still ending
+  unsigned LinkGeneration = 0;                      ///< which sender an error report belongs to
   bool Connecting = false;
   bool SentWhileGrabbed = false;
   vtkObjectBase* SentSurface = nullptr; ///< the committed surface last sent (identity only)
