@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace
@@ -130,6 +131,7 @@ int RunExportCommand(const std::vector<std::string>& args)
   const std::string& inPath = positional[0];
   options.output = outPath;
   options.protectedPath = inPath;
+  options.sourceName = std::filesystem::path(inPath).filename().string();
   if (bender::SameFile(inPath, outPath))
   {
     return Fail(outPath + ": refusing to overwrite the input file; choose another output");

@@ -675,6 +675,7 @@ std::shared_ptr<SessionJob> BenderSession::BeginExport(const std::string& path,
   job->Options = options;
   job->Options.output = path;
   job->Options.protectedPath = this->SourcePath;
+  job->Options.sourceName = this->SurfaceName;
   // Export writes only when the check is clean or the caller accepted its problems.
   job->ProceedOnProblems = proceedOnProblems;
   return job;

@@ -57,9 +57,14 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
   {
     throw InputError("export: no output file given");
   }
+  const std::string source = options.sourceName.empty() ? "the surface" : options.sourceName;
   if (!surface || surface->GetNumberOfPoints() == 0)
   {
-    throw InputError(path + ": there is no surface to export");
+    throw InputError(source + ": there is no surface to export (no points)");
+  }
+  if (surface->GetNumberOfPolys() + surface->GetNumberOfStrips() == 0)
+  {
+    throw InputError(source + ": the surface has no triangles (nothing to export)");
   }
   if (!options.protectedPath.empty() && SameFile(path, options.protectedPath))
   {

@@ -38,6 +38,9 @@ struct ExportSurfaceOptions
   /// A file that must never be written (the user's input surface), also among the names of
   /// one file per patch.
   std::string protectedPath;
+  /// What messages about the surface itself call it (the input's file name, "aneurysm.stl"), so
+  /// that a problem of the input is never blamed on the output; empty: "the surface".
+  std::string sourceName;
 };
 
 /// What was written.

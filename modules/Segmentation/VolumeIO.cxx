@@ -159,6 +159,37 @@ void CheckGeometry(const ImageGeometry& g, const std::string& path)
       throw VolumeReadError(path + ": non-finite direction matrix");
     }
   }
+  // The direction's columns are the index axes in LPS: unit length and mutually orthogonal
+  // (a scaled or sheared matrix, such as a TransformMatrix of 1e308, would put the surface at
+  // absurd or infinite coordinates that only the output writer would then notice).
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = a; b < 3; ++b)
+    {
+      double dot = 0.0;
+      for (int r = 0; r < 3; ++r)
+      {
+        dot += g.direction[3 * r + a] * g.direction[3 * r + b];
+      }
+      if (!(std::abs(dot - (a == b ? 1.0 : 0.0)) < 1e-3))
+      {
+        throw VolumeReadError(path + ": the direction matrix is not a rotation (columns " +
+          (a == b ? "of unit length" : "orthogonal") + " expected)");
+      }
+    }
+  }
+  // The volume must lie within a kilometre of the scanner's origin: beyond that the header is
+  // wrong (and single-precision surface coordinates would lose their millimetres).
+  constexpr double MaxExtentMm = 1.0e6;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double reach = std::abs(g.origin[c]) + g.spacing[c] * static_cast<double>(g.size[c]);
+    if (!(reach < MaxExtentMm))
+    {
+      throw VolumeReadError(path + ": the volume reaches beyond 1 km from the origin (spacing " +
+        "or origin in the header out of range)");
+    }
+  }
 }
 
 Volume FromItk(const FloatImage* image)

@@ -434,6 +434,28 @@ TEST(VolumeIO, HeadersThatOverflowItkAreRefused)
   ExpectMessage(dir.File("huge.nhdr"), "memory budget");
 }
 
+// Issue 13: a 1e308 TransformMatrix (or an origin or spacing that puts the volume out of any
+// scanner) was read, and only the mesh writer then refused infinite coordinates, naming the
+// output. The volume is refused, naming the volume.
+TEST(VolumeIO, AbsurdGeometryIsBlamedOnTheVolume)
+{
+  TempDir dir;
+  const std::string voxels(8, '\0');
+  const std::string common =
+    "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n";
+  WriteText(dir.File("matrix.mha"),
+    common + "TransformMatrix = 1e308 0 0 0 1e308 0 0 0 1e308\nElementDataFile = LOCAL\n" + voxels);
+  ExpectMessage(dir.File("matrix.mha"), "direction matrix is not a rotation");
+  WriteText(dir.File("sheared.mha"),
+    common + "TransformMatrix = 1 0 0 0.5 1 0 0 0 1\nElementDataFile = LOCAL\n" + voxels);
+  ExpectMessage(dir.File("sheared.mha"), "direction matrix is not a rotation");
+  WriteText(dir.File("far.mha"), common + "Offset = 0 0 1e300\nElementDataFile = LOCAL\n" + voxels);
+  ExpectMessage(dir.File("far.mha"), "beyond 1 km");
+  WriteText(dir.File("spacing.mha"),
+    common + "ElementSpacing = 1 1 1e299\nElementDataFile = LOCAL\n" + voxels);
+  ExpectMessage(dir.File("spacing.mha"), "beyond 1 km");
+}
+
 // Issue 13: library text reached the user raw ("ITK ERROR: MetaImageIO(0x55...)", "[nrrd] ...
 // trouble", several lines, ANSI colours).
 TEST(VolumeIO, LibraryMessagesAreCleaned)

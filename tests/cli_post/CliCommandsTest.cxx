@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -72,4 +74,23 @@ TEST(CliCommands, NumbersAndChoicesAreCheckedBeforeAnyWork)
   EXPECT_EQ(RunInProcess({ "segment", "in.nrrd", "-o", "o.stl", "--seed", "1,2" }).status, 2);
   EXPECT_EQ(RunInProcess({ "phantom", "in.stl", "-o", "o.nrrd", "--spacing", "abc" }).status, 2);
   EXPECT_EQ(RunInProcess({ "tracker", "--device", "sim", "--count", "0" }).status, 2);
+}
+
+TEST(CliCommands, ExportBlamesTheInputForAnInputWithoutTriangles)
+{
+  // Issue 13: a problem of the input is reported against the input, never the output.
+  const std::filesystem::path folder =
+    std::filesystem::temp_directory_path() / "bender-cli-export-points-only";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string input = (folder / "points-only.ply").string();
+  std::ofstream(input) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                          "property float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  const Captured r = RunInProcess({ "export", input, "-o", (folder / "out.stl").string() });
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("points-only.ply: the surface has no triangles"), std::string::npos)
+    << r.err;
+  EXPECT_EQ(r.err.find("out.stl"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(folder / "out.stl"));
+  std::filesystem::remove_all(folder);
 }
