@@ -744,7 +744,11 @@ bool CheckLegacyVtk(std::string_view data, std::string& problem)
     const auto r2 = dot == std::string_view::npos
       ? std::from_chars_result{ v.data(), std::errc::invalid_argument }
       : std::from_chars(v.data() + dot + 1, v.data() + v.size(), minor);
-    if (r1.ec != std::errc() || r2.ec != std::errc() || major < 1 || major > 5 || minor < 0)
+    // Both numbers must fill their part exactly: "5|||.1" reads as 5.1 here but VTK's own
+    // sscanf stops at the '|' and falls back to the pre-5.1 cell layout (found by fuzz_mesh_vtk).
+    const bool whole = r1.ec == std::errc() && r2.ec == std::errc() && r1.ptr == v.data() + dot &&
+      r2.ptr == v.data() + v.size();
+    if (!whole || major < 1 || major > 5 || minor < 0)
     {
       problem = "not a legacy VTK file (version \"" + QuoteBytes(v) + "\" is not 1.0 to 5.1)";
       return false;

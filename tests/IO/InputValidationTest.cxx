@@ -143,6 +143,22 @@ TEST(InputValidation, LegacyVtk51OffsetsOutOfRangeOrDecreasing)
   EXPECT_EQ(ReadMesh(dir / "good.vtk")->GetNumberOfPolys(), 1);
 }
 
+// Found by fuzz_mesh_vtk: "Version 5|||.1" passed as 5.1 while VTK read it as an older version
+// and crashed in vtkDataReader::ReadString. The version must be exactly "major.minor".
+TEST(InputValidation, LegacyVtkVersionMustBeExactlyMajorDotMinor)
+{
+  TempDir dir;
+  const std::string body = std::string(Legacy51Head).substr(std::string(Legacy51Head).find('\n')) +
+    "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1 2\n";
+  for (const char* version : { "5|||.1", "5.1x", "5 .1", "5.", ".1" })
+  {
+    WriteText(dir / "version.vtk", std::string("# vtk DataFile Version ") + version + body);
+    ExpectRefused(dir / "version.vtk", "is not 1.0 to 5.1");
+  }
+  WriteText(dir / "crlf.vtk", "# vtk DataFile Version 5.1\r" + body);
+  EXPECT_EQ(ReadMesh(dir / "crlf.vtk")->GetNumberOfPolys(), 1);
+}
+
 // Binary legacy files written by the project: every prefix is refused without a crash.
 TEST(InputValidation, LegacyVtkBinaryPrefixesAreRefused)
 {
