@@ -244,6 +244,14 @@ void GestureController::placeSettled(const bender::RibbonSpec& ribbon,
 {
   bender::WarpParameters parameters = this->Bend->parameters();
   parameters.radius = radius;
+  // The held vessel moves as a whole: a plateau reaching 1.2 vessel radii keeps its whole
+  // cross-section at full weight, so the lumen follows the ribbon instead of pinching (with the
+  // bell, the wall at r = R / 2.2 moved about half as far as the centerline).
+  if (vesselRadius > 0.0 && radius > 0.0)
+  {
+    parameters.decay.shape = bender::DecayShape::Plateau;
+    parameters.decay.plateau = std::clamp(1.2 * vesselRadius / radius, 0.3, 0.8);
+  }
   this->Bend->setParameters(parameters);
   this->applyParameters();
   this->showRibbon(ribbon, vesselRadius);

@@ -351,7 +351,10 @@ private slots:
     QVERIFY(std::isfinite(before));
     bender::RibbonSpec bent = this->Placed;
     const bender::Vec3 axis = bender::Normalized(this->Placed.start.normal);
-    const double angle = 30.0 / Degrees;
+    // Away from the neighbouring vessel: with the plateau the whole branch follows the ribbon,
+    // and turned the other way it would run into the trunk (the bent surface then has no
+    // centerlines to compare).
+    const double angle = -30.0 / Degrees;
     bent.end.position =
       bent.start.position + bender::Rotate(axis, angle, bent.end.position - bent.start.position);
     bent.end.tangent = bender::Rotate(axis, angle, bent.end.tangent);
