@@ -168,8 +168,9 @@ void vtkBenderAdaptiveSubdivisionFilter::SetPrecision(bender::WarpPrecision prec
   }
 }
 
-int vtkBenderAdaptiveSubdivisionFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkBenderAdaptiveSubdivisionFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
@@ -177,7 +178,8 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
   this->SplitsPerPass.clear();
   this->Converged = false;
   this->LastMaximumDeviation = 0.0;
-  auto fail = [this](const std::string& message) {
+  auto fail = [this](const std::string& message)
+  {
     this->LastError = message;
     vtkErrorMacro(<< message);
     return 0;
@@ -208,9 +210,15 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
     // any work (1e-12 with 64 passes took minutes and gigabytes before the limit stopped it).
     double bounds[6];
     input->GetBounds(bounds);
-    const double size = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2],
-      bounds[5] - bounds[4], std::fabs(bounds[0]), std::fabs(bounds[1]), std::fabs(bounds[2]),
-      std::fabs(bounds[3]), std::fabs(bounds[4]), std::fabs(bounds[5]) });
+    const double size = std::max({ bounds[1] - bounds[0],
+      bounds[3] - bounds[2],
+      bounds[5] - bounds[4],
+      std::fabs(bounds[0]),
+      std::fabs(bounds[1]),
+      std::fabs(bounds[2]),
+      std::fabs(bounds[3]),
+      std::fabs(bounds[4]),
+      std::fabs(bounds[5]) });
     const double noise = std::max(size, 1e-300) * 1e-9;
     const double worstPoints =
       static_cast<double>(n0) * std::pow(4.0, static_cast<double>(this->MaxPasses));
@@ -314,7 +322,8 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
       }
     }
   }
-  auto sortUnique = [](std::vector<std::uint64_t>& v) {
+  auto sortUnique = [](std::vector<std::uint64_t>& v)
+  {
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
   };
@@ -384,7 +393,8 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
     std::vector<vtkIdType> outCell;
     outTris.reserve(tris.size() + 3 * midpoint.size());
     outCell.reserve(outTris.capacity());
-    auto emit = [&](vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell) {
+    auto emit = [&](vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
+    {
       outTris.push_back({ a, b, c });
       outCell.push_back(cell);
     };
@@ -492,7 +502,8 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
   points->SetNumberOfPoints(n);
   std::copy(y.begin(), y.end(), static_cast<double*>(points->GetData()->GetVoidPointer(0)));
   vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(static_cast<vtkIdType>(tris.size()), 3 * static_cast<vtkIdType>(tris.size()));
+  polys->AllocateExact(
+    static_cast<vtkIdType>(tris.size()), 3 * static_cast<vtkIdType>(tris.size()));
   for (const Triangle& t : tris)
   {
     polys->InsertNextCell(3, t.data());
@@ -515,8 +526,8 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(
     array->SetNumberOfTuples(n);
     for (std::size_t k = 0; k < parents.size(); ++k)
     {
-      array->InterpolateTuple(n0 + static_cast<vtkIdType>(k), parents[k].first, array,
-        parents[k].second, array, 0.5);
+      array->InterpolateTuple(
+        n0 + static_cast<vtkIdType>(k), parents[k].first, array, parents[k].second, array, 0.5);
     }
   }
   if (this->KeepInitialPositions)
@@ -547,6 +558,7 @@ void vtkBenderAdaptiveSubdivisionFilter::PrintSelf(ostream& os, vtkIndent indent
   os << indent << "MaxPasses: " << this->MaxPasses << "\n";
   os << indent << "Radius: " << this->Spec.radius << "\n";
   os << indent << "KeepInitialPositions: " << this->KeepInitialPositions << "\n";
-  os << indent << "Precision: "
-     << (this->Precision == bender::WarpPrecision::Exact ? "Exact" : "Table") << "\n";
+  os << indent
+     << "Precision: " << (this->Precision == bender::WarpPrecision::Exact ? "Exact" : "Table")
+     << "\n";
 }

@@ -27,8 +27,12 @@ void Insert(vtkPoints* pts, const bender::Vec3& p)
 }
 
 // Appends a ring of `sides` points of radius r around c in the plane spanned by u, v.
-void Ring(vtkPoints* pts, const bender::Vec3& c, const bender::Vec3& u, const bender::Vec3& v,
-  double r, int sides)
+void Ring(vtkPoints* pts,
+  const bender::Vec3& c,
+  const bender::Vec3& u,
+  const bender::Vec3& v,
+  double r,
+  int sides)
 {
   for (int k = 0; k < sides; ++k)
   {
@@ -65,8 +69,9 @@ void vtkBenderRibbonSource::SetRibbon(const bender::RibbonSpec& ribbon)
   this->Modified();
 }
 
-int vtkBenderRibbonSource::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkBenderRibbonSource::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* strip = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* wire = vtkPolyData::GetData(outputVector, 1);

@@ -127,7 +127,8 @@ Biarc Biarc::FromEnds(const Vec3& p0, const Vec3& t0In, const Vec3& p1, const Ve
   const double sLen = Norm(S);
   if (sLen < epsLen)
   {
-    throw InvalidRibbonError("", "coincident ends (the two ends of the wire are at the same point)");
+    throw InvalidRibbonError(
+      "", "coincident ends (the two ends of the wire are at the same point)");
   }
   const double q = Dot(S, S);
   const double bb = Dot(S, T);
@@ -169,8 +170,8 @@ Biarc Biarc::FromEnds(const Vec3& p0, const Vec3& t0In, const Vec3& p1, const Ve
     }
     else
     {
-      throw InvalidRibbonError("",
-        "no biarc: the end tangents are parallel and the end lies behind the start");
+      throw InvalidRibbonError(
+        "", "no biarc: the end tangents are parallel and the end lies behind the start");
     }
     if (!(a > 0.0) || !std::isfinite(a))
     {

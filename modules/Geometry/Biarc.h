@@ -19,8 +19,8 @@ struct Arc
   Vec3 axis;         ///< n = Ts x Np, unit normal of the arc's plane (zero for a line)
   Vec3 centre;       ///< O (meaningless for a line)
   double radius = std::numeric_limits<double>::infinity(); ///< r (infinite for a line)
-  double angle = 0.0;  ///< theta in [0, pi], the turning angle
-  double length = 0.0; ///< L
+  double angle = 0.0;                                      ///< theta in [0, pi], the turning angle
+  double length = 0.0;                                     ///< L
 
   /// Point at the fraction u in [0, 1] of the arc's length.
   Vec3 PointAt(double u) const;

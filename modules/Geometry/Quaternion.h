@@ -24,7 +24,8 @@ struct Quaternion
 inline Quaternion operator*(const Quaternion& a, const Quaternion& b)
 {
   return { a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
-    a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+    a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+    a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
     a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w };
 }
 inline Quaternion Conjugate(const Quaternion& q)

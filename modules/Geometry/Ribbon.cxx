@@ -47,14 +47,14 @@ Ribbon::Ribbon(const RibbonSpec& spec)
 {
   CheckEnd(spec.start, "start");
   CheckEnd(spec.end, "end");
-  this->Curve = Biarc::FromEnds(
-    spec.start.position, spec.start.tangent, spec.end.position, spec.end.tangent);
+  this->Curve =
+    Biarc::FromEnds(spec.start.position, spec.start.tangent, spec.end.position, spec.end.tangent);
   this->N0 = OrthoNormal(spec.start.normal, this->Curve.StartTangent());
   this->N1 = OrthoNormal(spec.end.normal, this->Curve.EndTangent());
 
   // tau = sang(N0*, N1, T1) with N0* the rotation-minimising transport of N0 to P1.
-  const Vec3 n0Star = this->Curve.SecondArc().TransportAt(
-    1.0, this->Curve.FirstArc().TransportAt(1.0, this->N0));
+  const Vec3 n0Star =
+    this->Curve.SecondArc().TransportAt(1.0, this->Curve.FirstArc().TransportAt(1.0, this->N0));
   double tau = SignedAngle(n0Star, this->N1, this->Curve.EndTangent());
   if (std::abs(tau) > Pi - 1e-9)
   {

@@ -168,7 +168,8 @@ bool RibbonWarp::TryBuildSignTable(int samples)
 {
   const double cos45 = std::sqrt(0.5);
   this->Samples = SampleGrid::Build(this->InitialRibbon.Wire().JunctionParameter(),
-    this->FinalRibbon.Wire().JunctionParameter(), samples);
+    this->FinalRibbon.Wire().JunctionParameter(),
+    samples);
   const int count = static_cast<int>(this->Samples.s.size());
   this->Lifted.assign(count, Quaternion{});
   this->Table.assign(count, DualQuaternion{});
@@ -244,8 +245,9 @@ std::string RibbonWarp::SpaceInversionWarning() const
   std::ostringstream os;
   os.precision(4);
   os << "space inversion possible: R = " << this->Input.radius << " is not smaller than the "
-     << (initial ? "initial" : "final") << " wire's smallest arc radius r_min = "
-     << (initial ? ri : rf) << "; reduce R or straighten the ribbon";
+     << (initial ? "initial" : "final")
+     << " wire's smallest arc radius r_min = " << (initial ? ri : rf)
+     << "; reduce R or straighten the ribbon";
   return os.str();
 }
 

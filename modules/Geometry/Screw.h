@@ -24,7 +24,7 @@ struct Screw
   Vec3 K{ 1, 0, 0 };
   double beta = 0.0;
   double d = 0.0;
-  Vec3 A; ///< a point on the axis (meaningless for a pure translation)
+  Vec3 A;               ///< a point on the axis (meaningless for a pure translation)
   bool flipped = false; ///< the lift chose the non-minimal twin (lifted w < 0)
 };
 

@@ -227,7 +227,8 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
   // Reserve no more than the file can hold (each vertex line takes at least 6 bytes, "0 0 0\n",
   // and each face 8), so that an absurd count ends in "file ends after ..." and not in an
   // allocation failure.
-  const auto canHold = [&](long long count, std::size_t bytesPerItem) {
+  const auto canHold = [&](long long count, std::size_t bytesPerItem)
+  {
     return static_cast<vtkIdType>(
       std::min<long long>(count, static_cast<long long>(text.size() / bytesPerItem)));
   };
@@ -238,8 +239,8 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
   {
     if (!lines.Next(line))
     {
-      throw OffError("file ends after " + std::to_string(i) + " of " +
-        std::to_string(vertexCount) + " vertices");
+      throw OffError("file ends after " + std::to_string(i) + " of " + std::to_string(vertexCount) +
+        " vertices");
     }
     Tokenize(line, tokens);
     double p[3];
@@ -262,8 +263,8 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
   {
     if (!lines.Next(line))
     {
-      throw OffError("file ends after " + std::to_string(f) + " of " +
-        std::to_string(faceCount) + " faces");
+      throw OffError(
+        "file ends after " + std::to_string(f) + " of " + std::to_string(faceCount) + " faces");
     }
     Tokenize(line, tokens);
     long long n = 0;
@@ -287,14 +288,15 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
       long long index = 0;
       if (!ParseInteger(tokens[static_cast<std::size_t>(k + 1)], index))
       {
-        FailAt(lines.Line(), "vertex index \"" +
-            std::string(tokens[static_cast<std::size_t>(k + 1)].substr(0, 30)) +
+        FailAt(lines.Line(),
+          "vertex index \"" + std::string(tokens[static_cast<std::size_t>(k + 1)].substr(0, 30)) +
             "\" is not an integer");
       }
       if (index < 0 || index >= vertexCount)
       {
-        FailAt(lines.Line(), "vertex index " + std::to_string(index) +
-            " out of range (the file has " + std::to_string(vertexCount) + " vertices)");
+        FailAt(lines.Line(),
+          "vertex index " + std::to_string(index) + " out of range (the file has " +
+            std::to_string(vertexCount) + " vertices)");
       }
       ids[static_cast<std::size_t>(k)] = static_cast<vtkIdType>(index);
     }
@@ -333,7 +335,9 @@ void AppendInteger(std::string& out, long long value)
 
 } // namespace
 
-bool WriteOff(vtkPolyData* mesh, const std::string& path, const std::string& header,
+bool WriteOff(vtkPolyData* mesh,
+  const std::string& path,
+  const std::string& header,
   std::string& problem)
 {
   const vtkIdType pointCount = mesh->GetNumberOfPoints();
@@ -370,8 +374,8 @@ bool WriteOff(vtkPolyData* mesh, const std::string& path, const std::string& hea
       polyCount += it->GetCurrentCell()->GetNumberOfIds() >= 3 ? 1 : 0;
     }
   }
-  const long long faceCount = static_cast<long long>(polyCount) +
-    static_cast<long long>(stripTriangles.size());
+  const long long faceCount =
+    static_cast<long long>(polyCount) + static_cast<long long>(stripTriangles.size());
 
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out)
@@ -381,7 +385,8 @@ bool WriteOff(vtkPolyData* mesh, const std::string& path, const std::string& hea
   }
   std::string buffer;
   buffer.reserve(1 << 20);
-  auto flush = [&]() {
+  auto flush = [&]()
+  {
     out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
     buffer.clear();
   };
@@ -410,7 +415,8 @@ bool WriteOff(vtkPolyData* mesh, const std::string& path, const std::string& hea
       flush();
     }
   }
-  auto appendFace = [&](vtkIdType n, const vtkIdType* ids) {
+  auto appendFace = [&](vtkIdType n, const vtkIdType* ids)
+  {
     AppendInteger(buffer, n);
     for (vtkIdType k = 0; k < n; ++k)
     {

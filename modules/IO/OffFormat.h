@@ -33,7 +33,9 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path);
 /// Writes ASCII OFF with shortest round-trip decimal coordinates (doubles read back
 /// bit-identical). Polygons are written as faces, strips as triangles; vertices and lines
 /// are not representable and are left out. header becomes a "#" comment line when not empty.
-bool WriteOff(vtkPolyData* mesh, const std::string& path, const std::string& header,
+bool WriteOff(vtkPolyData* mesh,
+  const std::string& path,
+  const std::string& header,
   std::string& problem);
 
 } // namespace io_detail

@@ -86,8 +86,9 @@ LocalFit FitNeighbourhood(vtkPolyData* surface, const Vec3& centre, double spher
 
 }
 
-RibbonPlacement PlaceRibbonOnSurface(
-  vtkPolyData* surface, const Vec3& picked, const RibbonPlacementOptions& options)
+RibbonPlacement PlaceRibbonOnSurface(vtkPolyData* surface,
+  const Vec3& picked,
+  const RibbonPlacementOptions& options)
 {
   if (!surface || surface->GetNumberOfPoints() < 8)
   {

@@ -15,8 +15,8 @@ namespace bender
 /// pick (principal axis of their covariance, refined twice on a sphere of three local radii).
 struct RibbonPlacement
 {
-  RibbonSpec ribbon;           ///< straight, along the local axis, centred on the axis
-  double vesselRadius = 0.0;   ///< estimated local lumen radius, model units
+  RibbonSpec ribbon;            ///< straight, along the local axis, centred on the axis
+  double vesselRadius = 0.0;    ///< estimated local lumen radius, model units
   double suggestedRadius = 0.0; ///< R covering the vessel wall around the ribbon
 };
 
@@ -37,8 +37,9 @@ public:
 
 /// Places a straight ribbon along the part of `surface` near `picked` (model coordinates,
 /// LPS mm for segmented vessels). Throws RibbonPlacementError.
-RibbonPlacement PlaceRibbonOnSurface(
-  vtkPolyData* surface, const Vec3& picked, const RibbonPlacementOptions& options = {});
+RibbonPlacement PlaceRibbonOnSurface(vtkPolyData* surface,
+  const Vec3& picked,
+  const RibbonPlacementOptions& options = {});
 
 } // namespace bender
 

@@ -20,7 +20,7 @@ namespace bender
 namespace
 {
 
-template <typename TImage>
+template<typename TImage>
 vtkSmartPointer<vtkImageData> ExportToVtk(TImage* image)
 {
   auto exporter = itk::VTKImageExport<TImage>::New();
@@ -89,16 +89,17 @@ Volume VtkImageToVolume(vtkImageData* image)
     }
   }
   // VTK's physical point of index e is origin + D * (spacing .* e): fold the extent start in.
-  g.origin = g.IndexToPhysical(
-    { { static_cast<double>(extent[0]), static_cast<double>(extent[2]),
-      static_cast<double>(extent[4]) } });
+  g.origin = g.IndexToPhysical({ { static_cast<double>(extent[0]),
+    static_cast<double>(extent[2]),
+    static_cast<double>(extent[4]) } });
   vtkNew<vtkImageCast> cast;
   cast->SetInputData(image);
   cast->SetOutputScalarTypeToFloat();
   cast->Update();
   vtkDataArray* floats = cast->GetOutput()->GetPointData()->GetScalars();
   volume.voxels.resize(g.VoxelCount());
-  std::memcpy(volume.voxels.data(), floats->GetVoidPointer(0), sizeof(float) * volume.voxels.size());
+  std::memcpy(
+    volume.voxels.data(), floats->GetVoidPointer(0), sizeof(float) * volume.voxels.size());
   return volume;
 }
 

@@ -67,8 +67,9 @@ struct SurfaceResult
 /// (spacing, origin and direction matrix; a left-handed direction keeps normals outward),
 /// consistent outward normals. Throws ParameterError (smoothing outside [0, 1], empty mask),
 /// SegmentationError (extractor failure), SegmentationCancelled.
-SurfaceResult ExtractSurface(
-  const LabelMap& mask, const SurfaceParameters& parameters, const ProgressReporter& progress = {});
+SurfaceResult ExtractSurface(const LabelMap& mask,
+  const SurfaceParameters& parameters,
+  const ProgressReporter& progress = {});
 
 } // namespace bender
 

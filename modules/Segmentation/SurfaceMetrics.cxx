@@ -20,7 +20,10 @@ namespace
 {
 
 /// Distance from every vertex of `from` to the surface `to`; NaN for excluded vertices.
-std::vector<double> Distances(vtkPolyData* from, vtkPolyData* to, vtkStaticCellLocator* excludeLocator, double exclusion)
+std::vector<double> Distances(vtkPolyData* from,
+  vtkPolyData* to,
+  vtkStaticCellLocator* excludeLocator,
+  double exclusion)
 {
   vtkNew<vtkStaticCellLocator> locator;
   locator->SetDataSet(to);
@@ -29,27 +32,30 @@ std::vector<double> Distances(vtkPolyData* from, vtkPolyData* to, vtkStaticCellL
   to->BuildCells();
   const vtkIdType n = from->GetNumberOfPoints();
   std::vector<double> d(static_cast<std::size_t>(n));
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    vtkNew<vtkGenericCell> cell;
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      double x[3], closest[3], d2 = 0.0;
-      vtkIdType cellId = -1;
-      int subId = 0;
-      from->GetPoint(i, x);
-      if (excludeLocator)
+      vtkNew<vtkGenericCell> cell;
+      for (vtkIdType i = begin; i < end; ++i)
       {
-        excludeLocator->FindClosestPoint(x, closest, cell, cellId, subId, d2);
-        if (cellId >= 0 && std::sqrt(d2) < exclusion)
+        double x[3], closest[3], d2 = 0.0;
+        vtkIdType cellId = -1;
+        int subId = 0;
+        from->GetPoint(i, x);
+        if (excludeLocator)
         {
-          d[static_cast<std::size_t>(i)] = std::numeric_limits<double>::quiet_NaN();
-          continue;
+          excludeLocator->FindClosestPoint(x, closest, cell, cellId, subId, d2);
+          if (cellId >= 0 && std::sqrt(d2) < exclusion)
+          {
+            d[static_cast<std::size_t>(i)] = std::numeric_limits<double>::quiet_NaN();
+            continue;
+          }
         }
+        locator->FindClosestPoint(x, closest, cell, cellId, subId, d2);
+        d[static_cast<std::size_t>(i)] = std::sqrt(d2);
       }
-      locator->FindClosestPoint(x, closest, cell, cellId, subId, d2);
-      d[static_cast<std::size_t>(i)] = std::sqrt(d2);
-    }
-  });
+    });
   return d;
 }
 
@@ -72,7 +78,10 @@ DistanceStats Summarise(std::vector<double> d)
 
 } // namespace
 
-SurfaceAccuracy MeasureSurfaceAccuracy(vtkPolyData* extracted, vtkPolyData* truth, vtkPolyData* exclude, double exclusionDistance)
+SurfaceAccuracy MeasureSurfaceAccuracy(vtkPolyData* extracted,
+  vtkPolyData* truth,
+  vtkPolyData* exclude,
+  double exclusionDistance)
 {
   if (!extracted || !truth || extracted->GetNumberOfPolys() == 0 || truth->GetNumberOfPolys() == 0)
   {
@@ -132,7 +141,8 @@ TriangleQuality MeasureTriangleQuality(vtkPolyData* surface)
       }
       const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
       const double nw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-      const double cosine = nu > 0 && nw > 0 ? (u[0] * w[0] + u[1] * w[1] + u[2] * w[2]) / (nu * nw) : 1.0;
+      const double cosine =
+        nu > 0 && nw > 0 ? (u[0] * w[0] + u[1] * w[1] + u[2] * w[2]) / (nu * nw) : 1.0;
       minAngle = std::min(minAngle, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI);
     }
     sum += minAngle;

@@ -29,14 +29,16 @@ struct SurfaceAccuracy
 /// nothing excluded) are left out, e.g. the flat caps that close the cut vessel ends of an open
 /// truth surface, where the truth has no wall to compare with. Throws std::invalid_argument
 /// for an empty surface or when every vertex is excluded.
-SurfaceAccuracy MeasureSurfaceAccuracy(vtkPolyData* extracted, vtkPolyData* truth,
-  vtkPolyData* exclude = nullptr, double exclusionDistance = 0.0);
+SurfaceAccuracy MeasureSurfaceAccuracy(vtkPolyData* extracted,
+  vtkPolyData* truth,
+  vtkPolyData* exclude = nullptr,
+  double exclusionDistance = 0.0);
 
 /// Shape of the triangles: the smallest angle of each triangle (60 deg = equilateral).
 struct TriangleQuality
 {
-  double meanMinAngle = 0.0;         ///< degrees
-  double fractionBelow10Deg = 0.0;   ///< share of slivers with a smallest angle under 10 degrees
+  double meanMinAngle = 0.0;       ///< degrees
+  double fractionBelow10Deg = 0.0; ///< share of slivers with a smallest angle under 10 degrees
   double fractionBelow30Deg = 0.0;
   std::size_t triangles = 0;
 };

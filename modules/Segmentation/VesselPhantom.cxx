@@ -58,10 +58,12 @@ std::vector<float> Blur(const ImageGeometry& g, const std::vector<float>& values
   vtkNew<vtkImageGaussianSmooth> gauss;
   gauss->SetInputData(FloatImage(g, values));
   gauss->SetDimensionality(3);
-  gauss->SetStandardDeviations(sigmaMm / g.spacing[0], sigmaMm / g.spacing[1], sigmaMm / g.spacing[2]);
+  gauss->SetStandardDeviations(
+    sigmaMm / g.spacing[0], sigmaMm / g.spacing[1], sigmaMm / g.spacing[2]);
   gauss->SetRadiusFactors(3.0, 3.0, 3.0);
   gauss->Update();
-  const float* out = static_cast<const float*>(gauss->GetOutput()->GetPointData()->GetScalars()->GetVoidPointer(0));
+  const float* out =
+    static_cast<const float*>(gauss->GetOutput()->GetPointData()->GetScalars()->GetVoidPointer(0));
   return std::vector<float>(out, out + values.size());
 }
 
@@ -81,7 +83,9 @@ double Sample(const ImageGeometry& g, const std::vector<float>& values, const Po
 }
 
 /// One seed per open vessel end: the centre of its rim moved 3 mm into the lumen.
-std::vector<Point3> EndSeeds(vtkPolyData* surface, const ImageGeometry& g, const std::vector<float>& fraction)
+std::vector<Point3> EndSeeds(vtkPolyData* surface,
+  const ImageGeometry& g,
+  const std::vector<float>& fraction)
 {
   vtkNew<vtkFeatureEdges> edges;
   edges->SetInputData(surface);
@@ -120,7 +124,8 @@ std::vector<Point3> EndSeeds(vtkPolyData* surface, const ImageGeometry& g, const
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
-    const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+    const double length =
+      std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
     if (length <= 0.0)
     {
       continue;
@@ -144,7 +149,9 @@ std::vector<Point3> EndSeeds(vtkPolyData* surface, const ImageGeometry& g, const
 
 } // namespace
 
-Phantom MakeVesselPhantom(vtkPolyData* surface, const PhantomParameters& p, const ProgressReporter& progress)
+Phantom MakeVesselPhantom(vtkPolyData* surface,
+  const PhantomParameters& p,
+  const ProgressReporter& progress)
 {
   Require(p.spacing >= 0.1 && p.spacing <= 2.0, "spacing: must be in [0.1, 2] mm");
   Require(p.margin >= 0.0 && p.margin <= 50.0, "margin: must be in [0, 50] mm");
@@ -206,7 +213,9 @@ Phantom MakeVesselPhantom(vtkPolyData* surface, const PhantomParameters& p, cons
   {
     g.spacing[c] = h;
     g.origin[c] = bounds[2 * c] - p.margin;
-    g.size[c] = static_cast<std::size_t>(std::ceil((bounds[2 * c + 1] - bounds[2 * c] + 2.0 * p.margin) / h)) + 1;
+    g.size[c] = static_cast<std::size_t>(
+                  std::ceil((bounds[2 * c + 1] - bounds[2 * c] + 2.0 * p.margin) / h)) +
+      1;
   }
   const int s = p.supersampling;
   if (double(g.VoxelCount()) * s * s * s > 2.0e8)
@@ -214,14 +223,17 @@ Phantom MakeVesselPhantom(vtkPolyData* surface, const PhantomParameters& p, cons
     throw ParameterError("phantom: more than 2e8 sub-voxels, increase the spacing");
   }
 
-  // Voxelize at spacing h / s; sub-voxel m of voxel i is centred at origin + (i - 1/2)h + (m + 1/2)h/s.
+  // Voxelize at spacing h / s; sub-voxel m of voxel i is centred at origin + (i - 1/2)h + (m +
+  // 1/2)h/s.
   const double hf = h / s;
   vtkNew<vtkPolyDataToImageStencil> stencil;
   stencil->SetInputData(phantom.cappedTruth);
   stencil->SetOutputSpacing(hf, hf, hf);
-  stencil->SetOutputOrigin(g.origin[0] - 0.5 * h + 0.5 * hf, g.origin[1] - 0.5 * h + 0.5 * hf,
+  stencil->SetOutputOrigin(g.origin[0] - 0.5 * h + 0.5 * hf,
+    g.origin[1] - 0.5 * h + 0.5 * hf,
     g.origin[2] - 0.5 * h + 0.5 * hf);
-  stencil->SetOutputWholeExtent(0, int(g.size[0]) * s - 1, 0, int(g.size[1]) * s - 1, 0, int(g.size[2]) * s - 1);
+  stencil->SetOutputWholeExtent(
+    0, int(g.size[0]) * s - 1, 0, int(g.size[1]) * s - 1, 0, int(g.size[2]) * s - 1);
   stencil->SetTolerance(0.0);
   vtkNew<vtkImageStencilToImage> toImage;
   toImage->SetInputConnection(stencil->GetOutputPort());
@@ -229,7 +241,8 @@ Phantom MakeVesselPhantom(vtkPolyData* surface, const PhantomParameters& p, cons
   toImage->SetOutsideValue(0);
   toImage->SetOutputScalarTypeToUnsignedChar();
   toImage->Update();
-  const auto* fine = static_cast<const unsigned char*>(toImage->GetOutput()->GetPointData()->GetScalars()->GetVoidPointer(0));
+  const auto* fine = static_cast<const unsigned char*>(
+    toImage->GetOutput()->GetPointData()->GetScalars()->GetVoidPointer(0));
   progress.Report("phantom", 0.4);
   progress.ThrowIfCancelled("phantom");
 
@@ -270,9 +283,11 @@ Phantom MakeVesselPhantom(vtkPolyData* surface, const PhantomParameters& p, cons
         const double x = (double(i) + 0.5) / double(g.size[0]);
         const std::size_t n = g.LinearIndex(i, j, k);
         // A smooth field within [1 - a, 1 + a]: a tilt plus one slow oscillation.
-        const double bias = 1.0 + p.biasAmplitude * (0.6 * (2.0 * x - 1.0) + 0.4 * std::cos(M_PI * (y + 0.5 * z)));
-        const double signal =
-          bias * (p.backgroundIntensity + (p.vesselIntensity - p.backgroundIntensity) * double(blurred[n]));
+        const double bias =
+          1.0 + p.biasAmplitude * (0.6 * (2.0 * x - 1.0) + 0.4 * std::cos(M_PI * (y + 0.5 * z)));
+        const double signal = bias *
+          (p.backgroundIntensity +
+            (p.vesselIntensity - p.backgroundIntensity) * double(blurred[n]));
         const double re = signal + p.noiseSigma * gauss(random);
         const double im = p.noiseSigma * gauss(random);
         phantom.volume.voxels[n] = float(std::sqrt(re * re + im * im));
@@ -283,7 +298,8 @@ Phantom MakeVesselPhantom(vtkPolyData* surface, const PhantomParameters& p, cons
 
   // Seed: the centre of the thickest part of the lumen.
   const std::vector<float> thick = Blur(g, fraction, 1.5);
-  const std::size_t best = std::size_t(std::max_element(thick.begin(), thick.end()) - thick.begin());
+  const std::size_t best =
+    std::size_t(std::max_element(thick.begin(), thick.end()) - thick.begin());
   const std::size_t bi = best % g.size[0];
   const std::size_t bj = (best / g.size[0]) % g.size[1];
   const std::size_t bk = best / (g.size[0] * g.size[1]);

@@ -64,8 +64,9 @@ struct Phantom
 /// a partial-volume fraction, blurs with the PSF, applies the bias field and Rician noise.
 /// Deterministic for given parameters. Throws ParameterError (parameter outside its range, empty
 /// surface, more than 2e8 voxels), SegmentationCancelled.
-Phantom MakeVesselPhantom(
-  vtkPolyData* surface, const PhantomParameters& parameters = {}, const ProgressReporter& progress = {});
+Phantom MakeVesselPhantom(vtkPolyData* surface,
+  const PhantomParameters& parameters = {},
+  const ProgressReporter& progress = {});
 
 } // namespace bender
 

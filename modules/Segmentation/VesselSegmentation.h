@@ -72,11 +72,13 @@ void ValidateSegmentationParameters(const SegmentationParameters& parameters);
 /// Segments the vessels of a volume: a mask on the volume's grid. Throws ParameterError,
 /// SeedError (seed outside the volume or in background, message gives the seed, its voxel and
 /// its value), SegmentationError (empty result), SegmentationCancelled.
-LabelMap SegmentVessels(const Volume& volume, const SegmentationParameters& parameters,
+LabelMap SegmentVessels(const Volume& volume,
+  const SegmentationParameters& parameters,
   const ProgressReporter& progress = {});
 
 /// The normalised [0, 1] vesselness of a volume (the map SegmentVessels thresholds).
-Volume ComputeVesselness(const Volume& volume, const SegmentationParameters& parameters,
+Volume ComputeVesselness(const Volume& volume,
+  const SegmentationParameters& parameters,
   const ProgressReporter& progress = {});
 
 } // namespace bender

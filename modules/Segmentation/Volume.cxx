@@ -81,7 +81,8 @@ Volume ResampleVolume(const Volume& input, const std::array<std::size_t, 3>& siz
     { { shift[0] / in.spacing[0], shift[1] / in.spacing[1], shift[2] / in.spacing[2] } });
   out.voxels.resize(out.geometry.VoxelCount());
 
-  auto work = [&](std::size_t k0, std::size_t k1) {
+  auto work = [&](std::size_t k0, std::size_t k1)
+  {
     std::vector<std::size_t> i0(size[0]);
     std::vector<float> fx(size[0]);
     for (std::size_t i = 0; i < size[0]; ++i)
@@ -98,11 +99,13 @@ Volume ResampleVolume(const Volume& input, const std::array<std::size_t, 3>& siz
     {
       const double z = std::clamp(
         (static_cast<double>(k) + 0.5) * scale[2] - 0.5, 0.0, static_cast<double>(in.size[2] - 1));
-      const std::size_t kz = std::min(static_cast<std::size_t>(z), in.size[2] > 1 ? in.size[2] - 2 : 0);
+      const std::size_t kz =
+        std::min(static_cast<std::size_t>(z), in.size[2] > 1 ? in.size[2] - 2 : 0);
       const float fz = in.size[2] > 1 ? static_cast<float>(z - static_cast<double>(kz)) : 0.0f;
       for (std::size_t j = 0; j < size[1]; ++j)
       {
-        const double y = std::clamp((static_cast<double>(j) + 0.5) * scale[1] - 0.5, 0.0,
+        const double y = std::clamp((static_cast<double>(j) + 0.5) * scale[1] - 0.5,
+          0.0,
           static_cast<double>(in.size[1] - 1));
         const std::size_t jy =
           std::min(static_cast<std::size_t>(y), in.size[1] > 1 ? in.size[1] - 2 : 0);

@@ -36,8 +36,9 @@ struct VolumeReadOptions
 /// truncated or corrupt file, non-scalar or unknown pixel type, zero or non-finite spacing,
 /// a folder without DICOM files, several series without a choice (the message lists each UID
 /// and description), and SegmentationCancelled.
-Volume ReadVolume(
-  const std::string& path, const VolumeReadOptions& options = {}, const ProgressReporter& progress = {});
+Volume ReadVolume(const std::string& path,
+  const VolumeReadOptions& options = {},
+  const ProgressReporter& progress = {});
 
 /// The DICOM series of a folder, sorted by UID. Throws VolumeReadError for a missing folder.
 /// An empty vector when the folder holds no DICOM series.

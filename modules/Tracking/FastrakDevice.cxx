@@ -83,8 +83,7 @@ void FastrakDevice::Configure()
   this->Send(this->Opts.format == FastrakFormat::Binary ? "f" : "F");
   for (int s = 1; s <= 4; ++s)
   {
-    const bool active =
-      std::find(this->Opts.stations.begin(), this->Opts.stations.end(), s) !=
+    const bool active = std::find(this->Opts.stations.begin(), this->Opts.stations.end(), s) !=
       this->Opts.stations.end();
     this->Send("l" + std::to_string(s) + (active ? ",1\r" : ",0\r"));
   }
@@ -122,8 +121,8 @@ void FastrakDevice::MeasureLatency()
     {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
-      const std::size_t n = this->Link->Read(
-        buffer, sizeof buffer, std::max(std::chrono::milliseconds(1), left));
+      const std::size_t n =
+        this->Link->Read(buffer, sizeof buffer, std::max(std::chrono::milliseconds(1), left));
       parser.Feed(buffer, n, 0.0, poses);
     }
     if (poses.empty())
@@ -132,8 +131,8 @@ void FastrakDevice::MeasureLatency()
         "('P') within " + std::to_string(this->Opts.replyTimeout.count()) +
         " ms; is the Fastrak switched on, out of its boot, and at the configured baud rate?");
     }
-    samples.push_back(std::chrono::duration<double, std::milli>(
-      std::chrono::steady_clock::now() - sent).count());
+    samples.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count());
   }
   std::sort(samples.begin(), samples.end());
   std::lock_guard<std::mutex> lock(this->StatsMutex);
@@ -209,13 +208,15 @@ void FastrakDevice::ReaderLoop()
   FastrakParser parser(parserOptions);
   std::vector<std::uint8_t> buffer(4096);
   std::vector<TrackerPose> poses;
-  const auto publishStats = [&](std::uint64_t filtered) {
+  const auto publishStats = [&](std::uint64_t filtered)
+  {
     std::lock_guard<std::mutex> lock(this->StatsMutex);
     this->ParserStats = parser.Statistics();
     this->Filtered += filtered;
   };
   // The stream is over: consumers that see the event also see IsStreaming() == false.
-  const auto finish = [this](const TrackerEvent& event) {
+  const auto finish = [this](const TrackerEvent& event)
+  {
     this->Streaming = false;
     this->Store.PublishEvent(event);
   };

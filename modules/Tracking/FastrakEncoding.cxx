@@ -17,10 +17,12 @@ std::vector<std::uint8_t> EncodeFastrakRecord(const TrackerPose& pose, FastrakFo
       "Fastrak record: station " + std::to_string(pose.station) + " is outside 1..4");
   }
   const double cm[3] = { pose.position.x / 10.0, pose.position.y / 10.0, pose.position.z / 10.0 };
-  const double q[4] = { pose.orientation.w, pose.orientation.x, pose.orientation.y,
-    pose.orientation.z };
-  std::vector<std::uint8_t> out = { '0', std::uint8_t('0' + pose.station),
-    std::uint8_t(pose.status) };
+  const double q[4] = {
+    pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z
+  };
+  std::vector<std::uint8_t> out = {
+    '0', std::uint8_t('0' + pose.station), std::uint8_t(pose.status)
+  };
   if (format == FastrakFormat::Binary)
   {
     for (int i = 0; i < 7; ++i)

@@ -169,8 +169,10 @@ bool FastrakParser::Decode(const std::uint8_t* r, double time, TrackerPose& pose
   return true;
 }
 
-void FastrakParser::Feed(
-  const std::uint8_t* data, std::size_t size, double time, std::vector<TrackerPose>& out)
+void FastrakParser::Feed(const std::uint8_t* data,
+  std::size_t size,
+  double time,
+  std::vector<TrackerPose>& out)
 {
   if (size > 0)
   {

@@ -54,7 +54,7 @@ public:
   {
     FastrakFormat format = FastrakFormat::Binary;
     FastrakUnits units = FastrakUnits::Centimetres;
-    double maxAbsPositionMm = 10000.0;  ///< > 0; the Fastrak's range is a few metres
+    double maxAbsPositionMm = 10000.0; ///< > 0; the Fastrak's range is a few metres
     double quaternionTolerance = 0.05; ///< accepted | |q| - 1 |, in (0, 1)
   };
 

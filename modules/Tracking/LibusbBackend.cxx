@@ -13,8 +13,13 @@ namespace
 std::string Where(const UsbDeviceInfo& d)
 {
   char text[64];
-  std::snprintf(text, sizeof text, "USB %04x:%04x (bus %d, address %d)", d.vendorId,
-    d.productId, d.bus, d.address);
+  std::snprintf(text,
+    sizeof text,
+    "USB %04x:%04x (bus %d, address %d)",
+    d.vendorId,
+    d.productId,
+    d.bus,
+    d.address);
   return text;
 }
 
@@ -82,8 +87,10 @@ public:
       }
     }
   }
-  UsbTransferResult BulkTransfer(
-    std::uint8_t endpoint, std::uint8_t* data, int length, unsigned timeoutMs) override
+  UsbTransferResult BulkTransfer(std::uint8_t endpoint,
+    std::uint8_t* data,
+    int length,
+    unsigned timeoutMs) override
   {
     UsbTransferResult result;
     const int rc =
@@ -130,8 +137,8 @@ std::vector<UsbDeviceInfo> LibusbBackend::ListDevices(std::uint16_t vendorId)
   const ssize_t count = libusb_get_device_list(this->Context, &list);
   if (count < 0)
   {
-    throw TransportError(std::string("USB: cannot list devices (") +
-      libusb_strerror(libusb_error(int(count))) + ")");
+    throw TransportError(
+      std::string("USB: cannot list devices (") + libusb_strerror(libusb_error(int(count))) + ")");
   }
   for (ssize_t i = 0; i < count; ++i)
   {
@@ -162,7 +169,8 @@ std::vector<UsbDeviceInfo> LibusbBackend::ListDevices(std::uint16_t vendorId)
         for (int e = 0; e < alt.bNumEndpoints; ++e)
         {
           interfaceInfo.endpoints.push_back({ alt.endpoint[e].bEndpointAddress,
-            alt.endpoint[e].bmAttributes, alt.endpoint[e].wMaxPacketSize });
+            alt.endpoint[e].bmAttributes,
+            alt.endpoint[e].wMaxPacketSize });
         }
         info.interfaces.push_back(interfaceInfo);
       }
@@ -180,8 +188,8 @@ std::unique_ptr<UsbDeviceHandle> LibusbBackend::Open(const UsbDeviceInfo& device
   const ssize_t count = libusb_get_device_list(this->Context, &list);
   if (count < 0)
   {
-    throw TransportError(std::string("USB: cannot list devices (") +
-      libusb_strerror(libusb_error(int(count))) + ")");
+    throw TransportError(
+      std::string("USB: cannot list devices (") + libusb_strerror(libusb_error(int(count))) + ")");
   }
   libusb_device_handle* handle = nullptr;
   int rc = LIBUSB_ERROR_NO_DEVICE;

@@ -56,14 +56,13 @@ LibusbTransport::LibusbTransport(std::shared_ptr<UsbBackend> backend, const Opti
   {
     throw DeviceNotFoundError("no Polhemus Fastrak found on USB (vendor " + vendor +
       "): check power and cable, or use --device serial:/dev/ttyS0 for an RS-232 unit" +
-      (all.empty() ? std::string() : " (" + std::to_string(all.size()) +
-          " other Polhemus device(s) present)"));
+      (all.empty() ? std::string()
+                   : " (" + std::to_string(all.size()) + " other Polhemus device(s) present)"));
   }
   if (this->Opts.deviceIndex < 0 || std::size_t(this->Opts.deviceIndex) >= ready.size())
   {
     throw DeviceNotFoundError("USB: asked for Fastrak number " +
-      std::to_string(this->Opts.deviceIndex) + " but " + std::to_string(ready.size()) +
-      " found");
+      std::to_string(this->Opts.deviceIndex) + " but " + std::to_string(ready.size()) + " found");
   }
   const UsbDeviceInfo device = ready[std::size_t(this->Opts.deviceIndex)];
   this->DeviceName = "USB " + Hex4(device.vendorId) + ":" + Hex4(device.productId) + " (bus " +
@@ -143,8 +142,8 @@ bool LibusbTransport::Fill(std::chrono::milliseconds timeout)
     case UsbStatus::Error:
       throw TransportError(this->DeviceName + ": read failed (" + r.message + ")");
   }
-  const std::size_t got = std::min<std::size_t>(std::size_t(std::max(0, r.transferred)),
-    this->Packet.size());
+  const std::size_t got =
+    std::min<std::size_t>(std::size_t(std::max(0, r.transferred)), this->Packet.size());
   if (got == 0)
   {
     return false;
@@ -154,13 +153,14 @@ bool LibusbTransport::Fill(std::chrono::milliseconds timeout)
     this->Pending.clear();
     this->PendingBegin = 0;
   }
-  this->Pending.insert(this->Pending.end(), this->Packet.begin(),
-    this->Packet.begin() + std::ptrdiff_t(got));
+  this->Pending.insert(
+    this->Pending.end(), this->Packet.begin(), this->Packet.begin() + std::ptrdiff_t(got));
   return true;
 }
 
-std::size_t LibusbTransport::Read(
-  std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout)
+std::size_t LibusbTransport::Read(std::uint8_t* buffer,
+  std::size_t capacity,
+  std::chrono::milliseconds timeout)
 {
   this->CheckOpen();
   if (this->PendingBegin == this->Pending.size() && !this->Fill(timeout))
@@ -173,22 +173,24 @@ std::size_t LibusbTransport::Read(
   return n;
 }
 
-void LibusbTransport::Write(
-  const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout)
+void LibusbTransport::Write(const std::uint8_t* data,
+  std::size_t size,
+  std::chrono::milliseconds timeout)
 {
   this->CheckOpen();
   const unsigned ms = unsigned(std::max<long long>(1, timeout.count()));
   std::vector<std::uint8_t> copy(data, data + size);
   std::size_t done = 0;
-  const auto transfer = [&](std::uint8_t* bytes, int length) {
+  const auto transfer = [&](std::uint8_t* bytes, int length)
+  {
     const UsbTransferResult r = this->Handle->BulkTransfer(this->Out.address, bytes, length, ms);
     switch (r.status)
     {
       case UsbStatus::Ok:
         return r.transferred;
       case UsbStatus::Timeout:
-        throw TransportError(this->DeviceName + ": write timed out after " +
-          std::to_string(timeout.count()) + " ms");
+        throw TransportError(
+          this->DeviceName + ": write timed out after " + std::to_string(timeout.count()) + " ms");
       case UsbStatus::NoDevice:
         throw DeviceDisconnectedError(this->DeviceName + ": unplugged or switched off");
       case UsbStatus::Pipe:

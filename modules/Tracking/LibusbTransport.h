@@ -28,9 +28,9 @@ public:
     std::uint16_t vendorId = 0x0F44;
     std::vector<std::uint16_t> productIds{ 0x0002, 0x0003 };
     std::uint16_t noFirmwareProductId = 0x0001;
-    int deviceIndex = 0;                           ///< which unit when several are present
-    std::chrono::milliseconds flushTimeout{ 20 };  ///< per flush read
-    int maxFlushTransfers = 64;                    ///< bounds the flush of a chatty unit
+    int deviceIndex = 0;                          ///< which unit when several are present
+    std::chrono::milliseconds flushTimeout{ 20 }; ///< per flush read
+    int maxFlushTransfers = 64;                   ///< bounds the flush of a chatty unit
   };
 
   /// Throws DeviceNotFoundError, FirmwareMissingError, DeviceAccessError, TransportError.
@@ -41,9 +41,12 @@ public:
   LibusbTransport& operator=(const LibusbTransport&) = delete;
 
   std::string Name() const override { return this->DeviceName; }
-  std::size_t Read(
-    std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout) override;
-  void Write(const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout) override;
+  std::size_t Read(std::uint8_t* buffer,
+    std::size_t capacity,
+    std::chrono::milliseconds timeout) override;
+  void Write(const std::uint8_t* data,
+    std::size_t size,
+    std::chrono::milliseconds timeout) override;
   void Flush() override;
   void Close() override;
 

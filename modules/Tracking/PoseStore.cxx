@@ -39,9 +39,11 @@ bool PoseStore::Publish(const TrackerPose& pose)
   if (pose.button != this->Buttons[s])
   {
     this->Buttons[s] = pose.button;
-    this->Events.push_back(TrackerEvent{
-      pose.button ? TrackerEventType::Grab : TrackerEventType::Release, pose.station, pose.time,
-      {} });
+    this->Events.push_back(
+      TrackerEvent{ pose.button ? TrackerEventType::Grab : TrackerEventType::Release,
+        pose.station,
+        pose.time,
+        {} });
   }
   if (this->Capacity > 0)
   {
@@ -127,7 +129,8 @@ std::vector<TrackerPose> PoseStore::TakePoses()
 bool PoseStore::WaitForActivity(std::chrono::milliseconds timeout) const
 {
   std::unique_lock<std::mutex> lock(this->Mutex);
-  return this->Activity.wait_for(lock, timeout,
+  return this->Activity.wait_for(lock,
+    timeout,
     [this] { return this->Cancelled || !this->Queue.empty() || !this->Events.empty(); });
 }
 

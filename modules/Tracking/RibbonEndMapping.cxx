@@ -21,8 +21,9 @@ std::optional<Hand> HandMapping::HandOf(int station) const
   return std::nullopt;
 }
 
-RibbonEnd RibbonEndFromPose(
-  const TrackerPose& pose, Hand hand, const TrackerCalibration& calibration)
+RibbonEnd RibbonEndFromPose(const TrackerPose& pose,
+  Hand hand,
+  const TrackerCalibration& calibration)
 {
   const Quaternion q = calibration.MapOrientation(pose.orientation);
   const Vec3 x = RotateByQuaternion(q, { 1, 0, 0 });

@@ -26,7 +26,10 @@ struct HandMapping
 
   /// The hand holding `station`, if any.
   std::optional<Hand> HandOf(int station) const;
-  int StationOf(Hand hand) const { return hand == Hand::Left ? this->leftStation : this->rightStation; }
+  int StationOf(Hand hand) const
+  {
+    return hand == Hand::Left ? this->leftStation : this->rightStation;
+  }
 };
 
 /// One end of the ribbon from one tracker, in model space (through `calibration`).
@@ -41,7 +44,9 @@ struct HandMapping
 ///              (end: travel leaves the ribbon there, opposite to where its +x points),
 /// where R(q) is the pose's orientation mapped by the calibration's rotation. Two trackers
 /// held facing each other thus give a straight, untwisted ribbon.
-RibbonEnd RibbonEndFromPose(const TrackerPose& pose, Hand hand, const TrackerCalibration& calibration);
+RibbonEnd RibbonEndFromPose(const TrackerPose& pose,
+  Hand hand,
+  const TrackerCalibration& calibration);
 
 /// Parses "1,2" into stations; throws TrackingConfigurationError naming the bad item.
 std::vector<int> ParseStationList(const std::string& text);

@@ -47,8 +47,7 @@ SerialSettings SerialSettings::Parse(const std::string& text)
   SerialSettings settings;
   const std::size_t comma = text.find(',');
   const std::string baud = text.substr(0, comma);
-  if (baud.empty() || baud.find_first_not_of("0123456789") != std::string::npos ||
-    baud.size() > 7)
+  if (baud.empty() || baud.find_first_not_of("0123456789") != std::string::npos || baud.size() > 7)
   {
     throw TrackingConfigurationError("serial: bad baud rate '" + baud + "' in '" + text + "'");
   }
@@ -58,7 +57,8 @@ SerialSettings SerialSettings::Parse(const std::string& text)
   {
     const std::string frame = text.substr(comma + 1);
     if (frame.size() != 3 || (frame[0] != '7' && frame[0] != '8') ||
-      std::string("NEO").find(frame[1]) == std::string::npos || (frame[2] != '1' && frame[2] != '2'))
+      std::string("NEO").find(frame[1]) == std::string::npos ||
+      (frame[2] != '1' && frame[2] != '2'))
     {
       throw TrackingConfigurationError(
         "serial: bad frame format '" + frame + "' (expected e.g. 8N1, 7E1, 8O2)");
@@ -124,8 +124,8 @@ SerialTransport::SerialTransport(const std::string& path, const SerialSettings& 
     const int error = errno;
     ::close(this->Fd);
     this->Fd = -1;
-    throw TransportError("serial " + path + ": cannot set " + settings.ToString() + " (" +
-      ErrnoText(error) + ")");
+    throw TransportError(
+      "serial " + path + ": cannot set " + settings.ToString() + " (" + ErrnoText(error) + ")");
   }
   ::tcflush(this->Fd, TCIOFLUSH);
 }
@@ -143,8 +143,9 @@ void SerialTransport::CheckOpen() const
   }
 }
 
-std::size_t SerialTransport::Read(
-  std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout)
+std::size_t SerialTransport::Read(std::uint8_t* buffer,
+  std::size_t capacity,
+  std::chrono::milliseconds timeout)
 {
   this->CheckOpen();
   pollfd p{ this->Fd, POLLIN, 0 };
@@ -175,8 +176,8 @@ std::size_t SerialTransport::Read(
     }
     if (error == EIO || error == ENXIO || error == ENODEV)
     {
-      throw DeviceDisconnectedError(this->Name() + ": read failed, device gone (" +
-        ErrnoText(error) + ")");
+      throw DeviceDisconnectedError(
+        this->Name() + ": read failed, device gone (" + ErrnoText(error) + ")");
     }
     throw TransportError(this->Name() + ": read failed (" + ErrnoText(error) + ")");
   }
@@ -187,8 +188,9 @@ std::size_t SerialTransport::Read(
   return std::size_t(n);
 }
 
-void SerialTransport::Write(
-  const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout)
+void SerialTransport::Write(const std::uint8_t* data,
+  std::size_t size,
+  std::chrono::milliseconds timeout)
 {
   this->CheckOpen();
   const auto deadline = std::chrono::steady_clock::now() + timeout;
@@ -206,8 +208,8 @@ void SerialTransport::Write(
     {
       if (error == EIO || error == ENXIO || error == ENODEV)
       {
-        throw DeviceDisconnectedError(this->Name() + ": write failed, device gone (" +
-          ErrnoText(error) + ")");
+        throw DeviceDisconnectedError(
+          this->Name() + ": write failed, device gone (" + ErrnoText(error) + ")");
       }
       throw TransportError(this->Name() + ": write failed (" + ErrnoText(error) + ")");
     }

@@ -36,9 +36,12 @@ public:
   SerialTransport& operator=(const SerialTransport&) = delete;
 
   std::string Name() const override { return "serial " + this->Path; }
-  std::size_t Read(
-    std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout) override;
-  void Write(const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout) override;
+  std::size_t Read(std::uint8_t* buffer,
+    std::size_t capacity,
+    std::chrono::milliseconds timeout) override;
+  void Write(const std::uint8_t* data,
+    std::size_t size,
+    std::chrono::milliseconds timeout) override;
   void Flush() override;
   void Close() override;
 

@@ -103,9 +103,8 @@ void SimulatedDevice::Run()
           std::chrono::duration<double>(t));
       while (!this->StopRequested.load() && std::chrono::steady_clock::now() < due)
       {
-        std::this_thread::sleep_for(
-          std::min<std::chrono::steady_clock::duration>(due - std::chrono::steady_clock::now(),
-            std::chrono::milliseconds(20)));
+        std::this_thread::sleep_for(std::min<std::chrono::steady_clock::duration>(
+          due - std::chrono::steady_clock::now(), std::chrono::milliseconds(20)));
       }
     }
     for (int station : this->Opts.stations)

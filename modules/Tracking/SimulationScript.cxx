@@ -49,29 +49,31 @@ SimulationScript::SimulationScript(PoseFunction function)
 
 SimulationScript SimulationScript::TwoHandBend()
 {
-  return SimulationScript([](int station, double seconds) {
-    const double t = std::fmod(std::max(0.0, seconds), 8.0);
-    const double u = Bend(t);
-    const double tilt = u * Pi / 3.0;
-    TrackerPose pose;
-    if (station == 1)
+  return SimulationScript(
+    [](int station, double seconds)
     {
-      pose.position = { -100.0 + 20.0 * u, 0.0, 0.0 };
-      pose.orientation = AxisAngle({ 0, 1, 0 }, -tilt);
-      pose.button = t >= 1.0 && t < 5.0;
-    }
-    else if (station == 2)
-    {
-      pose.position = { 100.0 - 20.0 * u, 0.0, 0.0 };
-      pose.orientation = AxisAngle({ 0, 1, 0 }, tilt) * AxisAngle({ 0, 0, 1 }, Pi) *
-        AxisAngle({ 1, 0, 0 }, u * Pi / 4.0);
-    }
-    else
-    {
-      pose.position = { 0.0, 200.0, 0.0 };
-    }
-    return pose;
-  });
+      const double t = std::fmod(std::max(0.0, seconds), 8.0);
+      const double u = Bend(t);
+      const double tilt = u * Pi / 3.0;
+      TrackerPose pose;
+      if (station == 1)
+      {
+        pose.position = { -100.0 + 20.0 * u, 0.0, 0.0 };
+        pose.orientation = AxisAngle({ 0, 1, 0 }, -tilt);
+        pose.button = t >= 1.0 && t < 5.0;
+      }
+      else if (station == 2)
+      {
+        pose.position = { 100.0 - 20.0 * u, 0.0, 0.0 };
+        pose.orientation = AxisAngle({ 0, 1, 0 }, tilt) * AxisAngle({ 0, 0, 1 }, Pi) *
+          AxisAngle({ 1, 0, 0 }, u * Pi / 4.0);
+      }
+      else
+      {
+        pose.position = { 0.0, 200.0, 0.0 };
+      }
+      return pose;
+    });
 }
 
 TrackerPose SimulationScript::PoseAt(int station, double seconds) const

@@ -45,13 +45,14 @@ void StreamRecorder::Append(const std::uint8_t* data, std::size_t size, double t
     return;
   }
   const bool ok = std::fwrite(data, 1, size, this->Data) == size &&
-    std::fprintf(this->Times, "%llu %zu %.6f\n", static_cast<unsigned long long>(this->Offset),
-      size, time) > 0 &&
+    std::fprintf(
+      this->Times, "%llu %zu %.6f\n", static_cast<unsigned long long>(this->Offset), size, time) >
+      0 &&
     std::fflush(this->Data) == 0 && std::fflush(this->Times) == 0;
   if (!ok)
   {
-    throw RecordingError("recording " + this->FilePath + ": write failed (" +
-      std::strerror(errno) + ")");
+    throw RecordingError(
+      "recording " + this->FilePath + ": write failed (" + std::strerror(errno) + ")");
   }
   this->Offset += size;
 }

@@ -30,7 +30,8 @@ public:
   /// as closely as a rotation can. Throws TrackingConfigurationError for (near) collinear
   /// points.
   static TrackerCalibration FromThreePoints(const std::array<Vec3, 3>& tracker,
-    const std::array<Vec3, 3>& model, double motionScale = 1.0);
+    const std::array<Vec3, 3>& model,
+    double motionScale = 1.0);
 
   Vec3 MapPoint(const Vec3& trackerMm) const;
   Vec3 MapDirection(const Vec3& trackerDirection) const;

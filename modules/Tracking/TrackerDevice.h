@@ -39,7 +39,10 @@ public:
   std::vector<TrackerEvent> TakeEvents() { return this->Store.TakeEvents(); }
   /// Every pose in order; only after EnablePoseQueue().
   std::vector<TrackerPose> TakePoses() { return this->Store.TakePoses(); }
-  void EnablePoseQueue(std::size_t capacity, bool block) { this->Store.EnableQueue(capacity, block); }
+  void EnablePoseQueue(std::size_t capacity, bool block)
+  {
+    this->Store.EnableQueue(capacity, block);
+  }
   bool WaitForActivity(std::chrono::milliseconds timeout) const
   {
     return this->Store.WaitForActivity(timeout);

@@ -39,8 +39,8 @@ struct TrackerStatistics
 {
   std::vector<StationStatistics> stations; ///< in station order, only stations seen
   FastrakParserStatistics parser;          ///< zero for the simulator
-  std::uint64_t filtered = 0;      ///< decoded poses of stations not asked for
-  std::uint64_t queueOverflows = 0; ///< poses dropped from a full pose queue (live devices)
+  std::uint64_t filtered = 0;              ///< decoded poses of stations not asked for
+  std::uint64_t queueOverflows = 0;        ///< poses dropped from a full pose queue (live devices)
   /// Median round trip of a single-record request ('P' to the last byte of its reply),
   /// measured at start on live devices; empty when not measured.
   std::optional<double> latencyMs;

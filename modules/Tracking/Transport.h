@@ -24,11 +24,14 @@ public:
   /// Reads up to `capacity` bytes, waiting at most `timeout` for the first one. Returns the
   /// number read; 0 when nothing came in time, or when AtEnd(). Throws
   /// DeviceDisconnectedError when the device went away, TransportError on other failures.
-  virtual std::size_t Read(
-    std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout) = 0;
+  virtual std::size_t Read(std::uint8_t* buffer,
+    std::size_t capacity,
+    std::chrono::milliseconds timeout) = 0;
 
   /// Writes all bytes or throws TransportError (including on timeout).
-  virtual void Write(const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout) = 0;
+  virtual void Write(const std::uint8_t* data,
+    std::size_t size,
+    std::chrono::milliseconds timeout) = 0;
 
   /// Discards input that arrived but was not read yet.
   virtual void Flush() = 0;

@@ -10,8 +10,8 @@ TwoHandRibbonInput::TwoHandRibbonInput(HandMapping hands, TrackerCalibration cal
   : Mapping(hands)
   , Calib(calibration)
 {
-  if (hands.leftStation == hands.rightStation || hands.leftStation < 1 ||
-    hands.leftStation > 4 || hands.rightStation < 1 || hands.rightStation > 4)
+  if (hands.leftStation == hands.rightStation || hands.leftStation < 1 || hands.leftStation > 4 ||
+    hands.rightStation < 1 || hands.rightStation > 4)
   {
     throw TrackingConfigurationError("two-hand input: left station " +
       std::to_string(hands.leftStation) + " and right station " +

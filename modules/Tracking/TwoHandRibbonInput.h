@@ -34,9 +34,9 @@ public:
   {
     enum class Kind
     {
-      Grabbed,   ///< `initial` is the ribbon at the press
-      Released,  ///< `initial` and `final` make one warp
-      Cancelled  ///< `reason` says why; no warp
+      Grabbed,  ///< `initial` is the ribbon at the press
+      Released, ///< `initial` and `final` make one warp
+      Cancelled ///< `reason` says why; no warp
     };
     Kind kind = Kind::Grabbed;
     int station = 0;

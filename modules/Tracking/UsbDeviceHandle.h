@@ -35,8 +35,10 @@ public:
   virtual void ClaimInterface(int number) = 0;
   virtual void ReleaseInterface(int number) = 0;
   /// One bulk transfer; direction from the endpoint address (bit 7 set: IN).
-  virtual UsbTransferResult BulkTransfer(
-    std::uint8_t endpoint, std::uint8_t* data, int length, unsigned timeoutMs) = 0;
+  virtual UsbTransferResult BulkTransfer(std::uint8_t endpoint,
+    std::uint8_t* data,
+    int length,
+    unsigned timeoutMs) = 0;
   virtual void ClearHalt(std::uint8_t endpoint) = 0;
 };
 

@@ -325,8 +325,9 @@ void vtkBenderRibbonRepresentation::PlaceWidget(double bounds[6])
   bender::RibbonSpec ribbon;
   Vec3 direction{ 0, 0, 0 };
   (axis == 0 ? direction.x : (axis == 1 ? direction.y : direction.z)) = 1.0;
-  const Vec3 c{ 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-    0.5 * (bounds[4] + bounds[5]) };
+  const Vec3 c{
+    0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])
+  };
   ribbon.start.position = c - half * direction;
   ribbon.end.position = c + half * direction;
   ribbon.start.tangent = ribbon.end.tangent = direction;
@@ -351,7 +352,8 @@ void vtkBenderRibbonRepresentation::BuildRepresentation()
   // the straight line between the ends, drawn in red.
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> lines;
-  auto addLine = [&](const double a[3], const double b[3]) {
+  auto addLine = [&](const double a[3], const double b[3])
+  {
     const vtkIdType ids[2] = { points->InsertNextPoint(a), points->InsertNextPoint(b) };
     lines->InsertNextCell(2, ids);
   };
@@ -421,7 +423,8 @@ void vtkBenderRibbonRepresentation::StartWidgetInteraction(double eventPosition[
   }
   double world[3], display[3], cursor[4];
   this->GetHandlePosition(this->InteractionState, world);
-  vtkInteractorObserver::ComputeWorldToDisplay(this->Renderer, world[0], world[1], world[2], display);
+  vtkInteractorObserver::ComputeWorldToDisplay(
+    this->Renderer, world[0], world[1], world[2], display);
   this->DragDepth = display[2];
   vtkInteractorObserver::ComputeDisplayToWorld(
     this->Renderer, eventPosition[0], eventPosition[1], this->DragDepth, cursor);
@@ -441,7 +444,8 @@ void vtkBenderRibbonRepresentation::WidgetInteraction(double eventPosition[2])
   double cursor[4];
   vtkInteractorObserver::ComputeDisplayToWorld(
     this->Renderer, eventPosition[0], eventPosition[1], this->DragDepth, cursor);
-  const double target[3] = { cursor[0] + this->DragOffset[0], cursor[1] + this->DragOffset[1],
+  const double target[3] = { cursor[0] + this->DragOffset[0],
+    cursor[1] + this->DragOffset[1],
     cursor[2] + this->DragOffset[2] };
   this->MoveHandle(this->InteractionState, target);
 }
@@ -509,7 +513,8 @@ int vtkBenderRibbonRepresentation::RenderOpaqueGeometry(vtkViewport* viewport)
   {
     count += this->StripActor->RenderOpaqueGeometry(viewport);
     vtkRenderer* renderer = vtkRenderer::SafeDownCast(viewport);
-    if (this->Radius > 0.0 && this->RegionVisibility && renderer && renderer->IsActiveCameraCreated())
+    if (this->Radius > 0.0 && this->RegionVisibility && renderer &&
+      renderer->IsActiveCameraCreated())
     {
       this->Silhouette->SetCamera(renderer->GetActiveCamera());
       count += this->CageActor->RenderOpaqueGeometry(viewport);

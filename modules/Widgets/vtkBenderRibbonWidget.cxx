@@ -14,11 +14,15 @@ vtkStandardNewMacro(vtkBenderRibbonWidget);
 vtkBenderRibbonWidget::vtkBenderRibbonWidget()
 {
   this->CallbackMapper->SetCallbackMethod(vtkCommand::LeftButtonPressEvent,
-    vtkWidgetEvent::Select, this, vtkBenderRibbonWidget::SelectAction);
+    vtkWidgetEvent::Select,
+    this,
+    vtkBenderRibbonWidget::SelectAction);
   this->CallbackMapper->SetCallbackMethod(
     vtkCommand::MouseMoveEvent, vtkWidgetEvent::Move, this, vtkBenderRibbonWidget::MoveAction);
   this->CallbackMapper->SetCallbackMethod(vtkCommand::LeftButtonReleaseEvent,
-    vtkWidgetEvent::EndSelect, this, vtkBenderRibbonWidget::EndSelectAction);
+    vtkWidgetEvent::EndSelect,
+    this,
+    vtkBenderRibbonWidget::EndSelectAction);
 }
 
 void vtkBenderRibbonWidget::SetRepresentation(vtkBenderRibbonRepresentation* representation)
@@ -52,8 +56,7 @@ void vtkBenderRibbonWidget::SelectAction(vtkAbstractWidget* w)
   }
   const int X = self->Interactor->GetEventPosition()[0];
   const int Y = self->Interactor->GetEventPosition()[1];
-  if (self->WidgetRep->ComputeInteractionState(X, Y) ==
-    vtkBenderRibbonRepresentation::Outside)
+  if (self->WidgetRep->ComputeInteractionState(X, Y) == vtkBenderRibbonRepresentation::Outside)
   {
     return;
   }

@@ -37,8 +37,8 @@ std::vector<bender::RibbonSpec> RandomValidRibbons(std::uint64_t seed, int count
   std::vector<bender::RibbonSpec> out;
   while (static_cast<int>(out.size()) < count)
   {
-    const bender::RibbonSpec r = out.size() % 2 == 0 ? bendertest::RandomRibbon(rng)
-                                                     : bendertest::RandomWildRibbon(rng);
+    const bender::RibbonSpec r =
+      out.size() % 2 == 0 ? bendertest::RandomRibbon(rng) : bendertest::RandomWildRibbon(rng);
     try
     {
       (void)Make(r);
@@ -107,11 +107,14 @@ TEST(Biarc, TangentLengthRootAndTurningAngles)
       EXPECT_LE(arc.angle, Pi);
       // Chord check: |Ps - end| = 2 a cos(theta/2).
       const Vec3 end = i == 0 ? w.Junction() : w.End();
-      EXPECT_NEAR(Distance(arc.start, end), 2.0 * a * std::cos(0.5 * arc.angle), 1e-9 * std::max(h, a));
+      EXPECT_NEAR(
+        Distance(arc.start, end), 2.0 * a * std::cos(0.5 * arc.angle), 1e-9 * std::max(h, a));
     }
     // Turning angles: arc 1 from T0 to U, arc 2 from U to T1.
-    EXPECT_NEAR(w.FirstArc().angle, std::acos(std::clamp(Dot(t0, w.JunctionTangent()), -1.0, 1.0)), 1e-6);
-    EXPECT_NEAR(w.SecondArc().angle, std::acos(std::clamp(Dot(w.JunctionTangent(), t1), -1.0, 1.0)), 1e-6);
+    EXPECT_NEAR(
+      w.FirstArc().angle, std::acos(std::clamp(Dot(t0, w.JunctionTangent()), -1.0, 1.0)), 1e-6);
+    EXPECT_NEAR(
+      w.SecondArc().angle, std::acos(std::clamp(Dot(w.JunctionTangent(), t1), -1.0, 1.0)), 1e-6);
   }
 }
 
@@ -173,7 +176,8 @@ TEST(Biarc, ReversalGivesTheSamePointSetWithReversedParameter)
   for (const auto& r : RandomValidRibbons(15, 1000))
   {
     const Biarc w = Make(r);
-    const Biarc rev = Biarc::FromEnds(r.end.position, -r.end.tangent, r.start.position, -r.start.tangent);
+    const Biarc rev =
+      Biarc::FromEnds(r.end.position, -r.end.tangent, r.start.position, -r.start.tangent);
     const double h = bendertest::Scale(r);
     EXPECT_NEAR(rev.JunctionParameter(), 1.0 - w.JunctionParameter(), 1e-9);
     EXPECT_NEAR(rev.Length(), w.Length(), 1e-9 * h);
@@ -326,7 +330,8 @@ TEST(Biarc, CoplanarSymmetricTangentsGiveOneCircle)
     // J is the midpoint of the single arc: on the perpendicular bisector of P0P1.
     EXPECT_NEAR(Dot(w.Junction() - (p0 + p1) * 0.5, p1 - p0), 0.0, 1e-9 * h * h);
     // The twist's dihedral e = sang(n1, n2, U) is 0.
-    EXPECT_NEAR(bender::SignedAngle(w.FirstArc().axis, w.SecondArc().axis, w.JunctionTangent()), 0.0, 1e-9);
+    EXPECT_NEAR(
+      bender::SignedAngle(w.FirstArc().axis, w.SecondArc().axis, w.JunctionTangent()), 0.0, 1e-9);
   }
 }
 
@@ -383,12 +388,16 @@ TEST(Biarc, RigidMotionAndScaleInvariance)
     sr.end.position = r.end.position * lambda;
     const Biarc sw = Make(sr);
     const double sh = bendertest::Scale(sr);
-    EXPECT_NEAR(sw.TangentLength(), lambda * w.TangentLength(), 1e-9 * std::max(sh, lambda * w.TangentLength()));
+    EXPECT_NEAR(sw.TangentLength(),
+      lambda * w.TangentLength(),
+      1e-9 * std::max(sh, lambda * w.TangentLength()));
     EXPECT_NEAR(sw.Length(), lambda * w.Length(), 1e-9 * sh);
     EXPECT_NEAR(sw.JunctionParameter(), w.JunctionParameter(), 1e-9);
     if (w.MinimumRadius() < 1e6)
     {
-      EXPECT_NEAR(sw.MinimumRadius(), lambda * w.MinimumRadius(), 1e-9 * std::max(sh, lambda * w.MinimumRadius()));
+      EXPECT_NEAR(sw.MinimumRadius(),
+        lambda * w.MinimumRadius(),
+        1e-9 * std::max(sh, lambda * w.MinimumRadius()));
     }
     for (int k = 0; k <= 10; ++k)
     {
@@ -402,7 +411,10 @@ TEST(Biarc, RigidMotionAndScaleInvariance)
 
 // Expects FromEnds to throw InvalidRibbonError (the wire as a whole: empty field) whose
 // message contains `words`.
-void ExpectRejected(const Vec3& p0, const Vec3& t0, const Vec3& p1, const Vec3& t1,
+void ExpectRejected(const Vec3& p0,
+  const Vec3& t0,
+  const Vec3& p1,
+  const Vec3& t1,
   const std::string& words)
 {
   try
@@ -480,7 +492,10 @@ TEST(BiarcRejection, UnstableNearParallelCase)
   // Spec 1.3: T1 = T0 rotated by 1e-2 rad, P1 = P0 + (-1, 1, 0): L ~ 624 > 200 |S|.
   ExpectRejected({ 0, 0, 0 }, x, { -1, 1, 0 }, bender::Rotate(z, 1e-2, x), "unstable");
   ExpectRejected({ 0, 0, 0 }, x, { -1, 1, 0 }, bender::Rotate(z, -1e-2, x), "unstable");
-  ExpectRejected({ 5, 5, 5 }, x, { 4, 6, 5 }, bender::Rotate(bender::Normalized(Vec3{ 1, 1, 1 }), 1e-3, x),
+  ExpectRejected({ 5, 5, 5 },
+    x,
+    { 4, 6, 5 },
+    bender::Rotate(bender::Normalized(Vec3{ 1, 1, 1 }), 1e-3, x),
     "unstable");
   // Message reports the ratio.
   try

@@ -26,10 +26,12 @@ Vec3 V(const json& a)
 bender::RibbonSpec RibbonFromJson(const json& j)
 {
   bender::RibbonSpec r;
-  r.start = { V(j.at("start").at("position")), V(j.at("start").at("tangent")),
-    V(j.at("start").at("normal")) };
-  r.end = { V(j.at("end").at("position")), V(j.at("end").at("tangent")),
-    V(j.at("end").at("normal")) };
+  r.start = {
+    V(j.at("start").at("position")), V(j.at("start").at("tangent")), V(j.at("start").at("normal"))
+  };
+  r.end = {
+    V(j.at("end").at("position")), V(j.at("end").at("tangent")), V(j.at("end").at("normal"))
+  };
   r.extraTurns = j.value("extraTurns", 0);
   return r;
 }
@@ -48,8 +50,8 @@ std::vector<bender::WarpSpec> LoadWarps(const std::string& name)
     s.final = RibbonFromJson(w.at("final"));
     s.radius = w.at("radius").get<double>();
     const json decay = w.value("decay", json::object());
-    s.decay.shape =
-      decay.value("shape", "bell") == "plateau" ? bender::DecayShape::Plateau : bender::DecayShape::Bell;
+    s.decay.shape = decay.value("shape", "bell") == "plateau" ? bender::DecayShape::Plateau
+                                                              : bender::DecayShape::Bell;
     s.decay.plateau = decay.value("plateau", 0.5);
     s.reverseScrews = w.value("reverseScrews", false);
     warps.push_back(s);
@@ -184,8 +186,8 @@ TEST_P(Conformance, BindingAndTableEvaluationAgree)
           ids.push_back(static_cast<std::int64_t>(i));
         }
       }
-      const bender::WarpEvaluator eval(warp,
-        xyz == &exact ? bender::WarpPrecision::Exact : bender::WarpPrecision::Table);
+      const bender::WarpEvaluator eval(
+        warp, xyz == &exact ? bender::WarpPrecision::Exact : bender::WarpPrecision::Table);
       std::vector<double> out = *xyz;
       eval.EvaluateRange(xyz->data(), out.data(), rec.data(), ids.data(), 0, ids.size());
       *xyz = out;
@@ -195,14 +197,17 @@ TEST_P(Conformance, BindingAndTableEvaluationAgree)
   for (std::size_t i = 0; i < expected.points.size(); ++i)
   {
     const Vec3 e = expected.points[i];
-    worstExact = std::max(worstExact, bender::Distance(e, { exact[3 * i], exact[3 * i + 1], exact[3 * i + 2] }));
-    worstTable = std::max(worstTable, bender::Distance(e, { table[3 * i], table[3 * i + 1], table[3 * i + 2] }));
+    worstExact = std::max(
+      worstExact, bender::Distance(e, { exact[3 * i], exact[3 * i + 1], exact[3 * i + 2] }));
+    worstTable = std::max(
+      worstTable, bender::Distance(e, { table[3 * i], table[3 * i + 1], table[3 * i + 2] }));
   }
   EXPECT_LT(worstExact, 1e-9 * 50.0);
   EXPECT_LT(worstTable, 1e-5 * 50.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-  Vectors, Conformance, ::testing::Values("bend90", "twist150", "semicircle_chain"));
+INSTANTIATE_TEST_SUITE_P(Vectors,
+  Conformance,
+  ::testing::Values("bend90", "twist150", "semicircle_chain"));
 
 } // namespace

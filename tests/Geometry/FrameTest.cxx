@@ -29,11 +29,12 @@ std::vector<bender::RibbonSpec> RandomRibbons(std::uint64_t seed, int count)
   std::vector<bender::RibbonSpec> out;
   while (static_cast<int>(out.size()) < count)
   {
-    bender::RibbonSpec r = out.size() % 2 == 0 ? bendertest::RandomRibbon(rng)
-                                               : bendertest::RandomWildRibbon(rng);
+    bender::RibbonSpec r =
+      out.size() % 2 == 0 ? bendertest::RandomRibbon(rng) : bendertest::RandomWildRibbon(rng);
     for (bender::RibbonEnd* e : { &r.start, &r.end })
     {
-      e->normal = e->normal * bendertest::Uniform(rng, 0.2, 5) + e->tangent * bendertest::Uniform(rng, -2, 2);
+      e->normal =
+        e->normal * bendertest::Uniform(rng, 0.2, 5) + e->tangent * bendertest::Uniform(rng, -2, 2);
       e->tangent = e->tangent * bendertest::Uniform(rng, 0.2, 5);
     }
     try
@@ -216,7 +217,8 @@ TEST(Frame, ExtraTurnsAddWholeTurnsOfTwist)
 TEST(Frame, TwistTieRuleAtHalfATurn)
 {
   const Vec3 x{ 1, 0, 0 }, y{ 0, 1, 0 }, z{ 0, 0, 1 };
-  auto ribbonWithEndNormal = [&](const Vec3& n1) {
+  auto ribbonWithEndNormal = [&](const Vec3& n1)
+  {
     bender::RibbonSpec r;
     r.start = { { 0, 0, 0 }, x, y };
     r.end = { { 2, 0, 0 }, x, n1 };
@@ -241,7 +243,8 @@ TEST(Frame, TwistTieRuleAtHalfATurn)
   for (const auto& r0 : RandomRibbons(41, 200))
   {
     const Ribbon base(r0);
-    const Vec3 n0Star = bender::Rotate(base.Wire().EndTangent(), -base.PrincipalTwist(), base.EndNormal());
+    const Vec3 n0Star =
+      bender::Rotate(base.Wire().EndTangent(), -base.PrincipalTwist(), base.EndNormal());
     for (double a : { -Pi + 2e-10, Pi - 2e-10 })
     {
       bender::RibbonSpec r = r0;

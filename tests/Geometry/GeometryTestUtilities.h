@@ -12,11 +12,11 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <utility>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace bendertest
@@ -63,7 +63,8 @@ inline bender::RibbonSpec RandomRibbon(std::mt19937_64& rng, double scale = 10.0
   bender::RibbonSpec r;
   r.start.position = RandomPoint(rng, scale);
   const Vec3 dir = RandomUnit(rng);
-  r.end.position = r.start.position + dir * (scale * (0.5 + std::uniform_real_distribution<>(0, 1)(rng)));
+  r.end.position =
+    r.start.position + dir * (scale * (0.5 + std::uniform_real_distribution<>(0, 1)(rng)));
   r.start.tangent = bender::Normalized(dir + RandomUnit(rng) * 0.8);
   r.end.tangent = bender::Normalized(dir + RandomUnit(rng) * 0.8);
   r.start.normal = RandomPerpendicular(rng, r.start.tangent);
@@ -178,8 +179,10 @@ inline bender::RibbonSpec RandomWildRibbon(std::mt19937_64& rng, double scale = 
 
 /// Moves the ends of a ribbon by up to `move` and turns its tangents and normals by up to
 /// `turn` radians about random axes.
-inline bender::RibbonSpec Perturbed(
-  std::mt19937_64& rng, const bender::RibbonSpec& r, double move, double turn)
+inline bender::RibbonSpec Perturbed(std::mt19937_64& rng,
+  const bender::RibbonSpec& r,
+  double move,
+  double turn)
 {
   bender::RibbonSpec o = r;
   for (bender::RibbonEnd* e : { &o.start, &o.end })
@@ -209,13 +212,38 @@ inline double DistanceToLine(const Vec3& p, const Vec3& a, const Vec3& k)
 inline Mesh Icosphere(int levels, const Vec3& centre, double radius)
 {
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> v = { { -1, g, 0 }, { 1, g, 0 }, { -1, -g, 0 }, { 1, -g, 0 }, { 0, -1, g },
-    { 0, 1, g }, { 0, -1, -g }, { 0, 1, -g }, { g, 0, -1 }, { g, 0, 1 }, { -g, 0, -1 },
+  std::vector<Vec3> v = { { -1, g, 0 },
+    { 1, g, 0 },
+    { -1, -g, 0 },
+    { 1, -g, 0 },
+    { 0, -1, g },
+    { 0, 1, g },
+    { 0, -1, -g },
+    { 0, 1, -g },
+    { g, 0, -1 },
+    { g, 0, 1 },
+    { -g, 0, -1 },
     { -g, 0, 1 } };
-  std::vector<std::vector<int>> f = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 },
-    { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },
-    { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 },
-    { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
+  std::vector<std::vector<int>> f = { { 0, 11, 5 },
+    { 0, 5, 1 },
+    { 0, 1, 7 },
+    { 0, 7, 10 },
+    { 0, 10, 11 },
+    { 1, 5, 9 },
+    { 5, 11, 4 },
+    { 11, 10, 2 },
+    { 10, 7, 6 },
+    { 7, 1, 8 },
+    { 3, 9, 4 },
+    { 3, 4, 2 },
+    { 3, 2, 6 },
+    { 3, 6, 8 },
+    { 3, 8, 9 },
+    { 4, 9, 5 },
+    { 2, 4, 11 },
+    { 6, 2, 10 },
+    { 8, 6, 7 },
+    { 9, 8, 1 } };
   for (Vec3& p : v)
   {
     p = bender::Normalized(p);
@@ -223,7 +251,8 @@ inline Mesh Icosphere(int levels, const Vec3& centre, double radius)
   for (int l = 0; l < levels; ++l)
   {
     std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
+    auto midpoint = [&](int a, int b)
+    {
       const std::pair<int, int> key{ std::min(a, b), std::max(a, b) };
       auto it = mid.find(key);
       if (it != mid.end())

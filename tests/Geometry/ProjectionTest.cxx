@@ -37,8 +37,8 @@ std::vector<Biarc> RandomWires(std::uint64_t seed, int count)
   std::vector<Biarc> out;
   while (static_cast<int>(out.size()) < count)
   {
-    const bender::RibbonSpec r = out.size() % 2 == 0 ? bendertest::RandomRibbon(rng)
-                                                     : bendertest::RandomWildRibbon(rng);
+    const bender::RibbonSpec r =
+      out.size() % 2 == 0 ? bendertest::RandomRibbon(rng) : bendertest::RandomWildRibbon(rng);
     try
     {
       const Biarc w = Make(r);
@@ -124,15 +124,17 @@ TEST(Projection, AgreesWithBruteForceWithinTheRegionOfInfluence)
     const double rho = bendertest::Uniform(rng, 0.5, 5);
     const bendertest::Rigid G = bendertest::RandomRigid(rng, 5);
     wires.push_back(Biarc::FromEnds(G.Point({ rho * std::cos(g / 2), rho * std::sin(g / 2), 0 }),
-      G.Vector({ -std::sin(g / 2), std::cos(g / 2), 0 }), G.Point({ rho * std::cos(g / 2), -rho * std::sin(g / 2), 0 }),
+      G.Vector({ -std::sin(g / 2), std::cos(g / 2), 0 }),
+      G.Point({ rho * std::cos(g / 2), -rho * std::sin(g / 2), 0 }),
       G.Vector({ std::sin(g / 2), std::cos(g / 2), 0 })));
   }
   int compared = 0, withTwo = 0;
   for (const Biarc& w : wires)
   {
     const auto samples = Sample(w, 10000);
-    const double R = w.MinimumRadius() < 1e6 ? bendertest::Uniform(rng, 0.2, 0.9) * w.MinimumRadius()
-                                             : bendertest::Uniform(rng, 0.05, 0.5) * w.Length();
+    const double R = w.MinimumRadius() < 1e6
+      ? bendertest::Uniform(rng, 0.2, 0.9) * w.MinimumRadius()
+      : bendertest::Uniform(rng, 0.05, 0.5) * w.Length();
     for (int i = 0; i < 40; ++i)
     {
       const Vec3 p = RandomNearPoint(rng, w, 1.2 * R);
@@ -154,7 +156,8 @@ TEST(Projection, AgreesWithBruteForceWithinTheRegionOfInfluence)
       }
       ++compared;
       const WireProjections pr = bender::ProjectOntoWire(w, p, R);
-      ASSERT_EQ(pr.count, static_cast<int>(inside.size())) << "R=" << R << " r_min=" << w.MinimumRadius();
+      ASSERT_EQ(pr.count, static_cast<int>(inside.size()))
+        << "R=" << R << " r_min=" << w.MinimumRadius();
       withTwo += pr.count == 2;
       std::vector<double> got;
       for (int k = 0; k < pr.count; ++k)
@@ -337,7 +340,8 @@ TEST(Projection, NormalPlanesArePartitionedWithoutGapsOrDuplicates)
         }
         if (pr.count == 2)
         {
-          EXPECT_NE(pr.items[0].s, pr.items[1].s) << "duplicate at " << p.x << "," << p.y << "," << p.z;
+          EXPECT_NE(pr.items[0].s, pr.items[1].s)
+            << "duplicate at " << p.x << "," << p.y << "," << p.z;
           EXPECT_GT(Distance(pr.items[0].foot, pr.items[1].foot), 1e-6);
         }
         const bool onPlane = i == 0 || j == 16;
@@ -370,7 +374,9 @@ TEST(Projection, SymmetricWireJunctionPlane)
   // Then U = (1, 0, 0) and J.x = 0 exactly, so the plane at J is x = 0.
   for (double alpha : { 0.3, 0.9, 1.4, -0.7 })
   {
-    const Biarc w = Biarc::FromEnds({ -1, 0, 0 }, { std::cos(alpha), std::sin(alpha), 0 }, { 1, 0, 0 },
+    const Biarc w = Biarc::FromEnds({ -1, 0, 0 },
+      { std::cos(alpha), std::sin(alpha), 0 },
+      { 1, 0, 0 },
       { std::cos(alpha), -std::sin(alpha), 0 });
     ASSERT_EQ(w.Junction().x, 0.0);
     ASSERT_EQ(w.JunctionTangent().y, 0.0);
@@ -396,7 +402,8 @@ TEST(Projection, SymmetricWireJunctionPlane)
           const WireProjections b = bender::ProjectOntoWire(w, p - Vec3{ e, 0, 0 }, R);
           ASSERT_EQ(a.count, 1);
           ASSERT_EQ(b.count, 1);
-          EXPECT_NEAR(a.items[0].s - w.JunctionParameter(), w.JunctionParameter() - b.items[0].s, 1e-12);
+          EXPECT_NEAR(
+            a.items[0].s - w.JunctionParameter(), w.JunctionParameter() - b.items[0].s, 1e-12);
         }
         else if (dist >= R)
         {

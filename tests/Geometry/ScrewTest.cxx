@@ -1,11 +1,11 @@
 // Property tests of the screws between frames and their continuity lift along s (spec 4,
 // section 8 items 15-19, the reverseScrews twin and the 340 degree rule).
 
+#include "Screw.h"
 #include "GeometryErrors.h"
 #include "GeometryTestUtilities.h"
 #include "Quaternion.h"
 #include "RibbonWarp.h"
-#include "Screw.h"
 
 #include <gtest/gtest.h>
 
@@ -76,7 +76,8 @@ std::vector<FramePair> RandomPairs(std::uint64_t seed, int count)
     else
     {
       // A rotation of a chosen angle about a random axis through a random point.
-      const double angle = kind == 2 ? bendertest::Uniform(rng, 1e-3, 0.1) : Pi - bendertest::Uniform(rng, 1e-4, 0.1);
+      const double angle =
+        kind == 2 ? bendertest::Uniform(rng, 1e-3, 0.1) : Pi - bendertest::Uniform(rng, 1e-4, 0.1);
       bendertest::Rigid g;
       g.axis = bendertest::RandomUnit(rng);
       g.angle = angle;
@@ -102,7 +103,9 @@ TEST(Screw, FullScrewMapsTheFrameAndZeroIsTheIdentity)
       EXPECT_LT(Distance(moved.T, fp.cp.T), 1e-9);
       EXPECT_LT(Distance(moved.N, fp.cp.N), 1e-9);
       EXPECT_LT(Distance(moved.B, fp.cp.B), 1e-9);
-      EXPECT_LT(Distance(bender::ApplyMotion(m, fp.c.origin + fp.c.N * 2.0), fp.cp.origin + fp.cp.N * 2.0), 1e-9 * 10);
+      EXPECT_LT(
+        Distance(bender::ApplyMotion(m, fp.c.origin + fp.c.N * 2.0), fp.cp.origin + fp.cp.N * 2.0),
+        1e-9 * 10);
       const Vec3 p = bendertest::RandomPoint(rng, 20);
       const Vec3 same = bender::ApplyScrewFraction(m, p, 0.0);
       EXPECT_EQ(same.x, p.x);
@@ -193,14 +196,17 @@ TEST(Screw, AxisDistancePreservedAndAxialDisplacement)
         const double f = bendertest::Uniform(rng, 0, 1);
         const Vec3 p = bendertest::RandomPoint(rng, 20);
         const Vec3 pp = bender::ApplyScrewFraction(m, p, f);
-        EXPECT_NEAR(bendertest::DistanceToLine(pp, sc.A, sc.K), bendertest::DistanceToLine(p, sc.A, sc.K), tol);
+        EXPECT_NEAR(bendertest::DistanceToLine(pp, sc.A, sc.K),
+          bendertest::DistanceToLine(p, sc.A, sc.K),
+          tol);
         EXPECT_NEAR(Dot(pp - p, sc.K), f * sc.d, tol);
         // The angle turned about the axis is f beta (mod 2 pi).
         const Vec3 a = (p - sc.A) - sc.K * Dot(p - sc.A, sc.K);
         const Vec3 b = (pp - sc.A) - sc.K * Dot(pp - sc.A, sc.K);
         if (Norm(a) > 0.1)
         {
-          EXPECT_NEAR(bendertest::WrapAngle(bender::SignedAngle(a, b, sc.K) - f * sc.beta), 0.0, 1e-8);
+          EXPECT_NEAR(
+            bendertest::WrapAngle(bender::SignedAngle(a, b, sc.K) - f * sc.beta), 0.0, 1e-8);
         }
       }
     }
@@ -249,14 +255,16 @@ TEST(Screw, AgreesWithConstructionQAndTheAForm)
       EXPECT_LT(Distance(bender::ApplyScrewFraction(m, p, f), aForm), 1e-9 * scale) << "f=" << f;
       // (-K, 2 pi - beta, -d): the translation f d' K' = f d K is unchanged.
       const Vec3 twinForm = A + bender::Rotate(-K, f * (2 * Pi - beta), p - A) + (-K) * (f * -d);
-      EXPECT_LT(Distance(bender::ApplyScrewFraction(tw, p, f), twinForm), 1e-9 * scale) << "f=" << f;
+      EXPECT_LT(Distance(bender::ApplyScrewFraction(tw, p, f), twinForm), 1e-9 * scale)
+        << "f=" << f;
       // The fractional motion is rigid with rotation Rot(K, f beta): it moves frames to
       // frames (ScLERP of the frame C).
       const Frame mf = MoveFrame(m, fp.c, f);
       EXPECT_TRUE(bendertest::FrameIsOrthonormalRightHanded(mf, 1e-9));
       EXPECT_LT(Distance(mf.N, bender::Rotate(K, f * beta, fp.c.N)), 1e-9);
       const Vec3 x = fp.c.origin + fp.c.T * 0.3 - fp.c.N * 1.7 + fp.c.B * 2.2;
-      EXPECT_LT(Distance(bender::ApplyScrewFraction(m, x, f), mf.origin + mf.T * 0.3 - mf.N * 1.7 + mf.B * 2.2),
+      EXPECT_LT(Distance(bender::ApplyScrewFraction(m, x, f),
+                  mf.origin + mf.T * 0.3 - mf.N * 1.7 + mf.B * 2.2),
         1e-9 * scale);
     }
   }
@@ -288,7 +296,8 @@ TEST(Screw, PureAndNearPureTranslations)
       const DualQuaternion mq = bender::MotionBetween(c, cq, Relative(c, cq));
       const Vec3 r = bender::ApplyScrewFraction(mq, p, f);
       EXPECT_TRUE(bender::IsFinite(r));
-      EXPECT_LT(Distance(r, p + (cq.origin - c.origin) * f), 100 * angle * (Norm(p) + Norm(c.origin) + 20) + 1e-9 * 20);
+      EXPECT_LT(Distance(r, p + (cq.origin - c.origin) * f),
+        100 * angle * (Norm(p) + Norm(c.origin) + 20) + 1e-9 * 20);
     }
   }
 }
@@ -311,8 +320,9 @@ TEST(Screw, ScrewOfANumericallyPureTranslationReportsTheTranslation)
     wrong += !ok;
     if (!ok && wrong <= 3)
     {
-      ADD_FAILURE() << "pure translation D = (" << D.x << ", " << D.y << ", " << D.z << "): K = (" << sc.K.x
-                    << ", " << sc.K.y << ", " << sc.K.z << "), d = " << sc.d << ", beta = " << sc.beta
+      ADD_FAILURE() << "pure translation D = (" << D.x << ", " << D.y << ", " << D.z << "): K = ("
+                    << sc.K.x << ", " << sc.K.y << ", " << sc.K.z << "), d = " << sc.d
+                    << ", beta = " << sc.beta
                     << "; spec 4.1 expects K = nrm(D), d = |D| = " << Norm(D);
     }
   }
@@ -323,8 +333,13 @@ TEST(Screw, ScrewOfANumericallyPureTranslationReportsTheTranslation)
 
 // A straight ribbon from p0 along dir (length len) with both normals n rotated about dir by
 // a0 (start) and a1 (end), moved by `shift` along dir.
-bender::RibbonSpec StraightRibbon(const Vec3& p0, const Vec3& dir, double len, const Vec3& n, double a0,
-  double a1, double shift = 0.0)
+bender::RibbonSpec StraightRibbon(const Vec3& p0,
+  const Vec3& dir,
+  double len,
+  const Vec3& n,
+  double a0,
+  double a1,
+  double shift = 0.0)
 {
   bender::RibbonSpec r;
   r.start = { p0 + dir * shift, dir, bender::Rotate(dir, a0, n) };
@@ -417,7 +432,8 @@ TEST(ScrewLift, CurvedRibbonsCrossingHalfATurnStayContinuous)
     bendertest::Rigid g = bendertest::RandomRigid(rng, 5.0);
     g.angle = 0.9 * Pi;
     w.final = bendertest::Transformed(w.initial, g);
-    w.final.end.normal = bender::Rotate(bender::Normalized(w.final.end.tangent), 0.2 * Pi, w.final.end.normal);
+    w.final.end.normal =
+      bender::Rotate(bender::Normalized(w.final.end.tangent), 0.2 * Pi, w.final.end.normal);
     try
     {
       const bender::RibbonWarp warp(w);
@@ -526,9 +542,12 @@ TEST(ScrewLift, ReverseScrewsGivesTheTwin)
         EXPECT_NE(a.flipped, b.flipped);
         // Same motion at f = 1, a different path in between.
         const Vec3 p = bendertest::RandomPoint(rng, 10);
-        EXPECT_LT(Distance(bender::ApplyMotion(rev.MotionAt(s), p), bender::ApplyMotion(fwd.MotionAt(s), p)), 1e-9 * 20);
+        EXPECT_LT(Distance(bender::ApplyMotion(rev.MotionAt(s), p),
+                    bender::ApplyMotion(fwd.MotionAt(s), p)),
+          1e-9 * 20);
         differ = std::max(differ,
-          Distance(bender::ApplyScrewFraction(rev.MotionAt(s), p, 0.5), bender::ApplyScrewFraction(fwd.MotionAt(s), p, 0.5)));
+          Distance(bender::ApplyScrewFraction(rev.MotionAt(s), p, 0.5),
+            bender::ApplyScrewFraction(fwd.MotionAt(s), p, 0.5)));
       }
       EXPECT_GT(differ, 0.1);
     }
@@ -581,10 +600,11 @@ TEST(ScrewLift, ThreeHundredFortyDegreeRule)
     {
       const double want = ini.Twist() + extra * Pi / 180;
       w.final = w.initial;
-      w.final.end.normal =
-        bender::Rotate(bender::Normalized(w.initial.end.tangent), extra * Pi / 180, ini.EndNormal());
+      w.final.end.normal = bender::Rotate(
+        bender::Normalized(w.initial.end.tangent), extra * Pi / 180, ini.EndNormal());
       const bender::Ribbon principal(w.final);
-      w.final.extraTurns = static_cast<int>(std::lround((want - principal.PrincipalTwist()) / (2 * Pi)));
+      w.final.extraTurns =
+        static_cast<int>(std::lround((want - principal.PrincipalTwist()) / (2 * Pi)));
       ASSERT_NEAR(bender::Ribbon(w.final).Twist(), want, 1e-9);
       if (std::abs(extra) < 340)
       {

@@ -44,8 +44,11 @@ DecaySpec RandomDecay(std::mt19937_64& rng)
 
 // A random valid warp: a well-conditioned initial ribbon and a moderately moved final one,
 // R a random fraction of r_min of both wires.
-std::unique_ptr<RibbonWarp> RandomWarp(std::mt19937_64& rng, double move = 4.0, double turn = 1.0,
-  double rFraction = 0.8, BlendMode blend = BlendMode::TwoProjections)
+std::unique_ptr<RibbonWarp> RandomWarp(std::mt19937_64& rng,
+  double move = 4.0,
+  double turn = 1.0,
+  double rFraction = 0.8,
+  BlendMode blend = BlendMode::TwoProjections)
 {
   while (true)
   {
@@ -56,7 +59,8 @@ std::unique_ptr<RibbonWarp> RandomWarp(std::mt19937_64& rng, double move = 4.0, 
     try
     {
       const bender::Ribbon a(w.initial), b(w.final);
-      const double rmin = std::min({ a.Wire().MinimumRadius(), b.Wire().MinimumRadius(), 0.5 * a.Wire().Length() });
+      const double rmin =
+        std::min({ a.Wire().MinimumRadius(), b.Wire().MinimumRadius(), 0.5 * a.Wire().Length() });
       w.radius = bendertest::Uniform(rng, 0.1, rFraction) * rmin;
       bender::WarpOptions o;
       o.blend = blend;
@@ -186,7 +190,8 @@ TEST(Decay, ClampedMonotoneAndTwiceDifferentiableAtTheJoints)
       for (double e : { 1e-2, 1e-3 })
       {
         const double scale = 10.0 / std::pow(1 - d.plateau, 3);
-        EXPECT_LT(1 - bender::EvaluateDecay(d, d.plateau + e), 1.01 * scale * e * e * e) << "p=" << d.plateau;
+        EXPECT_LT(1 - bender::EvaluateDecay(d, d.plateau + e), 1.01 * scale * e * e * e)
+          << "p=" << d.plateau;
       }
     }
     // Bell: F'(0) = 0.
@@ -248,7 +253,10 @@ struct KnownScrew
 {
   Vec3 A, K;
   double beta, d;
-  Vec3 Apply(const Vec3& p, double f) const { return A + bender::Rotate(K, f * beta, p - A) + K * (f * d); }
+  Vec3 Apply(const Vec3& p, double f) const
+  {
+    return A + bender::Rotate(K, f * beta, p - A) + K * (f * d);
+  }
   bendertest::Rigid AsRigid() const
   {
     bendertest::Rigid g;
@@ -265,7 +273,9 @@ TEST(Warp, RigidMotionOfTheRibbon)
   int built = 0;
   while (built < 100)
   {
-    KnownScrew G{ bendertest::RandomPoint(rng, 10), bendertest::RandomUnit(rng), bendertest::Uniform(rng, 0.05, 3.0),
+    KnownScrew G{ bendertest::RandomPoint(rng, 10),
+      bendertest::RandomUnit(rng),
+      bendertest::Uniform(rng, 0.05, 3.0),
       bendertest::Uniform(rng, -5, 5) };
     WarpSpec w;
     w.initial = bendertest::RandomRibbon(rng);
@@ -280,13 +290,16 @@ TEST(Warp, RigidMotionOfTheRibbon)
       for (int k = 0; k < 100; ++k)
       {
         // The "shape": points within R0 of the wire.
-        shape.push_back(bendertest::RandomPoint(rng, 1) * 0 + a.Wire().PointAt(bendertest::Uniform(rng, 0, 1)) +
+        shape.push_back(bendertest::RandomPoint(rng, 1) * 0 +
+          a.Wire().PointAt(bendertest::Uniform(rng, 0, 1)) +
           bendertest::RandomUnit(rng) * bendertest::Uniform(rng, 0, R0));
       }
       for (int k = 0; k < 8; ++k)
       {
-        shape.push_back(a.Wire().Start() - a.Wire().StartTangent() * (0.5 * R0) + bendertest::RandomUnit(rng) * (0.3 * R0));
-        shape.push_back(a.Wire().End() + a.Wire().EndTangent() * (0.5 * R0) + bendertest::RandomUnit(rng) * (0.3 * R0));
+        shape.push_back(a.Wire().Start() - a.Wire().StartTangent() * (0.5 * R0) +
+          bendertest::RandomUnit(rng) * (0.3 * R0));
+        shape.push_back(a.Wire().End() + a.Wire().EndTangent() * (0.5 * R0) +
+          bendertest::RandomUnit(rng) * (0.3 * R0));
       }
       // Plateau covering the shape: p R > max distance.
       w.decay.shape = DecayShape::Plateau;
@@ -313,7 +326,8 @@ TEST(Warp, RigidMotionOfTheRibbon)
       EXPECT_NEAR(sc.beta, G.beta, 1e-9) << "s=" << s;
       EXPECT_LT(Distance(sc.K, G.K), 1e-9) << "s=" << s;
       EXPECT_NEAR(sc.d, G.d, 1e-9 * h) << "s=" << s;
-      EXPECT_LT(bendertest::DistanceToLine(G.A, sc.A, sc.K), 1e-9 * std::max(h, Norm(sc.A))) << "s=" << s;
+      EXPECT_LT(bendertest::DistanceToLine(G.A, sc.A, sc.K), 1e-9 * std::max(h, Norm(sc.A)))
+        << "s=" << s;
     }
     // Plateau covering the shape: P' = G(P), also where two projections count.
     int two = 0;
@@ -366,7 +380,9 @@ TEST(Warp, PointsOfTheWireFollowTheirScrew)
         const auto pr = bender::ProjectOntoWire(warp->Initial().Wire(), p, R);
         if (pr.count == 1 && s > 0 && s < 1)
         {
-          EXPECT_LT(Distance(warp->Apply(p), cp.origin + (cp.N * std::cos(a) + cp.B * std::sin(a)) * rho), 1e-9 * h);
+          EXPECT_LT(
+            Distance(warp->Apply(p), cp.origin + (cp.N * std::cos(a) + cp.B * std::sin(a)) * rho),
+            1e-9 * h);
         }
       }
     }
@@ -424,7 +440,11 @@ double EstimateLipschitz(std::mt19937_64& rng, const RibbonWarp& warp)
   return lip;
 }
 
-void ExpectContinuousAcross(const RibbonWarp& warp, const Vec3& p, const Vec3& dir, double lip, const char* where)
+void ExpectContinuousAcross(const RibbonWarp& warp,
+  const Vec3& p,
+  const Vec3& dir,
+  double lip,
+  const char* where)
 {
   const double e = 1e-7;
   const Vec3 a = p - dir * (0.5 * e);
@@ -462,9 +482,11 @@ TEST(Warp, ContinuousAcrossTheRegionBoundaryAndTheNormalPlanes)
       ExpectContinuousAcross(*warp, w.Start() + v0 * R, v0, lip, "cap boundary at P0");
       // Junction plane.
       const Vec3 vJ = bendertest::RandomPerpendicular(rng, w.JunctionTangent());
-      ExpectContinuousAcross(*warp, w.Junction() + vJ * rho, w.JunctionTangent(), lip, "plane at J");
+      ExpectContinuousAcross(
+        *warp, w.Junction() + vJ * rho, w.JunctionTangent(), lip, "plane at J");
       // Random directions near all three planes.
-      ExpectContinuousAcross(*warp, w.Junction() + vJ * rho, bendertest::RandomUnit(rng), lip, "near J");
+      ExpectContinuousAcross(
+        *warp, w.Junction() + vJ * rho, bendertest::RandomUnit(rng), lip, "near J");
     }
   }
 }
@@ -515,8 +537,12 @@ bender::RibbonSpec NearlyClosedCircle(double rho, double gap)
 {
   bender::RibbonSpec r;
   const double g = gap / 2;
-  r.start = { { rho * std::cos(g), rho * std::sin(g), 0 }, { -std::sin(g), std::cos(g), 0 }, { 0, 0, 1 } };
-  r.end = { { rho * std::cos(g), -rho * std::sin(g), 0 }, { std::sin(g), std::cos(g), 0 }, { 0, 0, 1 } };
+  r.start = {
+    { rho * std::cos(g), rho * std::sin(g), 0 }, { -std::sin(g), std::cos(g), 0 }, { 0, 0, 1 }
+  };
+  r.end = {
+    { rho * std::cos(g), -rho * std::sin(g), 0 }, { std::sin(g), std::cos(g), 0 }, { 0, 0, 1 }
+  };
   return r;
 }
 
@@ -541,10 +567,12 @@ TEST(TwoProjections, ContinuousAcrossOverlappingPlateaus)
     int both = 0;
     for (int k = 0; k < 2000; ++k)
     {
-      const Vec3 q = Vec3{ 1.0 + bendertest::Uniform(rng, -0.4, 0.4), bendertest::Uniform(rng, -0.4, 0.4),
+      const Vec3 q = Vec3{ 1.0 + bendertest::Uniform(rng, -0.4, 0.4),
+        bendertest::Uniform(rng, -0.4, 0.4),
         bendertest::Uniform(rng, -0.3, 0.3) };
       const auto pr = bender::ProjectOntoWire(warp.Initial().Wire(), q, w.radius);
-      if (pr.count == 2 && warp.Weight(pr.items[0].distance) == 1 && warp.Weight(pr.items[1].distance) == 1)
+      if (pr.count == 2 && warp.Weight(pr.items[0].distance) == 1 &&
+        warp.Weight(pr.items[1].distance) == 1)
       {
         ++both;
       }
@@ -622,7 +650,8 @@ TEST(WarpBinding, ExactEvaluationEqualsApplyAndTableIsClose)
     const bender::WarpBinding binding(warp->Spec(), blend);
     EXPECT_TRUE(binding.Matches(warp->Spec(), blend));
     EXPECT_FALSE(binding.Matches(warp->Spec(),
-      blend == BlendMode::SingleProjection ? BlendMode::TwoProjections : BlendMode::SingleProjection));
+      blend == BlendMode::SingleProjection ? BlendMode::TwoProjections
+                                           : BlendMode::SingleProjection));
     WarpSpec other = warp->Spec();
     other.radius *= 1.1;
     EXPECT_FALSE(binding.Matches(other, blend));
@@ -655,7 +684,8 @@ TEST(WarpBinding, ExactEvaluationEqualsApplyAndTableIsClose)
       // Table precision away from the junction parameters (see TableAtTheJunctions).
       const double gap = 3.0 / (warp->MotionTable().size() - 1);
       bool nearKink = false;
-      for (double sk : { warp->Initial().Wire().JunctionParameter(), warp->Final().Wire().JunctionParameter() })
+      for (double sk :
+        { warp->Initial().Wire().JunctionParameter(), warp->Final().Wire().JunctionParameter() })
       {
         nearKink = nearKink || std::abs(rec.s0 - sk) < gap || std::abs(rec.s1 - sk) < gap;
       }
@@ -697,7 +727,8 @@ TEST(WarpBinding, ExactEvaluationEqualsApplyAndTableIsClose)
       if (flags[k])
       {
         const Vec3 viaTable = table.Apply(pts[k], recs[k]);
-        EXPECT_LT(Distance(gotf, viaTable), 1e-6 * std::max(1.0, Norm(viaTable))); // float rounding only
+        EXPECT_LT(
+          Distance(gotf, viaTable), 1e-6 * std::max(1.0, Norm(viaTable))); // float rounding only
       }
     }
   }
@@ -719,7 +750,8 @@ TEST(WarpBinding, TableWithinOneHundredThousandthOfTheSceneAtTheJunctions)
     const bender::WarpEvaluator exact(*warp, bender::WarpPrecision::Exact);
     const bender::WarpEvaluator table(*warp, bender::WarpPrecision::Table);
     const double scene = std::max(warp->Initial().Wire().Length(), warp->Final().Wire().Length());
-    for (double sk : { warp->Initial().Wire().JunctionParameter(), warp->Final().Wire().JunctionParameter() })
+    for (double sk :
+      { warp->Initial().Wire().JunctionParameter(), warp->Final().Wire().JunctionParameter() })
     {
       for (int k = -20; k <= 20; ++k)
       {
@@ -734,7 +766,8 @@ TEST(WarpBinding, TableWithinOneHundredThousandthOfTheSceneAtTheJunctions)
         if (err / scene > worstRel)
         {
           worstRel = err / scene;
-          worstAt = "warp " + std::to_string(i) + ", s = " + std::to_string(s) + ", junction at " + std::to_string(sk);
+          worstAt = "warp " + std::to_string(i) + ", s = " + std::to_string(s) + ", junction at " +
+            std::to_string(sk);
         }
         bad += err >= 1e-5 * scene;
         ++total;
@@ -785,7 +818,8 @@ TEST(Warp, NeverWritesANaN)
     }
     else
     {
-      w.final = i % 5 == 0 ? bendertest::RandomWildRibbon(rng) : bendertest::Perturbed(rng, w.initial, 3.0, 3.0);
+      w.final = i % 5 == 0 ? bendertest::RandomWildRibbon(rng)
+                           : bendertest::Perturbed(rng, w.initial, 3.0, 3.0);
     }
     w.final.extraTurns = std::uniform_int_distribution<int>(-1, 1)(rng);
     w.reverseScrews = i % 6 == 0;
@@ -836,7 +870,8 @@ TEST(Warp, NeverWritesANaN)
       for (const Vec3& p : pts)
       {
         const Vec3 q = warp->Apply(p);
-        ASSERT_TRUE(bender::IsFinite(q)) << "p=" << p.x << "," << p.y << "," << p.z << " R=" << w.radius;
+        ASSERT_TRUE(bender::IsFinite(q))
+          << "p=" << p.x << "," << p.y << "," << p.z << " R=" << w.radius;
         bender::BoundPoint rec;
         if (binding.Bind(p, rec))
         {
@@ -870,11 +905,13 @@ TEST(Warp, SpaceInversionRiskOnTheInitialOrTheFinalWire)
     EXPECT_EQ(warp.SpaceInversionWarning().empty(), !expected) << "R=" << R;
     if (expected && R < 1.0)
     {
-      EXPECT_NE(warp.SpaceInversionWarning().find("final"), std::string::npos) << warp.SpaceInversionWarning();
+      EXPECT_NE(warp.SpaceInversionWarning().find("final"), std::string::npos)
+        << warp.SpaceInversionWarning();
     }
     if (R > 1.0)
     {
-      EXPECT_NE(warp.SpaceInversionWarning().find("initial"), std::string::npos) << warp.SpaceInversionWarning();
+      EXPECT_NE(warp.SpaceInversionWarning().find("initial"), std::string::npos)
+        << warp.SpaceInversionWarning();
     }
   }
   // Swapped: the initial wire is the tight one.
@@ -953,7 +990,8 @@ TEST(WarpBinding, CapsulePreFilterRejectsOnlyPointsNoProjectionKeeps)
     for (int k = 0; k < 2000; ++k)
     {
       const Vec3 p{ bendertest::Uniform(rng, lo.x - R, hi.x + R),
-        bendertest::Uniform(rng, lo.y - R, hi.y + R), bendertest::Uniform(rng, lo.z - R, hi.z + R) };
+        bendertest::Uniform(rng, lo.y - R, hi.y + R),
+        bendertest::Uniform(rng, lo.z - R, hi.z + R) };
       pts.push_back(p);
       xyz.insert(xyz.end(), { p.x, p.y, p.z });
     }

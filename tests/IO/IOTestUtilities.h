@@ -84,9 +84,9 @@ inline std::string TestData(const std::string& relative)
 
 /// A file fetched by scripts/fetch-data into data/external. Fails the calling test (with a
 /// clear message, never a silent skip) when the file is missing.
-#define BENDER_REQUIRE_EXTERNAL(var, name)                                                     \
-  const std::string var = std::string(BENDER_EXTERNAL_DATA_DIR) + "/" + (name);               \
-  ASSERT_TRUE(std::filesystem::is_regular_file(var))                                           \
+#define BENDER_REQUIRE_EXTERNAL(var, name)                                                         \
+  const std::string var = std::string(BENDER_EXTERNAL_DATA_DIR) + "/" + (name);                    \
+  ASSERT_TRUE(std::filesystem::is_regular_file(var))                                               \
     << "missing real test data " << var << ": run scripts/fetch-data first"
 
 } // namespace bender_test

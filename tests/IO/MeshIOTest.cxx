@@ -198,7 +198,7 @@ void ExpectSameArrays(vtkPolyData* expected, vtkPolyData* actual)
 }
 
 /// Runs f, which must throw MeshIOError; returns its message ("" and a failure otherwise).
-template <typename F>
+template<typename F>
 std::string ErrorOf(F&& f)
 {
   try
@@ -286,7 +286,8 @@ TEST(MeshIO, FloatFormatsKeepTheSurfaceWithin1e7)
     StlEncoding encoding;
   };
   for (const Case& c : { Case{ "mesh.stl", StlEncoding::Binary },
-         Case{ "ascii.stl", StlEncoding::Ascii }, Case{ "mesh.obj", StlEncoding::Binary },
+         Case{ "ascii.stl", StlEncoding::Ascii },
+         Case{ "mesh.obj", StlEncoding::Binary },
          Case{ "mesh.ply", StlEncoding::Binary } })
   {
     SCOPED_TRACE(c.name);
@@ -385,7 +386,8 @@ TEST(MeshIO, OffHeaderBecomesAComment)
   options.header = "bender: LPS mm\nsecond line";
   WriteMesh(MakeTestMesh(), dir / "h.off", options);
   const std::string text = bender_test::ReadText(dir / "h.off");
-  EXPECT_EQ(text.rfind("OFF\n# bender: LPS mm second line\n30 40 0\n", 0), 0u) << text.substr(0, 80);
+  EXPECT_EQ(text.rfind("OFF\n# bender: LPS mm second line\n30 40 0\n", 0), 0u)
+    << text.substr(0, 80);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -429,8 +431,10 @@ TEST(MeshIO, RealOffMeshesHaveTheirAnnouncedSizes)
     vtkIdType points;
     vtkIdType faces;
   };
-  for (const Expected& e : { Expected{ "cow.off", 2904, 5804 }, Expected{ "sphere.off", 162, 320 },
-         Expected{ "plane.off", 841, 1600 }, Expected{ "pipe.off", 160, 320 },
+  for (const Expected& e : { Expected{ "cow.off", 2904, 5804 },
+         Expected{ "sphere.off", 162, 320 },
+         Expected{ "plane.off", 841, 1600 },
+         Expected{ "pipe.off", 160, 320 },
          Expected{ "bunny00.off", 37706, 75408 } })
   {
     SCOPED_TRACE(e.name);
@@ -465,8 +469,8 @@ TEST(MeshIOBadInput, MissingFolderAndEmptyFiles)
   ExpectReadError(dir / "nothere.stl", "no such file");
   fs::create_directory(dir / "folder.stl");
   ExpectReadError(dir / "folder.stl", "is a folder");
-  for (const char* name : { "empty.stl", "empty.obj", "empty.ply", "empty.vtp", "empty.vtk",
-         "empty.off" })
+  for (const char* name :
+    { "empty.stl", "empty.obj", "empty.ply", "empty.vtp", "empty.vtk", "empty.off" })
   {
     WriteText(dir / name, "");
     ExpectReadError(dir / name, "empty file");
@@ -486,7 +490,8 @@ TEST(MeshIOBadInput, TruncatedBinaryStlNamesBothCounts)
   fs::resize_file(path, 84 + 50 * 1200 + 17);
   ExpectReadError(path, "truncated binary STL (header says 20294 triangles, file holds 1200)");
   const std::string message = ErrorOf([&] { ReadMesh(path); });
-  EXPECT_EQ(message, "aneurysm.stl: truncated binary STL (header says 20294 triangles, file holds 1200)");
+  EXPECT_EQ(
+    message, "aneurysm.stl: truncated binary STL (header says 20294 triangles, file holds 1200)");
 }
 
 TEST(MeshIOBadInput, SmallOrGarbledStl)
@@ -496,7 +501,8 @@ TEST(MeshIOBadInput, SmallOrGarbledStl)
   ExpectReadError(dir / "short.stl", "not an STL file");
   WriteText(dir / "text.stl", std::string(200, 'a') + "\nhello world\n");
   ExpectReadError(dir / "text.stl", "not an STL file");
-  WriteText(dir / "solid.stl", "solid broken\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 x\n");
+  WriteText(
+    dir / "solid.stl", "solid broken\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 x\n");
   ExpectReadError(dir / "solid.stl", "");
   WriteText(dir / "nofacet.stl", "solid nothing\nendsolid nothing\n");
   ExpectReadError(dir / "nofacet.stl", "");
@@ -506,20 +512,22 @@ TEST(MeshIOBadInput, SmallOrGarbledStl)
   {
     c = static_cast<char>(rng());
   }
-  for (const char* name : { "random.stl", "random.obj", "random.ply", "random.vtp", "random.vtk",
-         "random.off" })
+  for (const char* name :
+    { "random.stl", "random.obj", "random.ply", "random.vtp", "random.vtk", "random.off" })
   {
     WriteText(dir / name, random);
     ExpectReadError(dir / name, "");
     // No binary garbage quoted into the message.
     const std::string message = ErrorOf([&] { ReadMesh(dir / name); });
-    EXPECT_TRUE(std::all_of(message.begin(), message.end(),
-      [](char c) { return static_cast<unsigned char>(c) >= 32 && static_cast<unsigned char>(c) < 127; }))
+    EXPECT_TRUE(std::all_of(message.begin(),
+      message.end(),
+      [](char c)
+      { return static_cast<unsigned char>(c) >= 32 && static_cast<unsigned char>(c) < 127; }))
       << message;
     EXPECT_EQ(message.find(dir.path().string()), std::string::npos) << message;
   }
-  for (const char* name : { "garbage.stl", "garbage.obj", "garbage.ply", "garbage.vtp",
-         "garbage.vtk", "garbage.off" })
+  for (const char* name :
+    { "garbage.stl", "garbage.obj", "garbage.ply", "garbage.vtp", "garbage.vtk", "garbage.off" })
   {
     WriteText(dir / name, "this is not a mesh\nat all, just words 1 2 3\n");
     ExpectReadError(dir / name, "");
@@ -567,8 +575,10 @@ TEST(MeshIOBadInput, MalformedOff)
       "line 6: vertex index 3 out of range (the file has 3 vertices)" },
     { "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "line 6: vertex index -1 out of range" },
     { "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "line 6: a face needs at least 3 vertices" },
-    { "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", "line 6: face announces 4 vertices but lists 3" },
-    { "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "line 6: vertex index \"1.5\" is not an integer" },
+    { "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n",
+      "line 6: face announces 4 vertices but lists 3" },
+    { "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n",
+      "line 6: vertex index \"1.5\" is not an integer" },
     { "OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "line 4: expected 3 coordinates" },
     { "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n", "line 4: expected 3 coordinates" },
     { "OFF\nthree one zero\n", "line 2: expected the counts" },
@@ -603,19 +613,21 @@ TEST(MeshIOBadInput, PlyThatVtkWouldCrashOn)
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
                              "property float y\nproperty float z\n";
   const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
-  WriteText(dir / "index.ply", header +
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + vertices +
+  WriteText(dir / "index.ply",
+    header + "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + vertices +
       "3 0 1 7\n");
   ExpectReadError(dir / "index.ply", "vertex index 7 out of range (the file has 3 vertices)");
-  WriteText(dir / "name.ply", header +
-      "element face 1\nproperty list uchar int vertex_inJices\nend_header\n" + vertices +
+  WriteText(dir / "name.ply",
+    header + "element face 1\nproperty list uchar int vertex_inJices\nend_header\n" + vertices +
       "3 0 1 2\n");
   ExpectReadError(dir / "name.ply", "face element without a \"vertex_indices\" list");
-  WriteText(dir / "novertex.ply", "ply\nformat ascii 1.0\nelement vetrex 3\nproperty float x\n"
-                                  "property float y\nproperty float z\nend_header\n" + vertices);
+  WriteText(dir / "novertex.ply",
+    "ply\nformat ascii 1.0\nelement vetrex 3\nproperty float x\n"
+    "property float y\nproperty float z\nend_header\n" +
+      vertices);
   ExpectReadError(dir / "novertex.ply", "without a \"vertex\" element");
-  WriteText(dir / "short.ply", header +
-      "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + vertices +
+  WriteText(dir / "short.ply",
+    header + "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + vertices +
       "3 0 1 2\n3 0\n");
   ExpectReadError(dir / "short.ply", "truncated ASCII PLY");
   // Points only: no crash; a mesh of points (callers decide).

@@ -16,8 +16,11 @@ namespace test
 
 /// A closed-side open-ended tube along +x: `rings` rings of `sides` points, radius `radius`,
 /// from x0 to x1, triangulated. Double points.
-vtkSmartPointer<vtkPolyData> MakeTube(
-  double x0, double x1, double radius, int rings = 81, int sides = 32);
+vtkSmartPointer<vtkPolyData> MakeTube(double x0,
+  double x1,
+  double radius,
+  int rings = 81,
+  int sides = 32);
 
 /// A straight ribbon along +x from (a,0,0) to (b,0,0), normal +z.
 RibbonSpec StraightRibbon(double a, double b);

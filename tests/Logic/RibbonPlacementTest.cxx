@@ -1,5 +1,5 @@
-#include "LogicTestUtilities.h"
 #include "RibbonPlacement.h"
+#include "LogicTestUtilities.h"
 #include "RibbonWarp.h"
 
 #include <vtkPolyData.h>
@@ -24,7 +24,8 @@ TEST(RibbonPlacement, LiesOnTheAxisOfATube)
   EXPECT_NEAR(middle.z, 0.0, 0.2);
   EXPECT_NEAR(middle.x, 41.0, 1.0);
   EXPECT_NEAR(Norm(placement.ribbon.end.position - placement.ribbon.start.position),
-    8.0 * placement.vesselRadius, 1e-9);
+    8.0 * placement.vesselRadius,
+    1e-9);
   // The ribbon is valid and can be grabbed as is.
   WarpSpec warp;
   warp.initial = warp.final = placement.ribbon;

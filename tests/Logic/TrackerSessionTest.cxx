@@ -1,9 +1,9 @@
 // Bending with trackers: the scripted two-hand simulator grabs, bends and releases through the
 // session; a stream that ends mid-warp cancels the live warp and keeps the committed shape.
+#include "TrackerSession.h"
 #include "BenderSession.h"
 #include "LogicTestUtilities.h"
 #include "SimulatedDevice.h"
-#include "TrackerSession.h"
 
 #include <vtkPolyData.h>
 
@@ -22,7 +22,8 @@ TrackerSession::PollResult RunUntilEnded(TrackerSession& trackers, double maxSec
 {
   TrackerSession::PollResult total;
   const auto start = std::chrono::steady_clock::now();
-  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < maxSeconds)
+  while (
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < maxSeconds)
   {
     const auto r = trackers.Poll();
     total.grabbed |= r.grabbed;

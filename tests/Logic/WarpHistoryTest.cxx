@@ -1,5 +1,5 @@
-#include "LogicTestUtilities.h"
 #include "WarpHistory.h"
+#include "LogicTestUtilities.h"
 
 #include <vtkPoints.h>
 #include <vtkPolyData.h>

@@ -39,11 +39,13 @@ TEST(ItkVtkBridge, ObliqueDirectionSurvivesTheRoundTrip)
   {
     for (int c = 0; c < 3; ++c)
     {
-      EXPECT_NEAR(image->GetDirectionMatrix()->GetElement(r, c), volume.geometry.direction[3 * r + c], 1e-12);
+      EXPECT_NEAR(
+        image->GetDirectionMatrix()->GetElement(r, c), volume.geometry.direction[3 * r + c], 1e-12);
     }
   }
   // VTK's own index -> physical mapping agrees with the volume's LPS mapping.
-  for (const bender::Point3 index : { bender::Point3{ { 0, 0, 0 } }, bender::Point3{ { 4, 3, 2 } }, bender::Point3{ { 1, 2, 1 } } })
+  for (const bender::Point3 index :
+    { bender::Point3{ { 0, 0, 0 } }, bender::Point3{ { 4, 3, 2 } }, bender::Point3{ { 1, 2, 1 } } })
   {
     double p[3];
     image->TransformContinuousIndexToPhysicalPoint(index[0], index[1], index[2], p);

@@ -50,7 +50,8 @@ TEST_F(AneurysmPhantom, HasMraLikeContrastAndThreeCappedEnds)
   EXPECT_EQ(Built.caps->GetNumberOfPolys() > 0, true);
   const bender::Point3 ci = g.PhysicalToIndex(Built.seed);
   const float lumen = Built.volume.voxels[g.LinearIndex(std::size_t(std::lround(ci[0])),
-    std::size_t(std::lround(ci[1])), std::size_t(std::lround(ci[2])))];
+    std::size_t(std::lround(ci[1])),
+    std::size_t(std::lround(ci[2])))];
   EXPECT_NEAR(lumen, 400.0, 80.0);
   EXPECT_NEAR(Built.volume.voxels[0], 100.0, 60.0);
   // Deterministic: the same parameters give the same voxels.
@@ -79,8 +80,9 @@ TEST_P(PhantomExtractors, DefaultPipelineIsWithinHalfAVoxel)
   EXPECT_EQ(result.nonManifoldEdges, 0u);
   const bender::SurfaceAccuracy a = Accuracy(result.surface);
   const bender::TriangleQuality q = bender::MeasureTriangleQuality(result.surface);
-  std::cout << "[ phantom  ] extractor " << (GetParam() == bender::SurfaceExtractor::Vtk ? "vtk" : "itk")
-            << ": " << result.surface->GetNumberOfPolys() << " triangles; to truth mean " << a.toTruth.mean
+  std::cout << "[ phantom  ] extractor "
+            << (GetParam() == bender::SurfaceExtractor::Vtk ? "vtk" : "itk") << ": "
+            << result.surface->GetNumberOfPolys() << " triangles; to truth mean " << a.toTruth.mean
             << " p95 " << a.toTruth.p95 << "; from truth mean " << a.fromTruth.mean << " p95 "
             << a.fromTruth.p95 << " mm; min angle mean " << q.meanMinAngle << " deg, <10 deg "
             << 100.0 * q.fractionBelow10Deg << "%\n";
@@ -93,11 +95,11 @@ TEST_P(PhantomExtractors, DefaultPipelineIsWithinHalfAVoxel)
   EXPECT_GT(double(a.fromTruth.samples), 0.85 * double(Truth->GetNumberOfPoints()));
 }
 
-INSTANTIATE_TEST_SUITE_P(Segmentation, PhantomExtractors,
+INSTANTIATE_TEST_SUITE_P(Segmentation,
+  PhantomExtractors,
   ::testing::Values(bender::SurfaceExtractor::Vtk, bender::SurfaceExtractor::Itk),
-  [](const ::testing::TestParamInfo<bender::SurfaceExtractor>& info) {
-    return info.param == bender::SurfaceExtractor::Vtk ? "Vtk" : "Itk";
-  });
+  [](const ::testing::TestParamInfo<bender::SurfaceExtractor>& info)
+  { return info.param == bender::SurfaceExtractor::Vtk ? "Vtk" : "Itk"; });
 
 TEST_F(AneurysmPhantom, VesselnessSegmentsTheTubularVesselsOnly)
 {
@@ -114,7 +116,8 @@ TEST_F(AneurysmPhantom, VesselnessSegmentsTheTubularVesselsOnly)
   {
     bright += (vessels.voxels[n] && Built.volume.voxels[n] > 200.0f) ? 1 : 0;
   }
-  EXPECT_GT(double(bright), 0.85 * double(vessels.CountInside())) << "vesselness leaks into background";
+  EXPECT_GT(double(bright), 0.85 * double(vessels.CountInside()))
+    << "vesselness leaks into background";
   EXPECT_GT(double(vessels.CountInside()), 0.15 * double(lumen));
   EXPECT_LT(vessels.CountInside(), lumen) << "the round sac is not a vessel";
 }
@@ -127,7 +130,9 @@ TEST_F(AneurysmPhantom, SegmentCommandWritesTheSurfaceWithinTheBound)
   std::ostringstream out, err;
   std::ostringstream seed;
   seed << Built.seed[0] << "," << Built.seed[1] << "," << Built.seed[2];
-  ASSERT_EQ(bender::RunSegmentCli({ volume, "-o", dir.File("lumen.stl"), "--seed", seed.str(), "-q" }, out, err), 0)
+  ASSERT_EQ(bender::RunSegmentCli(
+              { volume, "-o", dir.File("lumen.stl"), "--seed", seed.str(), "-q" }, out, err),
+    0)
     << err.str();
   EXPECT_NE(out.str().find("closed"), std::string::npos) << out.str();
   const auto surface = bender::ReadMesh(dir.File("lumen.stl"));
@@ -136,13 +141,17 @@ TEST_F(AneurysmPhantom, SegmentCommandWritesTheSurfaceWithinTheBound)
   EXPECT_LT(a.fromTruth.mean, 0.5 * Parameters.spacing);
 
   std::ostringstream out2, err2;
-  EXPECT_EQ(bender::RunSegmentCli({ volume, "-o", dir.File("x.stl"), "--seed", "500,0,0" }, out2, err2), 1);
+  EXPECT_EQ(
+    bender::RunSegmentCli({ volume, "-o", dir.File("x.stl"), "--seed", "500,0,0" }, out2, err2), 1);
   EXPECT_NE(err2.str().find("outside the volume"), std::string::npos) << err2.str();
   EXPECT_FALSE(std::filesystem::exists(dir.File("x.stl")));
   std::ostringstream out3, err3;
   bender::Point3 corner = Built.volume.geometry.IndexToPhysical({ { 1, 1, 1 } });
-  const std::string background = std::to_string(corner[0]) + "," + std::to_string(corner[1]) + "," + std::to_string(corner[2]);
-  EXPECT_EQ(bender::RunSegmentCli({ volume, "-o", dir.File("x.stl"), "--seed", background }, out3, err3), 1);
+  const std::string background =
+    std::to_string(corner[0]) + "," + std::to_string(corner[1]) + "," + std::to_string(corner[2]);
+  EXPECT_EQ(
+    bender::RunSegmentCli({ volume, "-o", dir.File("x.stl"), "--seed", background }, out3, err3),
+    1);
   EXPECT_NE(err3.str().find("background"), std::string::npos) << err3.str();
 }
 
@@ -173,14 +182,15 @@ TEST(SegmentationCli, PhantomThenSegmentThroughTheExecutable)
   EXPECT_EQ(status, 0);
   EXPECT_NE(text.find("--extractor"), std::string::npos);
 
-  text = RunCli("phantom " + bender_test::ExternalData("aneurysm_data.stl") + " -o " + dir.File("p.nii.gz") +
-      " --spacing 0.8",
+  text = RunCli("phantom " + bender_test::ExternalData("aneurysm_data.stl") + " -o " +
+      dir.File("p.nii.gz") + " --spacing 0.8",
     status);
   ASSERT_EQ(status, 0) << text;
   const std::string marker = "--seed ";
   const std::size_t at = text.find(marker);
   ASSERT_NE(at, std::string::npos) << text;
-  const std::string seed = text.substr(at + marker.size(), text.find('\n', at) - at - marker.size());
+  const std::string seed =
+    text.substr(at + marker.size(), text.find('\n', at) - at - marker.size());
   text = RunCli("segment " + dir.File("p.nii.gz") + " -o " + dir.File("s.vtp") + " --seed " + seed +
       " --extractor itk --target-triangles 5000",
     status);
@@ -191,16 +201,34 @@ TEST(SegmentationCli, PhantomThenSegmentThroughTheExecutable)
   text = RunCli("segment " + dir.File("missing.nrrd") + " -o " + dir.File("t.stl"), status);
   EXPECT_EQ(status, 1);
   EXPECT_NE(text.find("missing.nrrd: no such file"), std::string::npos) << text;
-  text = RunCli("segment " + dir.File("p.nii.gz") + " -o " + dir.File("t.stl") + " --method blob", status);
+  text = RunCli(
+    "segment " + dir.File("p.nii.gz") + " -o " + dir.File("t.stl") + " --method blob", status);
   EXPECT_EQ(status, 2);
   EXPECT_NE(text.find("--method"), std::string::npos) << text;
 }
 
 TEST(SegmentationCli, ArgumentsAreParsedAndCheckedAgainstTheirRanges)
 {
-  const bender::SegmentRequest r = bender::ParseSegmentArguments({ "in.nrrd", "-o", "out.stl", "--method",
-    "vesselness", "--seed", "1,2,3", "4,5,6", "--seed", "7,8,9", "--lower", "10", "--upper", "20",
-    "--smoothing", "0.3", "--target-triangles", "1000", "--extractor", "itk" });
+  const bender::SegmentRequest r = bender::ParseSegmentArguments({ "in.nrrd",
+    "-o",
+    "out.stl",
+    "--method",
+    "vesselness",
+    "--seed",
+    "1,2,3",
+    "4,5,6",
+    "--seed",
+    "7,8,9",
+    "--lower",
+    "10",
+    "--upper",
+    "20",
+    "--smoothing",
+    "0.3",
+    "--target-triangles",
+    "1000",
+    "--extractor",
+    "itk" });
   EXPECT_EQ(r.segmentation.method, bender::SegmentationMethod::Vesselness);
   ASSERT_EQ(r.segmentation.seeds.size(), 3u);
   EXPECT_EQ(r.segmentation.seeds[1][1], 5.0);
@@ -209,10 +237,14 @@ TEST(SegmentationCli, ArgumentsAreParsedAndCheckedAgainstTheirRanges)
   EXPECT_EQ(r.surface.targetTriangles, 1000u);
   EXPECT_DOUBLE_EQ(r.surface.smoothing, 0.3);
   EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd" }), bender::ParameterError);
-  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--seed", "1,2" }), bender::ParameterError);
-  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--smoothing", "2" }), bender::ParameterError);
-  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--lower", "x" }), bender::ParameterError);
-  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--frobnicate" }), bender::ParameterError);
+  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--seed", "1,2" }),
+    bender::ParameterError);
+  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--smoothing", "2" }),
+    bender::ParameterError);
+  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--lower", "x" }),
+    bender::ParameterError);
+  EXPECT_THROW(bender::ParseSegmentArguments({ "in.nrrd", "-o", "o.stl", "--frobnicate" }),
+    bender::ParameterError);
   EXPECT_TRUE(bender::ParseSegmentArguments({ "--help" }).help);
 }
 
@@ -244,8 +276,9 @@ TEST(HeadMri, Colin27GivesAMillionTriangleHeadInLps)
   }
   double tip[3];
   result.surface->GetPoint(nose, tip);
-  std::cout << "[ ch2      ] bounds " << bounds[0] << " " << bounds[1] << " " << bounds[2] << " " << bounds[3]
-            << " " << bounds[4] << " " << bounds[5] << "; nose " << tip[0] << " " << tip[1] << " " << tip[2] << "\n";
+  std::cout << "[ ch2      ] bounds " << bounds[0] << " " << bounds[1] << " " << bounds[2] << " "
+            << bounds[3] << " " << bounds[4] << " " << bounds[5] << "; nose " << tip[0] << " "
+            << tip[1] << " " << tip[2] << "\n";
   EXPECT_LT(std::abs(tip[0]), 15.0);
   EXPECT_LT(tip[2], bounds[5] - 40.0);
   EXPECT_LT(bounds[2], -60.0);

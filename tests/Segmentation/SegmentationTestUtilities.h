@@ -63,15 +63,23 @@ inline std::array<double, 9> ObliqueDirection()
   const double a = M_PI / 6.0;
   const double u[3] = { 1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0 };
   const double c = std::cos(a), s = std::sin(a), t = 1.0 - c;
-  return { { t * u[0] * u[0] + c, t * u[0] * u[1] - s * u[2], t * u[0] * u[2] + s * u[1],
-    t * u[0] * u[1] + s * u[2], t * u[1] * u[1] + c, t * u[1] * u[2] - s * u[0],
-    t * u[0] * u[2] - s * u[1], t * u[1] * u[2] + s * u[0], t * u[2] * u[2] + c } };
+  return { { t * u[0] * u[0] + c,
+    t * u[0] * u[1] - s * u[2],
+    t * u[0] * u[2] + s * u[1],
+    t * u[0] * u[1] + s * u[2],
+    t * u[1] * u[1] + c,
+    t * u[1] * u[2] - s * u[0],
+    t * u[0] * u[2] - s * u[1],
+    t * u[1] * u[2] + s * u[0],
+    t * u[2] * u[2] + c } };
 }
 
 /// A volume of background `low` with bright balls (LPS mm centres and radii) of value `high`,
 /// partial-volume smoothed over one voxel so that the iso-surface at the mid value is sub-voxel.
 inline bender::Volume BallsVolume(const bender::ImageGeometry& g,
-  const std::vector<std::pair<bender::Point3, double>>& balls, float low = 0.0f, float high = 100.0f)
+  const std::vector<std::pair<bender::Point3, double>>& balls,
+  float low = 0.0f,
+  float high = 100.0f)
 {
   bender::Volume v;
   v.geometry = g;
@@ -87,8 +95,8 @@ inline bender::Volume BallsVolume(const bender::ImageGeometry& g,
         float& value = v.voxels[g.LinearIndex(i, j, k)];
         for (const auto& ball : balls)
         {
-          const double d = std::sqrt(std::pow(p[0] - ball.first[0], 2) + std::pow(p[1] - ball.first[1], 2) +
-            std::pow(p[2] - ball.first[2], 2));
+          const double d = std::sqrt(std::pow(p[0] - ball.first[0], 2) +
+            std::pow(p[1] - ball.first[1], 2) + std::pow(p[2] - ball.first[2], 2));
           const double f = std::clamp(0.5 - (d - ball.second) / h, 0.0, 1.0);
           value = std::max(value, float(low + (high - low) * f));
         }
@@ -98,7 +106,9 @@ inline bender::Volume BallsVolume(const bender::ImageGeometry& g,
   return v;
 }
 
-inline bender::ImageGeometry CubeGeometry(std::size_t n, double spacing, const bender::Point3& origin = { { 0, 0, 0 } })
+inline bender::ImageGeometry CubeGeometry(std::size_t n,
+  double spacing,
+  const bender::Point3& origin = { { 0, 0, 0 } })
 {
   bender::ImageGeometry g;
   g.size = { { n, n, n } };

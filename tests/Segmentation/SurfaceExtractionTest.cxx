@@ -21,7 +21,8 @@ namespace
 
 using bender::Point3;
 
-bender::LabelMap BallMask(const bender::ImageGeometry& g, const std::vector<std::pair<Point3, double>>& balls)
+bender::LabelMap BallMask(const bender::ImageGeometry& g,
+  const std::vector<std::pair<Point3, double>>& balls)
 {
   bender::LabelMap mask;
   mask.geometry = g;
@@ -131,23 +132,25 @@ TEST_P(BothExtractors, ObliqueLeftHandedGridGivesTheLpsSphereWithOutwardNormals)
 
 TEST_P(BothExtractors, LumenTouchingTheVolumeBorderStillGivesAClosedSurface)
 {
-  const bender::LabelMap mask = BallMask(bender_test::CubeGeometry(20, 0.5), { { { { 0.0, 4.5, 4.5 } }, 3.0 } });
+  const bender::LabelMap mask =
+    BallMask(bender_test::CubeGeometry(20, 0.5), { { { { 0.0, 4.5, 4.5 } }, 3.0 } });
   bender::SurfaceParameters p;
   p.extractor = GetParam();
   EXPECT_EQ(bender::ExtractSurface(mask, p).boundaryEdges, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Segmentation, BothExtractors,
+INSTANTIATE_TEST_SUITE_P(Segmentation,
+  BothExtractors,
   ::testing::Values(bender::SurfaceExtractor::Vtk, bender::SurfaceExtractor::Itk),
-  [](const ::testing::TestParamInfo<bender::SurfaceExtractor>& info) {
-    return info.param == bender::SurfaceExtractor::Vtk ? "Vtk" : "Itk";
-  });
+  [](const ::testing::TestParamInfo<bender::SurfaceExtractor>& info)
+  { return info.param == bender::SurfaceExtractor::Vtk ? "Vtk" : "Itk"; });
 
 TEST(SurfaceExtraction, SeedsKeepTheirPieceAndTheDefaultKeepsTheLargest)
 {
   const Point3 small{ { 5.0, 5.0, 5.0 } };
   const Point3 large{ { 14.0, 14.0, 14.0 } };
-  const bender::LabelMap mask = BallMask(bender_test::CubeGeometry(40, 0.5), { { small, 2.5 }, { large, 4.0 } });
+  const bender::LabelMap mask =
+    BallMask(bender_test::CubeGeometry(40, 0.5), { { small, 2.5 }, { large, 4.0 } });
   bender::SurfaceParameters p;
   const SphereFit largest = Fit(bender::ExtractSurface(mask, p).surface, large, 4.0);
   EXPECT_LT(largest.meanRadiusError, 0.2);
@@ -223,7 +226,8 @@ TEST(SurfaceExtraction, SmoothingMatchesVtkWindowedSinc)
 
 TEST(SurfaceExtraction, BadParametersAndCancellation)
 {
-  const bender::LabelMap mask = BallMask(bender_test::CubeGeometry(20, 0.5), { { { { 5, 5, 5 } }, 3.0 } });
+  const bender::LabelMap mask =
+    BallMask(bender_test::CubeGeometry(20, 0.5), { { { { 5, 5, 5 } }, 3.0 } });
   bender::SurfaceParameters p;
   p.smoothing = 1.5;
   EXPECT_THROW(bender::ExtractSurface(mask, p), bender::ParameterError);

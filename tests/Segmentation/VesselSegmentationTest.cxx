@@ -22,7 +22,8 @@ const Point3 BallB{ { 22.0, 18.0, 16.0 } };
 
 bender::Volume TwoBalls()
 {
-  return bender_test::BallsVolume(bender_test::CubeGeometry(64, 0.5), { { BallA, 4.0 }, { BallB, 6.0 } });
+  return bender_test::BallsVolume(
+    bender_test::CubeGeometry(64, 0.5), { { BallA, 4.0 }, { BallB, 6.0 } });
 }
 
 std::size_t CountNear(const bender::LabelMap& mask, const Point3& centre, double radius)
@@ -34,7 +35,8 @@ std::size_t CountNear(const bender::LabelMap& mask, const Point3& centre, double
       for (std::size_t i = 0; i < g.size[0]; ++i)
       {
         const Point3 p = g.IndexToPhysical({ { double(i), double(j), double(k) } });
-        const double d2 = std::pow(p[0] - centre[0], 2) + std::pow(p[1] - centre[1], 2) + std::pow(p[2] - centre[2], 2);
+        const double d2 = std::pow(p[0] - centre[0], 2) + std::pow(p[1] - centre[1], 2) +
+          std::pow(p[2] - centre[2], 2);
         n += (d2 <= radius * radius && mask.voxels[g.LinearIndex(i, j, k)]) ? 1 : 0;
       }
   return n;
@@ -51,7 +53,8 @@ TEST(VesselSegmentation, ThresholdKeepsOnlyTheSeededComponent)
   p.lower = 50.0;
   p.seeds = { BallA };
   const bender::LabelMap mask = bender::SegmentVessels(TwoBalls(), p);
-  EXPECT_NEAR(double(CountNear(mask, BallA, 5.0)), BallVoxels(4.0, 0.5), 0.05 * BallVoxels(4.0, 0.5));
+  EXPECT_NEAR(
+    double(CountNear(mask, BallA, 5.0)), BallVoxels(4.0, 0.5), 0.05 * BallVoxels(4.0, 0.5));
   EXPECT_EQ(CountNear(mask, BallB, 7.0), 0u);
   EXPECT_EQ(mask.CountInside(), CountNear(mask, BallA, 5.0));
 }
@@ -72,12 +75,14 @@ TEST(VesselSegmentation, SeveralSeedsKeepSeveralComponentsAndNoSeedKeepsTheLarge
 
 TEST(VesselSegmentation, InternalHolesAreFilledUnlessAskedNotTo)
 {
-  bender::Volume v = bender_test::BallsVolume(bender_test::CubeGeometry(48, 0.5), { { BallA, 6.0 } });
+  bender::Volume v =
+    bender_test::BallsVolume(bender_test::CubeGeometry(48, 0.5), { { BallA, 6.0 } });
   // A dark cavity of radius 2 mm inside the ball (a calcification or a noise dropout).
   const auto& g = v.geometry;
   for (std::size_t n = 0; n < v.voxels.size(); ++n)
   {
-    const Point3 p = g.IndexToPhysical({ { double(n % 48), double((n / 48) % 48), double(n / (48 * 48)) } });
+    const Point3 p =
+      g.IndexToPhysical({ { double(n % 48), double((n / 48) % 48), double(n / (48 * 48)) } });
     if (std::hypot(p[0] - BallA[0], p[1] - BallA[1], p[2] - BallA[2]) < 2.0)
     {
       v.voxels[n] = 0.0f;
@@ -95,7 +100,8 @@ TEST(VesselSegmentation, InternalHolesAreFilledUnlessAskedNotTo)
 
 TEST(VesselSegmentation, ClosingFillsANarrowGroove)
 {
-  bender::Volume v = bender_test::BallsVolume(bender_test::CubeGeometry(48, 0.5), { { BallA, 6.0 } });
+  bender::Volume v =
+    bender_test::BallsVolume(bender_test::CubeGeometry(48, 0.5), { { BallA, 6.0 } });
   const auto& g = v.geometry;
   // A one-voxel-wide groove, 3 mm deep, cut into the ball's +x side.
   const std::size_t groove = std::size_t(std::lround(BallA[1] / 0.5));
@@ -119,7 +125,8 @@ TEST(VesselSegmentation, ClosingFillsANarrowGroove)
   const std::size_t closed = bender::SegmentVessels(v, p).CountInside();
   EXPECT_GT(double(closed), double(open) + 0.8 * double(grooveVoxels));
   EXPECT_THROW(
-    [&] {
+    [&]
+    {
       p.closingRadius = 6.0;
       bender::SegmentVessels(v, p);
     }(),
@@ -160,7 +167,8 @@ TEST(VesselSegmentation, ReportsProgressAndHonoursCancellation)
   std::atomic<bool> cancel{ false };
   bender::ProgressReporter progress;
   std::vector<std::string> stages;
-  progress.onProgress = [&](const std::string& stage, double fraction) {
+  progress.onProgress = [&](const std::string& stage, double fraction)
+  {
     EXPECT_GE(fraction, 0.0);
     EXPECT_LE(fraction, 1.0);
     if (stages.empty() || stages.back() != stage)
@@ -186,15 +194,22 @@ TEST(VesselSegmentation, ReportsProgressAndHonoursCancellation)
 
 /// Reference: breadth-first region growing from the seeds (face connectivity), then hole filling
 /// on the bounding box grown by 2 voxels (clipped): background not face-connected to the box's
-/// faces becomes foreground. What itk::ConnectedThresholdImageFilter + BinaryFillholeImageFilter did.
-std::vector<std::uint8_t> ReferenceSegmentation(const bender::Volume& v, float lower, const std::vector<std::array<long, 3>>& seeds)
+/// faces becomes foreground. What itk::ConnectedThresholdImageFilter + BinaryFillholeImageFilter
+/// did.
+std::vector<std::uint8_t> ReferenceSegmentation(const bender::Volume& v,
+  float lower,
+  const std::vector<std::array<long, 3>>& seeds)
 {
   const auto& g = v.geometry;
   const long n[3] = { long(g.size[0]), long(g.size[1]), long(g.size[2]) };
   const auto at = [&](long i, long j, long k) { return std::size_t(i + n[0] * (j + n[1] * k)); };
   std::vector<std::uint8_t> mask(g.VoxelCount(), 0);
-  const auto grow = [&](std::deque<std::array<long, 3>> queue, const std::array<long, 3>& lo,
-                      const std::array<long, 3>& hi, auto fillable, std::uint8_t value) {
+  const auto grow = [&](std::deque<std::array<long, 3>> queue,
+                      const std::array<long, 3>& lo,
+                      const std::array<long, 3>& hi,
+                      auto fillable,
+                      std::uint8_t value)
+  {
     while (!queue.empty())
     {
       const auto c = queue.front();
@@ -210,7 +225,8 @@ std::vector<std::uint8_t> ReferenceSegmentation(const bender::Volume& v, float l
         {
           auto d = c;
           d[std::size_t(axis)] += step;
-          if (d[std::size_t(axis)] >= lo[std::size_t(axis)] && d[std::size_t(axis)] <= hi[std::size_t(axis)])
+          if (d[std::size_t(axis)] >= lo[std::size_t(axis)] &&
+            d[std::size_t(axis)] <= hi[std::size_t(axis)])
           {
             queue.push_back(d);
           }
@@ -219,8 +235,12 @@ std::vector<std::uint8_t> ReferenceSegmentation(const bender::Volume& v, float l
     }
   };
   const std::array<long, 3> all{ { n[0] - 1, n[1] - 1, n[2] - 1 } };
-  grow(std::deque<std::array<long, 3>>(seeds.begin(), seeds.end()), { { 0, 0, 0 } }, all,
-    [&](std::size_t i) { return mask[i] == 0 && v.voxels[i] >= lower; }, 1);
+  grow(
+    std::deque<std::array<long, 3>>(seeds.begin(), seeds.end()),
+    { { 0, 0, 0 } },
+    all,
+    [&](std::size_t i) { return mask[i] == 0 && v.voxels[i] >= lower; },
+    1);
   std::array<long, 3> lo{ { n[0], n[1], n[2] } };
   std::array<long, 3> hi{ { -1, -1, -1 } };
   for (long k = 0; k < n[2]; ++k)
@@ -248,7 +268,8 @@ std::vector<std::uint8_t> ReferenceSegmentation(const bender::Volume& v, float l
         {
           faces.push_back({ { i, j, k } });
         }
-  grow(std::move(faces), lo, hi, [&](std::size_t i) { return mask[i] == 0; }, 2);
+  grow(
+    std::move(faces), lo, hi, [&](std::size_t i) { return mask[i] == 0; }, 2);
   for (long k = lo[2]; k <= hi[2]; ++k)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long i = lo[0]; i <= hi[0]; ++i)
@@ -268,7 +289,9 @@ TEST(VesselSegmentation, RegionGrowingAndHoleFillingMatchAVoxelByVoxelReference)
   for (int trial = 0; trial < 6; ++trial)
   {
     bender::ImageGeometry g;
-    g.size = { { std::size_t(20 + 7 * trial), std::size_t(31 - 2 * trial), std::size_t(17 + 3 * trial) } };
+    g.size = {
+      { std::size_t(20 + 7 * trial), std::size_t(31 - 2 * trial), std::size_t(17 + 3 * trial) }
+    };
     g.spacing = { { 0.5, 0.6, 0.7 } };
     bender::Volume v;
     v.geometry = g;
@@ -287,8 +310,11 @@ TEST(VesselSegmentation, RegionGrowingAndHoleFillingMatchAVoxelByVoxelReference)
       // Choose seeds in the window.
       for (;;)
       {
-        const std::array<long, 3> c{ { long(random() % g.size[0]), long(random() % g.size[1]), long(random() % g.size[2]) } };
-        if (v.voxels[g.LinearIndex(std::size_t(c[0]), std::size_t(c[1]), std::size_t(c[2]))] >= lower)
+        const std::array<long, 3> c{
+          { long(random() % g.size[0]), long(random() % g.size[1]), long(random() % g.size[2]) }
+        };
+        if (v.voxels[g.LinearIndex(std::size_t(c[0]), std::size_t(c[1]), std::size_t(c[2]))] >=
+          lower)
         {
           seeds.push_back(c);
           p.seeds.push_back(g.IndexToPhysical({ { double(c[0]), double(c[1]), double(c[2]) } }));
@@ -317,7 +343,8 @@ TEST(VesselSegmentation, RegionGrowingAndHoleFillingMatchAVoxelByVoxelReference)
 /// A bright tube of radius 1.2 mm along x and a ball of radius 5 mm.
 bender::Volume TubeAndBall(double& tubeVoxels)
 {
-  bender::Volume v = bender_test::BallsVolume(bender_test::CubeGeometry(64, 0.5), { { BallB, 5.0 } });
+  bender::Volume v =
+    bender_test::BallsVolume(bender_test::CubeGeometry(64, 0.5), { { BallB, 5.0 } });
   const auto& g = v.geometry;
   tubeVoxels = 0;
   for (std::size_t k = 0; k < 64; ++k)
@@ -352,10 +379,13 @@ TEST(VesselSegmentation, VesselnessFindsTheTubeAndNotTheBall)
       for (std::size_t i = 0; i < 64; ++i)
       {
         const Point3 q = g.IndexToPhysical({ { double(i), double(j), double(k) } });
-        inTube += (mask.voxels[g.LinearIndex(i, j, k)] && std::hypot(q[1] - 8.0, q[2] - 8.0) <= 1.7) ? 1 : 0;
+        inTube += (mask.voxels[g.LinearIndex(i, j, k)] && std::hypot(q[1] - 8.0, q[2] - 8.0) <= 1.7)
+          ? 1
+          : 0;
       }
   EXPECT_GT(double(inTube), 0.7 * tubeVoxels);
-  EXPECT_GT(double(inTube), 0.9 * double(mask.CountInside())) << "vesselness leaks outside the tube";
+  EXPECT_GT(double(inTube), 0.9 * double(mask.CountInside()))
+    << "vesselness leaks outside the tube";
   EXPECT_EQ(CountNear(mask, BallB, 5.5), 0u);
   // The ball centre has low vesselness: as a seed it is background.
   p.seeds = { BallB };
@@ -365,12 +395,14 @@ TEST(VesselSegmentation, VesselnessFindsTheTubeAndNotTheBall)
 TEST(VesselSegmentation, LevelSetRefinementPullsAnUndersegmentationOntoTheEdge)
 {
   // A blurred ball of radius 6 mm segmented with a too-high window: radius ~5 mm.
-  bender::Volume v = bender_test::BallsVolume(bender_test::CubeGeometry(48, 0.5), { { BallA, 6.0 } });
+  bender::Volume v =
+    bender_test::BallsVolume(bender_test::CubeGeometry(48, 0.5), { { BallA, 6.0 } });
   bender::Volume blurred = v;
   const auto& g = v.geometry;
   for (std::size_t n = 0; n < v.voxels.size(); ++n)
   {
-    const Point3 p = g.IndexToPhysical({ { double(n % 48), double((n / 48) % 48), double(n / (48 * 48)) } });
+    const Point3 p =
+      g.IndexToPhysical({ { double(n % 48), double((n / 48) % 48), double(n / (48 * 48)) } });
     const double d = std::hypot(p[0] - BallA[0], p[1] - BallA[1], p[2] - BallA[2]) - 6.0;
     blurred.voxels[n] = float(100.0 / (1.0 + std::exp(d / 0.6)));
   }

@@ -159,7 +159,8 @@ TEST(FastrakParser, BinaryWarningStatusIsPassedOnAndCounted)
   TrackerPose pose = SamplePoses()[0];
   pose.status = 'W';
   FastrakParser parser;
-  const std::vector<TrackerPose> got = Decode(parser, EncodeFastrakRecord(pose, FastrakFormat::Binary));
+  const std::vector<TrackerPose> got =
+    Decode(parser, EncodeFastrakRecord(pose, FastrakFormat::Binary));
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(got[0].status, 'W');
   EXPECT_EQ(parser.Statistics().warnings, 1u);
@@ -220,7 +221,8 @@ TEST(FastrakParser, QuaternionsAreNormalised)
   TrackerPose pose = SamplePoses()[0];
   pose.orientation = { 1.02, 0.0, 0.0, 0.0 };
   FastrakParser parser;
-  const std::vector<TrackerPose> got = Decode(parser, EncodeFastrakRecord(pose, FastrakFormat::Binary));
+  const std::vector<TrackerPose> got =
+    Decode(parser, EncodeFastrakRecord(pose, FastrakFormat::Binary));
   ASSERT_EQ(got.size(), 1u);
   EXPECT_DOUBLE_EQ(got[0].orientation.w, 1.0);
 }
@@ -231,7 +233,8 @@ TEST(FastrakParser, InchesAreConvertedToMillimetres)
   o.units = FastrakUnits::Inches;
   FastrakParser parser(o);
   const TrackerPose pose = MakePose(1, { 10.0, 0.0, 0.0 }, { 1, 0, 0, 0 }, false); // 1 unit
-  const std::vector<TrackerPose> got = Decode(parser, EncodeFastrakRecord(pose, FastrakFormat::Binary));
+  const std::vector<TrackerPose> got =
+    Decode(parser, EncodeFastrakRecord(pose, FastrakFormat::Binary));
   ASSERT_EQ(got.size(), 1u);
   EXPECT_DOUBLE_EQ(got[0].position.x, 25.4);
 }
@@ -239,7 +242,15 @@ TEST(FastrakParser, InchesAreConvertedToMillimetres)
 TEST(FastrakParser, AsciiFixedColumnsRunTogether)
 {
   // x = 30.01 cm and y = -150.70 cm run together, as the Fastrak prints them.
-  const std::string record = "01 " "  30.01" "-150.70" "   2.50" " 0.7071" " 0.0000" "-0.7071" " 0.0000" " 1 ";
+  const std::string record = "01 "
+                             "  30.01"
+                             "-150.70"
+                             "   2.50"
+                             " 0.7071"
+                             " 0.0000"
+                             "-0.7071"
+                             " 0.0000"
+                             " 1 ";
   ASSERT_EQ(record.size(), FastrakParser::AsciiRecordSize);
   FastrakParser parser = AsciiParser();
   const std::vector<TrackerPose> got = Decode(parser, Bytes(record.begin(), record.end()));

@@ -1,7 +1,7 @@
 // LibusbTransport through a fake UsbBackend: descriptor matching, the firmware-missing
 // product id, flush, packet handling, zero-length packets, timeouts and disconnects.
-#include "FastrakDevice.h"
 #include "LibusbTransport.h"
+#include "FastrakDevice.h"
 #include "TrackerCommand.h"
 #include "TrackingTestUtilities.h"
 
@@ -22,7 +22,7 @@ struct FakeUsb
   };
   std::mutex mutex;
   std::vector<UsbDeviceInfo> devices;
-  std::deque<Bytes> inPackets;     ///< each one IN transfer; an empty one times out
+  std::deque<Bytes> inPackets; ///< each one IN transfer; an empty one times out
   std::vector<Transfer> outTransfers;
   std::vector<std::uint8_t> inEndpointsUsed;
   std::vector<int> claimed;
@@ -41,8 +41,10 @@ public:
   }
   void ClaimInterface(int number) override { this->Usb->claimed.push_back(number); }
   void ReleaseInterface(int) override {}
-  UsbTransferResult BulkTransfer(
-    std::uint8_t endpoint, std::uint8_t* data, int length, unsigned timeoutMs) override
+  UsbTransferResult BulkTransfer(std::uint8_t endpoint,
+    std::uint8_t* data,
+    int length,
+    unsigned timeoutMs) override
   {
     std::unique_lock<std::mutex> lock(this->Usb->mutex);
     if (this->Usb->unplugged)
@@ -129,7 +131,8 @@ UsbDeviceInfo Fastrak(std::uint16_t product, std::uint16_t outPacket = 64)
   d.bus = 3;
   d.address = 7;
   d.interfaces.push_back({ 0, { { 0x81, 0x03, 8 } } });
-  d.interfaces.push_back({ 1, { { 0x02, 0x03, 8 }, { 0x86, 0x02, 64 }, { 0x04, 0x02, outPacket } } });
+  d.interfaces.push_back(
+    { 1, { { 0x02, 0x03, 8 }, { 0x86, 0x02, 64 }, { 0x04, 0x02, outPacket } } });
   return d;
 }
 
@@ -291,8 +294,17 @@ TEST(LibusbTransport, FastrakDeviceStreamsDisconnectsAndReopens)
   {
     written.append(t.data.begin(), t.data.end());
   }
-  for (const char* command : { "c", "u", "f", "l1,1\r", "l2,1\r", "l3,0\r", "l4,0\r",
-         "H1,1,0,0\r", "O1,2,11,16,0\r", "O2,2,11,16,0\r", "P" })
+  for (const char* command : { "c",
+         "u",
+         "f",
+         "l1,1\r",
+         "l2,1\r",
+         "l3,0\r",
+         "l4,0\r",
+         "H1,1,0,0\r",
+         "O1,2,11,16,0\r",
+         "O2,2,11,16,0\r",
+         "P" })
   {
     EXPECT_NE(written.find(command), std::string::npos) << "missing command " << command;
   }
@@ -385,7 +397,8 @@ TEST(LibusbTransport, SilentUnitFailsFastInsteadOfHanging)
   auto backend = std::make_shared<FakeBackend>(usb);
   FastrakOptions options;
   options.replyTimeout = std::chrono::milliseconds(100);
-  FastrakDevice device("usb", [backend] { return std::make_unique<LibusbTransport>(backend); }, options);
+  FastrakDevice device(
+    "usb", [backend] { return std::make_unique<LibusbTransport>(backend); }, options);
   const auto start = std::chrono::steady_clock::now();
   EXPECT_THROW(device.Open(), DeviceNotRespondingError);
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
@@ -395,7 +408,8 @@ TEST(LibusbTransport, SilentUnitFailsFastInsteadOfHanging)
 TEST(TrackerCli, UsbWithoutADeviceExitsNonZeroWithAClearMessage)
 {
   std::ostringstream out, err;
-  const int rc = RunTrackerCli({ "--device", "usb" }, out, err, std::make_shared<FakeBackend>(MakeUsb({})));
+  const int rc =
+    RunTrackerCli({ "--device", "usb" }, out, err, std::make_shared<FakeBackend>(MakeUsb({})));
   EXPECT_EQ(rc, 1);
   EXPECT_TRUE(out.str().empty());
   EXPECT_NE(err.str().find("no Polhemus Fastrak found on USB (vendor 0x0f44)"), std::string::npos)

@@ -1,7 +1,7 @@
 // SerialTransport on a pseudo-terminal: the test holds the master side, the transport
 // opens the slave side as it would open /dev/ttyS0.
-#include "FastrakDevice.h"
 #include "SerialTransport.h"
+#include "FastrakDevice.h"
 #include "TrackingTestUtilities.h"
 
 #include <fcntl.h>
@@ -148,7 +148,8 @@ TEST(SerialTransport, HangUpIsADisconnect)
   SerialTransport serial(pty.SlavePath);
   pty.CloseMaster();
   std::uint8_t buffer[8];
-  EXPECT_THROW(serial.Read(buffer, sizeof buffer, std::chrono::milliseconds(100)), DeviceDisconnectedError);
+  EXPECT_THROW(
+    serial.Read(buffer, sizeof buffer, std::chrono::milliseconds(100)), DeviceDisconnectedError);
 }
 
 TEST(SerialTransport, FastrakDeviceOverSerialDecodesStreamedRecords)
@@ -157,7 +158,8 @@ TEST(SerialTransport, FastrakDeviceOverSerialDecodesStreamedRecords)
   FastrakOptions options;
   options.configure = false; // nobody answers the commands on this pty
   const std::string path = pty.SlavePath;
-  FastrakDevice device("serial:" + path,
+  FastrakDevice device(
+    "serial:" + path,
     [path] { return std::make_unique<SerialTransport>(path, SerialSettings::Parse("115200,8N1")); },
     options);
   device.EnablePoseQueue(16, false);

@@ -5,8 +5,8 @@
 // in-memory Transport, and a scratch directory.
 
 #include "FastrakEncoding.h"
-#include "Transport.h"
 #include "TrackingErrors.h"
+#include "Transport.h"
 
 #include <gtest/gtest.h>
 
@@ -28,7 +28,9 @@ using Bytes = std::vector<std::uint8_t>;
 inline Quaternion AxisAngle(const Vec3& axis, double angle)
 {
   const Vec3 k = Normalized(axis);
-  return { std::cos(angle / 2), k.x * std::sin(angle / 2), k.y * std::sin(angle / 2),
+  return { std::cos(angle / 2),
+    k.x * std::sin(angle / 2),
+    k.y * std::sin(angle / 2),
     k.z * std::sin(angle / 2) };
 }
 
@@ -76,10 +78,13 @@ inline double Float32(double v)
 inline TrackerPose ExpectedBinary(const TrackerPose& p)
 {
   TrackerPose e = p;
-  e.position = { Float32(p.position.x / 10.0) * 10.0, Float32(p.position.y / 10.0) * 10.0,
+  e.position = { Float32(p.position.x / 10.0) * 10.0,
+    Float32(p.position.y / 10.0) * 10.0,
     Float32(p.position.z / 10.0) * 10.0 };
-  const double q[4] = { Float32(p.orientation.w), Float32(p.orientation.x),
-    Float32(p.orientation.y), Float32(p.orientation.z) };
+  const double q[4] = { Float32(p.orientation.w),
+    Float32(p.orientation.x),
+    Float32(p.orientation.y),
+    Float32(p.orientation.z) };
   const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
   e.orientation = { q[0] / n, q[1] / n, q[2] / n, q[3] / n };
   return e;
@@ -137,10 +142,13 @@ public:
     this->S->closed = false;
   }
   std::string Name() const override { return "scripted"; }
-  std::size_t Read(std::uint8_t* buffer, std::size_t capacity, std::chrono::milliseconds timeout) override
+  std::size_t Read(std::uint8_t* buffer,
+    std::size_t capacity,
+    std::chrono::milliseconds timeout) override
   {
     std::unique_lock<std::mutex> lock(this->S->mutex);
-    this->S->cv.wait_for(lock, timeout, [&] { return !this->S->incoming.empty() || this->S->disconnect; });
+    this->S->cv.wait_for(
+      lock, timeout, [&] { return !this->S->incoming.empty() || this->S->disconnect; });
     if (this->S->incoming.empty() && this->S->disconnect)
     {
       throw DeviceDisconnectedError("scripted: unplugged");

@@ -4,8 +4,8 @@
 #include "RibbonEndMapping.h"
 #include "SimulatedDevice.h"
 #include "TrackerCalibration.h"
-#include "TwoHandRibbonInput.h"
 #include "TrackingTestUtilities.h"
+#include "TwoHandRibbonInput.h"
 
 namespace bender::test
 {
@@ -128,8 +128,8 @@ TEST(TrackerCalibration, MapsPointsDirectionsAndOrientations)
 {
   const Quaternion r = AxisAngle({ 0, 0, 1 }, Pi / 2);
   const TrackerCalibration c(r, { 10, 20, 30 }, 2.0);
-  ExpectVecNear({ 10, 22, 30 }, c.MapPoint({ 1, 0, 0 }));    // rotate(2 * x) + t
-  ExpectVecNear({ 0, 1, 0 }, c.MapDirection({ 1, 0, 0 }));   // not scaled
+  ExpectVecNear({ 10, 22, 30 }, c.MapPoint({ 1, 0, 0 }));  // rotate(2 * x) + t
+  ExpectVecNear({ 0, 1, 0 }, c.MapDirection({ 1, 0, 0 })); // not scaled
   const Quaternion q = c.MapOrientation({ 1, 0, 0, 0 });
   ExpectVecNear({ 0, 1, 0 }, RotateByQuaternion(q, { 1, 0, 0 }));
   EXPECT_THROW(TrackerCalibration(r, { 0, 0, 0 }, 0.0), TrackingConfigurationError);
@@ -141,8 +141,9 @@ TEST(TrackerCalibration, FromThreePointsRecoversARigidAlignment)
 {
   const TrackerCalibration truth(AxisAngle({ 1, 2, 3 }, 0.7), { -5, 40, 12 }, 1.5);
   const std::array<Vec3, 3> tracker = { Vec3{ 0, 0, 0 }, Vec3{ 100, 0, 0 }, Vec3{ 30, 80, 5 } };
-  const std::array<Vec3, 3> model = { truth.MapPoint(tracker[0]), truth.MapPoint(tracker[1]),
-    truth.MapPoint(tracker[2]) };
+  const std::array<Vec3, 3> model = {
+    truth.MapPoint(tracker[0]), truth.MapPoint(tracker[1]), truth.MapPoint(tracker[2])
+  };
   const TrackerCalibration c = TrackerCalibration::FromThreePoints(tracker, model, 1.5);
   for (const Vec3& p : { Vec3{ 1, 2, 3 }, Vec3{ -50, 20, 70 } })
   {
@@ -244,7 +245,8 @@ TEST(TwoHandRibbonInput, ClutchFreezesTheRibbonAndReanchorsTheHands)
   ExpectVecNear(before.end.position, input.CurrentRibbon()->end.position, 1e-9);
   // ...and follows the hands again.
   input.UpdatePose(MakePose(1, { -90, 300, 0 }, { 1, 0, 0, 0 }, false));
-  ExpectVecNear(before.start.position + Vec3{ 10, 0, 0 }, input.CurrentRibbon()->start.position, 1e-9);
+  ExpectVecNear(
+    before.start.position + Vec3{ 10, 0, 0 }, input.CurrentRibbon()->start.position, 1e-9);
 }
 
 // The simulator drives the ribbon: grab at 1 s on a straight ribbon, release at 5 s on
@@ -301,7 +303,9 @@ TEST(TwoHandRibbonInput, SimulatorDrivesARibbonEndToEnd)
   ExpectVecNear({ c, 0, s }, final.start.tangent, 1e-9);
   ExpectVecNear({ c, 0, -s }, final.end.tangent, 1e-9);
   EXPECT_NEAR(Dot(final.end.normal, final.end.tangent), 0.0, 1e-9);
-  EXPECT_NEAR(std::acos(Dot(final.end.normal, Normalized(Cross(final.end.tangent, { 0, 1, 0 })))) , Pi / 4, 1e-9);
+  EXPECT_NEAR(std::acos(Dot(final.end.normal, Normalized(Cross(final.end.tangent, { 0, 1, 0 })))),
+    Pi / 4,
+    1e-9);
 
   const Ribbon straight(initial);
   const Ribbon arch(final);

@@ -7,17 +7,17 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCommand.h>
+#include <vtkImageData.h>
 #include <vtkInteractorEventRecorder.h>
 #include <vtkInteractorObserver.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
-#include <vtkImageData.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
-#include <vtkWindowToImageFilter.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
+#include <vtkWindowToImageFilter.h>
 
 #include <gtest/gtest.h>
 

@@ -24,7 +24,7 @@ namespace detail
 using FloatImage = itk::Image<float, 3>;
 using MaskImage = itk::Image<unsigned char, 3>;
 
-template <typename TImage>
+template<typename TImage>
 void SetItkGeometry(TImage* image, const ImageGeometry& g)
 {
   typename TImage::RegionType region;
@@ -48,7 +48,7 @@ void SetItkGeometry(TImage* image, const ImageGeometry& g)
   image->SetDirection(direction);
 }
 
-template <typename TImage>
+template<typename TImage>
 ImageGeometry GetItkGeometry(const TImage* image)
 {
   ImageGeometry g;
@@ -74,14 +74,15 @@ ImageGeometry GetItkGeometry(const TImage* image)
 }
 
 /// Wraps the caller's buffer without copying; the buffer must outlive the image.
-template <typename TPixel>
+template<typename TPixel>
 typename itk::Image<TPixel, 3>::Pointer WrapBuffer(const ImageGeometry& g, const TPixel* data)
 {
   using ImageType = itk::Image<TPixel, 3>;
   auto image = ImageType::New();
   SetItkGeometry(image.GetPointer(), g);
-  image->GetPixelContainer()->SetImportPointer(
-    const_cast<TPixel*>(data), static_cast<typename ImageType::PixelContainer::ElementIdentifier>(g.VoxelCount()), false);
+  image->GetPixelContainer()->SetImportPointer(const_cast<TPixel*>(data),
+    static_cast<typename ImageType::PixelContainer::ElementIdentifier>(g.VoxelCount()),
+    false);
   return image;
 }
 
@@ -94,7 +95,7 @@ inline MaskImage::Pointer WrapLabelMap(const LabelMap& m)
   return WrapBuffer<unsigned char>(m.geometry, m.voxels.data());
 }
 
-template <typename TImage, typename TPixel>
+template<typename TImage, typename TPixel>
 void CopyBuffer(const TImage* image, std::vector<TPixel>& out)
 {
   const auto n = image->GetBufferedRegion().GetNumberOfPixels();
@@ -105,11 +106,13 @@ void CopyBuffer(const TImage* image, std::vector<TPixel>& out)
 
 /// Forwards an ITK filter's progress to the reporter and aborts it when the cancel flag is set
 /// (ITK then throws itk::ProcessAborted, turned into SegmentationCancelled by the caller).
-inline void WatchFilter(itk::ProcessObject* filter, const ProgressReporter& reporter,
+inline void WatchFilter(itk::ProcessObject* filter,
+  const ProgressReporter& reporter,
   const std::string& stage)
 {
   auto command = itk::CStyleCommand::New();
-  auto onProgress = [filter, &reporter, stage]() {
+  auto onProgress = [filter, &reporter, stage]()
+  {
     reporter.Report(stage, static_cast<double>(filter->GetProgress()));
     if (reporter.Cancelled())
     {
@@ -122,9 +125,8 @@ inline void WatchFilter(itk::ProcessObject* filter, const ProgressReporter& repo
   };
   auto* callback = new Callback{ onProgress };
   command->SetClientData(callback);
-  command->SetCallback([](itk::Object*, const itk::EventObject&, void* data) {
-    static_cast<Callback*>(data)->fn();
-  });
+  command->SetCallback(
+    [](itk::Object*, const itk::EventObject&, void* data) { static_cast<Callback*>(data)->fn(); });
   command->SetClientDataDeleteCallback([](void* data) { delete static_cast<Callback*>(data); });
   filter->AddObserver(itk::ProgressEvent(), command);
 }
