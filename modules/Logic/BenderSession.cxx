@@ -57,10 +57,21 @@ std::string Describe(const WarpParameters& p)
 
 }
 
+namespace
+{
+// The live filter's input: the committed surface, or an empty one before any is loaded (a view
+// connected to the output port may render first; without an input VTK reports an error).
+vtkSmartPointer<vtkPolyData> InputOrEmpty(vtkPolyData* surface)
+{
+  return surface ? vtkSmartPointer<vtkPolyData>(surface) : vtkSmartPointer<vtkPolyData>::New();
+}
+}
+
 BenderSession::BenderSession()
 {
   this->LiveFilter->SetPrecision(WarpPrecision::Table);
   this->LiveFilter->PassThroughOn();
+  this->LiveFilter->SetInputData(InputOrEmpty(nullptr));
 }
 
 BenderSession::~BenderSession() = default;
@@ -109,7 +120,7 @@ void BenderSession::ShowCommitted()
   this->LiveFilter->PassThroughOn();
   this->LiveFilter->SetPreparedWarp(nullptr);
   this->LiveWarp.reset();
-  this->LiveFilter->SetInputData(this->History.Current());
+  this->LiveFilter->SetInputData(InputOrEmpty(this->History.Current()));
 }
 
 bool BenderSession::RefuseWhenBusy(const std::string& what)
@@ -301,7 +312,7 @@ bool BenderSession::Grab(const RibbonSpec& initial)
     return false;
   }
   this->LiveWarp.reset();
-  this->LiveFilter->SetInputData(this->History.Current());
+  this->LiveFilter->SetInputData(InputOrEmpty(this->History.Current()));
   this->LiveFilter->PassThroughOff();
   std::string problem;
   if (!this->SetLiveWarp(warp, problem))
