@@ -2,6 +2,7 @@
 // ribbon, grabs, drags a handle with a recorded event log, releases; undo/redo, plan
 // save/load/replay, export checked by bender-cli, a screenshot, a replayed tracker recording,
 // and a corrupt file dropped on the window. Run under Xvfb (QT_QPA_PLATFORM=xcb).
+#include "AppTestUtilities.h"
 #include "BendPanel.h"
 #include "DemoPipeline.h"
 #include "MainWindow.h"
@@ -63,33 +64,6 @@ vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* surface)
   auto copy = vtkSmartPointer<vtkPolyData>::New();
   copy->DeepCopy(surface);
   return copy;
-}
-
-// A tube along x, radius r, from x0 to x1 (the simulated hands hold (-100,0,0)-(100,0,0)).
-vtkSmartPointer<vtkPolyData> Tube(double x0, double x1, double r)
-{
-  const int rings = 121, sides = 24;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (int i = 0; i < rings; ++i)
-    for (int k = 0; k < sides; ++k)
-    {
-      const double a = 2 * 3.14159265358979 * k / sides;
-      points->InsertNextPoint(x0 + (x1 - x0) * i / (rings - 1), r * std::cos(a), r * std::sin(a));
-    }
-  vtkNew<vtkCellArray> cells;
-  for (int i = 0; i + 1 < rings; ++i)
-    for (int k = 0; k < sides; ++k)
-    {
-      const vtkIdType a = i * sides + k, b = i * sides + (k + 1) % sides;
-      const vtkIdType t1[3] = { a, b, b + sides }, t2[3] = { a, b + sides, a + sides };
-      cells->InsertNextCell(3, t1);
-      cells->InsertNextCell(3, t2);
-    }
-  auto tube = vtkSmartPointer<vtkPolyData>::New();
-  tube->SetPoints(points);
-  tube->SetPolys(cells);
-  return tube;
 }
 
 double DistanceToWire(const bender::RibbonSpec& ribbon, const double p[3])
@@ -474,7 +448,7 @@ private slots:
   {
     // A tube held by the recorded hands: (-100,0,0) to (100,0,0) at rest.
     const QString tube = this->Folder.filePath("tube.vtp");
-    bender::WriteMesh(Tube(-150, 150, 10), tube.toStdString());
+    bender::WriteMesh(bendertest::Tube(-150, 150, 10), tube.toStdString());
     QVERIFY(this->Window->openFile(tube));
     QVERIFY(this->Window->waitUntilIdle(30000));
     bender::BenderSession& session = this->Window->session();

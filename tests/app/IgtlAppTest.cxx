@@ -5,6 +5,7 @@
 // a newer one during and after a bend; a server that goes away ends the connection and Connect
 // reconnects. Loopback 127.0.0.1 on ephemeral ports only.
 
+#include "AppTestUtilities.h"
 #include "BenderSession.h"
 #include "IgtlProtocol.h"
 #include "IgtlSender.h"
@@ -48,33 +49,6 @@
 
 namespace
 {
-
-// A tube along x, radius r, from x0 to x1.
-vtkSmartPointer<vtkPolyData> Tube(double x0, double x1, double r)
-{
-  const int rings = 61, sides = 16;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (int i = 0; i < rings; ++i)
-    for (int k = 0; k < sides; ++k)
-    {
-      const double a = 2 * 3.14159265358979 * k / sides;
-      points->InsertNextPoint(x0 + (x1 - x0) * i / (rings - 1), r * std::cos(a), r * std::sin(a));
-    }
-  vtkNew<vtkCellArray> cells;
-  for (int i = 0; i + 1 < rings; ++i)
-    for (int k = 0; k < sides; ++k)
-    {
-      const vtkIdType a = i * sides + k, b = i * sides + (k + 1) % sides;
-      const vtkIdType t1[3] = { a, b, b + sides }, t2[3] = { a, b + sides, a + sides };
-      cells->InsertNextCell(3, t1);
-      cells->InsertNextCell(3, t2);
-    }
-  auto tube = vtkSmartPointer<vtkPolyData>::New();
-  tube->SetPoints(points);
-  tube->SetPolys(cells);
-  return tube;
-}
 
 // A loopback listening socket on an ephemeral port.
 int ListenLoopback(int backlog, int& port)
@@ -293,11 +267,7 @@ private slots:
   void initTestCase()
   {
     QVERIFY(this->Folder.isValid());
-    MainWindowOptions options;
-    options.autosavePath = this->Folder.filePath("autosave.bender-session.json");
-    options.offerRecovery = false;
-    options.interactive = false;
-    this->Window = std::make_unique<MainWindow>(options);
+    this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
     this->Window->resize(1280, 900);
     this->Window->show();
     QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));
@@ -305,7 +275,7 @@ private slots:
     QVERIFY(panels);
     panels->setCurrentWidget(this->panel());
     bender::BenderSession& session = this->Window->session();
-    QVERIFY(session.SetSurface(Tube(-150, 150, 10), "tube"));
+    QVERIFY(session.SetSurface(bendertest::Tube(-150, 150, 10, 61, 16), "tube"));
     bender::WarpParameters parameters = session.GetParameters();
     parameters.radius = 30;
     QVERIFY(session.SetParameters(parameters));

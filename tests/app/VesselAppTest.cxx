@@ -3,6 +3,7 @@
 // placed on the centerline by two real mouse clicks through the 3D view, a click on the sac
 // refused, the Measurements panel's live bend angle following the bend, and the plan's
 // before/after table after the release. Run under Xvfb (QT_QPA_PLATFORM=xcb).
+#include "AppTestUtilities.h"
 #include "BenderView.h"
 #include "GestureController.h"
 #include "MainActions.h"
@@ -147,11 +148,7 @@ private slots:
   void initTestCase()
   {
     QVERIFY(this->Folder.isValid());
-    MainWindowOptions options;
-    options.autosavePath = this->Folder.filePath("autosave.bender-session.json");
-    options.offerRecovery = false;
-    options.interactive = false;
-    this->Window = std::make_unique<MainWindow>(options);
+    this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
     this->Window->resize(1280, 900);
     this->Window->show();
     QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));

@@ -1,0 +1,63 @@
+#ifndef bender_AppTestUtilities_h
+#define bender_AppTestUtilities_h
+
+// Pieces shared by the window test suites (AppTests, IgtlAppTests, VesselAppTests).
+
+#include "MainWindow.h"
+
+#include <QString>
+
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <cmath>
+
+namespace bendertest
+{
+
+/// A tube along x of radius r from x0 to x1, `rings` x `sides` points, open at both ends.
+inline vtkSmartPointer<vtkPolyData> Tube(double x0,
+  double x1,
+  double r,
+  int rings = 121,
+  int sides = 24)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < sides; ++k)
+    {
+      const double a = 2 * 3.14159265358979 * k / sides;
+      points->InsertNextPoint(x0 + (x1 - x0) * i / (rings - 1), r * std::cos(a), r * std::sin(a));
+    }
+  vtkNew<vtkCellArray> cells;
+  for (int i = 0; i + 1 < rings; ++i)
+    for (int k = 0; k < sides; ++k)
+    {
+      const vtkIdType a = i * sides + k, b = i * sides + (k + 1) % sides;
+      const vtkIdType t1[3] = { a, b, b + sides }, t2[3] = { a, b + sides, a + sides };
+      cells->InsertNextCell(3, t1);
+      cells->InsertNextCell(3, t2);
+    }
+  auto tube = vtkSmartPointer<vtkPolyData>::New();
+  tube->SetPoints(points);
+  tube->SetPolys(cells);
+  return tube;
+}
+
+/// A window for tests: autosave in `folder`, no recovery offer, no questions asked.
+inline MainWindowOptions TestWindowOptions(const QString& folder)
+{
+  MainWindowOptions options;
+  options.autosavePath = folder + "/autosave.bender-session.json";
+  options.offerRecovery = false;
+  options.interactive = false;
+  return options;
+}
+
+} // namespace bendertest
+
+#endif
