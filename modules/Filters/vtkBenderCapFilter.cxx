@@ -1,9 +1,12 @@
 #include "vtkBenderCapFilter.h"
 
+#include "BenderErrors.h"
 #include "MeshTopology.h"
+#include "PatchLabels.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkDelaunay2D.h"
 #include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -17,10 +20,286 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <set>
 #include <vector>
 
 vtkStandardNewMacro(vtkBenderCapFilter);
+
+namespace
+{
+using P2 = std::array<double, 2>;
+using Tri = std::array<int, 3>;
+
+double Cross2(const P2& o, const P2& a, const P2& b)
+{
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+bool InsidePolygon(const std::vector<P2>& poly, const P2& p)
+{
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+  {
+    const P2& a = poly[i];
+    const P2& b = poly[j];
+    if ((a[1] > p[1]) != (b[1] > p[1]) &&
+      p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
+    {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+double SegmentDistance(const P2& p, const P2& a, const P2& b)
+{
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const double l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  const double ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
+  return std::sqrt(ex * ex + ey * ey);
+}
+
+/// Smallest angle of a triangle, degrees (0 for a degenerate one).
+double MinAngle2(const P2& a, const P2& b, const P2& c)
+{
+  const P2* v[3] = { &a, &b, &c };
+  double best = 180.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const P2& o = *v[k];
+    const P2& p = *v[(k + 1) % 3];
+    const P2& q = *v[(k + 2) % 3];
+    const double ux = p[0] - o[0], uy = p[1] - o[1], wx = q[0] - o[0], wy = q[1] - o[1];
+    const double nu = std::hypot(ux, uy), nw = std::hypot(wx, wy);
+    if (nu <= 0 || nw <= 0)
+    {
+      return 0.0;
+    }
+    const double cosine = std::clamp((ux * wx + uy * wy) / (nu * nw), -1.0, 1.0);
+    best = std::min(best, std::acos(cosine) * 180.0 / M_PI);
+  }
+  return best;
+}
+
+/// Constrained Delaunay triangulation of the counter-clockwise rim polygon (ids 0..m-1) and
+/// the interior points (ids m..), counter-clockwise triangles. Empty when the triangulation
+/// does not cover the polygon exactly (a rim edge missing, a triangle outside, a point unused).
+std::vector<Tri> ConstrainedDelaunay(const std::vector<P2>& rim, const std::vector<P2>& interior)
+{
+  const int m = static_cast<int>(rim.size());
+  const int n = m + static_cast<int>(interior.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (const P2& p : rim)
+  {
+    points->InsertNextPoint(p[0], p[1], 0.0);
+  }
+  for (const P2& p : interior)
+  {
+    points->InsertNextPoint(p[0], p[1], 0.0);
+  }
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  vtkNew<vtkCellArray> boundary;
+  boundary->InsertNextCell(m);
+  for (int i = 0; i < m; ++i)
+  {
+    boundary->InsertCellPoint(i);
+  }
+  vtkNew<vtkPolyData> source;
+  source->SetPoints(points);
+  source->SetPolys(boundary);
+  vtkNew<vtkDelaunay2D> delaunay;
+  delaunay->SetInputData(input);
+  delaunay->SetSourceData(source);
+  delaunay->SetTolerance(1e-12);
+  delaunay->SetProjectionPlaneMode(VTK_DELAUNAY_XY_PLANE);
+  delaunay->BoundingTriangulationOff();
+  delaunay->Update();
+  vtkPolyData* out = delaunay->GetOutput();
+  std::vector<Tri> tris;
+  if (out->GetNumberOfPoints() != n)
+  {
+    return {};
+  }
+  std::vector<P2> all(rim);
+  all.insert(all.end(), interior.begin(), interior.end());
+  std::set<std::pair<int, int>> edges;
+  std::vector<char> used(static_cast<std::size_t>(n), 0);
+  vtkIdType npts;
+  const vtkIdType* pts;
+  vtkCellArray* polys = out->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(npts, pts);)
+  {
+    if (npts != 3)
+    {
+      return {};
+    }
+    Tri t{ { static_cast<int>(pts[0]), static_cast<int>(pts[1]), static_cast<int>(pts[2]) } };
+    const double area = Cross2(all[t[0]], all[t[1]], all[t[2]]);
+    if (area == 0.0)
+    {
+      return {};
+    }
+    if (area < 0)
+    {
+      std::swap(t[1], t[2]);
+    }
+    const P2 centroid{ { (all[t[0]][0] + all[t[1]][0] + all[t[2]][0]) / 3.0,
+      (all[t[0]][1] + all[t[1]][1] + all[t[2]][1]) / 3.0 } };
+    if (!InsidePolygon(rim, centroid))
+    {
+      return {};
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      edges.insert({ t[k], t[(k + 1) % 3] });
+      used[static_cast<std::size_t>(t[k])] = 1;
+    }
+    tris.push_back(t);
+  }
+  // A triangulation of a polygon with m rim and k interior points has m + 2k - 2 triangles.
+  if (static_cast<int>(tris.size()) != m + 2 * (n - m) - 2 ||
+    std::count(used.begin(), used.end(), 0) != 0)
+  {
+    return {};
+  }
+  for (int i = 0; i < m; ++i)
+  {
+    if (!edges.count({ i, (i + 1) % m }))
+    {
+      return {};
+    }
+  }
+  return tris;
+}
+
+/// The cap of a counter-clockwise rim: interior points and counter-clockwise triangles.
+/// False when no triangulation covers the rim.
+bool TriangulateCap(const std::vector<P2>& rim, std::vector<P2>& interior, std::vector<Tri>& tris)
+{
+  const std::size_t m = rim.size();
+  double h = 0.0;
+  double lo[2] = { rim[0][0], rim[0][1] }, hi[2] = { rim[0][0], rim[0][1] };
+  for (std::size_t i = 0; i < m; ++i)
+  {
+    h += std::hypot(rim[(i + 1) % m][0] - rim[i][0], rim[(i + 1) % m][1] - rim[i][1]);
+    for (int a = 0; a < 2; ++a)
+    {
+      lo[a] = std::min(lo[a], rim[i][a]);
+      hi[a] = std::max(hi[a], rim[i][a]);
+    }
+  }
+  h /= static_cast<double>(m);
+  for (const double margin : { 0.6, 0.9 })
+  {
+    // A triangular lattice of spacing h through the origin (the rim's centroid).
+    interior.clear();
+    const double dy = h * std::sqrt(3.0) / 2.0;
+    const long j0 = static_cast<long>(std::floor(lo[1] / dy)) - 1;
+    const long j1 = static_cast<long>(std::ceil(hi[1] / dy)) + 1;
+    const long i0 = static_cast<long>(std::floor(lo[0] / h)) - 1;
+    const long i1 = static_cast<long>(std::ceil(hi[0] / h)) + 1;
+    for (long j = j0; j <= j1; ++j)
+    {
+      for (long i = i0; i <= i1; ++i)
+      {
+        const P2 p{ { (static_cast<double>(i) + ((j % 2) != 0 ? 0.5 : 0.0)) * h,
+          static_cast<double>(j) * dy } };
+        if (!InsidePolygon(rim, p))
+        {
+          continue;
+        }
+        bool farEnough = true;
+        for (std::size_t k = 0; k < m && farEnough; ++k)
+        {
+          farEnough = SegmentDistance(p, rim[k], rim[(k + 1) % m]) >= margin * h;
+        }
+        if (farEnough)
+        {
+          interior.push_back(p);
+        }
+      }
+    }
+    tris = ConstrainedDelaunay(rim, interior);
+    if (tris.empty())
+    {
+      continue;
+    }
+    // Laplacian smoothing of the interior points, each pass followed by a new triangulation;
+    // a pass whose triangulation fails is dropped.
+    for (int pass = 0; pass < 3; ++pass)
+    {
+      std::vector<std::set<int>> neighbours(m + interior.size());
+      for (const Tri& t : tris)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          neighbours[t[k]].insert(t[(k + 1) % 3]);
+          neighbours[t[k]].insert(t[(k + 2) % 3]);
+        }
+      }
+      std::vector<P2> moved(interior);
+      for (std::size_t q = 0; q < interior.size(); ++q)
+      {
+        const auto& around = neighbours[m + q];
+        P2 mean{ { 0, 0 } };
+        for (int v : around)
+        {
+          const P2& p = v < static_cast<int>(m) ? rim[v] : interior[v - m];
+          mean[0] += p[0] / static_cast<double>(around.size());
+          mean[1] += p[1] / static_cast<double>(around.size());
+        }
+        if (!around.empty() && InsidePolygon(rim, mean))
+        {
+          moved[q] = mean;
+        }
+      }
+      std::vector<Tri> retriangulated = ConstrainedDelaunay(rim, moved);
+      if (retriangulated.empty())
+      {
+        break;
+      }
+      interior = moved;
+      tris = retriangulated;
+    }
+    return true;
+  }
+  // Last resort: the rim alone.
+  interior.clear();
+  tris = ConstrainedDelaunay(rim, interior);
+  return !tris.empty();
+}
+
+struct Loop
+{
+  std::vector<vtkIdType> Rim;
+  double Centre[3];
+  double Normal[3]; // the loop runs counter-clockwise about it
+  double E1[3], E2[3];
+  std::vector<P2> Rim2;
+  std::vector<P2> Interior;
+  std::vector<Tri> Tris;
+  double Area = 0.0;
+  double MaxRimDistance = 0.0;
+};
+} // namespace
+
+void vtkBenderCapFilter::AddCapName(const double point[3], const std::string& name, bool inlet)
+{
+  this->Names.push_back(CapName{ { { point[0], point[1], point[2] } }, name, inlet });
+  this->Modified();
+}
+
+void vtkBenderCapFilter::ClearCapNames()
+{
+  this->Names.clear();
+  this->Modified();
+}
 
 int vtkBenderCapFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
@@ -29,13 +308,43 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->LastError.clear();
-  this->NumberOfCaps = 0;
+  this->Caps.clear();
   this->NumberOfSkippedLoops = 0;
+  auto fail = [this, output](const std::string& message)
+  {
+    this->LastError = message;
+    this->Caps.clear();
+    if (output)
+    {
+      output->Initialize();
+    }
+    vtkErrorMacro(<< message);
+    return 0;
+  };
   if (!input || !output)
   {
-    this->LastError = "no input surface";
-    vtkErrorMacro(<< this->LastError);
-    return 0;
+    return fail("no input surface");
+  }
+  {
+    std::set<std::string> seen;
+    int inlets = 0;
+    for (const CapName& entry : this->Names)
+    {
+      if (!bender::IsValidPatchName(entry.Name) || entry.Name == "wall")
+      {
+        return fail("invalid cap name '" + entry.Name +
+          "': use letters, digits and '_', not starting with a digit, not 'wall'");
+      }
+      if (!seen.insert(entry.Name).second)
+      {
+        return fail("the cap name '" + entry.Name + "' is given twice");
+      }
+      inlets += entry.Inlet ? 1 : 0;
+    }
+    if (inlets > 1)
+    {
+      return fail("more than one cap is marked as the inlet");
+    }
   }
   const vtkIdType n0 = input->GetNumberOfPoints();
   std::vector<std::array<double, 3>> x(static_cast<std::size_t>(n0));
@@ -44,9 +353,7 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
     input->GetPoint(i, x[i].data());
     if (!std::isfinite(x[i][0]) || !std::isfinite(x[i][1]) || !std::isfinite(x[i][2]))
     {
-      this->LastError = "the input surface has non-finite (NaN or infinite) point coordinates";
-      vtkErrorMacro(<< this->LastError);
-      return 0;
+      return fail("the input surface has non-finite (NaN or infinite) point coordinates");
     }
   }
   // Triangles and the input cell each comes from (cells are verts, lines, polys, strips).
@@ -68,69 +375,30 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
 
   // Directed boundary loops: each boundary edge (a -> b) as its only triangle runs it. Only
   // closed loops of at least 3 vertices are capped; the others are counted as skipped.
-  std::vector<std::vector<vtkIdType>> loops;
-  int broken = 0;
+  std::vector<Loop> loops;
   for (const bender::BoundaryChain& chain : bender::BoundaryLoops(tris, n0))
   {
-    if (chain.closed && chain.vertices.size() >= 3)
+    if (!chain.closed || chain.vertices.size() < 3)
     {
-      loops.emplace_back(chain.vertices.begin(), chain.vertices.end());
+      ++this->NumberOfSkippedLoops;
+      continue;
     }
-    else
-    {
-      ++broken;
-    }
-  }
-  this->NumberOfSkippedLoops = broken;
-  std::sort(loops.begin(),
-    loops.end(),
-    [](const auto& a, const auto& b)
-    {
-      return a.size() != b.size()
-        ? a.size() > b.size()
-        : *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
-    });
-
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (const auto& p : x)
-  {
-    points->InsertNextPoint(p.data());
-  }
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> patch;
-  patch->SetName(PatchIdArrayName());
-  for (std::size_t t = 0; t < tris.size(); t += 3)
-  {
-    const vtkIdType ids[3] = { tris[t], tris[t + 1], tris[t + 2] };
-    polys->InsertNextCell(3, ids);
-    patch->InsertNextValue(0);
-  }
-  const vtkIdType wallTriangles = polys->GetNumberOfCells();
-
-  vtkPointData* outPD = output->GetPointData();
-  vtkPointData* inPD = input->GetPointData();
-  vtkNew<vtkPointData> pd;
-  pd->CopyNormalsOff();
-  pd->InterpolateAllocate(inPD, n0 + static_cast<vtkIdType>(loops.size()));
-  for (vtkIdType i = 0; i < n0; ++i)
-  {
-    pd->CopyData(inPD, i, i);
-  }
-  for (const auto& loop : loops)
-  {
+    Loop loop;
+    loop.Rim.assign(chain.vertices.begin(), chain.vertices.end());
     // Least-squares plane: centroid and the smallest eigenvector of the covariance.
-    double c[3] = { 0, 0, 0 };
-    for (vtkIdType v : loop)
+    double* c = loop.Centre;
+    c[0] = c[1] = c[2] = 0.0;
+    const double m = static_cast<double>(loop.Rim.size());
+    for (vtkIdType v : loop.Rim)
     {
       for (int a = 0; a < 3; ++a)
       {
-        c[a] += x[v][a] / static_cast<double>(loop.size());
+        c[a] += x[v][a] / m;
       }
     }
     double cov[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
     double diameter = 0.0;
-    for (vtkIdType v : loop)
+    for (vtkIdType v : loop.Rim)
     {
       for (int a = 0; a < 3; ++a)
       {
@@ -147,41 +415,275 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
     double* vecs[3] = { vec0, vec1, vec2 };
     vtkMath::Jacobi(rows, eigen, vecs);
     // Eigenvalues sorted decreasing; columns of vecs are eigenvectors.
-    const double normal[3] = { vecs[0][2], vecs[1][2], vecs[2][2] };
-    double worst = 0.0;
-    for (vtkIdType v : loop)
+    for (int a = 0; a < 3; ++a)
+    {
+      loop.E1[a] = vecs[a][0];
+      loop.E2[a] = vecs[a][1];
+    }
+    vtkMath::Cross(loop.E1, loop.E2, loop.Normal);
+    vtkMath::Normalize(loop.Normal);
+    for (vtkIdType v : loop.Rim)
     {
       const double d[3] = { x[v][0] - c[0], x[v][1] - c[1], x[v][2] - c[2] };
-      worst = std::max(worst, std::abs(vtkMath::Dot(d, normal)));
+      loop.MaxRimDistance = std::max(loop.MaxRimDistance, std::abs(vtkMath::Dot(d, loop.Normal)));
+      loop.Rim2.push_back(P2{ { vtkMath::Dot(d, loop.E1), vtkMath::Dot(d, loop.E2) } });
     }
-    if (worst > this->Planarity * diameter)
+    if (loop.MaxRimDistance > this->Planarity * diameter)
     {
       ++this->NumberOfSkippedLoops;
       continue;
     }
-    const vtkIdType centre = points->InsertNextPoint(c);
-    vtkNew<vtkIdList> ids;
-    std::vector<double> weights(loop.size(), 1.0 / static_cast<double>(loop.size()));
-    for (vtkIdType v : loop)
+    // Counter-clockwise about the normal.
+    double twiceArea = 0.0;
+    for (std::size_t i = 0; i < loop.Rim2.size(); ++i)
     {
-      ids->InsertNextId(v);
+      const P2& a = loop.Rim2[i];
+      const P2& b = loop.Rim2[(i + 1) % loop.Rim2.size()];
+      twiceArea += a[0] * b[1] - a[1] * b[0];
     }
-    pd->InterpolatePoint(inPD, centre, ids, weights.data());
-    ++this->NumberOfCaps;
-    for (std::size_t k = 0; k < loop.size(); ++k)
+    if (twiceArea < 0)
     {
-      // The wall traverses a -> b; the cap traverses b -> a.
-      const vtkIdType a = loop[k], b = loop[(k + 1) % loop.size()];
-      const vtkIdType cap[3] = { b, a, centre };
-      polys->InsertNextCell(3, cap);
-      patch->InsertNextValue(this->NumberOfCaps);
+      for (int a = 0; a < 3; ++a)
+      {
+        loop.E2[a] = -loop.E2[a];
+        loop.Normal[a] = -loop.Normal[a];
+      }
+      for (P2& p : loop.Rim2)
+      {
+        p[1] = -p[1];
+      }
+    }
+    loop.Area = 0.5 * std::abs(twiceArea);
+    if (!TriangulateCap(loop.Rim2, loop.Interior, loop.Tris))
+    {
+      ++this->NumberOfSkippedLoops;
+      continue;
+    }
+    loops.push_back(std::move(loop));
+  }
+  // Ids by decreasing area, ties by the smallest rim vertex.
+  std::sort(loops.begin(),
+    loops.end(),
+    [](const Loop& a, const Loop& b)
+    {
+      if (a.Area != b.Area)
+      {
+        return a.Area > b.Area;
+      }
+      return *std::min_element(a.Rim.begin(), a.Rim.end()) <
+        *std::min_element(b.Rim.begin(), b.Rim.end());
+    });
+
+  // Names: by position, then the defaults for the others.
+  std::vector<std::string> names(loops.size());
+  int inlet = loops.empty() ? -1 : 0;
+  for (const CapName& entry : this->Names)
+  {
+    if (loops.empty())
+    {
+      break;
+    }
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < loops.size(); ++k)
+    {
+      if (vtkMath::Distance2BetweenPoints(entry.Point.data(), loops[k].Centre) <
+        vtkMath::Distance2BetweenPoints(entry.Point.data(), loops[best].Centre))
+      {
+        best = k;
+      }
+    }
+    if (!names[best].empty())
+    {
+      const double* c = loops[best].Centre;
+      return fail("the cap names '" + names[best] + "' and '" + entry.Name +
+        "' both point at the cap centred at (" + std::to_string(c[0]) + ", " +
+        std::to_string(c[1]) + ", " + std::to_string(c[2]) + ")");
+    }
+    names[best] = entry.Name;
+    if (entry.Inlet)
+    {
+      inlet = static_cast<int>(best);
+    }
+  }
+  {
+    std::set<std::string> taken(names.begin(), names.end());
+    int next = 1;
+    for (std::size_t k = 0; k < loops.size(); ++k)
+    {
+      if (!names[k].empty())
+      {
+        continue;
+      }
+      if (static_cast<int>(k) == inlet && !taken.count("inlet"))
+      {
+        names[k] = "inlet";
+      }
+      else
+      {
+        std::string name;
+        do
+        {
+          name = "outlet_" + std::to_string(next++);
+        } while (taken.count(name));
+        names[k] = name;
+      }
+      taken.insert(names[k]);
     }
   }
 
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (const auto& p : x)
+  {
+    points->InsertNextPoint(p.data());
+  }
+  std::vector<std::array<vtkIdType, 3>> cells;
+  std::vector<int> ids;
+  for (std::size_t t = 0; t < tris.size(); t += 3)
+  {
+    cells.push_back({ { tris[t], tris[t + 1], tris[t + 2] } });
+    ids.push_back(bender::kWallEntityId);
+  }
+  const vtkIdType wallTriangles = static_cast<vtkIdType>(cells.size());
+
+  vtkPointData* inPD = input->GetPointData();
+  vtkNew<vtkPointData> pd;
+  pd->CopyNormalsOff();
+  pd->InterpolateAllocate(inPD, n0);
+  for (vtkIdType i = 0; i < n0; ++i)
+  {
+    pd->CopyData(inPD, i, i);
+  }
+  for (std::size_t k = 0; k < loops.size(); ++k)
+  {
+    Loop& loop = loops[k];
+    const int id = static_cast<int>(k) + 2;
+    const double* c = loop.Centre;
+    if (this->ProjectRim)
+    {
+      for (vtkIdType v : loop.Rim)
+      {
+        double p[3];
+        points->GetPoint(v, p);
+        const double d[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+        const double off = vtkMath::Dot(d, loop.Normal);
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] -= off * loop.Normal[a];
+        }
+        points->SetPoint(v, p);
+      }
+    }
+    vtkNew<vtkIdList> rimIds;
+    for (vtkIdType v : loop.Rim)
+    {
+      rimIds->InsertNextId(v);
+    }
+    std::vector<double> weights(loop.Rim.size(), 1.0 / static_cast<double>(loop.Rim.size()));
+    std::vector<vtkIdType> pointOf(loop.Rim.begin(), loop.Rim.end());
+    for (const P2& q : loop.Interior)
+    {
+      const double p[3] = { c[0] + q[0] * loop.E1[0] + q[1] * loop.E2[0],
+        c[1] + q[0] * loop.E1[1] + q[1] * loop.E2[1],
+        c[2] + q[0] * loop.E1[2] + q[1] * loop.E2[2] };
+      const vtkIdType id3 = points->InsertNextPoint(p);
+      pd->InterpolatePoint(inPD, id3, rimIds, weights.data());
+      pointOf.push_back(id3);
+    }
+    CapInfo info;
+    info.Id = id;
+    info.Name = names[k];
+    info.Inlet = static_cast<int>(k) == inlet;
+    info.RimPoints = static_cast<int>(loop.Rim.size());
+    info.MaxRimDistance = loop.MaxRimDistance;
+    info.MinAngle = 180.0;
+    info.MinInteriorAngle = 180.0;
+    const int m = static_cast<int>(loop.Rim.size());
+    double centroid[2] = { 0, 0 };
+    double area = 0.0;
+    for (const Tri& t : loop.Tris)
+    {
+      auto at = [&](int v) -> const P2& { return v < m ? loop.Rim2[v] : loop.Interior[v - m]; };
+      const double angle = MinAngle2(at(t[0]), at(t[1]), at(t[2]));
+      info.MinAngle = std::min(info.MinAngle, angle);
+      if (t[0] >= m && t[1] >= m && t[2] >= m)
+      {
+        info.MinInteriorAngle = std::min(info.MinInteriorAngle, angle);
+      }
+      const double a = 0.5 * Cross2(at(t[0]), at(t[1]), at(t[2]));
+      area += a;
+      for (int e = 0; e < 2; ++e)
+      {
+        centroid[e] += a * (at(t[0])[e] + at(t[1])[e] + at(t[2])[e]) / 3.0;
+      }
+      // Counter-clockwise in the plane: the cap runs the rim the other way from the wall.
+      cells.push_back({ { pointOf[t[0]], pointOf[t[2]], pointOf[t[1]] } });
+      ids.push_back(id);
+    }
+    if (info.MinInteriorAngle == 180.0)
+    {
+      info.MinInteriorAngle = 0.0;
+    }
+    info.Area = area;
+    info.Radius = std::sqrt(area / M_PI);
+    for (int a = 0; a < 3; ++a)
+    {
+      info.Centre[a] = c[a] + (centroid[0] * loop.E1[a] + centroid[1] * loop.E2[a]) / area;
+      info.Normal[a] = -loop.Normal[a];
+    }
+    this->Caps.push_back(info);
+  }
+
+  // Outwards: a closed output with a negative signed volume is reversed.
+  if (this->NumberOfSkippedLoops == 0 && !cells.empty())
+  {
+    const std::vector<std::int64_t> all = [&cells]()
+    {
+      std::vector<std::int64_t> flat;
+      for (const auto& t : cells)
+      {
+        flat.insert(flat.end(), t.begin(), t.end());
+      }
+      return flat;
+    }();
+    if (bender::BoundaryLoops(all, points->GetNumberOfPoints()).empty())
+    {
+      double volume = 0.0;
+      for (const auto& t : cells)
+      {
+        double a[3], b[3], c[3], bc[3];
+        points->GetPoint(t[0], a);
+        points->GetPoint(t[1], b);
+        points->GetPoint(t[2], c);
+        vtkMath::Cross(b, c, bc);
+        volume += vtkMath::Dot(a, bc) / 6.0;
+      }
+      if (volume < 0)
+      {
+        for (auto& t : cells)
+        {
+          std::swap(t[1], t[2]);
+        }
+        for (CapInfo& info : this->Caps)
+        {
+          for (double& v : info.Normal)
+          {
+            v = -v;
+          }
+        }
+      }
+    }
+  }
+
+  vtkNew<vtkCellArray> polys;
+  for (const auto& t : cells)
+  {
+    polys->InsertNextCell(3, t.data());
+  }
   output->Initialize();
   output->SetPoints(points);
   output->SetPolys(polys);
-  outPD->ShallowCopy(pd);
+  output->GetPointData()->ShallowCopy(pd);
   vtkCellData* outCD = output->GetCellData();
   vtkCellData* inCD = input->GetCellData();
   outCD->CopyNormalsOff();
@@ -206,8 +708,30 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
       }
     }
   }
-  outCD->RemoveArray(PatchIdArrayName());
-  outCD->AddArray(patch);
+  std::vector<bender::PatchLabel> patches{
+    { bender::kWallEntityId, "wall", bender::PatchType::Wall }
+  };
+  for (const CapInfo& info : this->Caps)
+  {
+    patches.push_back(
+      { info.Id, info.Name, info.Inlet ? bender::PatchType::Inlet : bender::PatchType::Outlet });
+  }
+  try
+  {
+    bender::WritePatchLabels(output, ids, patches);
+  }
+  catch (const bender::Error& e)
+  {
+    return fail(e.what());
+  }
+  vtkNew<vtkIntArray> legacy;
+  legacy->SetName(PatchIdArrayName());
+  legacy->SetNumberOfTuples(total);
+  for (vtkIdType t = 0; t < total; ++t)
+  {
+    legacy->SetValue(t, ids[static_cast<std::size_t>(t)] - 1);
+  }
+  outCD->AddArray(legacy);
   return 1;
 }
 
@@ -215,5 +739,7 @@ void vtkBenderCapFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Planarity: " << this->Planarity << "\n";
-  os << indent << "NumberOfCaps: " << this->NumberOfCaps << "\n";
+  os << indent << "ProjectRim: " << this->ProjectRim << "\n";
+  os << indent << "CapNames: " << this->Names.size() << "\n";
+  os << indent << "NumberOfCaps: " << this->Caps.size() << "\n";
 }
