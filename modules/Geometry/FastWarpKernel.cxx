@@ -10,7 +10,11 @@ void FastWarpKernel::SetMotion(const MotionTable& table, const Vec3& origin)
 {
   const std::vector<DualQuaternion>& src = table.Samples();
   const std::size_t n = src.size();
-  this->Table.resize(8 * n);
+  // Per sample j, 16 contiguous floats: the screw logarithm L_j of the motion (a, b: the
+  // motion is exp((0, a) + eps (0, b)), 6 floats, 2 unused), then L_{j+1} - L_j (zero for the
+  // last sample), so that inside interval j the logarithm is L_j + alpha (L_{j+1} - L_j): one
+  // multiply-add per component, and the power f of the interpolated screw is exp(f L).
+  this->Table.assign(16 * n, 0.0f);
   for (std::size_t j = 0; j < n; ++j)
   {
     // Conjugate by the translation to the origin: X_l -> R X_l + (R c + t - c).
@@ -18,15 +22,33 @@ void FastWarpKernel::SetMotion(const MotionTable& table, const Vec3& origin)
     const Vec3 t = (m.dual * Conjugate(m.real)).Vector() * 2.0;
     const Vec3 tl = RotateByQuaternion(m.real, origin) + t - origin;
     const Quaternion d = Quaternion{ 0.0, 0.5 * tl.x, 0.5 * tl.y, 0.5 * tl.z } * m.real;
-    float* o = this->Table.data() + 8 * j;
-    o[0] = static_cast<float>(m.real.w);
-    o[1] = static_cast<float>(m.real.x);
-    o[2] = static_cast<float>(m.real.y);
-    o[3] = static_cast<float>(m.real.z);
-    o[4] = static_cast<float>(d.w);
-    o[5] = static_cast<float>(d.x);
-    o[6] = static_cast<float>(d.y);
-    o[7] = static_cast<float>(d.z);
+    // The logarithm of the unit dual quaternion (q, d) with q = (cos h, sin h K), the lifted
+    // half angle h in [0, pi) (below 170 degrees by the 340 degree rule):
+    //   a = h K = v / S,  a.b = -d.w / S,  b = (d.vec - R (a.b) a) / S,
+    // with S = sin(h) / h and R = (cos h - S) / h^2 (their series near h = 0).
+    const double sv = Norm(m.real.Vector());
+    const double h = std::atan2(sv, m.real.w);
+    const double h2 = h * h;
+    const double S = h > 1e-4 ? sv / h : 1.0 - h2 / 6.0;
+    const double R = h > 1e-2 ? (m.real.w - S) / h2 : -1.0 / 3.0 + h2 / 30.0 - h2 * h2 / 840.0;
+    const Vec3 a = m.real.Vector() / S;
+    const double ab = -d.w / S;
+    const Vec3 b = (d.Vector() - a * (R * ab)) / S;
+    float* o = this->Table.data() + 16 * j;
+    o[0] = static_cast<float>(a.x);
+    o[1] = static_cast<float>(a.y);
+    o[2] = static_cast<float>(a.z);
+    o[3] = static_cast<float>(b.x);
+    o[4] = static_cast<float>(b.y);
+    o[5] = static_cast<float>(b.z);
+  }
+  for (std::size_t j = 0; j + 1 < n; ++j)
+  {
+    float* o = this->Table.data() + 16 * j;
+    for (int c = 0; c < 6; ++c)
+    {
+      o[8 + c] = o[16 + c] - o[c];
+    }
   }
   const auto& pieces = table.Pieces();
   for (std::size_t k = 0; k < 3; ++k)
@@ -57,53 +79,57 @@ void FastWarpKernel::SetMotion(const MotionTable& table, const Vec3& origin)
 
 namespace
 {
-constexpr float PiF = 3.14159265358979f;
-
-// atan2(y, x) for y >= 0, about 1e-7 absolute (Cephes' atanf reduction).
-BENDER_ALWAYS_INLINE float Atan2Pos(float y, float x)
+// Taylor polynomials (Horner) of the even functions of the screw exponential, accurate to a
+// few float ulps on the range used: y = (theta / 2)^2 <= 2.2 and x = theta^2 <= 8.8.
+BENDER_ALWAYS_INLINE float CosOfRoot(float y) // cos(sqrt(y))
 {
-  const float ax = std::fabs(x);
-  const float mx = ax > y ? ax : y;
-  const float mn = ax > y ? y : ax;
-  float t = mn / mx;
-  const bool big = t > 0.41421356f;
-  t = big ? (t - 1.0f) / (t + 1.0f) : t;
-  const float z = t * t;
-  float a = (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
-              3.33329491539e-1f) *
-      z * t +
-    t;
-  a = big ? a + 0.25f * PiF : a;
-  a = ax > y ? a : 0.5f * PiF - a;
-  return x < 0.0f ? PiF - a : a;
+  return 1.0f +
+    y *
+    (-1.0f / 2.0f +
+      y *
+        (1.0f / 24.0f +
+          y *
+            (-1.0f / 720.0f +
+              y *
+                (1.0f / 40320.0f +
+                  y * (-1.0f / 3628800.0f + y * (1.0f / 479001600.0f - y / 87178291200.0f))))));
 }
 
-// sin and cos of phi in [0, pi], through x = phi - pi/2 in [-pi/2, pi/2] (Taylor, < 4e-8).
-BENDER_ALWAYS_INLINE void SinCos(float phi, float& s, float& c)
+BENDER_ALWAYS_INLINE float SincOfRoot(float y) // sin(sqrt(y)) / sqrt(y)
 {
-  const float x = phi - 0.5f * PiF;
-  const float x2 = x * x;
-  const float sx = x *
-    (1.0f +
-      x2 *
-        (-1.0f / 6.0f +
-          x2 *
-            (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f - x2 / 39916800.0f)))));
-  const float cx = 1.0f +
-    x2 *
-      (-0.5f +
-        x2 *
-          (1.0f / 24.0f +
-            x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f + x2 * (-1.0f / 3628800.0f)))));
-  s = cx;  // sin(phi) = cos(x)
-  c = -sx; // cos(phi) = -sin(x)
+  return 1.0f +
+    y *
+    (-1.0f / 6.0f +
+      y *
+        (1.0f / 120.0f +
+          y *
+            (-1.0f / 5040.0f +
+              y *
+                (1.0f / 362880.0f +
+                  y * (-1.0f / 39916800.0f + y * (1.0f / 6227020800.0f - y / 1307674368000.0f))))));
 }
 
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-#define BENDER_TARGET_CLONES __attribute__((target_clones("arch=haswell", "default")))
-#else
-#define BENDER_TARGET_CLONES
-#endif
+// (cos(theta) - sin(theta) / theta) / theta^2 at x = theta^2: sum over k >= 1 of
+// (-1)^k 2k / (2k + 1)! x^(k - 1).
+BENDER_ALWAYS_INLINE float CosMinusSincOverSquare(float x)
+{
+  constexpr double c[10] = { -2.0 / 6.0,
+    4.0 / 120.0,
+    -6.0 / 5040.0,
+    8.0 / 362880.0,
+    -10.0 / 39916800.0,
+    12.0 / 6227020800.0,
+    -14.0 / 1307674368000.0,
+    16.0 / 355687428096000.0,
+    -18.0 / 121645100408832000.0,
+    20.0 / 51090942171709440000.0 };
+  float r = static_cast<float>(c[9]);
+  for (int k = 8; k >= 0; --k)
+  {
+    r = static_cast<float>(c[k]) + x * r;
+  }
+  return r;
+}
 
 // The pieces of the table as plain scalars so that the loop below stays branch-free.
 struct KernelPieces
@@ -111,123 +137,251 @@ struct KernelPieces
   float end0, end1;             // piece boundaries (2 where unused)
   float start0, start1, start2; // piece starts in s
   float scale0, scale1, scale2; // samples per unit s
-  float first0, first1, first2; // index of each piece's first sample
-  float span0, span1, span2;    // index of its last interval (samples - 2)
+  int first0, first1, first2;   // index of each piece's first sample
+  int span0, span1, span2;      // index of its last interval (samples - 2)
 };
 
-// Interpolates the table at each s of a block into SoA arrays (the table lookups are
-// gathers, kept out of the arithmetic loop so that the latter vectorises).
-constexpr int Block = 256;
-
-struct BlockMotions
-{
-  alignas(64) float w[Block], vx[Block], vy[Block], vz[Block];
-  alignas(64) float dw[Block], dx[Block], dy[Block], dz[Block];
-};
-
-void Interpolate(const float* table,
+// One pass over n points: the interval of s (piece chosen by selects, no branch), the motion
+// m0 + a (m1 - m0) from the interval's 16 contiguous floats, then the power f and the rigid
+// motion applied to P. Every point goes through the same operations whatever its position in
+// the range, so a point's result does not depend on how a range is split between threads.
+BENDER_ALWAYS_INLINE void KernelBody(const float* table,
   const KernelPieces& pc,
+  const float* pxAll,
+  const float* pyAll,
+  const float* pzAll,
   const float* sp,
-  int n,
-  BlockMotions& m)
-{
-  for (int k = 0; k < n; ++k)
-  {
-    // The uniform piece holding s (at most three, split at the junction parameters).
-    const float sk = sp[k];
-    float start = pc.start0, scale = pc.scale0, first = pc.first0, span = pc.span0;
-    if (sk >= pc.end1)
-    {
-      start = pc.start2;
-      scale = pc.scale2;
-      first = pc.first2;
-      span = pc.span2;
-    }
-    else if (sk >= pc.end0)
-    {
-      start = pc.start1;
-      scale = pc.scale1;
-      first = pc.first1;
-      span = pc.span1;
-    }
-    const float u = std::max((sk - start) * scale, 0.0f);
-    const float jl = std::min(static_cast<float>(static_cast<int>(u)), span);
-    const float a = std::min(u - jl, 1.0f);
-    const float b = 1.0f - a;
-    const float* m0 = table + 8 * static_cast<int>(first + jl);
-    const float* m1 = m0 + 8;
-    m.w[k] = b * m0[0] + a * m1[0];
-    m.vx[k] = b * m0[1] + a * m1[1];
-    m.vy[k] = b * m0[2] + a * m1[2];
-    m.vz[k] = b * m0[3] + a * m1[3];
-    m.dw[k] = b * m0[4] + a * m1[4];
-    m.dx[k] = b * m0[5] + a * m1[5];
-    m.dy[k] = b * m0[6] + a * m1[6];
-    m.dz[k] = b * m0[7] + a * m1[7];
-  }
-}
-
-BENDER_TARGET_CLONES
-void PowerAndApply(const BlockMotions& m,
-  const float* px,
-  const float* py,
-  const float* pz,
-  const float* fp,
-  float* ox,
-  float* oy,
-  float* oz,
+  const float* fpAll,
+  float* oxAll,
+  float* oyAll,
+  float* ozAll,
   int n)
 {
-#pragma omp simd
-  for (int k = 0; k < n; ++k)
+  // Local copies: selects between values in registers if-convert, loads through `pc` do not.
+  const float end0 = pc.end0, end1 = pc.end1;
+  const float start0 = pc.start0, start1 = pc.start1, start2 = pc.start2;
+  const float scale0 = pc.scale0, scale1 = pc.scale1, scale2 = pc.scale2;
+  const int first0 = pc.first0, first1 = pc.first1, first2 = pc.first2;
+  const int span0 = pc.span0, span1 = pc.span1, span2 = pc.span2;
+  constexpr int block = 128;
+  alignas(64) int index[block];
+  alignas(64) float frac[block];
+  alignas(64) float motion[8 * block];
+  for (int b = 0; b < n; b += block)
   {
-    float w = m.w[k], vx = m.vx[k], vy = m.vy[k], vz = m.vz[k];
-    float dw = m.dw[k], dx = m.dx[k], dy = m.dy[k], dz = m.dz[k];
-    // Renormalise (DLB) and make the dual part orthogonal to the real part.
-    const float inv = 1.0f / std::sqrt(w * w + vx * vx + vy * vy + vz * vz);
-    w *= inv;
-    vx *= inv;
-    vy *= inv;
-    vz *= inv;
-    dw *= inv;
-    dx *= inv;
-    dy *= inv;
-    dz *= inv;
-    const float rd = w * dw + vx * dx + vy * dy + vz * dz;
-    dw -= rd * w;
-    dx -= rd * vx;
-    dy -= rd * vy;
-    dz -= rd * vz;
-    // Power f of the screw: half angle h, rotation (cos fh, v sin fh / |v|), and the dual
-    // part written without the axis direction so that it stays finite as |v| -> 0.
-    const float f = fp[k];
-    const float sv = std::sqrt(vx * vx + vy * vy + vz * vz);
-    const float h = Atan2Pos(sv, w);
-    float sphi, cphi;
-    SinCos(f * h, sphi, cphi);
-    const bool rotating = sv > 1e-6f;
-    const float svSafe = rotating ? sv : 1.0f;
-    const float rho = rotating ? sphi / svSafe : f;
-    const float g = rotating ? (dw / (svSafe * svSafe)) * (rho * w - f * cphi) : 0.0f;
-    const float rw = cphi;
-    const float rx = rho * vx, ry = rho * vy, rz = rho * vz;
-    const float Dw = f * dw * rho;
-    const float Dx = rho * dx + g * vx, Dy = rho * dy + g * vy, Dz = rho * dz + g * vz;
-    // t = 2 (D conj(r)).vec = 2 (-Dw rv + rw D - D x rv)
-    const float tx = 2.0f * (-Dw * rx + rw * Dx - (Dy * rz - Dz * ry));
-    const float ty = 2.0f * (-Dw * ry + rw * Dy - (Dz * rx - Dx * rz));
-    const float tz = 2.0f * (-Dw * rz + rw * Dz - (Dx * ry - Dy * rx));
-    // Rotate P by r: P + rw c + rv x c with c = 2 rv x P.
-    const float x = px[k], y = py[k], z = pz[k];
-    const float cx = 2.0f * (ry * z - rz * y);
-    const float cy = 2.0f * (rz * x - rx * z);
-    const float cz = 2.0f * (rx * y - ry * x);
-    ox[k] = x + rw * cx + (ry * cz - rz * cy) + tx;
-    oy[k] = y + rw * cy + (rz * cx - rx * cz) + ty;
-    oz[k] = z + rw * cz + (rx * cy - ry * cx) + tz;
+    const int m = n - b < block ? n - b : block;
+    // The interval of each s and the fraction in it (vectorised selects, no branch).
+    const float* sb = sp + b;
+#pragma omp simd
+    for (int k = 0; k < m; ++k)
+    {
+      const float sk = sb[k];
+      const bool p1 = sk >= end0;
+      const bool p2 = sk >= end1;
+      float start = p1 ? start1 : start0;
+      float scale = p1 ? scale1 : scale0;
+      int first = p1 ? first1 : first0;
+      int span = p1 ? span1 : span0;
+      start = p2 ? start2 : start;
+      scale = p2 ? scale2 : scale;
+      first = p2 ? first2 : first;
+      span = p2 ? span2 : span;
+      // s >= start: the pieces' starts are their predecessors' ends (the same floats) and
+      // s >= 0, so u >= 0 and truncation is the floor.
+      const float u = (sk - start) * scale;
+      const int j0 = static_cast<int>(u);
+      const int j1 = j0 > 0 ? j0 : 0; // an s outside [0, 1] or NaN never reads outside
+      const int j = j1 < span ? j1 : span;
+      frac[k] = u - static_cast<float>(j);
+      index[k] = 16 * (first + j);
+    }
+    // The screw logarithms L0 + alpha (L1 - L0), eight contiguous floats per point.
+    for (int k = 0; k < m; ++k)
+    {
+      const float* e = table + index[k];
+      const float a = frac[k];
+      float* o = motion + 8 * k;
+      for (int c = 0; c < 8; ++c)
+      {
+        o[c] = e[c] + a * e[8 + c];
+      }
+    }
+    const float* px = pxAll + b;
+    const float* py = pyAll + b;
+    const float* pz = pzAll + b;
+    const float* fp = fpAll + b;
+    float* ox = oxAll + b;
+    float* oy = oyAll + b;
+    float* oz = ozAll + b;
+#pragma omp simd
+    for (int k = 0; k < m; ++k)
+    {
+      // exp(f L) with L = (0, a) + eps (0, b) the interpolated screw logarithm, theta = |f a|:
+      //   real = (cos theta, S f a), dual = (-S (fa.fb), S f b + R (fa.fb) f a),
+      // S = sin(theta) / theta, R = (cos(theta) - S) / theta^2; all polynomials in theta^2,
+      // through the half angle for cos and S: no division, no square root, no atan2.
+      const float* e = motion + 8 * k;
+      const float f = fp[k];
+      const float ax = f * e[0], ay = f * e[1], az = f * e[2];
+      const float bx = f * e[3], by = f * e[4], bz = f * e[5];
+      const float x2 = ax * ax + ay * ay + az * az;
+      const float ab = ax * bx + ay * by + az * bz;
+      const float q2 = 0.25f * x2; // (theta / 2)^2
+      const float sh = SincOfRoot(q2);
+      const float rw = 1.0f - 2.0f * q2 * sh * sh;
+      const float S = sh * CosOfRoot(q2);
+      const float R = CosMinusSincOverSquare(x2);
+      const float rx = S * ax, ry = S * ay, rz = S * az;
+      const float Dw = -S * ab;
+      const float Rab = R * ab;
+      const float Dx = S * bx + Rab * ax, Dy = S * by + Rab * ay, Dz = S * bz + Rab * az;
+      // t = 2 (D conj(r)).vec = 2 (-Dw rv + rw D - D x rv)
+      const float tx = 2.0f * (-Dw * rx + rw * Dx - (Dy * rz - Dz * ry));
+      const float ty = 2.0f * (-Dw * ry + rw * Dy - (Dz * rx - Dx * rz));
+      const float tz = 2.0f * (-Dw * rz + rw * Dz - (Dx * ry - Dy * rx));
+      // Rotate P by r: P + rw c + rv x c with c = 2 rv x P.
+      const float x = px[k], y = py[k], z = pz[k];
+      const float cx = 2.0f * (ry * z - rz * y);
+      const float cy = 2.0f * (rz * x - rx * z);
+      const float cz = 2.0f * (rx * y - ry * x);
+      ox[k] = x + rw * cx + (ry * cz - rz * cy) + tx;
+      oy[k] = y + rw * cy + (rz * cx - rx * cz) + ty;
+      oz[k] = z + rw * cz + (rx * cy - ry * cx) + tz;
+    }
   }
 }
+
+using KernelFunction = void (*)(const float*,
+  const KernelPieces&,
+  const float*,
+  const float*,
+  const float*,
+  const float*,
+  const float*,
+  float*,
+  float*,
+  float*,
+  int);
+
+#define BENDER_KERNEL_PARAMETERS                                                                   \
+  const float *table, const KernelPieces &pc, const float *px, const float *py, const float *pz,   \
+    const float *sp, const float *fp, float *ox, float *oy, float *oz, int n
+#define BENDER_KERNEL_ARGUMENTS table, pc, px, py, pz, sp, fp, ox, oy, oz, n
+
+// The same body compiled for the baseline of the build and, on x86-64 with GCC or Clang, for
+// AVX2 + FMA and AVX-512; FastWarpKernel picks the best one the CPU has at run time (the
+// default build stays portable: no -march flag).
+void KernelBaseline(BENDER_KERNEL_PARAMETERS)
+{
+  KernelBody(BENDER_KERNEL_ARGUMENTS);
+}
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#define BENDER_KERNEL_DISPATCH 1
+__attribute__((target("avx2,fma"))) void KernelAvx2(BENDER_KERNEL_PARAMETERS)
+{
+  KernelBody(BENDER_KERNEL_ARGUMENTS);
+}
+
+__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma"))) void KernelAvx512(
+  BENDER_KERNEL_PARAMETERS)
+{
+  KernelBody(BENDER_KERNEL_ARGUMENTS);
+}
+#endif
+
+KernelFunction KernelOf(FastWarpKernel::SimdLevel level)
+{
+#ifdef BENDER_KERNEL_DISPATCH
+  switch (level)
+  {
+    case FastWarpKernel::SimdLevel::Avx512:
+      return KernelAvx512;
+    case FastWarpKernel::SimdLevel::Avx2:
+      return KernelAvx2;
+    case FastWarpKernel::SimdLevel::Baseline:
+      break;
+  }
+#else
+  (void)level;
+#endif
+  return KernelBaseline;
+}
+
+KernelPieces PiecesOf(const float* start,
+  const float* end,
+  const float* scale,
+  const int* offset,
+  const int* last)
+{
+  KernelPieces pc;
+  pc.end0 = end[0];
+  pc.end1 = end[1];
+  pc.start0 = start[0];
+  pc.start1 = start[1];
+  pc.start2 = start[2];
+  pc.scale0 = scale[0];
+  pc.scale1 = scale[1];
+  pc.scale2 = scale[2];
+  pc.first0 = offset[0];
+  pc.first1 = offset[1];
+  pc.first2 = offset[2];
+  pc.span0 = last[0] - offset[0] - 1;
+  pc.span1 = last[1] - offset[1] - 1;
+  pc.span2 = last[2] - offset[2] - 1;
+  return pc;
+}
 } // namespace
+
+bool FastWarpKernel::Supports(SimdLevel level)
+{
+  switch (level)
+  {
+    case SimdLevel::Baseline:
+      return true;
+#ifdef BENDER_KERNEL_DISPATCH
+    case SimdLevel::Avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    case SimdLevel::Avx512:
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#endif
+    default:
+      return false;
+  }
+}
+
+FastWarpKernel::SimdLevel FastWarpKernel::BestLevel()
+{
+  static const SimdLevel best = Supports(SimdLevel::Avx512)
+    ? SimdLevel::Avx512
+    : (Supports(SimdLevel::Avx2) ? SimdLevel::Avx2 : SimdLevel::Baseline);
+  return best;
+}
+
+const char* FastWarpKernel::LevelName(SimdLevel level)
+{
+  switch (level)
+  {
+    case SimdLevel::Avx512:
+      return "AVX-512";
+    case SimdLevel::Avx2:
+      return "AVX2+FMA";
+    default:
+      return "baseline";
+  }
+}
+
+bool FastWarpKernel::SetLevel(SimdLevel level)
+{
+  if (!Supports(level))
+  {
+    return false;
+  }
+  this->Simd = level;
+  return true;
+}
 
 void FastWarpKernel::Evaluate(const float* px,
   const float* py,
@@ -240,27 +394,13 @@ void FastWarpKernel::Evaluate(const float* px,
   std::size_t begin,
   std::size_t end) const
 {
-  KernelPieces pc;
-  pc.end0 = this->End[0];
-  pc.end1 = this->End[1];
-  pc.start0 = this->Start[0];
-  pc.start1 = this->Start[1];
-  pc.start2 = this->Start[2];
-  pc.scale0 = this->Scale[0];
-  pc.scale1 = this->Scale[1];
-  pc.scale2 = this->Scale[2];
-  pc.first0 = static_cast<float>(this->Offset[0]);
-  pc.first1 = static_cast<float>(this->Offset[1]);
-  pc.first2 = static_cast<float>(this->Offset[2]);
-  pc.span0 = static_cast<float>(this->Last[0] - this->Offset[0] - 1);
-  pc.span1 = static_cast<float>(this->Last[1] - this->Offset[1] - 1);
-  pc.span2 = static_cast<float>(this->Last[2] - this->Offset[2] - 1);
-  BlockMotions m;
-  for (std::size_t b = begin; b < end; b += Block)
+  const KernelPieces pc = PiecesOf(this->Start, this->End, this->Scale, this->Offset, this->Last);
+  const KernelFunction kernel = KernelOf(this->Simd);
+  constexpr std::size_t chunk = 1 << 20;
+  for (std::size_t b = begin; b < end; b += chunk)
   {
-    const int n = static_cast<int>(std::min<std::size_t>(Block, end - b));
-    Interpolate(this->Table.data(), pc, s + b, n, m);
-    PowerAndApply(m, px + b, py + b, pz + b, f + b, ox + b, oy + b, oz + b, n);
+    const int n = static_cast<int>(std::min(chunk, end - b));
+    kernel(this->Table.data(), pc, px + b, py + b, pz + b, s + b, f + b, ox + b, oy + b, oz + b, n);
   }
 }
 
@@ -270,8 +410,7 @@ void FastWarpLayout::Clear()
   {
     v->clear();
   }
-  for (auto* v :
-    { &this->Px, &this->Py, &this->Pz, &this->S, &this->F, &this->Ox, &this->Oy, &this->Oz })
+  for (auto* v : { &this->Px, &this->Py, &this->Pz, &this->S, &this->F })
   {
     v->clear();
   }
@@ -313,12 +452,9 @@ void FastWarpLayout::Build(const T* xyz,
     this->Px.push_back(static_cast<float>(static_cast<double>(p[0]) - origin.x));
     this->Py.push_back(static_cast<float>(static_cast<double>(p[1]) - origin.y));
     this->Pz.push_back(static_cast<float>(static_cast<double>(p[2]) - origin.z));
-    this->S.push_back(static_cast<float>(rec.s0));
+    this->S.push_back(static_cast<float>(std::clamp(rec.s0, 0.0, 1.0)));
     this->F.push_back(static_cast<float>(rec.f));
   }
-  this->Ox.resize(this->Singles.size());
-  this->Oy.resize(this->Singles.size());
-  this->Oz.resize(this->Singles.size());
 }
 
 template<typename T>
@@ -327,27 +463,56 @@ std::size_t FastWarpLayout::EvaluateSingles(const FastWarpKernel& kernel,
   std::size_t begin,
   std::size_t end) const
 {
-  kernel.Evaluate(this->Px.data(),
-    this->Py.data(),
-    this->Pz.data(),
-    this->S.data(),
-    this->F.data(),
-    this->Ox.data(),
-    this->Oy.data(),
-    this->Oz.data(),
-    begin,
-    end);
+  // Blocks small enough that the kernel's results stay in L1 until they are written out.
+  constexpr std::size_t block = 512;
+  alignas(64) float ox[block], oy[block], oz[block];
   std::size_t bad = 0;
-  for (std::size_t k = begin; k < end; ++k)
+  for (std::size_t b = begin; b < end; b += block)
   {
-    T* o = out + 3 * this->Singles[k];
-    o[0] = static_cast<T>(this->Center.x + this->Ox[k]);
-    o[1] = static_cast<T>(this->Center.y + this->Oy[k]);
-    o[2] = static_cast<T>(this->Center.z + this->Oz[k]);
-    if (!std::isfinite(o[0]) || !std::isfinite(o[1]) || !std::isfinite(o[2]))
+    const std::size_t n = std::min(block, end - b);
+    kernel.Evaluate(this->Px.data() + b,
+      this->Py.data() + b,
+      this->Pz.data() + b,
+      this->S.data() + b,
+      this->F.data() + b,
+      ox,
+      oy,
+      oz,
+      0,
+      n);
+    const std::int64_t* ids = this->Singles.data() + b;
+    // The ids increase, so a block without gaps is written as one contiguous run.
+    const T cx = static_cast<T>(this->Center.x);
+    const T cy = static_cast<T>(this->Center.y);
+    const T cz = static_cast<T>(this->Center.z);
+    if (ids[n - 1] - ids[0] == static_cast<std::int64_t>(n - 1))
     {
-      ++bad;
+      T* o = out + 3 * ids[0];
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        o[3 * k] = cx + static_cast<T>(ox[k]);
+        o[3 * k + 1] = cy + static_cast<T>(oy[k]);
+        o[3 * k + 2] = cz + static_cast<T>(oz[k]);
+      }
     }
+    else
+    {
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        T* o = out + 3 * ids[k];
+        o[0] = cx + static_cast<T>(ox[k]);
+        o[1] = cy + static_cast<T>(oy[k]);
+        o[2] = cz + static_cast<T>(oz[k]);
+      }
+    }
+    // x - x is 0 for every finite x and NaN for an infinity or a NaN.
+    int nonFinite = 0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const float e = (ox[k] - ox[k]) + (oy[k] - oy[k]) + (oz[k] - oz[k]);
+      nonFinite += e == 0.0f ? 0 : 1;
+    }
+    bad += static_cast<std::size_t>(nonFinite);
   }
   return bad;
 }

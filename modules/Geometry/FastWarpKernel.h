@@ -20,6 +20,23 @@ namespace bender
 class FastWarpKernel
 {
 public:
+  /// The instruction sets the kernel is compiled for; the best one the CPU supports is chosen
+  /// at run time (the build itself targets the portable baseline).
+  enum class SimdLevel
+  {
+    Baseline, ///< the build's own flags (SSE2 on x86-64)
+    Avx2,     ///< AVX2 with FMA
+    Avx512    ///< AVX-512 F/VL/DQ/BW
+  };
+  /// True when this build has a kernel for `level` and the CPU can run it.
+  static bool Supports(SimdLevel level);
+  /// The best supported level: what a new kernel uses.
+  static SimdLevel BestLevel();
+  static const char* LevelName(SimdLevel level);
+  /// Selects another supported level (for comparisons); false, and no change, when unsupported.
+  bool SetLevel(SimdLevel level);
+  SimdLevel Level() const { return this->Simd; }
+
   /// Prepares the per-move table from `table`, for positions given relative to `origin`.
   void SetMotion(const MotionTable& table, const Vec3& origin);
 
@@ -37,7 +54,9 @@ public:
     std::size_t end) const;
 
 private:
-  std::vector<float> Table; // 8 floats per sample: real (w, x, y, z), dual (w, x, y, z)
+  SimdLevel Simd = BestLevel();
+  /// 16 floats per sample j: m_j (real w x y z, dual w x y z), then m_{j+1} - m_j.
+  std::vector<float> Table;
   // The table's (up to three) uniform pieces; unused pieces start beyond s = 1.
   float End[3] = { 2.0f, 2.0f, 2.0f };
   float Start[3] = { 0.0f, 0.0f, 0.0f };
@@ -84,7 +103,6 @@ private:
   Vec3 Center;
   std::vector<std::int64_t> Ids, Singles, Pairs;
   std::vector<float> Px, Py, Pz, S, F;
-  mutable std::vector<float> Ox, Oy, Oz;
 };
 
 } // namespace bender
