@@ -423,16 +423,32 @@ void FastWarpLayout::Build(const T* xyz,
   const std::uint8_t* bound,
   const Vec3& origin)
 {
-  this->Clear();
   this->Center = origin;
-  const std::size_t expected =
-    static_cast<std::size_t>(std::count(bound, bound + n, std::uint8_t(1)));
-  this->Ids.reserve(expected);
-  this->Singles.reserve(expected);
+  // Counts first, then every array written by index (no push_back in the loop).
+  std::size_t boundCount = 0;
+  std::size_t pairCount = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    boundCount += bound[i] ? 1 : 0;
+    pairCount += bound[i] && records[i].lambda0 < 1.0 ? 1 : 0;
+  }
+  const std::size_t singleCount = boundCount - pairCount;
+  this->Ids.resize(boundCount);
+  this->Pairs.resize(pairCount);
+  this->Singles.resize(singleCount);
   for (auto* v : { &this->Px, &this->Py, &this->Pz, &this->S, &this->F })
   {
-    v->reserve(expected);
+    v->resize(singleCount);
   }
+  std::int64_t* ids = this->Ids.data();
+  std::int64_t* pairs = this->Pairs.data();
+  std::int64_t* singles = this->Singles.data();
+  float* px = this->Px.data();
+  float* py = this->Py.data();
+  float* pz = this->Pz.data();
+  float* sv = this->S.data();
+  float* fv = this->F.data();
+  std::size_t k = 0, p = 0, m = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     if (!bound[i])
@@ -440,20 +456,21 @@ void FastWarpLayout::Build(const T* xyz,
       continue;
     }
     const auto id = static_cast<std::int64_t>(i);
-    this->Ids.push_back(id);
+    ids[k++] = id;
     const BoundPoint& rec = records[i];
     if (rec.lambda0 < 1.0)
     {
-      this->Pairs.push_back(id);
+      pairs[p++] = id;
       continue;
     }
-    const T* p = xyz + 3 * i;
-    this->Singles.push_back(id);
-    this->Px.push_back(static_cast<float>(static_cast<double>(p[0]) - origin.x));
-    this->Py.push_back(static_cast<float>(static_cast<double>(p[1]) - origin.y));
-    this->Pz.push_back(static_cast<float>(static_cast<double>(p[2]) - origin.z));
-    this->S.push_back(static_cast<float>(std::clamp(rec.s0, 0.0, 1.0)));
-    this->F.push_back(static_cast<float>(rec.f));
+    const T* q = xyz + 3 * i;
+    singles[m] = id;
+    px[m] = static_cast<float>(static_cast<double>(q[0]) - origin.x);
+    py[m] = static_cast<float>(static_cast<double>(q[1]) - origin.y);
+    pz[m] = static_cast<float>(static_cast<double>(q[2]) - origin.z);
+    sv[m] = static_cast<float>(std::clamp(rec.s0, 0.0, 1.0));
+    fv[m] = static_cast<float>(rec.f);
+    ++m;
   }
 }
 

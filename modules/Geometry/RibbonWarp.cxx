@@ -26,6 +26,16 @@ Ribbon BuildRibbon(const RibbonSpec& spec, const std::string& which)
   }
 }
 
+// The motion X -> O' + R (X - O) with R = q: t = O' - R O, dual = 1/2 (0, t) q.
+DualQuaternion MotionFrom(const Quaternion& q, const Vec3& o, const Vec3& op)
+{
+  const Vec3 t = op - RotateByQuaternion(q, o);
+  DualQuaternion m;
+  m.real = q;
+  m.dual = Quaternion{ 0.0, 0.5 * t.x, 0.5 * t.y, 0.5 * t.z } * q;
+  return m;
+}
+
 std::string Fixed(double v, int digits)
 {
   std::ostringstream os;
@@ -106,6 +116,8 @@ RibbonWarp::RibbonWarp(const WarpSpec& spec, const WarpOptions& options)
   }
   this->InitialRibbon = BuildRibbon(spec.initial, "initial");
   this->FinalRibbon = BuildRibbon(spec.final, "final");
+  this->InitialPath = FramePath(this->InitialRibbon);
+  this->FinalPath = FramePath(this->FinalRibbon);
 
   const double twistChange = this->FinalRibbon.Twist() - this->InitialRibbon.Twist();
   if (std::abs(twistChange) > MaxTurn)
@@ -147,21 +159,86 @@ RibbonWarp::RibbonWarp(const WarpSpec& spec, const WarpOptions& options)
   }
 }
 
+RibbonWarp::FramePath::FramePath(const Ribbon& ribbon)
+{
+  const Biarc& w = ribbon.Wire();
+  this->sJ = w.JunctionParameter();
+  this->tau = ribbon.Twist();
+  // Arc 1: N = Rot(n1, theta1 u) Rot(T0, tau s) N0, T = Rot(n1, theta1 u) T0.
+  Piece& p1 = this->pieces[0];
+  p1.arc = w.FirstArc();
+  Frame m0;
+  m0.T = w.StartTangent();
+  m0.N = ribbon.StartNormal();
+  m0.B = Cross(m0.T, m0.N);
+  p1.base = QuaternionOfFrame(m0);
+  p1.twistOffset = 0.0;
+  // Arc 2: N = Rot(n2, -theta2 (1 - u)) Rot(T1, -(1 - s) tau) N1
+  //          = Rot(n2, theta2 u) Rot(Tj, tau s - tau) Rot(n2, -theta2) N1,
+  // since Rot(n2, -theta2) carries T1 to the arc's start tangent Tj.
+  Piece& p2 = this->pieces[1];
+  p2.arc = w.SecondArc();
+  Frame m1;
+  m1.T = w.EndTangent();
+  m1.N = ribbon.EndNormal();
+  m1.B = Cross(m1.T, m1.N);
+  const double h2 = -0.5 * p2.arc.angle;
+  const Vec3 n2 = p2.arc.line ? Vec3{ 0.0, 0.0, 0.0 } : p2.arc.axis;
+  const Quaternion back{
+    std::cos(h2), std::sin(h2) * n2.x, std::sin(h2) * n2.y, std::sin(h2) * n2.z
+  };
+  p2.base = back * QuaternionOfFrame(m1);
+  p2.twistOffset = -this->tau;
+}
+
+void RibbonWarp::FramePath::At(double s, Quaternion& q, Vec3& origin) const
+{
+  const bool first = s <= this->sJ;
+  const Piece& p = this->pieces[first ? 0 : 1];
+  const double u =
+    first ? (this->sJ > 0.0 ? s / this->sJ : 0.0) : (s - this->sJ) / (1.0 - this->sJ);
+  const Arc& arc = p.arc;
+  // Twist about the arc's start tangent by half of tau s + c.
+  const double halfTwist = 0.5 * (this->tau * s + p.twistOffset);
+  const double ct = std::cos(halfTwist);
+  const double st = std::sin(halfTwist);
+  const Quaternion twist{ ct, st * arc.tangent.x, st * arc.tangent.y, st * arc.tangent.z };
+  const double l = arc.length * u;
+  if (arc.line)
+  {
+    q = twist * p.base;
+    origin = arc.start + arc.tangent * l;
+    return;
+  }
+  // Turning by x = theta u about the arc's axis; the origin from the same half angle:
+  // P = Ps + Ts l sin(x) / x + Np l sin(x / 2)^2 / (x / 2) (the centre is never formed).
+  const double half = 0.5 * arc.angle * u;
+  const double c2 = std::cos(half);
+  const double s2 = std::sin(half);
+  const Quaternion turn{ c2, s2 * arc.axis.x, s2 * arc.axis.y, s2 * arc.axis.z };
+  q = turn * (twist * p.base);
+  const double sinc = half > 0.0 ? s2 / half : 1.0;
+  origin = arc.start + arc.tangent * (l * sinc * c2) + arc.toCentre * (l * sinc * s2);
+}
+
+DualQuaternion RibbonWarp::LiftedMotion(double s, const Quaternion& near) const
+{
+  Quaternion qi, qf;
+  Vec3 oi, of;
+  this->InitialPath.At(s, qi, oi);
+  this->FinalPath.At(s, qf, of);
+  Quaternion q = qf * Conjugate(qi);
+  if (Dot4(near, q) < 0.0)
+  {
+    q = -q;
+  }
+  return MotionFrom(q, oi, of);
+}
+
 void RibbonWarp::Validate(const WarpSpec& spec)
 {
   RibbonWarp warp(spec);
   (void)warp;
-}
-
-Quaternion RibbonWarp::RelativeRotation(const Frame& c, const Frame& cp)
-{
-  // quat(M' M^T) = q' conj(q), normalised to the minimal rotation (w >= 0).
-  Quaternion q = QuaternionOfFrame(cp) * Conjugate(QuaternionOfFrame(c));
-  if (q.w < 0.0)
-  {
-    q = -q;
-  }
-  return q;
 }
 
 bool RibbonWarp::TryBuildSignTable(int samples)
@@ -177,14 +254,22 @@ bool RibbonWarp::TryBuildSignTable(int samples)
   for (int j = 0; j < count; ++j)
   {
     const double s = this->Samples.s[j];
-    const Frame c = this->InitialRibbon.FrameAt(s);
-    const Frame cp = this->FinalRibbon.FrameAt(s);
-    Quaternion q = RelativeRotation(c, cp);
+    // quat(M' M^T) = q' conj(q), normalised to the minimal rotation (w >= 0).
+    Quaternion qi, qf;
+    Vec3 oi, of;
+    this->InitialPath.At(s, qi, oi);
+    this->FinalPath.At(s, qf, of);
+    Quaternion q = qf * Conjugate(qi);
+    if (q.w < 0.0)
+    {
+      q = -q;
+    }
     if (j == 0)
     {
       if (std::abs(q.w) <= 1e-12)
       {
         // Half a turn at s = 0: w >= 0 does not decide; the axis in C_0's own coordinates does.
+        const Frame c = this->InitialRibbon.FrameAt(s);
         const Vec3 v = q.Vector();
         const double comps[3] = { Dot(v, c.T), Dot(v, c.N), Dot(v, c.B) };
         for (double comp : comps)
@@ -218,7 +303,7 @@ bool RibbonWarp::TryBuildSignTable(int samples)
       }
     }
     this->Lifted[j] = q;
-    this->Table[j] = MotionBetween(c, cp, q);
+    this->Table[j] = MotionFrom(q, oi, of);
     if (q.w < 0.0)
     {
       this->AnyFlip = true;
@@ -254,15 +339,7 @@ std::string RibbonWarp::SpaceInversionWarning() const
 DualQuaternion RibbonWarp::MotionAt(double s) const
 {
   s = std::clamp(s, 0.0, 1.0);
-  const Frame c = this->InitialRibbon.FrameAt(s);
-  const Frame cp = this->FinalRibbon.FrameAt(s);
-  Quaternion q = RelativeRotation(c, cp);
-  const int j = this->Samples.Nearest(s);
-  if (Dot4(this->Lifted[j], q) < 0.0)
-  {
-    q = -q;
-  }
-  return MotionBetween(c, cp, q);
+  return this->LiftedMotion(s, this->Lifted[this->Samples.Nearest(s)]);
 }
 
 Screw RibbonWarp::ScrewAt(double s) const

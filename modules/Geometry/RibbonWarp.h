@@ -107,16 +107,43 @@ public:
   const SampleGrid& Grid() const { return this->Samples; }
 
 private:
+  /// A ribbon's frames C_s in closed form: on each arc, M(s) = Rot(n, theta u) Rot(T_a, tau s +
+  /// c) M_a with n the arc's axis, T_a its start tangent and M_a a fixed frame (spec 2.2 with
+  /// the twist and the transport composed), so a frame costs two sincos and a few products
+  /// instead of the frame matrix and its quaternion.
+  struct FramePath
+  {
+    struct Piece
+    {
+      Arc arc;
+      Quaternion base;        ///< orientation of M_a
+      double twistOffset = 0; ///< c: 0 on arc 1, -tau on arc 2
+    };
+    double sJ = 0.5;
+    double tau = 0.0;
+    Piece pieces[2];
+
+    explicit FramePath(const Ribbon& ribbon);
+    FramePath() = default;
+    /// Orientation (a unit quaternion, sign arbitrary but continuous on each arc) and origin of
+    /// C_s.
+    void At(double s, Quaternion& q, Vec3& origin) const;
+  };
+
+  /// The lifted relative motion at s from the closed-form frames, its sign matched to `near`.
+  DualQuaternion LiftedMotion(double s, const Quaternion& near) const;
+
   WarpSpec Input;
   WarpOptions Opts;
   Ribbon InitialRibbon;
   Ribbon FinalRibbon;
+  FramePath InitialPath;
+  FramePath FinalPath;
   SampleGrid Samples;
   std::vector<Quaternion> Lifted; // lifted rotation quaternions on the sign table
   std::vector<DualQuaternion> Table;
   bool AnyFlip = false;
 
-  static Quaternion RelativeRotation(const Frame& c, const Frame& cp);
   bool TryBuildSignTable(int samples);
 };
 

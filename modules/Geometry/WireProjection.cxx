@@ -24,7 +24,10 @@ bool NearestOnArc(const Arc& arc, const Vec3& p, double& u, Vec3& q)
   const double aN = Dot(rel, arc.toCentre);
   const double y = aT;
   const double x = arc.radius - aN;
-  if (std::hypot(x, y) <= 1e-12 * arc.radius)
+  // |(x, y)|: the coordinates are within the wire's scale, so the plain square root is exact
+  // enough and far cheaper than hypot.
+  const double rho = std::sqrt(x * x + y * y);
+  if (rho <= 1e-12 * arc.radius)
   {
     return false;
   }
@@ -38,7 +41,6 @@ bool NearestOnArc(const Arc& arc, const Vec3& p, double& u, Vec3& q)
   }
   // Q = Ps + r sin(phi) Ts + r (1 - cos(phi)) Np with cos and sin read off (x, y): no
   // trigonometry, and r (1 - cos) = r sin^2 / (1 + cos) keeps nearly straight arcs exact.
-  const double rho = std::hypot(x, y);
   const double c = x / rho;
   const double sn = y / rho;
   const double r = arc.radius;
