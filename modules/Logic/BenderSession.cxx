@@ -10,9 +10,11 @@
 #include <vtkAlgorithmOutput.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <system_error>
 
@@ -199,6 +201,9 @@ bool BenderSession::SetSurface(vtkPolyData* surface,
   }
   this->History.Reset(surface);
   this->State = GrabState::Idle;
+  this->Held.reset();
+  this->SetRibbonInformation(std::nullopt);
+  this->ChangeCount = this->SavedChangeCount = 0;
   this->SourcePath = sourcePath;
   this->SurfaceName = name;
   this->AutosaveSourcePath.clear();
@@ -242,6 +247,7 @@ bool BenderSession::SetParameters(const WarpParameters& parameters)
     this->Live.radius = parameters.radius;
     this->Live.decay = parameters.decay;
     this->Live.reverseScrews = parameters.reverseScrews;
+    this->DropHeld();
     std::string problem;
     if (!this->SetLiveWarp(this->Live, problem))
     {
@@ -250,6 +256,109 @@ bool BenderSession::SetParameters(const WarpParameters& parameters)
     this->UpdateLiveInformation();
     this->Changed();
   }
+  else if (this->State != GrabState::Grabbed && bindingChanged)
+  {
+    this->SetRibbonInformation(this->CurrentRibbon);
+  }
+  return true;
+}
+
+namespace
+{
+// The one sentence about the space-inversion rule, quoting the one r_min shown everywhere.
+std::string InversionSentence(double radius, double minimumRadius)
+{
+  std::ostringstream out;
+  out.precision(3);
+  out << "space inversion possible: R = " << radius
+      << " mm is not smaller than r_min = " << minimumRadius
+      << " mm, the ribbon's smallest arc radius; reduce R or straighten the "
+      << "ribbon";
+  return out.str();
+}
+}
+
+void BenderSession::SetRibbonInformation(const std::optional<RibbonSpec>& ribbon)
+{
+  this->CurrentRibbon = ribbon;
+  this->WarnedInversion = false;
+  this->FlipOccurred = false;
+  this->MinimumRadius = std::numeric_limits<double>::infinity();
+  this->InitialMinimumRadius = this->MinimumRadius;
+  if (ribbon)
+  {
+    try
+    {
+      this->MinimumRadius = Ribbon(*ribbon).Wire().MinimumRadius();
+      this->InitialMinimumRadius = this->MinimumRadius;
+    }
+    catch (const std::exception&)
+    {
+      // An invalid ribbon has no r_min; PlaceRibbon refuses it before.
+    }
+  }
+  this->SpaceInversionRisk = this->Parameters.radius >= this->MinimumRadius;
+  this->InversionWarning = this->SpaceInversionRisk
+    ? InversionSentence(this->Parameters.radius, this->MinimumRadius)
+    : std::string();
+}
+
+bool BenderSession::PlaceRibbon(const RibbonSpec& ribbon)
+{
+  if (this->State == GrabState::Grabbed)
+  {
+    this->Report(MessageSeverity::Error, "Place ribbon: release or cancel the grab first");
+    return false;
+  }
+  try
+  {
+    Ribbon check(ribbon);
+  }
+  catch (const std::exception& e)
+  {
+    this->Report(MessageSeverity::Error, std::string("Place ribbon: ") + e.what());
+    return false;
+  }
+  this->SetRibbonInformation(ribbon);
+  this->Changed();
+  return true;
+}
+
+const CommitCheck& BenderSession::GetHeldCheck() const
+{
+  static const CommitCheck none;
+  return this->Held ? this->Held->check : none;
+}
+
+void BenderSession::DropHeld()
+{
+  this->Held.reset();
+}
+
+bool BenderSession::HasUnsavedChanges() const
+{
+  return this->State == GrabState::Grabbed || this->ChangeCount != this->SavedChangeCount;
+}
+
+bool BenderSession::KeepHeldCommit()
+{
+  if (!this->Held || this->State != GrabState::Grabbed || this->Busy)
+  {
+    this->Report(MessageSeverity::Error, "Keep: no commit is held");
+    return false;
+  }
+  const HeldCommit held = *this->Held;
+  this->Held.reset();
+  this->History.Commit(held.warp, held.result);
+  ++this->ChangeCount;
+  this->State = GrabState::Released;
+  this->ShowCommitted();
+  this->SetRibbonInformation(held.warp.final);
+  this->Report(MessageSeverity::Warning,
+    "Warp " + std::to_string(this->History.Position()) +
+      " committed although the check found: " + held.check.Summary());
+  this->Autosave();
+  this->Changed();
   return true;
 }
 
@@ -260,10 +369,13 @@ void BenderSession::UpdateLiveInformation()
     return;
   }
   this->InitialMinimumRadius = this->LiveWarp->InitialMinimumRadius();
+  this->MinimumRadius =
+    std::min(this->LiveWarp->InitialMinimumRadius(), this->LiveWarp->FinalMinimumRadius());
   this->SpaceInversionRisk = this->LiveWarp->SpaceInversionRisk();
   this->FlipOccurred = this->LiveWarp->FlipOccurred();
-  this->InversionWarning =
-    this->SpaceInversionRisk ? this->LiveWarp->SpaceInversionWarning() : std::string();
+  this->InversionWarning = this->SpaceInversionRisk
+    ? InversionSentence(this->LiveWarp->Spec().radius, this->MinimumRadius)
+    : std::string();
   if (this->SpaceInversionRisk && !this->WarnedInversion)
   {
     this->WarnedInversion = true;
@@ -323,6 +435,8 @@ bool BenderSession::Grab(const RibbonSpec& initial)
   }
   this->Live = warp;
   this->State = GrabState::Grabbed;
+  this->Held.reset();
+  this->CurrentRibbon = start;
   this->LiveProblem.clear();
   this->WarnedInversion = false;
   this->UpdateLiveInformation();
@@ -359,6 +473,7 @@ bool BenderSession::MoveFinal(const RibbonSpec& final)
   }
   this->Unwrapper.Accept(candidate.final);
   this->Live = candidate;
+  this->DropHeld(); // the held result no longer matches what is shown
   this->LiveProblem.clear();
   this->UpdateLiveInformation();
   this->Changed();
@@ -377,7 +492,10 @@ void BenderSession::CancelGrab(const std::string& reason)
     return;
   }
   this->State = GrabState::Idle;
+  this->Held.reset();
   this->ShowCommitted();
+  // The ribbon goes back onto the committed surface, where it was grabbed.
+  this->SetRibbonInformation(this->Live.initial);
   this->Report(MessageSeverity::Warning,
     "The live warp was cancelled (" + reason + "); the last committed shape is kept");
   this->Changed();
@@ -394,11 +512,15 @@ bool BenderSession::Undo()
     this->Report(MessageSeverity::Error, "Undo: release or cancel the grab first");
     return false;
   }
+  const std::vector<WarpSpec> warps = this->History.CommittedWarps();
   if (!this->History.Undo())
   {
     this->Report(MessageSeverity::Info, "Nothing to undo");
     return false;
   }
+  ++this->ChangeCount;
+  // The ribbon goes back to where the undone warp grabbed it.
+  this->SetRibbonInformation(warps.back().initial);
   this->State = GrabState::Idle;
   this->ShowCommitted();
   this->Report(MessageSeverity::Info, "Undid warp " + std::to_string(this->History.Position() + 1));
@@ -423,6 +545,8 @@ bool BenderSession::Redo()
     this->Report(MessageSeverity::Info, "Nothing to redo");
     return false;
   }
+  ++this->ChangeCount;
+  this->SetRibbonInformation(this->History.CommittedWarps().back().final);
   this->State = GrabState::Idle;
   this->ShowCommitted();
   this->Report(MessageSeverity::Info, "Redid warp " + std::to_string(this->History.Position()));
@@ -449,6 +573,7 @@ bool BenderSession::SavePlan(const std::string& path)
     this->Report(MessageSeverity::Error, std::string("Saving the plan failed: ") + e.what());
     return false;
   }
+  this->MarkSaved();
   this->Report(MessageSeverity::Info,
     "Saved the plan (" + std::to_string(this->History.Position()) + " warps) to " + FileName(path));
   return true;
@@ -584,6 +709,7 @@ std::shared_ptr<SessionJob> BenderSession::BeginRelease()
     job->Input->DeepCopy(this->History.Current());
   }
   job->Name = "release";
+  job->Guard = this->GuardCommits;
   this->Busy = true;
   return job;
 }
@@ -722,6 +848,20 @@ void SessionJob::Run(const ProgressReporter& progress)
           options.planName = this->Name;
           options.progress = progress;
           this->Steps = ApplyPlan(this->Input, this->Plan, options);
+          if (this->JobKind == Kind::Release && this->Guard)
+          {
+            // The guard compares cell by cell: the warp without subdivision.
+            const WarpSpec& warp = this->Plan.warps.front();
+            vtkSmartPointer<vtkPolyData> same = this->Steps.output;
+            if (warp.subdivision)
+            {
+              WarpSpec plain = warp;
+              plain.subdivision.reset();
+              same = ApplyWarp(this->Input, plain, options);
+            }
+            progress.ThrowIfCancelled("commit check");
+            this->Check = CheckCommit(this->Input, same, warp);
+          }
         }
         break;
       case Kind::Check:
@@ -791,6 +931,7 @@ bool BenderSession::FinishRelease(SessionJob& job)
     const bool cancelled = job.Result == SessionJob::Outcome::Cancelled;
     this->State = GrabState::Idle;
     this->ShowCommitted();
+    this->SetRibbonInformation(this->Live.initial);
     this->Report(cancelled ? MessageSeverity::Warning : MessageSeverity::Error,
       std::string(cancelled ? "Release cancelled" : "Release failed") +
         ", the warp was not applied: " + job.Problem);
@@ -801,15 +942,27 @@ bool BenderSession::FinishRelease(SessionJob& job)
   {
     this->State = GrabState::Idle;
     this->ShowCommitted();
+    this->SetRibbonInformation(this->Live.initial);
     this->Report(MessageSeverity::Info, "Released without moving: no warp recorded");
     this->Changed();
     return true;
   }
   const WarpSpec& warp = job.Plan.warps.front();
   vtkPolyData* result = job.Steps.output;
+  if (job.Guard && job.Check.checked && !job.Check.Passed())
+  {
+    // Held: the grab goes on with the live warp on screen until the user chooses.
+    this->Held = HeldCommit{ warp, job.Steps.output, job.Check };
+    this->Report(MessageSeverity::Warning,
+      "Commit held: " + job.Check.Summary() + ". Reduce R, cancel (Esc) or keep the warp");
+    this->Changed();
+    return false;
+  }
   this->History.Commit(warp, result);
+  ++this->ChangeCount;
   this->State = GrabState::Released;
   this->ShowCommitted();
+  this->SetRibbonInformation(warp.final);
   std::ostringstream text;
   text << "Warp " << this->History.Position() << " committed";
   if (warp.subdivision)
@@ -836,6 +989,11 @@ bool BenderSession::FinishReplay(SessionJob& job)
   for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)
   {
     this->History.Commit(job.Plan.warps[i], job.Steps.steps[i]);
+  }
+  if (!job.Plan.warps.empty())
+  {
+    ++this->ChangeCount;
+    this->SetRibbonInformation(job.Plan.warps.back().final);
   }
   this->State = GrabState::Idle;
   this->ShowCommitted();
@@ -870,6 +1028,11 @@ bool BenderSession::FinishRecover(SessionJob& job)
     for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)
     {
       this->History.Commit(job.Plan.warps[i], job.Steps.steps[i]);
+    }
+    if (!job.Plan.warps.empty())
+    {
+      ++this->ChangeCount; // recovered warps are in no saved plan
+      this->SetRibbonInformation(job.Plan.warps.back().final);
     }
     this->ShowCommitted();
   }

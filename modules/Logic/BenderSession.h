@@ -3,6 +3,7 @@
 
 #include "ApplyPlan.h"
 #include "BenderMeshCheck.h"
+#include "CommitGuard.h"
 #include "ExportSurface.h"
 #include "LogicMessage.h"
 #include "Progress.h"
@@ -17,6 +18,7 @@
 #include <vtkSmartPointer.h>
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -84,6 +86,8 @@ public:
   /// Export jobs: the files written (none when the check found problems and the caller did
   /// not accept them).
   const std::vector<std::string>& GetWrittenFiles() const { return this->Written; }
+  /// Release jobs with the commit guard on: the check of the changed region (CheckCommit).
+  const CommitCheck& GetCommitCheck() const { return this->Check; }
 
 private:
   friend class BenderSession;
@@ -98,6 +102,8 @@ private:
   std::string Path;                    // Export
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
+  bool Guard = false; // Release: check the changed region before committing
+  CommitCheck Check;
   ApplyPlanResult Steps;
   MeshCheckReport Report;
   std::vector<std::string> Written;
@@ -173,9 +179,30 @@ public:
   bool MoveFinal(const RibbonSpec& final);
   /// Commits the last valid final ribbon: exact warp (or adaptive subdivision when enabled),
   /// a new undo step, the plan grows, autosave. A release without motion records nothing.
+  /// With the commit guard on (the default) the changed region is checked first (see
+  /// CheckCommit); when it fails the commit is held: nothing is committed, the grab goes on
+  /// (the live warp stays on screen), IsCommitHeld() is true and GetHeldCheck() says what
+  /// failed and where, until KeepHeldCommit(), CancelGrab(), a move or a change of R.
   bool Release();
+  ///@{ The commit guard
+  void SetCommitGuard(bool on) { this->GuardCommits = on; }
+  bool GetCommitGuard() const { return this->GuardCommits; }
+  bool IsCommitHeld() const { return this->Held.has_value(); }
+  /// The failed check of the held commit (an unchecked, empty one when none is held).
+  const CommitCheck& GetHeldCheck() const;
+  /// Commits the held warp as it is (the user chose to keep it).
+  bool KeepHeldCommit();
+  ///@}
   /// Abandons the live warp (device failure, Escape): the committed surface stays.
   void CancelGrab(const std::string& reason);
+  /// The ribbon placed on the surface by the user (the window's ribbon widget, a tracker
+  /// alignment), while not grabbed: it becomes the session's ribbon and its r_min and the
+  /// space-inversion warning are recomputed for it (the previous warning is cleared). False,
+  /// with a message, for an invalid ribbon or while grabbed.
+  bool PlaceRibbon(const RibbonSpec& ribbon);
+  /// The ribbon lying on the committed surface: the one placed, the final ribbon after a
+  /// release or a redo, the initial one after a cancel or an undo; none after a new surface.
+  const std::optional<RibbonSpec>& GetRibbon() const { return this->CurrentRibbon; }
   const RibbonSpec& GetInitialRibbon() const { return this->Live.initial; }
   const RibbonSpec& GetFinalRibbon() const { return this->Live.final; }
   /// Why the last MoveFinal was not applied; empty when it was.
@@ -183,6 +210,10 @@ public:
   /// Live information for the Bend panel: r_min of the initial wire, the space-inversion risk
   /// (R >= r_min of either wire) and whether the screws flipped (paper 3.8 toggle).
   double GetInitialMinimumRadius() const { return this->InitialMinimumRadius; }
+  /// The one r_min shown to the user (panel, status bar, commit guard): the smaller of the
+  /// initial and the final wire's while grabbed, the placed ribbon's otherwise; infinite for
+  /// a straight wire or no ribbon. GetSpaceInversionWarning() quotes this value.
+  double GetMinimumRadius() const { return this->MinimumRadius; }
   bool GetSpaceInversionRisk() const { return this->SpaceInversionRisk; }
   bool GetFlipOccurred() const { return this->FlipOccurred; }
   /// The sentence describing the space-inversion risk of the live warp; empty when none.
@@ -197,6 +228,14 @@ public:
   bool Undo();
   bool Redo();
   std::size_t GetHistoryPosition() const { return this->History.Position(); }
+  ///@}
+
+  ///@{ Unsaved work
+  /// True while a grab is under way or the committed warps changed (commit, undo, redo,
+  /// replay) since the surface was loaded, the plan saved or MarkSaved() was called.
+  bool HasUnsavedChanges() const;
+  /// The work counts as saved (or explicitly discarded) from now on.
+  void MarkSaved() { this->SavedChangeCount = this->ChangeCount; }
   ///@}
 
   ///@{ Plan
@@ -273,6 +312,15 @@ private:
   bool FinishExport(SessionJob& job);
   bool SetLiveWarp(const WarpSpec& warp, std::string& problem);
   void UpdateLiveInformation();
+  void SetRibbonInformation(const std::optional<RibbonSpec>& ribbon);
+  void DropHeld();
+
+  struct HeldCommit
+  {
+    WarpSpec warp;
+    vtkSmartPointer<vtkPolyData> result;
+    CommitCheck check;
+  };
 
   WarpHistory History;
   WarpParameters Parameters;
@@ -285,6 +333,12 @@ private:
   bool FlipOccurred = false;
   bool WarnedInversion = false;
   std::string InversionWarning;
+  double MinimumRadius = std::numeric_limits<double>::infinity();
+  std::optional<RibbonSpec> CurrentRibbon;
+  bool GuardCommits = true;
+  std::optional<HeldCommit> Held;
+  unsigned long long ChangeCount = 0;
+  unsigned long long SavedChangeCount = 0;
 
   vtkNew<vtkBenderWarpFilter> LiveFilter;
   std::shared_ptr<const RibbonWarp> LiveWarp;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <exception>
 #include <iomanip>
 #include <sstream>
@@ -59,6 +60,7 @@ bool TrackerSession::Connect(std::unique_ptr<TrackerDevice> device,
   try
   {
     auto input = std::make_unique<TwoHandRibbonInput>(hands, calibration);
+    input->SetRelativeScale(this->RelativeScale);
     if (!device->IsOpen())
     {
       device->Open();
@@ -75,7 +77,21 @@ bool TrackerSession::Connect(std::unique_ptr<TrackerDevice> device,
   }
   this->Device = std::move(device);
   this->DeviceName = name;
-  this->Session.AddMessage(MessageSeverity::Info, "Tracker " + name + " connected");
+  this->Synced.reset();
+  this->SyncRibbon();
+  if (this->Input->IsRelative())
+  {
+    this->Session.AddMessage(MessageSeverity::Info,
+      "Tracker " + name +
+        " connected: the hands hold the ribbon where it is; press the stylus to bend from there");
+  }
+  else
+  {
+    this->Session.AddMessage(MessageSeverity::Warning,
+      "Tracker " + name +
+        " connected without a ribbon: the hands' absolute positions are used; place a ribbon "
+        "(P) to bend from where it is");
+  }
   return true;
 }
 
@@ -130,6 +146,44 @@ void TrackerSession::Fail(const std::string& reason)
   this->Disconnect();
 }
 
+void TrackerSession::SyncRibbon()
+{
+  if (!this->Input || this->Input->IsGrabbing() || this->Session.GetState() == GrabState::Grabbed)
+  {
+    return;
+  }
+  const std::optional<RibbonSpec>& ribbon = this->Session.GetRibbon();
+  const auto same = [](const RibbonSpec& a, const RibbonSpec& b)
+  {
+    const auto eq = [](const Vec3& u, const Vec3& v)
+    { return u.x == v.x && u.y == v.y && u.z == v.z; };
+    const auto end = [&](const RibbonEnd& x, const RibbonEnd& y)
+    { return eq(x.position, y.position) && eq(x.tangent, y.tangent) && eq(x.normal, y.normal); };
+    return end(a.start, b.start) && end(a.end, b.end);
+  };
+  if (ribbon && !(this->Synced && same(*ribbon, *this->Synced)))
+  {
+    this->Input->AnchorTo(*ribbon);
+    this->Synced = ribbon;
+  }
+}
+
+bool TrackerSession::SetRelativeScale(double scale)
+{
+  if (!(std::isfinite(scale) && scale >= 0.0 && scale <= 1000.0))
+  {
+    this->Session.AddMessage(MessageSeverity::Error,
+      "Tracker: motion scale " + std::to_string(scale) + " is not in [0, 1000] (0: automatic)");
+    return false;
+  }
+  this->RelativeScale = scale;
+  if (this->Input)
+  {
+    this->Input->SetRelativeScale(scale);
+  }
+  return true;
+}
+
 TrackerSession::PollResult TrackerSession::Poll()
 {
   PollResult result;
@@ -137,6 +191,9 @@ TrackerSession::PollResult TrackerSession::Poll()
   {
     return result;
   }
+  // The ribbon on screen changed between grabs (placed, released, cancelled, undone): the
+  // hands hold it from where it is now.
+  this->SyncRibbon();
   std::vector<TwoHandRibbonInput::Gesture> gestures;
   try
   {
@@ -226,7 +283,14 @@ bool TrackerSession::SetCalibration(const TrackerCalibration& calibration)
     this->Session.AddMessage(MessageSeverity::Error, "Tracker: release before calibrating");
     return false;
   }
+  const std::optional<RibbonSpec> anchored =
+    this->Input->Anchor() ? std::optional<RibbonSpec>(this->Input->Anchor()->ribbon) : std::nullopt;
   this->Input = std::make_unique<TwoHandRibbonInput>(this->Input->Hands(), calibration);
+  this->Input->SetRelativeScale(this->RelativeScale);
+  if (anchored)
+  {
+    this->Input->AnchorTo(*anchored);
+  }
   return true;
 }
 
@@ -257,41 +321,32 @@ std::string TrackerSession::StatusText() const
 
 bool TrackerSession::AlignTo(const RibbonSpec& target)
 {
-  const std::optional<RibbonSpec> hands = this->CurrentRibbon();
-  if (!hands)
+  if (!this->Input || !this->CurrentRibbon())
   {
     this->Session.AddMessage(MessageSeverity::Error, "Align: both hands must be seen first");
     return false;
   }
-  auto landmarks = [](const RibbonSpec& r)
+  if (this->Input->IsGrabbing() || this->Session.GetState() == GrabState::Grabbed)
   {
-    const double arm = std::max(1.0, 0.5 * Distance(r.start.position, r.end.position));
-    const Vec3 t = Normalized(r.start.tangent);
-    const Vec3 n = Normalized(r.start.normal - t * Dot(r.start.normal, t));
-    return std::array<Vec3, 3>{ { r.start.position, r.end.position, r.start.position + n * arm } };
-  };
-  const TrackerCalibration current = this->GetCalibration();
+    this->Session.AddMessage(MessageSeverity::Error, "Align: release or cancel the grab first");
+    return false;
+  }
   try
   {
-    const TrackerCalibration align =
-      TrackerCalibration::FromThreePoints(landmarks(*hands), landmarks(target), 1.0);
-    // align(current(x)) = Ra (Rc s x + tc) + ta
-    const TrackerCalibration composed(align.Rotation() * current.Rotation(),
-      align.MapPoint(current.Translation()),
-      current.MotionScale());
-    if (!this->SetCalibration(composed))
-    {
-      return false;
-    }
+    this->Input->AnchorTo(target);
   }
   catch (const std::exception& e)
   {
-    this->Session.AddMessage(MessageSeverity::Error,
-      std::string("Align: ") + e.what() + " (hold the hands apart, as the ribbon's ends)");
+    this->Session.AddMessage(MessageSeverity::Error, std::string("Align: ") + e.what());
     return false;
   }
-  this->Session.AddMessage(
-    MessageSeverity::Info, "Trackers aligned to the ribbon (position and orientation)");
+  std::ostringstream text;
+  text << "Hands anchored to the ribbon: the left hand holds its start, the right hand its end";
+  if (const auto& anchor = this->Input->Anchor())
+  {
+    text << std::setprecision(3) << "; 1 mm of hand motion moves it " << anchor->scale << " mm";
+  }
+  this->Session.AddMessage(MessageSeverity::Info, text.str());
   return true;
 }
 

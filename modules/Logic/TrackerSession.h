@@ -23,6 +23,13 @@ class BenderSession;
 /// (disconnected, read error, end of a replay) the live warp is cancelled, the last committed
 /// shape stays and the session gets a warning message.
 ///
+/// The mapping is relative as soon as the session has a ribbon (BenderSession::GetRibbon, the
+/// one on screen): on connect, and whenever the session's ribbon changes between grabs (placed,
+/// released, cancelled, undone), the hands are anchored to it (TwoHandRibbonInput::AnchorTo),
+/// so connecting moves nothing; the ribbon stays between grabs, and while the stylus is held it
+/// moves by the hands' displacements (with the motion scale, automatic by default) in the
+/// ribbon's own frame. Without a ribbon the hands map absolutely through the calibration.
+///
 /// Not thread-safe: Poll() is called from the thread that owns the session (a GUI timer at the
 /// display rate); the device's own reader thread only fills its pose store.
 class TrackerSession
@@ -79,6 +86,12 @@ public:
 
   /// The ribbon the hands hold now (model space), if both hands have been seen.
   std::optional<RibbonSpec> CurrentRibbon() const;
+  /// Motion scale of the relative mapping: > 0 model mm per hand mm, 0 automatic (the hands'
+  /// span is the ribbon's length). False, with a message, outside [0, 1000].
+  bool SetRelativeScale(double scale);
+  double GetRelativeScale() const { return this->RelativeScale; }
+  /// Whether the hands are anchored to a ribbon (relative mapping).
+  bool IsRelative() const { return this->Input && this->Input->IsRelative(); }
   /// The clutch: the ribbon stays while the hands move freely (re-anchors on release).
   void SetClutch(bool engaged);
   bool ClutchEngaged() const { return this->Input && this->Input->ClutchEngaged(); }
@@ -86,11 +99,11 @@ public:
   TrackerCalibration GetCalibration() const;
   /// Replaces the calibration (alignment and motion scale); refused while grabbing.
   bool SetCalibration(const TrackerCalibration& calibration);
-  /// Rigid alignment of the hands to a ribbon in model space (e.g. the one on screen): the
-  /// left hand onto the ribbon's start, the direction to the right hand onto the ribbon's
-  /// direction, the left hand's normal onto the start normal; composed with the calibration
-  /// in use, the motion scale kept. False (with a message) when the hands are not both seen,
-  /// are too close together, or a grab is under way.
+  /// Anchors the hands to a ribbon in model space (e.g. the one on screen) as they are now:
+  /// the ribbon shown becomes `target`, the left hand holds its start and the right hand its
+  /// end, the direction between the hands is the ribbon's direction and the left hand's
+  /// normal its start normal (the relative mapping; see RibbonAnchor). False (with a message)
+  /// when the hands are not both seen or a grab is under way.
   bool AlignTo(const RibbonSpec& target);
 
   /// Device name and per-station rates for the Trackers panel.
@@ -99,12 +112,15 @@ public:
 
 private:
   void Fail(const std::string& reason);
+  void SyncRibbon();
 
   BenderSession& Session;
   std::unique_ptr<TrackerDevice> Device;
   std::unique_ptr<TwoHandRibbonInput> Input;
   std::string DeviceName;
   std::function<bool()> ReleaseHandler;
+  std::optional<RibbonSpec> Synced; // the session's ribbon the hands were last anchored to
+  double RelativeScale = 0.0;
 };
 
 } // namespace bender

@@ -3,6 +3,9 @@
 #include "TrackerDevice.h"
 #include "TrackingErrors.h"
 
+#include <cmath>
+#include <string>
+
 namespace bender
 {
 
@@ -30,6 +33,47 @@ void TwoHandRibbonInput::UpdatePose(const TrackerPose& pose)
   {
     this->Right = pose;
   }
+  if (this->Target && !this->Anchored && this->Left && this->Right)
+  {
+    this->Reanchor(*this->Target);
+  }
+}
+
+void TwoHandRibbonInput::Reanchor(const RibbonSpec& ribbon)
+{
+  this->Target = ribbon;
+  if (this->Left && this->Right)
+  {
+    this->Anchored =
+      AnchorHandsToRibbon(*this->Left, *this->Right, ribbon, this->Scale, this->Calib.Rotation());
+  }
+  else
+  {
+    this->Anchored.reset();
+  }
+}
+
+void TwoHandRibbonInput::AnchorTo(const RibbonSpec& ribbon)
+{
+  this->Reanchor(ribbon);
+  if (this->Frozen)
+  {
+    this->Frozen = ribbon;
+  }
+}
+
+void TwoHandRibbonInput::SetRelativeScale(double scale)
+{
+  if (!(std::isfinite(scale) && scale >= 0.0 && scale <= 1000.0))
+  {
+    throw TrackingConfigurationError("relative tracking: motion scale " + std::to_string(scale) +
+      " is not in [0, 1000] (0: automatic)");
+  }
+  this->Scale = scale;
+  if (this->Target)
+  {
+    this->Reanchor(this->Anchored ? this->Anchored->ribbon : *this->Target);
+  }
 }
 
 std::optional<RibbonSpec> TwoHandRibbonInput::LiveRibbon() const
@@ -37,6 +81,21 @@ std::optional<RibbonSpec> TwoHandRibbonInput::LiveRibbon() const
   if (!this->Left || !this->Right)
   {
     return std::nullopt;
+  }
+  if (this->Target)
+  {
+    if (!this->Anchored)
+    {
+      return std::nullopt;
+    }
+    if (this->GrabStation == 0)
+    {
+      return this->Anchored->ribbon; // between grabs the ribbon stays where it is
+    }
+    RibbonSpec spec;
+    spec.start = RelativeRibbonEnd(*this->Left, Hand::Left, *this->Anchored);
+    spec.end = RelativeRibbonEnd(*this->Right, Hand::Right, *this->Anchored);
+    return spec;
   }
   RibbonSpec spec;
   spec.start = RibbonEndFromPose(*this->Left, Hand::Left, this->Calib);
@@ -54,6 +113,11 @@ void TwoHandRibbonInput::SetClutch(bool engaged)
   if (engaged && !this->Frozen)
   {
     this->Frozen = this->LiveRibbon();
+  }
+  else if (!engaged && this->Frozen && this->Target)
+  {
+    this->Reanchor(*this->Frozen);
+    this->Frozen.reset();
   }
   else if (!engaged && this->Frozen)
   {
@@ -83,6 +147,11 @@ std::optional<TwoHandRibbonInput::Gesture> TwoHandRibbonInput::HandleEvent(
       {
         return std::nullopt;
       }
+      if (this->Target && !this->Frozen)
+      {
+        // The hands now hold the ribbon as it is: anchored again, nothing moves.
+        this->Reanchor(*ribbon);
+      }
       this->GrabStation = event.station;
       this->Initial = ribbon;
       gesture.kind = Gesture::Kind::Grabbed;
@@ -95,11 +164,20 @@ std::optional<TwoHandRibbonInput::Gesture> TwoHandRibbonInput::HandleEvent(
       {
         return std::nullopt;
       }
-      this->GrabStation = 0;
       gesture.kind = Gesture::Kind::Released;
       gesture.initial = *this->Initial;
+      // Before the grab ends: relative, the ribbon held is the one of the grab.
       gesture.final = this->CurrentRibbon().value_or(*this->Initial);
+      this->GrabStation = 0;
       this->Initial.reset();
+      if (this->Target)
+      {
+        this->Reanchor(gesture.final); // the ribbon stays where the hands left it
+        if (this->Frozen)
+        {
+          this->Frozen = gesture.final;
+        }
+      }
       return gesture;
     }
     case TrackerEventType::Disconnected:
@@ -114,6 +192,10 @@ std::optional<TwoHandRibbonInput::Gesture> TwoHandRibbonInput::HandleEvent(
       gesture.initial = *this->Initial;
       gesture.reason = event.message.empty() ? ToString(event.type) : event.message;
       this->GrabStation = 0;
+      if (this->Target)
+      {
+        this->Reanchor(*this->Initial); // the ribbon goes back where it was grabbed
+      }
       this->Initial.reset();
       return gesture;
     }

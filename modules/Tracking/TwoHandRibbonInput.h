@@ -23,9 +23,16 @@ class TrackerDevice;
 ///   captures the initial ribbon. Release of that same station commits the final ribbon.
 /// - Disconnected/ReadError while grabbing cancels the gesture (the application keeps the
 ///   last committed shape). EndOfStream while grabbing cancels too.
-/// - Clutch: while engaged the ribbon stays where it is and the hands move freely; on
-///   release the calibration's translation is shifted so that the midpoint of the two
-///   hands maps to where it was when the clutch engaged (orientations stay absolute).
+/// - Mapping: absolute (through the calibration) until AnchorTo() gives a ribbon; from then on
+///   relative (RibbonAnchor): the hands are anchored to that ribbon as soon as both are seen,
+///   the ribbon stays where it is between grabs (the hands move freely: the stylus button is
+///   the clutch), each grab re-anchors the hands to the ribbon as it is, and while grabbing
+///   the ends move by the hands' displacements and turn by their rotations (RelativeRibbonEnd).
+///   Nothing jumps: anchoring reproduces the ribbon exactly.
+/// - Clutch: while engaged the ribbon stays where it is and the hands move freely. On release,
+///   relative: the hands are re-anchored to the frozen ribbon; absolute: the calibration's
+///   translation is shifted so that the midpoint of the two hands maps to where it was when
+///   the clutch engaged (orientations stay absolute).
 /// extraTurns of the ribbons is 0.
 class TwoHandRibbonInput
 {
@@ -65,11 +72,24 @@ public:
   void SetClutch(bool engaged);
   bool ClutchEngaged() const { return this->Frozen.has_value(); }
 
+  /// Switches to the relative mapping and anchors the hands to `ribbon` (model space) now, or
+  /// when both hands are first seen. While grabbing, the gesture goes on from `ribbon`.
+  void AnchorTo(const RibbonSpec& ribbon);
+  bool IsRelative() const { return this->Target.has_value(); }
+  /// The anchor in use (relative mapping, both hands seen).
+  const std::optional<RibbonAnchor>& Anchor() const { return this->Anchored; }
+  /// Motion scale of the relative mapping: > 0 model mm per hand mm, 0 (the default) automatic:
+  /// the hands' span is the ribbon's length at each anchoring. Throws
+  /// TrackingConfigurationError outside [0, 1000].
+  void SetRelativeScale(double scale);
+  double RelativeScale() const { return this->Scale; }
+
   const TrackerCalibration& Calibration() const { return this->Calib; }
   const HandMapping& Hands() const { return this->Mapping; }
 
 private:
   std::optional<RibbonSpec> LiveRibbon() const;
+  void Reanchor(const RibbonSpec& ribbon);
 
   HandMapping Mapping;
   TrackerCalibration Calib;
@@ -77,6 +97,9 @@ private:
   std::optional<TrackerPose> Right;
   std::optional<RibbonSpec> Frozen;
   std::optional<RibbonSpec> Initial;
+  std::optional<RibbonSpec> Target; // relative mapping: the ribbon to anchor to
+  std::optional<RibbonAnchor> Anchored;
+  double Scale = 0.0;
   int GrabStation = 0;
 };
 

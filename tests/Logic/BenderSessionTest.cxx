@@ -444,7 +444,11 @@ TEST_F(BenderSessionTest, SpaceInversionRiskIsReportedAndRadiusChangesRebind)
   parameters.radius = 12;
   ASSERT_TRUE(this->Session.SetParameters(parameters));
   EXPECT_GT(this->Session.GetNumberOfBoundPoints(), boundAt6);
-  ASSERT_TRUE(this->Session.Release());
+  // The commit guard holds the risky warp; the user keeps it.
+  EXPECT_FALSE(this->Session.Release());
+  ASSERT_TRUE(this->Session.IsCommitHeld());
+  EXPECT_TRUE(this->Session.GetHeldCheck().spaceInversionRisk);
+  ASSERT_TRUE(this->Session.KeepHeldCommit());
   EXPECT_EQ(this->Session.GetPlan().warps[0].radius, 12.0);
 }
 
