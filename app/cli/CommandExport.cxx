@@ -1,5 +1,5 @@
-// bender-cli export IN -o OUT [--cap] [--patches single|solids|files] [--frame lps|ras]:
-// CFD-ready STL of a vessel surface.
+// bender-cli export IN -o OUT [--cap] [--patches single|solids|files] [--frame lps|ras]
+// [--unit mm|m] [--patches-json]: CFD-ready surfaces for meshers (STL, VTP, TetGen).
 
 #include "CliCommands.h"
 #include "CliParsing.h"
@@ -19,28 +19,42 @@
 namespace
 {
 const char* const Usage =
-  "usage: bender-cli export IN_MESH -o OUT.stl [options]\n"
+  "usage: bender-cli export IN_MESH -o OUT.stl|OUT.vtp|OUT.smesh|OUT.poly [options]\n"
   "\n"
-  "Writes IN_MESH as STL for CFD meshers. Coordinates are taken to be LPS millimetres (the\n"
-  "frame of Bender's segmentations); every STL header states the frame and unit.\n"
+  "Writes IN_MESH for CFD meshers. Coordinates are taken to be LPS millimetres (the frame of\n"
+  "Bender's segmentations); every file states the frame and unit where its format allows\n"
+  "(STL header, VTP field data, TetGen comment, the sidecar).\n"
   "\n"
   "options:\n"
-  "  -o, --output OUT.stl      the output (required; never the input). OUT.vtp writes the\n"
-  "                            VTK form, which keeps the PatchId cell labels\n"
+  "  -o, --output OUT          the output (required; never the input); the format follows\n"
+  "                            the extension: .stl; .vtp (keeps the patch labels\n"
+  "                            CellEntityIds/ModelFaceID and their names); .smesh or .poly\n"
+  "                            (TetGen: facet markers = CellEntityIds, wall 1, ends 2..,\n"
+  "                            and a region point inside the lumen)\n"
   "  --cap                     close planar-ish open ends (vessel inlets/outlets) with flat\n"
-  "                            caps labelled cap_1..cap_n (wall = the rest)\n"
+  "                            labelled caps (wall = the rest); an error when there is\n"
+  "                            nothing to cap (a closed surface without labelled ends)\n"
   "  --planarity F             a loop is capped when its points lie within F x its\n"
   "                            diameter of a plane (default 0.1)\n"
   "  --patches single|solids|files\n"
-  "                            single: one binary STL (default); solids: one ASCII STL with\n"
-  "                            a named solid per patch (snappyHexMesh); files: one binary STL\n"
-  "                            per patch, OUT_wall.stl, OUT_cap_1.stl, ...\n"
+  "                            .stl only. single: one binary STL (default); solids: one\n"
+  "                            ASCII STL with a solid per patch named by the patch (wall,\n"
+  "                            inlet, outlet_1, ...; snappyHexMesh, gmsh, TetGen); files:\n"
+  "                            one binary STL per patch, OUT_wall.stl, OUT_inlet.stl, ...\n"
+  "                            whose rims share their vertices exactly\n"
+  "  --unit mm|m               unit of the written coordinates (default mm; m divides by\n"
+  "                            1000, as OpenFOAM expects)\n"
   "  --frame lps|ras           frame of the written coordinates (default lps; ras negates\n"
   "                            x and y)\n"
+  "  --patches-json            also write OUT.patches.json (always written with --patches\n"
+  "                            solids|files and for .smesh/.poly): per patch its name, id,\n"
+  "                            type, centre, outward normal, area and equivalent diameter,\n"
+  "                            a point inside the lumen, the unit and the frame\n"
   "  --quiet                   print nothing on success\n"
   "  -h, --help                this help\n"
   "\n"
-  "Patches come from the cell array PatchId (kept in .vtp files), or from --cap.\n"
+  "Patches come from the cell array CellEntityIds with the names in the field data\n"
+  "PatchNames (older files: PatchId), kept in .vtp files, or from --cap.\n"
   "exit status: 0 written, 1 bad input or write failure, 2 usage error\n";
 
 int Fail(const std::string& message)
@@ -54,7 +68,7 @@ int RunExportCommand(const std::vector<std::string>& args)
 {
   bender::CommandLine cli("export", Usage);
   std::vector<std::string> positional;
-  std::string outPath, patches = "single", frame = "lps";
+  std::string outPath, patches = "single", frame = "lps", unit = "mm";
   bool quiet = false;
   bender::ExportSurfaceOptions options;
   cli.App.add_option("mesh", positional);
@@ -65,6 +79,8 @@ int RunExportCommand(const std::vector<std::string>& args)
   cli.App.add_option("--planarity", planarity);
   cli.App.add_option("--patches", patches);
   cli.App.add_option("--frame", frame);
+  cli.App.add_option("--unit", unit);
+  cli.App.add_flag("--patches-json", options.patchesJson);
   if (const int status = cli.Parse(args); status >= 0)
   {
     return status;
@@ -106,28 +122,47 @@ int RunExportCommand(const std::vector<std::string>& args)
   {
     return cli.UsageError("--frame: unknown value '" + frame + "'");
   }
+  if (unit == "mm" || unit == "m")
+  {
+    options.unit = unit;
+  }
+  else
+  {
+    return cli.UsageError("--unit: unknown value '" + unit + "' (expected mm or m)");
+  }
   if (positional.size() != 1 || outPath.empty())
   {
     return cli.UsageError("expected IN_MESH -o OUT.stl");
   }
-  std::string ext = outPath.size() >= 4 ? outPath.substr(outPath.size() - 4) : "";
+  std::string ext = std::filesystem::path(outPath).extension().string();
   for (char& c : ext)
   {
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
-  if (ext != ".stl" && ext != ".vtp")
+  if (ext != ".stl" && ext != ".vtp" && ext != ".smesh" && ext != ".poly")
   {
-    std::fprintf(
-      stderr, "bender-cli export: %s: the output must be .stl (or .vtp)\n", outPath.c_str());
+    std::fprintf(stderr,
+      "bender-cli export: %s: the output must be .stl, .vtp, .smesh or .poly\n",
+      outPath.c_str());
     return 2;
   }
-  if (ext == ".vtp" &&
-    (options.frame != bender::StlFrame::LPS || options.patches != bender::StlPatchMode::Single))
+  if (ext != ".stl" && options.patches != bender::StlPatchMode::Single)
   {
-    // The VTK form keeps the PatchId cell labels (wall 0, caps 1..n), in LPS.
-    std::fprintf(stderr, "bender-cli export: .vtp output is written whole, in LPS\n");
+    // .vtp and TetGen files keep every patch as labels in one file.
+    std::fprintf(stderr,
+      "bender-cli export: %s: --patches solids|files is for .stl; %s keeps the patches as "
+      "labels\n",
+      outPath.c_str(),
+      ext.c_str());
     return 2;
   }
+  if (options.patches != bender::StlPatchMode::Single)
+  {
+    options.stlEncoding = bender::StlEncoding::Ascii; // named solids are ASCII STL
+  }
+  // The sidecar goes with every export of patches.
+  options.patchesJson = options.patchesJson || options.patches != bender::StlPatchMode::Single ||
+    ext == ".smesh" || ext == ".poly";
   const std::string& inPath = positional[0];
   options.output = outPath;
   options.protectedPath = inPath;
@@ -174,10 +209,39 @@ int RunExportCommand(const std::vector<std::string>& args)
     {
       std::printf("wrote %s\n", file.c_str());
     }
+    if (result.patches.size() > 1)
+    {
+      std::string names;
+      for (const bender::PatchLabel& patch : result.patches)
+      {
+        names += (names.empty() ? "" : ", ") + patch.name + " (" +
+          bender::PatchTypeName(patch.type) + ", " + std::to_string(patch.id) + ")";
+      }
+      std::printf("patches: %s\n", names.c_str());
+    }
+    if (result.measured)
+    {
+      const auto& sidecar = result.sidecar;
+      if (sidecar.hasInsidePoint)
+      {
+        std::printf("inside point: %.6g %.6g %.6g %s (%s)\n",
+          sidecar.insidePoint[0],
+          sidecar.insidePoint[1],
+          sidecar.insidePoint[2],
+          sidecar.unit.c_str(),
+          bender::StlFrameName(sidecar.frame));
+      }
+      else
+      {
+        std::printf("no inside point: the surface is %s\n",
+          sidecar.closed ? "closed but no point inside it was verified" : "not closed");
+      }
+    }
     std::printf("%lld triangles, %s%s\n",
       static_cast<long long>(report.triangles),
       report.closed ? "closed" : "open",
-      report.closed ? (", volume " + std::to_string(std::abs(report.volume))).c_str() : "");
+      report.closed ? (", volume " + std::to_string(std::abs(report.volume)) + " mm^3").c_str()
+                    : "");
   }
   return 0;
 }

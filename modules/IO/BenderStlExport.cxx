@@ -1,21 +1,22 @@
 #include "BenderStlExport.h"
 
 #include "AtomicFile.h"
+#include "BenderErrors.h"
 #include "FileUtilities.h"
-#include "MeshTopology.h"
-#include "vtkBenderCapFilter.h"
 
-#include <vtkCellData.h>
-#include <vtkDataArray.h>
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <memory>
 
 namespace bender
@@ -30,46 +31,87 @@ struct Facet
   std::array<std::array<float, 3>, 3> v;
 };
 
-std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh, StlFrame frame, std::size_t patches)
+// Triangles of the polygons (fanned) and strips of mesh, each with the id of its cell.
+void Triangulate(vtkPolyData* mesh,
+  std::vector<std::array<vtkIdType, 3>>& tris,
+  std::vector<vtkIdType>& cells)
 {
-  const std::vector<std::int64_t> tris = CollectTriangles(mesh);
-  if (tris.empty())
+  vtkIdType cell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+  if (vtkCellArray* polys = mesh->GetPolys())
   {
-    throw StlExportError("the mesh has no triangles");
+    auto it = vtk::TakeSmartPointer(polys->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+    {
+      vtkIdType npts;
+      const vtkIdType* pts;
+      it->GetCurrentCell(npts, pts);
+      for (vtkIdType k = 1; k + 1 < npts; ++k)
+      {
+        tris.push_back({ pts[0], pts[k], pts[k + 1] });
+        cells.push_back(cell);
+      }
+    }
   }
-  vtkDataArray* ids = mesh->GetCellData()->GetArray(vtkBenderCapFilter::PatchIdArrayName());
-  // Triangles come from polygons then strips; PatchId is per cell, one triangle per cell for
-  // the triangle meshes the cap filter writes.
-  const bool perTriangle =
-    ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(tris.size() / 3);
-  if (ids && !perTriangle && patches > 1)
+  if (vtkCellArray* strips = mesh->GetStrips())
   {
-    // Labels of polygons or strips cannot be split per patch here: say so rather than put
-    // every facet in the wall (the inlets and outlets would vanish from the CFD case).
-    throw StlExportError("the PatchId labels are not one per triangle (the surface has polygons, "
-                         "strips, lines or vertices): triangulate it before exporting patches");
+    auto it = vtk::TakeSmartPointer(strips->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+    {
+      vtkIdType npts;
+      const vtkIdType* pts;
+      it->GetCurrentCell(npts, pts);
+      for (vtkIdType k = 0; k + 2 < npts; ++k)
+      {
+        if (k % 2 == 0)
+        {
+          tris.push_back({ pts[k], pts[k + 1], pts[k + 2] });
+        }
+        else
+        {
+          tris.push_back({ pts[k + 1], pts[k], pts[k + 2] });
+        }
+        cells.push_back(cell);
+      }
+    }
   }
-  std::vector<std::vector<Facet>> out(patches);
-  const double sign = frame == StlFrame::RAS ? -1.0 : 1.0;
-  for (std::size_t t = 0; t < tris.size(); t += 3)
+}
+
+// Throws for a corner of a triangle with a non-finite coordinate.
+void CheckFinite(vtkPolyData* mesh, const std::vector<std::array<vtkIdType, 3>>& tris)
+{
+  for (const auto& tri : tris)
+  {
+    for (vtkIdType id : tri)
+    {
+      double p[3];
+      mesh->GetPoint(id, p);
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      {
+        throw StlExportError("the mesh has non-finite (NaN or infinite) coordinates");
+      }
+    }
+  }
+}
+
+// The facets of every patch (index as in labels.patches), in the written coordinates.
+std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh,
+  const LabelledTriangles& labels,
+  const ExportTransform& transform,
+  bool perPatch)
+{
+  std::vector<std::vector<Facet>> out(perPatch ? labels.patches.size() : 1);
+  for (std::size_t t = 0; t < labels.triangles.size(); ++t)
   {
     std::array<std::array<double, 3>, 3> p;
     for (int k = 0; k < 3; ++k)
     {
-      mesh->GetPoint(tris[t + k], p[k].data());
-      p[k][0] *= sign;
-      p[k][1] *= sign;
-      for (double c : p[k])
-      {
-        if (!std::isfinite(c))
-        {
-          throw StlExportError("the mesh has non-finite (NaN or infinite) coordinates");
-        }
-      }
+      double in[3];
+      mesh->GetPoint(labels.triangles[t][k], in);
+      transform.Apply(in, p[k].data());
     }
     const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
     const double w[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
-    double n[3] = {
+    const double n[3] = {
       u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]
     };
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -82,13 +124,7 @@ std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh, StlFrame frame, std::s
         f.v[k][a] = static_cast<float>(p[k][a]);
       }
     }
-    std::size_t patch = 0;
-    if (perTriangle && patches > 1)
-    {
-      const double id = ids->GetTuple1(static_cast<vtkIdType>(t / 3));
-      patch = id >= 0 && id < static_cast<double>(patches) ? static_cast<std::size_t>(id) : 0;
-    }
-    out[patch].push_back(f);
+    out[perPatch ? labels.patch[t] : 0].push_back(f);
   }
   return out;
 }
@@ -113,20 +149,10 @@ FileProducer Producer(std::function<bool(std::FILE*)> write)
   };
 }
 
-// Writes every file of the export or none (the patches of one case belong together).
-void WriteAll(const std::vector<AtomicFile>& files)
-{
-  std::string problem;
-  if (!AtomicWriteAll(files, problem))
-  {
-    throw StlExportError(problem);
-  }
-}
-
 std::string Header(const StlExportOptions& options)
 {
-  return std::string("bender export: frame ") + (options.frame == StlFrame::LPS ? "LPS" : "RAS") +
-    ", unit " + options.unit;
+  return std::string("bender export: frame ") + StlFrameName(options.frame) + ", unit " +
+    options.unit;
 }
 
 bool WriteBinary(std::FILE* f, const std::string& header, const std::vector<Facet>& facets)
@@ -169,32 +195,7 @@ bool WriteSolid(std::FILE* f,
   }
   return ok && std::fprintf(f, "endsolid %s%s\n", name.c_str(), endNote.c_str()) > 0;
 }
-} // namespace
 
-std::vector<std::string> PatchNames(vtkPolyData* mesh)
-{
-  std::vector<std::string> names{ "wall" };
-  vtkDataArray* ids =
-    mesh ? mesh->GetCellData()->GetArray(vtkBenderCapFilter::PatchIdArrayName()) : nullptr;
-  if (ids && ids->GetNumberOfTuples() > 0)
-  {
-    const double* range = ids->GetRange(0);
-    if (!std::isfinite(range[0]) || !std::isfinite(range[1]) || range[0] < 0.0 ||
-      range[1] > static_cast<double>(mesh->GetNumberOfCells()))
-    {
-      throw StlExportError("the PatchId cell array holds values outside [0, number of cells]");
-    }
-    const int maxId = static_cast<int>(range[1]);
-    for (int k = 1; k <= maxId; ++k)
-    {
-      names.push_back("cap_" + std::to_string(k));
-    }
-  }
-  return names;
-}
-
-namespace
-{
 std::string StlStem(const std::string& path)
 {
   std::string stem = path;
@@ -208,6 +209,116 @@ std::string StlStem(const std::string& path)
 }
 } // namespace
 
+const char* StlFrameName(StlFrame frame)
+{
+  return frame == StlFrame::RAS ? "RAS" : "LPS";
+}
+
+bool IsExportUnit(const std::string& unit)
+{
+  return unit == "mm" || unit == "m";
+}
+
+ExportTransform::ExportTransform(StlFrame frame, const std::string& unit)
+  : FrameValue(frame)
+  , UnitValue(unit)
+  , Metres(unit == "m")
+{
+  if (!IsExportUnit(unit))
+  {
+    throw StlExportError("unknown unit '" + unit + "' (expected mm or m)");
+  }
+}
+
+void ExportTransform::Apply(const double in[3], double out[3]) const
+{
+  const double sign = this->FrameValue == StlFrame::RAS ? -1.0 : 1.0;
+  out[0] = sign * in[0];
+  out[1] = sign * in[1];
+  out[2] = in[2];
+  if (this->Metres)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      out[a] /= 1000.0;
+    }
+  }
+}
+
+std::vector<std::size_t> LabelledTriangles::CountPerPatch() const
+{
+  std::vector<std::size_t> counts(this->patches.size(), 0);
+  for (std::size_t p : this->patch)
+  {
+    ++counts[p];
+  }
+  return counts;
+}
+
+LabelledTriangles CollectLabelledTriangles(vtkPolyData* mesh)
+{
+  if (!mesh)
+  {
+    throw StlExportError("no mesh to export");
+  }
+  LabelledTriangles out;
+  std::vector<vtkIdType> cells;
+  Triangulate(mesh, out.triangles, cells);
+  if (out.triangles.empty())
+  {
+    throw StlExportError("the mesh has no triangles");
+  }
+  CheckFinite(mesh, out.triangles);
+  std::vector<int> ids;
+  try
+  {
+    out.patches = ReadPatchLabels(mesh);
+    ids = CellPatchIds(mesh);
+  }
+  catch (const InputError& e)
+  {
+    throw StlExportError(e.what());
+  }
+  std::map<int, std::size_t> index;
+  for (std::size_t k = 0; k < out.patches.size(); ++k)
+  {
+    index[out.patches[k].id] = k;
+  }
+  out.patch.reserve(cells.size());
+  for (vtkIdType cell : cells)
+  {
+    out.patch.push_back(index.at(ids[static_cast<std::size_t>(cell)]));
+  }
+  return out;
+}
+
+std::vector<std::string> PatchNames(vtkPolyData* mesh)
+{
+  if (!mesh)
+  {
+    return { "wall" };
+  }
+  std::vector<PatchLabel> labels;
+  try
+  {
+    labels = ReadPatchLabels(mesh);
+  }
+  catch (const InputError& e)
+  {
+    throw StlExportError(e.what());
+  }
+  std::vector<std::string> names;
+  for (const PatchLabel& label : labels)
+  {
+    names.push_back(label.name);
+  }
+  if (names.empty())
+  {
+    names.push_back("wall");
+  }
+  return names;
+}
+
 std::vector<std::string> PlannedStlPaths(vtkPolyData* mesh,
   const std::string& path,
   const StlExportOptions& options)
@@ -216,21 +327,103 @@ std::vector<std::string> PlannedStlPaths(vtkPolyData* mesh,
   {
     return { path };
   }
-  std::vector<std::string> names;
+  LabelledTriangles labels;
   try
   {
-    names = PatchNames(mesh);
+    labels = CollectLabelledTriangles(mesh);
   }
   catch (const StlExportError& e)
   {
     throw StlExportError(DisplayName(path) + ": " + e.what());
   }
+  const std::vector<std::size_t> counts = labels.CountPerPatch();
   std::vector<std::string> paths;
-  for (const std::string& name : names)
+  for (std::size_t k = 0; k < labels.patches.size(); ++k)
   {
-    paths.push_back(StlStem(path) + "_" + name + ".stl");
+    if (counts[k] > 0)
+    {
+      paths.push_back(StlStem(path) + "_" + labels.patches[k].name + ".stl");
+    }
   }
   return paths;
+}
+
+std::vector<AtomicFile> StlFiles(vtkPolyData* mesh,
+  const std::string& path,
+  const StlExportOptions& options)
+{
+  LabelledTriangles labels;
+  std::vector<std::vector<Facet>> facets;
+  try
+  {
+    const ExportTransform transform(options.frame, options.unit);
+    labels = CollectLabelledTriangles(mesh);
+    facets = Facets(mesh, labels, transform, options.patches != StlPatchMode::Single);
+  }
+  catch (const StlExportError& e)
+  {
+    throw StlExportError(DisplayName(path) + ": " + e.what());
+  }
+  // The facets are shared by the producers, which may run after this function returned.
+  auto shared = std::make_shared<std::vector<std::vector<Facet>>>(std::move(facets));
+  const std::string header = Header(options);
+  std::vector<AtomicFile> files;
+  switch (options.patches)
+  {
+    case StlPatchMode::Single:
+      files.push_back({ path,
+        Producer(
+          [shared, header](std::FILE* f) { return WriteBinary(f, header, (*shared)[0]); }) });
+      break;
+    case StlPatchMode::Solids:
+    {
+      std::vector<std::string> names;
+      for (const PatchLabel& label : labels.patches)
+      {
+        names.push_back(label.name);
+      }
+      files.push_back({ path,
+        Producer(
+          [shared, names, header](std::FILE* f)
+          {
+            // ASCII STL has no comment: the header follows the first solid's name on its
+            // endsolid line, which readers ignore (OpenFOAM would fold it into the patch name
+            // on the solid line).
+            bool ok = true;
+            bool first = true;
+            for (std::size_t k = 0; k < names.size(); ++k)
+            {
+              if ((*shared)[k].empty())
+              {
+                continue;
+              }
+              ok =
+                ok && WriteSolid(f, names[k], first ? "  " + header : std::string(), (*shared)[k]);
+              first = false;
+            }
+            return ok;
+          }) });
+      break;
+    }
+    case StlPatchMode::Files:
+    {
+      // All patches or none: a case with the wall but without its inlets is worse than none.
+      const std::string stem = StlStem(path);
+      for (std::size_t k = 0; k < labels.patches.size(); ++k)
+      {
+        if ((*shared)[k].empty())
+        {
+          continue;
+        }
+        const std::string fileHeader = header + ", patch " + labels.patches[k].name;
+        files.push_back({ stem + "_" + labels.patches[k].name + ".stl",
+          Producer([fileHeader, shared, k](std::FILE* f)
+            { return WriteBinary(f, fileHeader, (*shared)[k]); }) });
+      }
+      break;
+    }
+  }
+  return files;
 }
 
 std::vector<std::string> ExportStl(vtkPolyData* mesh,
@@ -241,70 +434,16 @@ std::vector<std::string> ExportStl(vtkPolyData* mesh,
   {
     throw StlExportError(DisplayName(path) + ": no mesh to export");
   }
-  std::vector<std::string> names;
-  std::vector<std::vector<Facet>> facets;
-  try
+  const std::vector<AtomicFile> files = StlFiles(mesh, path, options);
+  std::string problem;
+  if (!AtomicWriteAll(files, problem))
   {
-    names = PatchNames(mesh);
-    facets =
-      Facets(mesh, options.frame, options.patches == StlPatchMode::Single ? 1 : names.size());
+    throw StlExportError(problem);
   }
-  catch (const StlExportError& e)
-  {
-    throw StlExportError(DisplayName(path) + ": " + e.what());
-  }
-  const std::string header = Header(options);
   std::vector<std::string> written;
-  switch (options.patches)
+  for (const AtomicFile& file : files)
   {
-    case StlPatchMode::Single:
-      WriteAll(
-        { { path, Producer([&](std::FILE* f) { return WriteBinary(f, header, facets[0]); }) } });
-      written.push_back(path);
-      break;
-    case StlPatchMode::Solids:
-      WriteAll({ { path,
-        Producer(
-          [&](std::FILE* f)
-          {
-            // ASCII STL has no comment: the header follows the first solid's name on its
-            // endsolid line, which readers ignore (OpenFOAM would fold it into the patch name
-            // on the solid line).
-            bool ok = true;
-            for (std::size_t k = 0; k < names.size(); ++k)
-            {
-              if (facets[k].empty())
-              {
-                continue;
-              }
-              ok = ok && WriteSolid(f, names[k], k == 0 ? "  " + header : std::string(), facets[k]);
-            }
-            return ok;
-          }) } });
-      written.push_back(path);
-      break;
-    case StlPatchMode::Files:
-    {
-      // All patches or none: a case with the wall but without its inlets is worse than none.
-      const std::string stem = StlStem(path);
-      std::vector<AtomicFile> files;
-      for (std::size_t k = 0; k < names.size(); ++k)
-      {
-        if (facets[k].empty())
-        {
-          continue;
-        }
-        const std::string file = stem + "_" + names[k] + ".stl";
-        const std::string fileHeader = header + ", patch " + names[k];
-        const std::vector<Facet>& patch = facets[k];
-        files.push_back({ file,
-          Producer(
-            [fileHeader, &patch](std::FILE* f) { return WriteBinary(f, fileHeader, patch); }) });
-        written.push_back(file);
-      }
-      WriteAll(files);
-      break;
-    }
+    written.push_back(file.path);
   }
   return written;
 }
@@ -315,10 +454,26 @@ bool WriteStlFile(vtkPolyData* mesh,
   const std::string& header,
   std::string& problem)
 {
+  if (!mesh)
+  {
+    problem = "no mesh to write";
+    return false;
+  }
+  // Labels play no part here: the whole surface, as it is.
+  LabelledTriangles whole;
+  std::vector<vtkIdType> cells;
+  Triangulate(mesh, whole.triangles, cells);
+  if (whole.triangles.empty())
+  {
+    problem = "the mesh has no triangles";
+    return false;
+  }
+  whole.patch.assign(whole.triangles.size(), 0);
   std::vector<std::vector<Facet>> facets;
   try
   {
-    facets = Facets(mesh, StlFrame::LPS, 1);
+    CheckFinite(mesh, whole.triangles);
+    facets = Facets(mesh, whole, ExportTransform(StlFrame::LPS, "mm"), false);
   }
   catch (const StlExportError& e)
   {

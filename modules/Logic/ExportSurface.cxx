@@ -4,14 +4,17 @@
 #include "vtkBenderCapFilter.h"
 
 #include <vtkCellData.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 
 #include <algorithm>
 #include <cctype>
 #include <exception>
+#include <utility>
 
 namespace bender
 {
@@ -50,6 +53,39 @@ bool HasExtension(const std::string& path, const std::string& ext)
 }
 } // namespace
 
+namespace
+{
+// A producer writing mesh through WriteMesh to the temporary file of an atomic set.
+FileProducer MeshProducer(vtkSmartPointer<vtkPolyData> mesh, MeshWriteOptions writeOptions)
+{
+  return [mesh, writeOptions](const std::string& temp, std::string& problem)
+  {
+    try
+    {
+      WriteMesh(mesh, temp, writeOptions);
+    }
+    catch (const std::exception& e)
+    {
+      problem = e.what();
+      return false;
+    }
+    return true;
+  };
+}
+
+bool HasEndPatches(vtkPolyData* surface)
+{
+  for (const PatchLabel& label : ReadPatchLabels(surface))
+  {
+    if (label.id != kWallEntityId)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
 ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptions& options)
 {
   const std::string& path = options.output;
@@ -74,12 +110,24 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
   {
     throw InputError(path + ": the cap planarity must be in [0, 1]");
   }
+  if (!IsExportUnit(options.unit))
+  {
+    throw InputError(path + ": unknown unit '" + options.unit + "' (expected mm or m)");
+  }
   const bool stl = HasExtension(path, ".stl");
+  TetgenFormat tetgen = TetgenFormat::Smesh;
+  const bool isTetgen = TetgenFormatForPath(path, tetgen);
   if (!stl && options.patches != StlPatchMode::Single)
   {
     throw InputError(path +
-      ": patches (solids, files) are written as .stl only; .vtp keeps "
-      "them as the PatchId cell labels");
+      ": patches (solids, files) are written as .stl only; .vtp, .smesh and .poly keep "
+      "them as labels");
+  }
+  const std::string sidecarPath = PatchSidecarPath(path);
+  if (options.patchesJson && !options.protectedPath.empty() &&
+    SameFile(sidecarPath, options.protectedPath))
+  {
+    throw InputError(sidecarPath + ": refusing to overwrite the input file; choose another output");
   }
 
   ExportSurfaceResult result;
@@ -94,15 +142,53 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
     {
       throw InputError(path + ": capping failed: " + caps->GetLastError());
     }
-    mesh = caps->GetOutput();
+    bool labelledEnds = false;
+    try
+    {
+      labelledEnds = HasEndPatches(surface);
+    }
+    catch (const InputError& e)
+    {
+      throw InputError(source + ": " + e.what());
+    }
     result.caps = caps->GetNumberOfCaps();
     result.skippedLoops = caps->GetNumberOfSkippedLoops();
+    // A surface already closed with labelled ends (capped, clipped) is kept as it is: capping
+    // it again would find nothing and relabel it all wall.
+    if (!(labelledEnds && result.caps == 0))
+    {
+      mesh = caps->GetOutput();
+    }
+    if (result.caps == 0 && !labelledEnds)
+    {
+      // A capped export without an inlet or outlet cannot set up a flow problem: say so
+      // rather than write one solid "wall".
+      throw InputError(result.skippedLoops == 0
+          ? source +
+            ": nothing to cap: the surface has no open end (it is closed; clip its vessel ends "
+            "open first, e.g. bender-cli clip)"
+          : source + ": nothing to cap: none of its " + std::to_string(result.skippedLoops) +
+            " open boundary loops is planar enough (raise the planarity, now " +
+            std::to_string(options.planarity) + ")");
+    }
   }
   result.triangles = static_cast<long long>(mesh->GetNumberOfPolys());
   result.surface = mesh;
 
   try
   {
+    result.patches = ReadPatchLabels(mesh);
+    const ExportTransform transform(options.frame, options.unit);
+    std::vector<AtomicFile> files;
+    if (options.patchesJson || isTetgen)
+    {
+      AtomicFile sidecar = PatchSidecarFile(mesh, sidecarPath, transform, &result.sidecar);
+      result.measured = true;
+      if (options.patchesJson)
+      {
+        files.push_back(std::move(sidecar));
+      }
+    }
     if (stl)
     {
       StlExportOptions stlOptions;
@@ -125,28 +211,65 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
           }
         }
       }
-      result.written = ExportStl(mesh, path, stlOptions);
-      return result;
+      std::vector<AtomicFile> stlFiles = StlFiles(mesh, path, stlOptions);
+      files.insert(files.begin(), stlFiles.begin(), stlFiles.end());
     }
-    if (options.frame == StlFrame::RAS)
+    else if (isTetgen)
     {
-      // LPS -> RAS negates x and y (a half turn about z: orientation and volume are kept).
-      auto ras = vtkSmartPointer<vtkPolyData>::New();
-      ras->DeepCopy(mesh);
-      vtkPoints* pts = ras->GetPoints();
-      for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i)
-      {
-        double p[3];
-        pts->GetPoint(i, p);
-        pts->SetPoint(i, -p[0], -p[1], p[2]);
-      }
-      mesh = ras;
+      files.insert(files.begin(),
+        TetgenFile(mesh,
+          path,
+          tetgen,
+          transform,
+          result.sidecar.hasInsidePoint ? result.sidecar.insidePoint.data() : nullptr));
     }
-    MeshWriteOptions writeOptions;
-    writeOptions.stlEncoding = options.stlEncoding;
-    writeOptions.header = ExportHeader(options.frame, options.unit);
-    WriteMesh(mesh, path, writeOptions);
-    result.written = { path };
+    else
+    {
+      vtkSmartPointer<vtkPolyData> written = mesh;
+      const bool vtp = HasExtension(path, ".vtp");
+      if (options.frame == StlFrame::RAS || options.unit != "mm" || vtp)
+      {
+        // RAS negates x and y (a half turn about z: orientation and volume are kept); metres
+        // divide by 1000.
+        written = vtkSmartPointer<vtkPolyData>::New();
+        written->DeepCopy(mesh);
+        vtkPoints* pts = written->GetPoints();
+        for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i)
+        {
+          double p[3], q[3];
+          pts->GetPoint(i, p);
+          transform.Apply(p, q);
+          pts->SetPoint(i, q);
+        }
+      }
+      if (vtp)
+      {
+        // The VTK form states its frame and unit in field data beside the patch names.
+        for (const auto& [name, value] :
+          { std::pair<const char*, std::string>{ "Unit", options.unit },
+            std::pair<const char*, std::string>{ "Frame", StlFrameName(options.frame) } })
+        {
+          vtkNew<vtkStringArray> array;
+          array->SetName(name);
+          array->InsertNextValue(value);
+          written->GetFieldData()->RemoveArray(name);
+          written->GetFieldData()->AddArray(array);
+        }
+      }
+      MeshWriteOptions writeOptions;
+      writeOptions.stlEncoding = options.stlEncoding;
+      writeOptions.header = ExportHeader(options.frame, options.unit);
+      files.insert(files.begin(), AtomicFile{ path, MeshProducer(written, writeOptions) });
+    }
+    std::string problem;
+    if (!AtomicWriteAll(files, problem))
+    {
+      throw InputError(problem);
+    }
+    for (const AtomicFile& file : files)
+    {
+      result.written.push_back(file.path);
+    }
   }
   catch (const InputError&)
   {

@@ -4,6 +4,7 @@
 #include "CliPostTestUtilities.h"
 
 #include "MeshIO.h"
+#include "PatchLabels.h"
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +12,7 @@
 #include <vtkDataArray.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -138,12 +140,11 @@ TEST_F(CliExport, CapsTheAneurysmIntoAClosedSurface)
               .status,
     0);
   const auto mesh = bender::ReadMesh(Tmp("a.vtp"));
-  vtkDataArray* patch = mesh->GetCellData()->GetArray("PatchId");
-  ASSERT_NE(patch, nullptr);
-  double range[2];
-  patch->GetRange(range);
-  EXPECT_EQ(range[0], 0.0);
-  EXPECT_EQ(range[1], 3.0);
+  ASSERT_TRUE(bender::HasPatchLabels(mesh));
+  const std::vector<int> ids = bender::CellPatchIds(mesh);
+  EXPECT_EQ(*std::min_element(ids.begin(), ids.end()), bender::kWallEntityId);
+  EXPECT_EQ(*std::max_element(ids.begin(), ids.end()), 4); // wall 1, three ends 2..4
+  EXPECT_EQ(bender::ReadPatchLabels(mesh).size(), 4u);
 }
 
 TEST_F(CliExport, SolidsAreNamedWallAndCaps)
@@ -153,11 +154,22 @@ TEST_F(CliExport, SolidsAreNamedWallAndCaps)
     " --cap --patches solids --quiet");
   ASSERT_EQ(r.status, 0) << r.errors;
   const std::string text = ReadText(Tmp("a.stl"));
-  for (const char* solid : { "solid wall", "solid cap_1", "solid cap_2", "solid cap_3" })
+  // One solid per patch, named as the sidecar names them: the wall and three ends.
+  const auto sidecar = nlohmann::json::parse(ReadText(Tmp("a.patches.json")));
+  ASSERT_EQ(sidecar.at("patches").size(), 4u);
+  EXPECT_EQ(sidecar.at("patches")[0].at("name"), "wall");
+  for (const auto& patch : sidecar.at("patches"))
   {
-    EXPECT_NE(text.find(std::string(solid) + "\n"), std::string::npos) << solid;
+    const std::string solid = "solid " + patch.at("name").get<std::string>() + "\n";
+    EXPECT_NE(text.find(solid), std::string::npos) << solid;
   }
-  EXPECT_EQ(text.find("solid cap_4"), std::string::npos);
+  std::size_t solids = 0;
+  for (std::size_t at = text.find("solid "); at != std::string::npos;
+       at = text.find("solid ", at + 1))
+  {
+    solids += (at == 0 || text[at - 1] == '\n') ? 1 : 0;
+  }
+  EXPECT_EQ(solids, 4u);
   EXPECT_NE(text.find("frame LPS, unit mm"), std::string::npos);
   // The multi-solid file reads back as one closed surface.
   EXPECT_EQ(Run("check " + Q(Tmp("a.stl")) + " --closed").status, 0);
@@ -169,12 +181,17 @@ TEST_F(CliExport, FilesModeWritesOneFilePerPatch)
   const Result r = Run("export " + Q(External + "/aneurysm_data.stl") + " -o " + Q(Tmp("a.stl")) +
     " --cap --patches files --quiet");
   ASSERT_EQ(r.status, 0) << r.errors;
-  const std::vector<std::string> expected = {
-    "a_cap_1.stl", "a_cap_2.stl", "a_cap_3.stl", "a_wall.stl"
-  };
-  EXPECT_EQ(Files(), expected);
-  for (const std::string& name : expected)
+  // One file per patch named by it (wall and three ends), and the sidecar.
+  const std::vector<std::string> files = Files();
+  ASSERT_EQ(files.size(), 5u);
+  EXPECT_EQ(std::count(files.begin(), files.end(), "a.patches.json"), 1);
+  EXPECT_EQ(std::count(files.begin(), files.end(), "a_wall.stl"), 1);
+  const auto sidecar = nlohmann::json::parse(ReadText(Tmp("a.patches.json")));
+  ASSERT_EQ(sidecar.at("patches").size(), 4u);
+  for (const auto& patch : sidecar.at("patches"))
   {
+    const std::string name = "a_" + patch.at("name").get<std::string>() + ".stl";
+    EXPECT_EQ(std::count(files.begin(), files.end(), name), 1) << name;
     EXPECT_GT(bender::ReadMesh(Tmp(name))->GetNumberOfPolys(), 0) << name;
   }
 }
