@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace bender
 {
@@ -92,7 +93,9 @@ BENDER_ALWAYS_INLINE float CosOfRoot(float y) // cos(sqrt(y))
             (-1.0f / 720.0f +
               y *
                 (1.0f / 40320.0f +
-                  y * (-1.0f / 3628800.0f + y * (1.0f / 479001600.0f - y / 87178291200.0f))))));
+                  y *
+                    (-1.0f / 3628800.0f +
+                      y * (1.0f / 479001600.0f - y * (1.0f / 87178291200.0f)))))));
 }
 
 BENDER_ALWAYS_INLINE float SincOfRoot(float y) // sin(sqrt(y)) / sqrt(y)
@@ -106,7 +109,9 @@ BENDER_ALWAYS_INLINE float SincOfRoot(float y) // sin(sqrt(y)) / sqrt(y)
             (-1.0f / 5040.0f +
               y *
                 (1.0f / 362880.0f +
-                  y * (-1.0f / 39916800.0f + y * (1.0f / 6227020800.0f - y / 1307674368000.0f))))));
+                  y *
+                    (-1.0f / 39916800.0f +
+                      y * (1.0f / 6227020800.0f - y * (1.0f / 1307674368000.0f)))))));
 }
 
 // (cos(theta) - sin(theta) / theta) / theta^2 at x = theta^2: sum over k >= 1 of
@@ -145,18 +150,19 @@ struct KernelPieces
 // m0 + a (m1 - m0) from the interval's 16 contiguous floats, then the power f and the rigid
 // motion applied to P. Every point goes through the same operations whatever its position in
 // the range, so a point's result does not depend on how a range is split between threads.
-BENDER_ALWAYS_INLINE void KernelBody(const float* table,
+BENDER_ALWAYS_INLINE int KernelBody(const float* table,
   const KernelPieces& pc,
   const float* pxAll,
   const float* pyAll,
   const float* pzAll,
   const float* sp,
   const float* fpAll,
-  float* oxAll,
-  float* oyAll,
-  float* ozAll,
+  float* outAll,
+  const float* shift,
   int n)
 {
+  const float sx = shift[0], sy = shift[1], sz = shift[2];
+  int nonFinite = 0;
   // Local copies: selects between values in registers if-convert, loads through `pc` do not.
   const float end0 = pc.end0, end1 = pc.end1;
   const float start0 = pc.start0, start1 = pc.start1, start2 = pc.start2;
@@ -210,9 +216,7 @@ BENDER_ALWAYS_INLINE void KernelBody(const float* table,
     const float* py = pyAll + b;
     const float* pz = pzAll + b;
     const float* fp = fpAll + b;
-    float* ox = oxAll + b;
-    float* oy = oyAll + b;
-    float* oz = ozAll + b;
+    float* out = outAll + 3 * b;
 #pragma omp simd
     for (int k = 0; k < m; ++k)
     {
@@ -244,14 +248,20 @@ BENDER_ALWAYS_INLINE void KernelBody(const float* table,
       const float cx = 2.0f * (ry * z - rz * y);
       const float cy = 2.0f * (rz * x - rx * z);
       const float cz = 2.0f * (rx * y - ry * x);
-      ox[k] = x + rw * cx + (ry * cz - rz * cy) + tx;
-      oy[k] = y + rw * cy + (rz * cx - rx * cz) + ty;
-      oz[k] = z + rw * cz + (rx * cy - ry * cx) + tz;
+      const float qx = x + rw * cx + (ry * cz - rz * cy) + tx + sx;
+      const float qy = y + rw * cy + (rz * cx - rx * cz) + ty + sy;
+      const float qz = z + rw * cz + (rx * cy - ry * cx) + tz + sz;
+      out[3 * k] = qx;
+      out[3 * k + 1] = qy;
+      out[3 * k + 2] = qz;
+      // q - q is 0 for every finite q and NaN for an infinity or a NaN.
+      nonFinite += (qx - qx) + (qy - qy) + (qz - qz) == 0.0f ? 0 : 1;
     }
   }
+  return nonFinite;
 }
 
-using KernelFunction = void (*)(const float*,
+using KernelFunction = int (*)(const float*,
   const KernelPieces&,
   const float*,
   const float*,
@@ -259,34 +269,33 @@ using KernelFunction = void (*)(const float*,
   const float*,
   const float*,
   float*,
-  float*,
-  float*,
+  const float*,
   int);
 
 #define BENDER_KERNEL_PARAMETERS                                                                   \
   const float *table, const KernelPieces &pc, const float *px, const float *py, const float *pz,   \
-    const float *sp, const float *fp, float *ox, float *oy, float *oz, int n
-#define BENDER_KERNEL_ARGUMENTS table, pc, px, py, pz, sp, fp, ox, oy, oz, n
+    const float *sp, const float *fp, float *out, const float *shift, int n
+#define BENDER_KERNEL_ARGUMENTS table, pc, px, py, pz, sp, fp, out, shift, n
 
 // The same body compiled for the baseline of the build and, on x86-64 with GCC or Clang, for
 // AVX2 + FMA and AVX-512; FastWarpKernel picks the best one the CPU has at run time (the
 // default build stays portable: no -march flag).
-void KernelBaseline(BENDER_KERNEL_PARAMETERS)
+int KernelBaseline(BENDER_KERNEL_PARAMETERS)
 {
-  KernelBody(BENDER_KERNEL_ARGUMENTS);
+  return KernelBody(BENDER_KERNEL_ARGUMENTS);
 }
 
 #if defined(__GNUC__) && defined(__x86_64__)
 #define BENDER_KERNEL_DISPATCH 1
-__attribute__((target("avx2,fma"))) void KernelAvx2(BENDER_KERNEL_PARAMETERS)
+__attribute__((target("avx2,fma"))) int KernelAvx2(BENDER_KERNEL_PARAMETERS)
 {
-  KernelBody(BENDER_KERNEL_ARGUMENTS);
+  return KernelBody(BENDER_KERNEL_ARGUMENTS);
 }
 
-__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma"))) void KernelAvx512(
+__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma"))) int KernelAvx512(
   BENDER_KERNEL_PARAMETERS)
 {
-  KernelBody(BENDER_KERNEL_ARGUMENTS);
+  return KernelBody(BENDER_KERNEL_ARGUMENTS);
 }
 #endif
 
@@ -394,14 +403,51 @@ void FastWarpKernel::Evaluate(const float* px,
   std::size_t begin,
   std::size_t end) const
 {
+  constexpr std::size_t block = 512;
+  alignas(64) float xyz[3 * block];
+  for (std::size_t b = begin; b < end; b += block)
+  {
+    const std::size_t n = std::min(block, end - b);
+    this->EvaluateInterleaved(px + b, py + b, pz + b, s + b, f + b, xyz, nullptr, 0, n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      ox[b + k] = xyz[3 * k];
+      oy[b + k] = xyz[3 * k + 1];
+      oz[b + k] = xyz[3 * k + 2];
+    }
+  }
+}
+
+std::size_t FastWarpKernel::EvaluateInterleaved(const float* px,
+  const float* py,
+  const float* pz,
+  const float* s,
+  const float* f,
+  float* xyz,
+  const float* shift,
+  std::size_t begin,
+  std::size_t end) const
+{
   const KernelPieces pc = PiecesOf(this->Start, this->End, this->Scale, this->Offset, this->Last);
   const KernelFunction kernel = KernelOf(this->Simd);
+  const float zero[3] = { 0.0f, 0.0f, 0.0f };
   constexpr std::size_t chunk = 1 << 20;
+  std::size_t bad = 0;
   for (std::size_t b = begin; b < end; b += chunk)
   {
     const int n = static_cast<int>(std::min(chunk, end - b));
-    kernel(this->Table.data(), pc, px + b, py + b, pz + b, s + b, f + b, ox + b, oy + b, oz + b, n);
+    bad += static_cast<std::size_t>(kernel(this->Table.data(),
+      pc,
+      px + b,
+      py + b,
+      pz + b,
+      s + b,
+      f + b,
+      xyz + 3 * b,
+      shift ? shift : zero,
+      n));
   }
+  return bad;
 }
 
 void FastWarpLayout::Clear()
@@ -480,56 +526,40 @@ std::size_t FastWarpLayout::EvaluateSingles(const FastWarpKernel& kernel,
   std::size_t begin,
   std::size_t end) const
 {
-  // Blocks small enough that the kernel's results stay in L1 until they are written out.
   constexpr std::size_t block = 512;
-  alignas(64) float ox[block], oy[block], oz[block];
+  alignas(64) float xyz[3 * block];
+  const float center[3] = { static_cast<float>(this->Center.x),
+    static_cast<float>(this->Center.y),
+    static_cast<float>(this->Center.z) };
   std::size_t bad = 0;
   for (std::size_t b = begin; b < end; b += block)
   {
     const std::size_t n = std::min(block, end - b);
-    kernel.Evaluate(this->Px.data() + b,
-      this->Py.data() + b,
-      this->Pz.data() + b,
-      this->S.data() + b,
-      this->F.data() + b,
-      ox,
-      oy,
-      oz,
-      0,
-      n);
     const std::int64_t* ids = this->Singles.data() + b;
-    // The ids increase, so a block without gaps is written as one contiguous run.
+    const float* px = this->Px.data() + b;
+    const float* py = this->Py.data() + b;
+    const float* pz = this->Pz.data() + b;
+    const float* s = this->S.data() + b;
+    const float* f = this->F.data() + b;
+    // The ids increase, so a block without gaps is one contiguous run of the output: float
+    // points are then written there directly, with the origin added by the kernel.
+    if (std::is_same<T, float>::value && ids[n - 1] - ids[0] == static_cast<std::int64_t>(n - 1))
+    {
+      bad += kernel.EvaluateInterleaved(
+        px, py, pz, s, f, reinterpret_cast<float*>(out + 3 * ids[0]), center, 0, n);
+      continue;
+    }
+    bad += kernel.EvaluateInterleaved(px, py, pz, s, f, xyz, nullptr, 0, n);
     const T cx = static_cast<T>(this->Center.x);
     const T cy = static_cast<T>(this->Center.y);
     const T cz = static_cast<T>(this->Center.z);
-    if (ids[n - 1] - ids[0] == static_cast<std::int64_t>(n - 1))
-    {
-      T* o = out + 3 * ids[0];
-      for (std::size_t k = 0; k < n; ++k)
-      {
-        o[3 * k] = cx + static_cast<T>(ox[k]);
-        o[3 * k + 1] = cy + static_cast<T>(oy[k]);
-        o[3 * k + 2] = cz + static_cast<T>(oz[k]);
-      }
-    }
-    else
-    {
-      for (std::size_t k = 0; k < n; ++k)
-      {
-        T* o = out + 3 * ids[k];
-        o[0] = cx + static_cast<T>(ox[k]);
-        o[1] = cy + static_cast<T>(oy[k]);
-        o[2] = cz + static_cast<T>(oz[k]);
-      }
-    }
-    // x - x is 0 for every finite x and NaN for an infinity or a NaN.
-    int nonFinite = 0;
     for (std::size_t k = 0; k < n; ++k)
     {
-      const float e = (ox[k] - ox[k]) + (oy[k] - oy[k]) + (oz[k] - oz[k]);
-      nonFinite += e == 0.0f ? 0 : 1;
+      T* o = out + 3 * ids[k];
+      o[0] = cx + static_cast<T>(xyz[3 * k]);
+      o[1] = cy + static_cast<T>(xyz[3 * k + 1]);
+      o[2] = cz + static_cast<T>(xyz[3 * k + 2]);
     }
-    bad += static_cast<std::size_t>(nonFinite);
   }
   return bad;
 }

@@ -105,8 +105,9 @@ public:
   const std::vector<DualQuaternion>& MotionTable() const { return this->Table; }
   /// The samples of s of the sign table (piecewise uniform, split at both junctions).
   const SampleGrid& Grid() const { return this->Samples; }
+  /// The lifted rotation quaternions at the samples of Grid() (the sign reference of MotionAt).
+  const std::vector<Quaternion>& LiftedRotations() const { return this->Lifted; }
 
-private:
   /// A ribbon's frames C_s in closed form: on each arc, M(s) = Rot(n, theta u) Rot(T_a, tau s +
   /// c) M_a with n the arc's axis, T_a its start tangent and M_a a fixed frame (spec 2.2 with
   /// the twist and the transport composed), so a frame costs two sincos and a few products
@@ -130,6 +131,11 @@ private:
     void At(double s, Quaternion& q, Vec3& origin) const;
   };
 
+  /// The closed-form frames of the initial and of the final ribbon.
+  const FramePath& InitialFrames() const { return this->InitialPath; }
+  const FramePath& FinalFrames() const { return this->FinalPath; }
+
+private:
   /// The lifted relative motion at s from the closed-form frames, its sign matched to `near`.
   DualQuaternion LiftedMotion(double s, const Quaternion& near) const;
 

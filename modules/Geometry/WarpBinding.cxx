@@ -1,6 +1,7 @@
 #include "WarpBinding.h"
 
 #include "Decay.h"
+#include "ExactWarpKernel.h"
 #include "GeometryErrors.h"
 
 #include <algorithm>
@@ -204,7 +205,13 @@ WarpEvaluator::WarpEvaluator(const RibbonWarp& warp, WarpPrecision precision)
   {
     this->Table.reset(new MotionTable(warp));
   }
+  else
+  {
+    this->Exact.reset(new ExactWarpKernel(warp));
+  }
 }
+
+WarpEvaluator::~WarpEvaluator() = default;
 
 DualQuaternion WarpEvaluator::MotionAt(double s) const
 {
@@ -213,6 +220,10 @@ DualQuaternion WarpEvaluator::MotionAt(double s) const
 
 Vec3 WarpEvaluator::Apply(const Vec3& p, const BoundPoint& rec) const
 {
+  if (this->Exact)
+  {
+    return this->Exact->Apply(p, rec);
+  }
   if (rec.lambda0 >= 1.0)
   {
     return ApplyScrewFraction(this->MotionAt(rec.s0), p, rec.f);
@@ -229,6 +240,11 @@ void WarpEvaluator::EvaluateRange(const T* in,
   std::size_t begin,
   std::size_t end) const
 {
+  if (this->Exact)
+  {
+    this->Exact->EvaluateRange(in, out, records, ids, begin, end);
+    return;
+  }
   for (std::size_t k = begin; k < end; ++k)
   {
     const std::int64_t i = ids[k];

@@ -10,6 +10,7 @@
 
 namespace bender
 {
+class ExactWarpKernel;
 
 /// What a point needs from the initial ribbon to be warped (spec 6, 9): the parameters of its
 /// (at most two) projections and its weights. lambda0 == 1 means one projection counts.
@@ -85,6 +86,7 @@ class WarpEvaluator
 {
 public:
   WarpEvaluator(const RibbonWarp& warp, WarpPrecision precision);
+  ~WarpEvaluator();
 
   /// The interpolation table (Table precision only, else null).
   const MotionTable* GetMotionTable() const { return this->Table.get(); }
@@ -92,11 +94,13 @@ public:
   /// The lifted relative motion at s, exact or interpolated per the precision.
   DualQuaternion MotionAt(double s) const;
 
-  /// The warped position of p with its record.
+  /// The warped position of p with its record. Exact precision: the batched ExactWarpKernel's
+  /// result, bit-for-bit what EvaluateRange gives for the point.
   Vec3 Apply(const Vec3& p, const BoundPoint& rec) const;
 
   /// out[i] = warp(in[i]) for the points listed in ids[begin, end), with their records
-  /// records[ids[k]]. Safe to call concurrently on disjoint ranges.
+  /// records[ids[k]]. Safe to call concurrently on disjoint ranges; exact results do not
+  /// depend on how a range is split (thread counts).
   template<typename T>
   void EvaluateRange(const T* in,
     T* out,
@@ -109,6 +113,7 @@ private:
   const RibbonWarp& Warp;
   WarpPrecision Precision;
   std::unique_ptr<MotionTable> Table;
+  std::unique_ptr<ExactWarpKernel> Exact;
 };
 
 } // namespace bender
