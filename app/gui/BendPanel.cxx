@@ -38,11 +38,14 @@ BendPanel::BendPanel(MainActions* actions, QWidget* parent)
   this->Decay = new QComboBox(this);
   this->Decay->setObjectName("decay");
   this->Decay->addItems({ "Bell", "Plateau" });
+  this->Decay->setToolTip("How the warp fades from the wire to R: bell (smooth everywhere) or "
+                          "plateau (the held part moves as a whole, then fades)");
   form->addRow("Decay", this->Decay);
   this->Plateau = new QDoubleSpinBox(this);
   this->Plateau->setObjectName("plateau");
   this->Plateau->setRange(0.0, 0.95);
   this->Plateau->setSingleStep(0.05);
+  this->Plateau->setToolTip("Share of R that moves fully with the ribbon (plateau decay)");
   form->addRow("Plateau width", this->Plateau);
   this->ReverseScrews = new QCheckBox("Reverse screws (paper 3.8)", this);
   this->ReverseScrews->setObjectName("reverseScrews");
@@ -51,12 +54,16 @@ BendPanel::BendPanel(MainActions* actions, QWidget* parent)
   form->addRow("", this->ReverseScrews);
   this->Subdivide = new QCheckBox("Subdivide at release", this);
   this->Subdivide->setObjectName("subdivide");
+  this->Subdivide->setToolTip(
+    "At release, split the triangles that the warp stretched beyond the tolerance");
   form->addRow("", this->Subdivide);
   this->Tolerance = new QDoubleSpinBox(this);
   this->Tolerance->setObjectName("tolerance");
   this->Tolerance->setRange(0.001, 10.0);
   this->Tolerance->setDecimals(3);
   this->Tolerance->setSuffix(" mm");
+  this->Tolerance->setToolTip("Largest distance (mm) between the exact warp and the subdivided "
+                              "surface at a triangle's edge midpoint");
   form->addRow("Subdivision tolerance", this->Tolerance);
 
   // The gesture buttons show the window's shared actions (menus and keys do the same).

@@ -19,6 +19,8 @@ DataPanel::DataPanel(MainActions* actions, QWidget* parent)
   layout->addWidget(ActionButton(actions->Demo, this, "demoButton"));
   layout->addWidget(new QLabel("Or drop files on the window.", this));
   this->Info = new QLabel("No data", this);
+  this->Info->setToolTip("What is loaded: the surface (points, triangles), the warps committed, "
+                         "the volume, and the frame (LPS, mm)");
   this->Info->setObjectName("dataInfo");
   this->Info->setWordWrap(true);
   layout->addWidget(this->Info);

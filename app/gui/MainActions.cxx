@@ -1,14 +1,20 @@
 #include "MainActions.h"
 
 #include <QAction>
+#include <QDialog>
+#include <QDialogButtonBox>
 #include <QFileInfo>
+#include <QHeaderView>
 #include <QKeySequence>
 #include <QMenu>
 #include <QMenuBar>
+#include <QMessageBox>
 #include <QSettings>
 #include <QSizePolicy>
 #include <QStringList>
+#include <QTableWidget>
 #include <QToolButton>
+#include <QVBoxLayout>
 #include <QWidget>
 
 namespace
@@ -30,6 +36,7 @@ QAction* Make(QWidget* window, const QString& text, const QKeySequence& shortcut
 
 MainActions::MainActions(QWidget* window)
   : QObject(window)
+  , Window(window)
 {
   this->Open = Make(window, "&Open mesh, volume or plan...", QKeySequence::Open, "openAction");
   this->Demo = Make(window, "Run the &demo", QKeySequence("Ctrl+D"), "demoAction");
@@ -53,6 +60,50 @@ MainActions::MainActions(QWidget* window)
   this->ShowCenterline->setChecked(true);
   this->ShowCenterline->setToolTip("The vessel's centerline inside the surface (the surface is "
                                    "drawn translucent while it is shown)");
+  this->ShowOriginal =
+    Make(window, "Show &original shape", QKeySequence("Ctrl+Shift+O"), "showOriginalAction");
+  this->ShowOriginal->setCheckable(true);
+  this->ShowOriginal->setChecked(true);
+  this->ShowOriginal->setToolTip(
+    "The surface before any warp, drawn as a faint ghost behind the bent surface");
+  const char* views[6][4] = {
+    { "&Anterior view", "Ctrl+1", "viewAnteriorAction", "Look at the patient from the front" },
+    { "&Posterior view", "Ctrl+2", "viewPosteriorAction", "Look from behind" },
+    { "&Left view", "Ctrl+3", "viewLeftAction", "Look from the patient's left side" },
+    { "&Right view", "Ctrl+4", "viewRightAction", "Look from the patient's right side" },
+    { "&Superior view", "Ctrl+5", "viewSuperiorAction", "Look down from the head (anterior up)" },
+    { "&Inferior view", "Ctrl+6", "viewInferiorAction", "Look up from the feet (anterior up)" }
+  };
+  for (int v = 0; v < 6; ++v)
+  {
+    this->StandardViews[v] = Make(window, views[v][0], QKeySequence(views[v][1]), views[v][2]);
+    this->StandardViews[v]->setToolTip(
+      QString(views[v][3]) + ", framing the surface (LPS: the marker's letters)");
+  }
+  this->Shortcuts = Make(window, "&Keyboard shortcuts", QKeySequence("F1"), "shortcutsAction");
+  this->Shortcuts->setToolTip("The list of every shortcut of the window");
+  this->About = Make(window, "&About Bender", QKeySequence(), "aboutAction");
+  this->About->setToolTip("What Bender is and where its documentation lies");
+
+  // Every command says what it does (menus show it in the status tip, buttons as a tooltip).
+  this->Open->setToolTip("Open a surface mesh (STL, OBJ, PLY, VTP, VTK, OFF), a volume (NRRD, "
+                         "NIfTI, MHA, VTI, a DICOM folder), a plan or a saved session");
+  this->Demo->setToolTip(
+    "Segment the built-in MRA-like demo volume and place a ribbon on a branch, ready to bend");
+  this->LoadPlan->setToolTip("Load a .bender.json plan and replay its warps onto the surface");
+  this->SavePlan->setToolTip("Save the committed warps as a .bender.json plan");
+  this->Check->setToolTip("Check the surface: watertight, manifold, orientation, degenerate "
+                          "and self-intersecting triangles, flips against the original");
+  this->Export->setToolTip("Check, then export the surface for CFD (STL, VTP, PLY, OBJ)");
+  this->Screenshot->setToolTip("Save the window as a PNG image");
+  this->Quit->setToolTip("Close Bender");
+  this->Undo->setToolTip("Undo the last committed warp (exact coordinates restored)");
+  this->Redo->setToolTip("Redo the warp undone last");
+  this->CancelBend->setToolTip("Cancel the bend in progress; the committed shape stays");
+  this->Segment->setToolTip(
+    "Segment the loaded volume with the Segment panel's settings and make its surface");
+  this->ResetCamera->setToolTip(
+    "Frame the surface from the front (anterior view), resetting the rotation");
   this->Undo->setAutoRepeat(true);
   this->Redo->setAutoRepeat(true);
   this->PlaceRibbon->setToolTip("Then click on the vessel: with its centerline, two clicks (the "
@@ -87,7 +138,107 @@ void MainActions::addMenus(QMenuBar* bar)
   bend->addAction(this->CancelBend);
   QMenu* view = bar->addMenu("&View");
   view->addAction(this->ResetCamera);
+  view->addSeparator();
+  for (QAction* standard : this->StandardViews)
+  {
+    view->addAction(standard);
+  }
+  view->addSeparator();
   view->addAction(this->ShowCenterline);
+  view->addAction(this->ShowOriginal);
+  QMenu* help = bar->addMenu("&Help");
+  help->addAction(this->Shortcuts);
+  help->addAction(this->About);
+  this->Menus = { file, edit, bend, view, help };
+  for (QMenu* menu : this->Menus)
+  {
+    menu->setToolTipsVisible(true);
+  }
+  connect(this->Shortcuts, &QAction::triggered, this, &MainActions::showShortcuts);
+  connect(this->About,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      QMessageBox::about(this->Window,
+        "About Bender",
+        "<b>Bender</b>: bend a vessel surface with a ribbon held by the mouse or by two "
+        "trackers, undo, save the plan, export for CFD.<br><br>Press F1 for the keyboard "
+        "shortcuts. Hover a handle of the ribbon to see what it does: blue spheres move the "
+        "ends, green cones bend (tangents), magenta cubes twist.<br>Coordinates: LPS, mm.");
+    });
+}
+
+QList<QStringList> MainActions::shortcutRows() const
+{
+  QList<QStringList> rows;
+  QList<QAction*> seen;
+  auto add = [&](QAction* action)
+  {
+    if (!action || seen.contains(action) || action->shortcut().isEmpty())
+    {
+      return;
+    }
+    seen.append(action);
+    QString tip = action->toolTip();
+    const QString text = action->text().remove('&').remove("...");
+    if (tip.remove('&') == action->text().remove('&'))
+    {
+      tip.clear();
+    }
+    rows.append({ action->shortcut().toString(QKeySequence::NativeText), text, tip });
+  };
+  // Menu order first, then any other action of the window.
+  for (QMenu* menu : this->Menus)
+  {
+    for (QAction* action : menu->actions())
+    {
+      add(action);
+    }
+  }
+  if (this->Window)
+  {
+    for (QAction* action : this->Window->findChildren<QAction*>())
+    {
+      add(action);
+    }
+  }
+  rows.append({ "Space (held)", "Grab while held", "Release (commit) on letting go" });
+  rows.append({ "Mouse wheel, Up/Down", "Move the slice", "In a slice view, one voxel a step" });
+  rows.append({ "Left drag",
+    "Rotate the 3D view, or drag a ribbon handle",
+    "Blue sphere: move an end; green cone: bend (tangent); magenta cube: twist" });
+  return rows;
+}
+
+void MainActions::showShortcuts()
+{
+  auto* dialog = new QDialog(this->Window);
+  dialog->setObjectName("shortcutsDialog");
+  dialog->setWindowTitle("Bender: keyboard shortcuts");
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  auto* layout = new QVBoxLayout(dialog);
+  const QList<QStringList> rows = this->shortcutRows();
+  auto* table = new QTableWidget(rows.size(), 3, dialog);
+  table->setObjectName("shortcutsTable");
+  table->setHorizontalHeaderLabels({ "Key", "Command", "What it does" });
+  table->verticalHeader()->hide();
+  table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  for (int r = 0; r < rows.size(); ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      table->setItem(r, c, new QTableWidgetItem(rows[r].value(c)));
+    }
+  }
+  table->resizeColumnsToContents();
+  table->horizontalHeader()->setStretchLastSection(true);
+  layout->addWidget(table);
+  auto* close = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
+  connect(close, &QDialogButtonBox::rejected, dialog, &QDialog::close);
+  layout->addWidget(close);
+  dialog->resize(760, 520);
+  dialog->show();
 }
 
 void MainActions::addRecentFile(const QString& path)

@@ -1,7 +1,9 @@
 #ifndef MainActions_h
 #define MainActions_h
 
+#include <QList>
 #include <QObject>
+#include <QStringList>
 
 class QAction;
 class QMenu;
@@ -19,8 +21,14 @@ class MainActions : public QObject
 public:
   explicit MainActions(QWidget* window);
 
-  /// File (with Open Recent), Edit, Bend, View menus.
+  /// File (with Open Recent), Edit, Bend, View, Help menus.
   void addMenus(QMenuBar* bar);
+  /// Every command of the window that has a keyboard shortcut (the QActions of the window,
+  /// MainActions' and any added later), in menu order, then the keys that are no actions
+  /// (Space held, the slice views' wheel): rows of key, command, description.
+  QList<QStringList> shortcutRows() const;
+  /// The Help > Keyboard shortcuts dialog (a table of shortcutRows(); not modal).
+  void showShortcuts();
   /// Puts `path` first in the recent files (QSettings "recentFiles", ten at most).
   void addRecentFile(const QString& path);
 
@@ -40,13 +48,21 @@ public:
   QAction* Segment;
   QAction* ResetCamera;
   QAction* ShowCenterline; ///< checkable, on by default
+  QAction* ShowOriginal;   ///< checkable, on by default: the original shape as a ghost
+  /// The standard views: anterior, posterior, left, right, superior, inferior
+  /// (BenderView::StandardView order).
+  QAction* StandardViews[6];
+  QAction* Shortcuts;
+  QAction* About;
 
 signals:
   void recentFileChosen(const QString& path);
 
 private:
   void updateRecentMenu();
+  QWidget* Window = nullptr;
   QMenu* Recent = nullptr;
+  QList<QMenu*> Menus;
 };
 
 /// A full-width panel button for `action` (its text, tooltip, enabled state and shortcut).

@@ -3,6 +3,7 @@
 #include "BendPanel.h"
 #include "BenderView.h"
 #include "DataPanel.h"
+#include "ElidedLabel.h"
 #include "ExportFlow.h"
 #include "ExportPanel.h"
 #include "FileOpener.h"
@@ -26,6 +27,7 @@
 #include <QFileInfo>
 #include <QLabel>
 #include <QMenuBar>
+#include <QProgressBar>
 #include <QSplitter>
 #include <QStandardPaths>
 #include <QStatusBar>
@@ -55,7 +57,10 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
   this->Splitter->setStretchFactor(0, 3);
   this->Splitter->setStretchFactor(1, 1);
   this->setCentralWidget(this->Splitter);
-  this->StatusText = new QLabel("Ready: open a mesh or a volume, or run the demo (Ctrl+D)", this);
+  // Long messages are drawn cut ("...") with the whole text as the tooltip: they never widen
+  // the window or push the progress bar and Cancel out of sight.
+  this->StatusText =
+    new ElidedLabel("Ready: open a mesh or a volume, or run the demo (Ctrl+D)", this);
   this->StatusText->setObjectName("statusText");
   this->statusBar()->addWidget(this->StatusText, 1);
   this->Worker = new WorkRunner(
@@ -65,6 +70,17 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
     { this->Session.AddMessage(static_cast<bender::MessageSeverity>(severity), text); },
     this);
   this->Worker->Hook = this->Options.workHook;
+  // The progress bar's text ("Segmenting: surface 40%") is longer than the bar: wider, and the
+  // whole text in its tooltip.
+  for (QProgressBar* progress : this->statusBar()->findChildren<QProgressBar*>())
+  {
+    progress->setMinimumWidth(200);
+    progress->setMaximumWidth(380);
+    connect(progress,
+      &QProgressBar::valueChanged,
+      progress,
+      [progress]() { progress->setToolTip(progress->text()); });
+  }
   this->buildPanels();
   this->Actions->addMenus(this->menuBar());
   this->connectActions();
@@ -160,7 +176,16 @@ void MainWindow::connectActions()
   connect(a->Undo, &QAction::triggered, this, [this]() { this->Session.Undo(); });
   connect(a->Redo, &QAction::triggered, this, [this]() { this->Session.Redo(); });
   connect(a->ResetCamera, &QAction::triggered, this->View, &BenderView::resetCamera);
+  for (int v = 0; v < 6; ++v)
+  {
+    connect(a->StandardViews[v],
+      &QAction::triggered,
+      this,
+      [this, v]() { this->View->setStandardView(static_cast<BenderView::StandardView>(v)); });
+  }
+  connect(a->ShowOriginal, &QAction::toggled, this->View, &BenderView::setOriginalVisible);
   connect(this->Files, &FileOpener::volumeChanged, this, &MainWindow::showSlices);
+  connect(this->Files, &FileOpener::volumeChanged, this, &MainWindow::noteSegmentation);
   connect(this->Files,
     &FileOpener::panelWanted,
     this,
@@ -173,6 +198,9 @@ void MainWindow::connectActions()
     [this](bool ok)
     {
       this->refresh();
+      // The job that made a mask is over: a surface that did not come will not come.
+      this->PendingMask.reset();
+      this->SurfaceBeforeMask = nullptr;
       emit this->workFinished(ok);
     });
 }
@@ -196,6 +224,19 @@ void MainWindow::refresh()
   // A new committed surface (load, segmentation, release, undo): its centerlines.
   this->Vessels->update();
   this->TrackersUi->sessionChanged(); // "Send to Slicer"
+  // The original shape as a ghost once the surface differs from it; the camera reframed when
+  // the surface is another scene (a new mesh of another size or place).
+  const bool bent = this->Session.GetHistoryPosition() > 0 ||
+    this->Session.GetState() == bender::GrabState::Grabbed;
+  this->View->setOriginalSurface(this->Session.GetOriginalSurface(), bent);
+  if (this->Session.GetState() != bender::GrabState::Grabbed && this->Session.HasSurface())
+  {
+    this->View->frameIfNewScene();
+  }
+  if (this->PendingMask)
+  {
+    this->judgeSegmentation();
+  }
   // Inside a widget interaction or a tracker poll the view draws once itself (quietly).
   this->render();
 }
@@ -203,6 +244,7 @@ void MainWindow::refresh()
 void MainWindow::showSlices()
 {
   const auto& volume = this->Segmentation.GetVolume();
+  this->Segment->showVolume(volume);
   if (!volume)
   {
     this->Slices->setVolume(nullptr, nullptr);
@@ -217,6 +259,50 @@ void MainWindow::showSlices()
   }
   const auto& mask = this->Segmentation.GetMask();
   this->Slices->setVolume(ToImageData(*volume), mask ? ToImageData(*mask) : nullptr);
+}
+
+void MainWindow::noteSegmentation()
+{
+  // A new mask: its surface is set right after (FileOpener's finisher); judged then.
+  const auto& mask = this->Segmentation.GetMask();
+  if (!mask || mask == this->PendingMask || mask == this->JudgedMask.lock())
+  {
+    return;
+  }
+  this->PendingMask = mask;
+  this->SurfaceBeforeMask = this->Session.GetSurface(); // held: its address is not reused
+  if (mask->CountInside() == 0)
+  {
+    this->judgeSegmentation(); // nothing kept: no surface will come
+  }
+}
+
+void MainWindow::judgeSegmentation()
+{
+  if (!this->PendingMask || this->PendingMask != this->Segmentation.GetMask())
+  {
+    this->PendingMask.reset();
+    this->SurfaceBeforeMask = nullptr;
+    return;
+  }
+  const bool nothing = this->PendingMask->CountInside() == 0;
+  vtkPolyData* surface = this->Session.GetSurface();
+  if (!nothing && (!surface || surface == this->SurfaceBeforeMask))
+  {
+    return; // its surface has not arrived yet
+  }
+  const long long points = nothing ? -1 : static_cast<long long>(surface->GetNumberOfPoints());
+  const QString warning = this->Segment->judgeSegmentation(
+    this->Segmentation.GetSettings().segmentation.lower, this->PendingMask.get(), points);
+  this->JudgedMask = this->PendingMask;
+  this->PendingMask.reset();
+  this->SurfaceBeforeMask = nullptr;
+  if (!warning.isEmpty())
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Warning, warning.toStdString());
+    // Back to the Segment panel and its histogram (after the job's own panel switch).
+    QTimer::singleShot(0, this, [this]() { this->Panels->setCurrentWidget(this->Segment); });
+  }
 }
 
 void MainWindow::render()

@@ -8,6 +8,8 @@
 #include <QImage>
 #include <QMainWindow>
 
+#include <vtkSmartPointer.h>
+
 #include <functional>
 #include <memory>
 
@@ -31,6 +33,7 @@ class TrackersPanel;
 class VesselController;
 class vtkBenderRibbonWidget;
 class vtkImageData;
+class vtkPolyData;
 class vtkRenderer;
 class WorkRunner;
 
@@ -91,6 +94,9 @@ public:
   QVTKOpenGLNativeWidget* view();
   BendPanel* bendPanel() { return this->Bend; }
   TrackersPanel* trackersPanel() { return this->TrackersUi; }
+  SegmentPanel* segmentPanel() { return this->Segment; }
+  SliceViews* sliceViews() { return this->Slices; }
+  BenderView* benderView() { return this->View; }
   QLabel* statusLabel() { return this->StatusText; }
   /// Adds a panel as a tab of the panel dock.
   void addPanel(QWidget* panel, const QString& title);
@@ -154,6 +160,10 @@ private:
   void showMessage(const bender::LogicMessage& message);
   void refresh();
   void showSlices();
+  /// A segmentation's mask arrived / its surface too: warns (status bar and Segment panel)
+  /// when it kept implausibly little.
+  void noteSegmentation();
+  void judgeSegmentation();
 
   MainWindowOptions Options;
   bender::BenderSession Session;
@@ -172,6 +182,9 @@ private:
   ExportPanel* Export = nullptr;
   MeasurementsPanel* Measurements = nullptr;
   QLabel* StatusText = nullptr;
+  std::shared_ptr<const bender::LabelMap> PendingMask;
+  vtkSmartPointer<vtkPolyData> SurfaceBeforeMask;
+  std::weak_ptr<const bender::LabelMap> JudgedMask;
 
   WorkRunner* Worker = nullptr;
   GestureController* Gesture = nullptr;

@@ -1,12 +1,18 @@
 #include "SegmentPanel.h"
 
+#include "HistogramWidget.h"
 #include "MainActions.h"
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QLabel>
+#include <QLocale>
 #include <QToolButton>
 #include <QVBoxLayout>
+
+#include <algorithm>
+#include <cmath>
 
 SegmentPanel::SegmentPanel(MainActions* actions, QWidget* parent)
   : QWidget(parent)
@@ -17,20 +23,56 @@ SegmentPanel::SegmentPanel(MainActions* actions, QWidget* parent)
   this->Method = new QComboBox(this);
   this->Method->setObjectName("segmentationMethod");
   this->Method->addItems({ "Threshold", "Vesselness" });
+  this->Method->setToolTip("Threshold: the lumen is the connected bright region above the "
+                           "threshold. Vesselness: tubular bright structures (Frangi filter)");
   form->addRow("Method", this->Method);
   this->Threshold = new QDoubleSpinBox(this);
   this->Threshold->setObjectName("lumenThreshold");
   this->Threshold->setRange(-1e6, 1e6);
   this->Threshold->setValue(250.0);
+  this->Threshold->setToolTip("Voxels at or above this intensity are lumen (see the histogram "
+                              "below: the red part is kept)");
   form->addRow("Lumen above", this->Threshold);
+  this->Histogram = new HistogramWidget(this);
+  form->addRow(this->Histogram);
+  this->Kept = new QLabel(this);
+  this->Kept->setObjectName("thresholdKeeps");
+  this->Kept->setWordWrap(true);
+  form->addRow(this->Kept);
   this->Smoothing = new QDoubleSpinBox(this);
   this->Smoothing->setObjectName("smoothing");
   this->Smoothing->setRange(0.0, 1.0);
   this->Smoothing->setSingleStep(0.1);
   this->Smoothing->setValue(0.5);
+  this->Smoothing->setToolTip("Smoothing of the extracted surface, 0 (none) to 1 (strong)");
   form->addRow("Smoothing", this->Smoothing);
   layout->addWidget(ActionButton(actions->Segment, this, "segmentButton"));
+  this->Warning = new QLabel(this);
+  this->Warning->setObjectName("segmentationWarning");
+  this->Warning->setWordWrap(true);
+  this->Warning->setStyleSheet("color: #d90;");
+  this->Warning->hide();
+  layout->addWidget(this->Warning);
   layout->addStretch(1);
+
+  connect(this->Threshold,
+    QOverload<double>::of(&QDoubleSpinBox::valueChanged),
+    this,
+    [this](double value)
+    {
+      this->Histogram->setThreshold(value);
+      this->showKept();
+    });
+  connect(this->Histogram,
+    &HistogramWidget::thresholdPicked,
+    this,
+    [this](double value)
+    {
+      // Whole numbers on integer volumes.
+      this->Threshold->setValue(this->EightBit ? std::round(value) : value);
+    });
+  this->Histogram->setThreshold(this->Threshold->value());
+  this->showKept();
 }
 
 bender::SegmentationSettings SegmentPanel::settings() const
@@ -42,4 +84,71 @@ bender::SegmentationSettings SegmentPanel::settings() const
   settings.segmentation.lower = this->Threshold->value();
   settings.surface.smoothing = this->Smoothing->value();
   return settings;
+}
+
+void SegmentPanel::showVolume(const std::shared_ptr<const bender::Volume>& volume)
+{
+  if (volume == this->Volume)
+  {
+    return;
+  }
+  this->Volume = volume;
+  this->EightBit = false;
+  if (!volume)
+  {
+    this->Histogram->setValues({});
+    this->showKept();
+    return;
+  }
+  this->Histogram->setValues(volume->voxels);
+  this->EightBit = this->Histogram->total() > 0 && this->Histogram->minimum() >= 0.0 &&
+    this->Histogram->maximum() <= 255.0 &&
+    std::all_of(volume->voxels.begin(),
+      volume->voxels.end(),
+      [](float v) { return !std::isfinite(v) || v == std::floor(v); });
+  this->Histogram->setThreshold(this->Threshold->value());
+  this->Warning->hide();
+  this->showKept();
+}
+
+void SegmentPanel::showKept()
+{
+  if (this->Histogram->total() == 0)
+  {
+    this->Kept->setText("Load a volume to see its intensities.");
+    return;
+  }
+  const std::size_t kept = this->Histogram->countAtOrAbove(this->Threshold->value());
+  const double percent = 100.0 * static_cast<double>(kept) / this->Histogram->total();
+  this->Kept->setText(QString("Intensities %1 to %2%3; the threshold keeps %4 voxels (%5%)")
+                        .arg(this->Histogram->minimum(), 0, 'g', 5)
+                        .arg(this->Histogram->maximum(), 0, 'g', 5)
+                        .arg(this->EightBit ? " (8-bit)" : "")
+                        .arg(QLocale::c().toString(static_cast<qulonglong>(kept)))
+                        .arg(percent, 0, 'g', 3));
+}
+
+QString SegmentPanel::judgeSegmentation(double threshold,
+  const bender::LabelMap* mask,
+  long long surfacePoints)
+{
+  const std::size_t voxels = mask ? mask->CountInside() : 0;
+  if (surfacePoints >= MinimumSurfacePoints)
+  {
+    this->Warning->hide();
+    return {};
+  }
+  const QString volume = this->EightBit ? "an 8-bit volume" : "this volume";
+  const QString what = surfacePoints >= 0
+    ? QString("%1 points").arg(surfacePoints)
+    : QString("%1 voxels and no surface").arg(static_cast<qulonglong>(voxels));
+  const QString text =
+    QString("Segmentation: threshold %1 on %2 kept %3: too little for a vessel. Pick a lower "
+            "threshold on the histogram (Segment panel) and segment again.")
+      .arg(threshold, 0, 'g', 6)
+      .arg(volume)
+      .arg(what);
+  this->Warning->setText(text);
+  this->Warning->show();
+  return text;
 }

@@ -5,23 +5,54 @@
 
 #include <QWidget>
 
+#include <cstddef>
+#include <memory>
+
+class HistogramWidget;
 class MainActions;
 class QComboBox;
 class QDoubleSpinBox;
+class QLabel;
 
-/// The Segment panel: method (threshold / vesselness), lumen threshold, smoothing, and the
-/// Segment action.
+/// The Segment panel: method (threshold / vesselness), lumen threshold with the volume's
+/// intensity histogram (the share of voxels the threshold keeps, a click on the histogram sets
+/// it), smoothing, the Segment action, and a warning when a segmentation kept implausibly
+/// little (fewer than MinimumSurfacePoints surface points).
 class SegmentPanel : public QWidget
 {
   Q_OBJECT
 public:
+  /// Below this many surface points a segmentation is reported as implausibly small.
+  static constexpr long long MinimumSurfacePoints = 1000;
+
   SegmentPanel(MainActions* actions, QWidget* parent = nullptr);
   bender::SegmentationSettings settings() const;
 
+  /// Shows the histogram of `volume` (null clears it); computed once per volume.
+  void showVolume(const std::shared_ptr<const bender::Volume>& volume);
+  /// A segmentation with lumen threshold `threshold` finished with `mask` and a surface of
+  /// `surfacePoints` points (-1: no surface was made). Returns the warning when it kept too little
+  /// (also shown in the panel), else an empty string (and clears the panel's warning).
+  QString judgeSegmentation(double threshold,
+    const bender::LabelMap* mask,
+    long long surfacePoints);
+
+  HistogramWidget* histogram() const { return this->Histogram; }
+  QLabel* warningLabel() const { return this->Warning; }
+  /// Whether the loaded volume holds only integers in [0, 255].
+  bool isEightBit() const { return this->EightBit; }
+
 private:
+  void showKept();
+
   QComboBox* Method;
   QDoubleSpinBox* Threshold;
   QDoubleSpinBox* Smoothing;
+  HistogramWidget* Histogram;
+  QLabel* Kept;
+  QLabel* Warning;
+  std::shared_ptr<const bender::Volume> Volume;
+  bool EightBit = false;
 };
 
 #endif

@@ -4,6 +4,8 @@
 
 #include <vtkActor.h>
 #include <vtkCellArray.h>
+#include <vtkConeSource.h>
+#include <vtkCubeSource.h>
 #include <vtkInteractorObserver.h>
 #include <vtkObjectFactory.h>
 #include <vtkPoints.h>
@@ -14,6 +16,8 @@
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
 #include <vtkViewport.h>
 #include <vtkWindow.h>
 
@@ -47,6 +51,25 @@ Vec3 AnyOrthogonal(const Vec3& t)
 {
   const Vec3 axis = std::abs(t.x) < 0.9 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
   return bender::Normalized(bender::Cross(t, axis));
+}
+
+// The role of a handle: 0 end, 1 tangent, 2 twist, -1 none.
+int RoleOf(int handle)
+{
+  switch (handle)
+  {
+    case vtkBenderRibbonRepresentation::StartPosition:
+    case vtkBenderRibbonRepresentation::EndPosition:
+      return 0;
+    case vtkBenderRibbonRepresentation::StartTangent:
+    case vtkBenderRibbonRepresentation::EndTangent:
+      return 1;
+    case vtkBenderRibbonRepresentation::StartNormal:
+    case vtkBenderRibbonRepresentation::EndNormal:
+      return 2;
+    default:
+      return -1;
+  }
 }
 
 // A safe unit direction: the input normalised, or `fallback` for a zero/non-finite vector.
@@ -110,25 +133,68 @@ vtkBenderRibbonRepresentation::vtkBenderRibbonRepresentation()
   this->LinesActor->GetProperty()->SetColor(0.9, 0.9, 0.9);
   this->LinesActor->GetProperty()->LightingOff();
 
+  // End handles: spheres; tangent handles: cones pointing along the tangent, away from the
+  // ribbon; twist handles: cubes. One colour per role, yellow under the cursor, red when invalid.
   this->Sphere = vtkSmartPointer<vtkSphereSource>::New();
-  this->Sphere->SetThetaResolution(16);
-  this->Sphere->SetPhiResolution(12);
+  this->Sphere->SetThetaResolution(20);
+  this->Sphere->SetPhiResolution(14);
   this->SphereMapper = vtkSmartPointer<vtkPolyDataMapper>::New();
   this->SphereMapper->SetInputConnection(this->Sphere->GetOutputPort());
+  for (int e = 0; e < 2; ++e)
+  {
+    this->Cones[e] = vtkSmartPointer<vtkConeSource>::New();
+    this->Cones[e]->SetResolution(20);
+    this->Cones[e]->CappingOn();
+    this->ConeMappers[e] = vtkSmartPointer<vtkPolyDataMapper>::New();
+    this->ConeMappers[e]->SetInputConnection(this->Cones[e]->GetOutputPort());
+  }
+  this->Cube = vtkSmartPointer<vtkCubeSource>::New();
+  this->CubeMapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  this->CubeMapper->SetInputConnection(this->Cube->GetOutputPort());
 
-  this->HandleProperty = vtkSmartPointer<vtkProperty>::New();
-  this->HandleProperty->SetColor(0.2, 0.9, 0.4);
+  const double roleColours[3][3] = { { 0.15, 0.55, 1.0 }, { 0.2, 0.85, 0.3 }, { 0.9, 0.3, 0.9 } };
+  for (int role = 0; role < 3; ++role)
+  {
+    this->RoleProperties[role] = vtkSmartPointer<vtkProperty>::New();
+    this->RoleProperties[role]->SetColor(
+      roleColours[role][0], roleColours[role][1], roleColours[role][2]);
+    this->RoleProperties[role]->SetAmbient(0.35);
+    this->RoleProperties[role]->SetSpecular(0.3);
+  }
   this->SelectedProperty = vtkSmartPointer<vtkProperty>::New();
   this->SelectedProperty->SetColor(1.0, 1.0, 0.2);
+  this->SelectedProperty->SetAmbient(0.5);
   this->InvalidProperty = vtkSmartPointer<vtkProperty>::New();
   this->InvalidProperty->SetColor(1.0, 0.15, 0.15);
   this->HandleActors[Outside] = nullptr;
   for (int h = StartPosition; h < NumberOfHandles; ++h)
   {
     this->HandleActors[h] = vtkSmartPointer<vtkActor>::New();
-    this->HandleActors[h]->SetMapper(this->SphereMapper);
-    this->HandleActors[h]->SetProperty(this->HandleProperty);
+    switch (RoleOf(h))
+    {
+      case 0:
+        this->HandleActors[h]->SetMapper(this->SphereMapper);
+        break;
+      case 1:
+        this->HandleActors[h]->SetMapper(this->ConeMappers[h == StartTangent ? 0 : 1]);
+        break;
+      default:
+        this->HandleActors[h]->SetMapper(this->CubeMapper);
+        break;
+    }
+    this->HandleActors[h]->SetProperty(this->RoleProperties[RoleOf(h)]);
   }
+
+  this->HoverLabel = vtkSmartPointer<vtkTextActor>::New();
+  vtkTextProperty* text = this->HoverLabel->GetTextProperty();
+  text->SetFontSize(15);
+  text->SetColor(1.0, 1.0, 0.75);
+  text->BoldOn();
+  text->ShadowOn();
+  text->SetBackgroundColor(0.0, 0.0, 0.0);
+  text->SetBackgroundOpacity(0.55);
+  this->HoverLabel->VisibilityOff();
+  this->HoverLabel->PickableOff();
 
   this->Ribbon.start.position = { 0, 0, 0 };
   this->Ribbon.end.position = { 1, 0, 0 };
@@ -146,6 +212,33 @@ vtkActor* vtkBenderRibbonRepresentation::GetStripActor()
 vtkBenderRibbonSource* vtkBenderRibbonRepresentation::GetRibbonSource()
 {
   return this->Source;
+}
+
+const char* vtkBenderRibbonRepresentation::GetHandleRole(int handle)
+{
+  static const char* const roles[3] = { "end", "tangent", "twist" };
+  const int role = RoleOf(handle);
+  return role < 0 ? "" : roles[role];
+}
+
+const char* vtkBenderRibbonRepresentation::GetHandleHint(int handle)
+{
+  static const char* const hints[3] = {
+    "end: drag to move", "tangent: drag to bend", "twist: drag to twist"
+  };
+  const int role = RoleOf(handle);
+  return role < 0 ? "" : hints[role];
+}
+
+const char* vtkBenderRibbonRepresentation::GetHoverText() const
+{
+  return this->Valid ? GetHandleHint(this->InteractionState) : "";
+}
+
+vtkActor* vtkBenderRibbonRepresentation::GetHandleActor(int handle)
+{
+  return (handle > Outside && handle < NumberOfHandles) ? this->HandleActors[handle].GetPointer()
+                                                        : nullptr;
 }
 
 void vtkBenderRibbonRepresentation::SetRibbon(const bender::RibbonSpec& ribbon)
@@ -346,7 +439,12 @@ void vtkBenderRibbonRepresentation::BuildRepresentation()
   this->Source->SetRadius(this->RegionVisibility ? this->Radius : 0.0);
   this->CageSource->SetRibbon(this->Ribbon);
   this->CageSource->SetRadius(this->RegionVisibility ? this->Radius : 0.0);
-  this->Sphere->SetRadius(this->HandleRadius);
+  // The end handles a little larger than the others: they are the ones to grab first.
+  const double r = this->HandleRadius;
+  this->Sphere->SetRadius(1.25 * r);
+  this->Cube->SetXLength(1.5 * r);
+  this->Cube->SetYLength(1.5 * r);
+  this->Cube->SetZLength(1.5 * r);
 
   // Arms from the end points to their tangent and normal handles; for an invalid ribbon also
   // the straight line between the ends, drawn in red.
@@ -362,6 +460,19 @@ void vtkBenderRibbonRepresentation::BuildRepresentation()
   {
     this->GetHandlePosition(h, p[h]);
     this->HandleActors[h]->SetPosition(p[h]);
+  }
+  {
+    // The cones point away from the ribbon, along the tangent lines.
+    const Vec3 t0 = UnitOr(this->Ribbon.start.tangent, { 1, 0, 0 });
+    const Vec3 t1 = UnitOr(this->Ribbon.end.tangent, { 1, 0, 0 });
+    const Vec3 directions[2] = { -1.0 * t0, t1 };
+    for (int e = 0; e < 2; ++e)
+    {
+      this->Cones[e]->SetHeight(2.6 * r);
+      this->Cones[e]->SetRadius(1.1 * r);
+      this->Cones[e]->SetCenter(0, 0, 0);
+      this->Cones[e]->SetDirection(directions[e].x, directions[e].y, directions[e].z);
+    }
   }
   addLine(p[StartPosition], p[StartTangent]);
   addLine(p[StartPosition], p[StartNormal]);
@@ -381,8 +492,12 @@ void vtkBenderRibbonRepresentation::BuildRepresentation()
     const bool selected = this->InteractionState == h;
     this->HandleActors[h]->SetProperty(selected
         ? this->SelectedProperty.GetPointer()
-        : (this->Valid ? this->HandleProperty.GetPointer() : this->InvalidProperty.GetPointer()));
+        : (this->Valid ? this->RoleProperties[RoleOf(h)].GetPointer()
+                       : this->InvalidProperty.GetPointer()));
   }
+  const char* hint = this->GetHoverText();
+  this->HoverLabel->SetInput(hint);
+  this->HoverLabel->SetVisibility(hint[0] != '\0');
   this->Source->Update();
   this->CageSource->Update();
   this->BuildTime.Modified();
@@ -500,6 +615,7 @@ void vtkBenderRibbonRepresentation::ReleaseGraphicsResources(vtkWindow* window)
   this->RegionActor->ReleaseGraphicsResources(window);
   this->CageActor->ReleaseGraphicsResources(window);
   this->LinesActor->ReleaseGraphicsResources(window);
+  this->HoverLabel->ReleaseGraphicsResources(window);
   for (int h = StartPosition; h < NumberOfHandles; ++h)
   {
     this->HandleActors[h]->ReleaseGraphicsResources(window);
@@ -525,6 +641,10 @@ int vtkBenderRibbonRepresentation::RenderOpaqueGeometry(vtkViewport* viewport)
   {
     count += this->HandleActors[h]->RenderOpaqueGeometry(viewport);
   }
+  if (this->PlaceHoverLabel(viewport))
+  {
+    count += this->HoverLabel->RenderOpaqueGeometry(viewport);
+  }
   return count;
 }
 
@@ -535,6 +655,33 @@ int vtkBenderRibbonRepresentation::RenderTranslucentPolygonalGeometry(vtkViewpor
     return 0;
   }
   return this->RegionActor->RenderTranslucentPolygonalGeometry(viewport);
+}
+
+bool vtkBenderRibbonRepresentation::PlaceHoverLabel(vtkViewport* viewport)
+{
+  vtkRenderer* renderer = vtkRenderer::SafeDownCast(viewport);
+  if (!this->HoverLabel->GetVisibility() || !renderer || !renderer->IsActiveCameraCreated())
+  {
+    return false;
+  }
+  // Beside the handle, up and to the right, kept inside the viewport.
+  double world[3], display[3];
+  this->GetHandlePosition(this->InteractionState, world);
+  vtkInteractorObserver::ComputeWorldToDisplay(renderer, world[0], world[1], world[2], display);
+  const int* size = renderer->GetSize();
+  const int* origin = renderer->GetOrigin();
+  double x = display[0] - origin[0] + 16.0;
+  double y = display[1] - origin[1] + 12.0;
+  x = std::max(2.0, std::min(x, static_cast<double>(size[0]) - 170.0));
+  y = std::max(2.0, std::min(y, static_cast<double>(size[1]) - 24.0));
+  this->HoverLabel->SetPosition(x, y);
+  return true;
+}
+
+int vtkBenderRibbonRepresentation::RenderOverlay(vtkViewport* viewport)
+{
+  // The text's texture was made in RenderOpaqueGeometry.
+  return this->HoverLabel->GetVisibility() ? this->HoverLabel->RenderOverlay(viewport) : 0;
 }
 
 vtkTypeBool vtkBenderRibbonRepresentation::HasTranslucentPolygonalGeometry()

@@ -15,6 +15,13 @@
  * GetLastError() saying why; the widget still reports it, and the application never applies
  * it.
  *
+ * The handles say what they are: the end points are blue spheres ("end: drag to move"), the
+ * tangent handles green cones pointing along the tangent ("tangent: drag to bend"), the normal
+ * handles magenta cubes ("twist: drag to twist"); the handle under the cursor turns yellow and
+ * its hint is drawn beside it (GetHoverText()). An application that draws the ribbon over an
+ * opaque surface puts the widget in a renderer of a higher layer sharing the camera, so that
+ * handles and strip stay visible through the vessel (as the Bender window does).
+ *
  * Moving a handle: an end position moves with its tangent and normal handles; a tangent handle
  * sets the tangent to the direction from (start) or to (end) the position, the normal is made
  * orthogonal again; a normal handle sets the normal to the handle's direction made orthogonal
@@ -43,7 +50,10 @@ class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkPolyDataSilhouette;
 class vtkProperty;
+class vtkConeSource;
+class vtkCubeSource;
 class vtkSphereSource;
+class vtkTextActor;
 
 class VTKBENDERWIDGETS_EXPORT vtkBenderRibbonRepresentation : public vtkWidgetRepresentation
 {
@@ -113,6 +123,22 @@ public:
   bool GetValid() const { return this->Valid; }
   const std::string& GetLastError() const { return this->LastError; }
 
+  ///@{
+  /**
+   * What a handle is: "end", "tangent" or "twist" (empty for Outside), and the hint shown
+   * when the cursor is over it ("end: drag to move", "tangent: drag to bend", "twist: drag to
+   * twist").
+   */
+  static const char* GetHandleRole(int handle);
+  static const char* GetHandleHint(int handle);
+  ///@}
+
+  /** The hint drawn beside the handle under the cursor; empty when none is. */
+  const char* GetHoverText() const;
+
+  /** A handle's actor (its shape and current property), null for Outside; for tests. */
+  vtkActor* GetHandleActor(int handle);
+
   /** World position of a handle (model units). */
   void GetHandlePosition(int handle, double position[3]) const;
 
@@ -135,6 +161,7 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window) override;
   int RenderOpaqueGeometry(vtkViewport* viewport) override;
   int RenderTranslucentPolygonalGeometry(vtkViewport* viewport) override;
+  int RenderOverlay(vtkViewport* viewport) override;
   vtkTypeBool HasTranslucentPolygonalGeometry() override;
   ///@}
 
@@ -151,6 +178,8 @@ private:
   void operator=(const vtkBenderRibbonRepresentation&) = delete;
 
   void UpdateValidity();
+  /// Puts the hover hint beside the handle under the cursor; false when none is shown.
+  bool PlaceHoverLabel(vtkViewport* viewport);
 
   bender::RibbonSpec Ribbon;
   double Radius = 0.0;
@@ -178,10 +207,15 @@ private:
   vtkSmartPointer<vtkPolyData> Lines; // handle arms, or the red line of an invalid ribbon
   vtkSmartPointer<vtkPolyDataMapper> LinesMapper;
   vtkSmartPointer<vtkActor> LinesActor;
-  vtkSmartPointer<vtkSphereSource> Sphere;
+  vtkSmartPointer<vtkSphereSource> Sphere; // end handles
   vtkSmartPointer<vtkPolyDataMapper> SphereMapper;
+  vtkSmartPointer<vtkConeSource> Cones[2]; // tangent handles, along the start / end tangent
+  vtkSmartPointer<vtkPolyDataMapper> ConeMappers[2];
+  vtkSmartPointer<vtkCubeSource> Cube; // twist handles
+  vtkSmartPointer<vtkPolyDataMapper> CubeMapper;
   vtkSmartPointer<vtkActor> HandleActors[NumberOfHandles];
-  vtkSmartPointer<vtkProperty> HandleProperty;
+  vtkSmartPointer<vtkProperty> RoleProperties[3]; // end, tangent, twist
+  vtkSmartPointer<vtkTextActor> HoverLabel;
   vtkSmartPointer<vtkProperty> SelectedProperty;
   vtkSmartPointer<vtkProperty> InvalidProperty;
   double Bounds[6];

@@ -4,6 +4,7 @@
 #include "vtkBenderRibbonSource.h"
 #include "vtkBenderRibbonWidget.h"
 
+#include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCommand.h>
@@ -14,6 +15,8 @@
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
@@ -21,6 +24,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -278,4 +282,107 @@ TEST(RibbonWidget, DrawsTheRibbonAndItsRegion)
   writer->SetFileName(BENDER_ARTIFACT_DIR "/ribbon-widget.png");
   writer->SetInputConnection(image->GetOutputPort());
   writer->Write();
+}
+
+TEST(RibbonRepresentation, HandlesSayWhatTheyAreByShapeAndColour)
+{
+  vtkNew<Rep> rep;
+  double bounds[6] = { 0, 40, -5, 5, -5, 5 };
+  rep->PlaceWidget(bounds);
+  auto colour = [&](int handle)
+  {
+    double c[3];
+    rep->GetHandleActor(handle)->GetProperty()->GetColor(c);
+    return std::array<double, 3>{ c[0], c[1], c[2] };
+  };
+  auto shapePoints = [&](int handle)
+  {
+    auto* mapper = rep->GetHandleActor(handle)->GetMapper();
+    mapper->Update();
+    return mapper->GetInput()->GetNumberOfPoints();
+  };
+  EXPECT_EQ(rep->GetHandleActor(Rep::Outside), nullptr);
+  // The two handles of a role look alike; the three roles differ in colour and shape.
+  EXPECT_EQ(colour(Rep::StartPosition), colour(Rep::EndPosition));
+  EXPECT_EQ(colour(Rep::StartTangent), colour(Rep::EndTangent));
+  EXPECT_EQ(colour(Rep::StartNormal), colour(Rep::EndNormal));
+  EXPECT_NE(colour(Rep::StartPosition), colour(Rep::StartTangent));
+  EXPECT_NE(colour(Rep::StartPosition), colour(Rep::StartNormal));
+  EXPECT_NE(colour(Rep::StartTangent), colour(Rep::StartNormal));
+  EXPECT_NE(shapePoints(Rep::StartPosition), shapePoints(Rep::StartTangent));
+  EXPECT_NE(shapePoints(Rep::StartPosition), shapePoints(Rep::StartNormal));
+  EXPECT_NE(shapePoints(Rep::StartTangent), shapePoints(Rep::StartNormal));
+  EXPECT_STREQ(Rep::GetHandleRole(Rep::EndPosition), "end");
+  EXPECT_STREQ(Rep::GetHandleRole(Rep::EndTangent), "tangent");
+  EXPECT_STREQ(Rep::GetHandleRole(Rep::EndNormal), "twist");
+  EXPECT_STREQ(Rep::GetHandleRole(Rep::Outside), "");
+  // The tangent cones point away from the ribbon along the tangent (here +x at the end).
+  auto* cone = rep->GetHandleActor(Rep::EndTangent)->GetMapper();
+  cone->Update();
+  double coneBounds[6];
+  cone->GetInput()->GetBounds(coneBounds);
+  EXPECT_GT(coneBounds[1] - coneBounds[0], coneBounds[3] - coneBounds[2]);
+  // An invalid ribbon turns every handle red.
+  const auto start = rep->GetRibbon().start.position;
+  const double onStart[3] = { start.x, start.y, start.z };
+  ASSERT_TRUE(rep->MoveHandle(Rep::EndPosition, onStart));
+  EXPECT_EQ(colour(Rep::StartTangent), colour(Rep::EndNormal));
+  EXPECT_GT(colour(Rep::StartTangent)[0], 0.9);
+  EXPECT_LT(colour(Rep::StartTangent)[1], 0.3);
+}
+
+TEST(RibbonWidget, HoverShowsWhatTheHandleDoes)
+{
+  Scene scene;
+  const int handles[3] = { Rep::EndPosition, Rep::EndTangent, Rep::StartNormal };
+  const char* hints[3] = { "end: drag to move", "tangent: drag to bend", "twist: drag to twist" };
+  for (int i = 0; i < 3; ++i)
+  {
+    double display[3];
+    scene.Display(handles[i], display);
+    std::ostringstream log;
+    log << "# StreamVersion 1.2\n"
+        << "MouseMoveEvent " << std::lround(display[0]) << " " << std::lround(display[1])
+        << " 0 0 0 0 0\n";
+    vtkNew<vtkInteractorEventRecorder> recorder;
+    recorder->SetInteractor(scene.interactor);
+    recorder->ReadFromInputStringOn();
+    recorder->SetInputString(log.str().c_str());
+    recorder->Play();
+    recorder->Off();
+    EXPECT_EQ(scene.representation->GetInteractionState(), handles[i]);
+    EXPECT_STREQ(scene.representation->GetHoverText(), hints[i]);
+    // The handle under the cursor is highlighted.
+    double c[3];
+    scene.representation->GetHandleActor(handles[i])->GetProperty()->GetColor(c);
+    EXPECT_GT(c[0], 0.9);
+    EXPECT_GT(c[1], 0.9);
+  }
+  // The hint is drawn: light pixels right of and above the handle, none before the hover.
+  scene.window->Render();
+  vtkNew<vtkWindowToImageFilter> image;
+  image->SetInput(scene.window);
+  image->ReadFrontBufferOff();
+  image->Update();
+  vtkImageData* pixels = image->GetOutput();
+  double display[3];
+  scene.Display(Rep::StartNormal, display);
+  int light = 0;
+  for (int y = static_cast<int>(display[1]) + 10; y < static_cast<int>(display[1]) + 34; ++y)
+    for (int x = static_cast<int>(display[0]) + 16; x < static_cast<int>(display[0]) + 150; ++x)
+    {
+      if (x < 0 || y < 0 || x >= 400 || y >= 400)
+        continue;
+      const auto* p = static_cast<unsigned char*>(pixels->GetScalarPointer(x, y, 0));
+      light += (p[0] > 200 && p[1] > 200 && p[2] > 120) ? 1 : 0;
+    }
+  EXPECT_GT(light, 30);
+  // Away from the handles: no hint.
+  vtkNew<vtkInteractorEventRecorder> recorder;
+  recorder->SetInteractor(scene.interactor);
+  recorder->ReadFromInputStringOn();
+  recorder->SetInputString("# StreamVersion 1.2\nMouseMoveEvent 3 3 0 0 0 0 0\n");
+  recorder->Play();
+  recorder->Off();
+  EXPECT_STREQ(scene.representation->GetHoverText(), "");
 }

@@ -1,0 +1,163 @@
+#ifndef bender_CfdCase_h
+#define bender_CfdCase_h
+
+// An OpenFOAM case of a labelled vessel surface (issue 11): a steady laminar simpleFoam case
+// meshed by blockMesh + snappyHexMesh, written complete into a new folder, with an Allrun; and
+// running it and reading the flow split, pressure drops and residuals back from the function
+// objects' postProcessing files.
+//
+// The surface is Bender's: LPS millimetres, closed, labelled by PatchLabels.h (wall, inlet,
+// outlets). The case is in metres (the STL is written by ExportSurface with unit "m"), SI
+// throughout; OpenFOAM's p is kinematic (p / rho), reported here in Pa with rho.
+
+#include "PatchLabels.h"
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace bender
+{
+
+/// Options of WriteOpenFoamCase. Lengths in metres, SI units.
+struct CfdCaseOptions
+{
+  std::string caseDirectory; ///< created; must not exist, or be empty, unless force
+  /// Replace a non-empty existing caseDirectory (the old one is removed only once the new
+  /// one is complete).
+  bool force = false;
+  /// What messages call the surface ("aneurysm.stl"); empty: "the surface".
+  std::string sourceName;
+  /// The inlet patch; empty: the one patch of type inlet.
+  std::string inlet;
+  /// Volumetric flow rate at the inlet, m^3/s (flowRateInletVelocity); 0: use velocity.
+  double flowRate = 0.0;
+  /// Uniform velocity normal to the inlet, m/s (surfaceNormalFixedValue), when flowRate is 0.
+  double velocity = 0.2;
+  /// Cell size at the wall, m (the background mesh is twice as coarse, refined once at the
+  /// surface); 0: the smallest end's equivalent diameter / 8.
+  double cellSize = 0.0;
+  /// Kinematic viscosity, m^2/s (blood: 3.5e-6).
+  double viscosity = 3.5e-6;
+  /// Density used to report pressures in Pa, kg/m^3 (blood: 1060).
+  double density = 1060.0;
+  /// simpleFoam's iteration limit (endTime); the residual control may stop it earlier.
+  int iterations = 1000;
+  /// Processors of decomposeParDict; > 1: Allrun runs simpleFoam with mpirun.
+  int processors = 1;
+  /// decomposeParDict's method: "hierarchical" (default: boxes split along the longest axes,
+  /// needs no library; Debian's openfoam 1912 is built without scotch), "scotch" (better
+  /// balance where OpenFOAM has it: clusters) or "simple".
+  std::string decomposition = "hierarchical";
+  /// Base name of the surface in constant/triSurface.
+  std::string surfaceName = "vessel";
+};
+
+/// One patch of the case.
+struct CfdPatch
+{
+  std::string name;
+  PatchType type = PatchType::Wall;
+  long long triangles = 0;
+  double area = 0.0;              ///< m^2
+  std::array<double, 3> centre{}; ///< m, LPS
+  std::array<double, 3> normal{}; ///< outward unit normal (ends only)
+  double diameter = 0.0;          ///< equivalent diameter 2 sqrt(area / pi), m
+};
+
+/// What WriteOpenFoamCase wrote.
+struct CfdCaseResult
+{
+  std::string caseDirectory;
+  std::vector<CfdPatch> patches; ///< in label order; the inlet has type Inlet, other ends Outlet
+  std::string inlet;
+  double cellSize = 0.0;                ///< at the wall, m
+  double backgroundCellSize = 0.0;      ///< blockMesh's, m
+  std::array<int, 3> backgroundCells{}; ///< blockMesh's cells per axis
+  std::array<double, 3> insidePoint{};  ///< locationInMesh, m
+  double inletFlowRate = 0.0;           ///< m^3/s (velocity x inlet area with a velocity)
+  double inletVelocity = 0.0;           ///< mean inlet velocity, m/s
+  double reynolds = 0.0;                ///< mean inlet velocity x inlet diameter / nu
+  std::vector<std::string> written;     ///< files, relative to the case folder
+};
+
+/// Writes the case: constant/triSurface/<name>.stl (multi-solid ASCII in metres, one solid per
+/// patch, through ExportSurface), system/{blockMeshDict, surfaceFeatureExtractDict,
+/// snappyHexMeshDict, controlDict, fvSchemes, fvSolution, decomposeParDict},
+/// constant/{transportProperties, turbulenceProperties}, 0/{U, p}, Allrun (executable),
+/// bender-case.json (the patches and settings, read back by ReadCfdResults). All or nothing:
+/// the case is assembled in a temporary sibling folder and renamed into place.
+/// Throws InputError naming the surface or option: no triangles, not closed, fewer than two
+/// ends, no inlet (or an unknown --inlet), options out of range, an existing non-empty
+/// folder without force, an unwritable folder.
+CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& options);
+
+/// Where OpenFOAM is: empty when simpleFoam, blockMesh, surfaceFeatureExtract, snappyHexMesh
+/// and checkMesh are on PATH (and mpirun when processors > 1); else what is missing, one line.
+std::string FindOpenFoamProblem(int processors = 1);
+
+/// Flow through one patch after a run.
+struct CfdPatchFlow
+{
+  std::string name;
+  PatchType type = PatchType::Wall;
+  double flowRate = 0.0;       ///< m^3/s, positive out of the domain
+  double percentOfInlet = 0.0; ///< outlets: flowRate / inlet flow x 100
+  double pressure = 0.0;       ///< area-averaged, Pa (rho x kinematic p)
+  double pressureDrop = 0.0;   ///< inlet pressure - this pressure, Pa
+};
+
+/// What a run gave (read from postProcessing).
+struct CfdRunResult
+{
+  int iterations = 0;                ///< last iteration written by the function objects
+  bool converged = false;            ///< stopped by the residual control before endTime
+  double inletFlowRate = 0.0;        ///< m^3/s, into the domain
+  double massImbalance = 0.0;        ///< |sum of the flow through every patch| / inlet flow
+  std::vector<CfdPatchFlow> patches; ///< inlet and outlets, in label order
+  /// Initial residuals of the last iteration: {"Ux", 1e-4}, {"p", ...}.
+  std::vector<std::pair<std::string, double>> residuals;
+};
+
+/// Options of RunOpenFoamCase.
+struct CfdRunOptions
+{
+  /// Which part of the Allrun: everything, the mesh (up to checkMesh), or simpleFoam alone on
+  /// the mesh already made.
+  enum class Steps
+  {
+    All,
+    Mesh,
+    Solve
+  };
+  Steps steps = Steps::All;
+  /// Lines of the Allrun's progress ("bender Allrun: snappyHexMesh").
+  std::function<void(const std::string&)> onLine;
+};
+
+/// Runs the case's Allrun (serial or with mpirun, as written; its output also in log.Allrun)
+/// and reads the results (an empty result for Steps::Mesh). Throws EnvironmentError when
+/// OpenFOAM is not installed, Error naming the failed step and its log.
+CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptions& options = {});
+
+/// The patches of the OpenFOAM mesh (constant/polyMesh/boundary) with their face counts, in
+/// file order. Throws InputError when the file is missing or unreadable.
+std::vector<std::pair<std::string, long long>> ReadMeshPatches(const std::string& caseDirectory);
+
+/// Reads the results of a case already run (postProcessing/flow_*, pressure_*, solverInfo).
+/// Throws InputError naming the missing or unreadable file.
+CfdRunResult ReadCfdResults(const std::string& caseDirectory);
+
+/// The result as one JSON object (case, patches, run).
+std::string CfdToJson(const CfdCaseResult& written, const CfdRunResult* run);
+
+/// The result as lines of text for bender-cli.
+std::string FormatCfdCase(const CfdCaseResult& written);
+std::string FormatCfdRun(const CfdRunResult& run);
+
+} // namespace bender
+
+#endif

@@ -1,0 +1,121 @@
+#include "CfdTestUtilities.h"
+
+#include "ApplyPlan.h"
+#include "MeshIO.h"
+#include "WarpPlanIO.h"
+#include "vtkBenderCapFilter.h"
+
+#include <vtkNew.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace bender::test
+{
+
+vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent)
+{
+  vtkSmartPointer<vtkPolyData> surface =
+    ReadMesh(std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl");
+  if (bent)
+  {
+    const WarpPlan plan =
+      ReadWarpPlan(std::string(BENDER_SOURCE_DIR) + "/data/demo/demo.bender.json");
+    surface = ApplyPlan(surface, plan).output;
+  }
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(surface);
+  cap->Update();
+  if (cap->GetNumberOfCaps() != 3)
+  {
+    throw std::runtime_error("the aneurysm should have 3 caps, got " +
+      std::to_string(cap->GetNumberOfCaps()) + " " + cap->GetLastError());
+  }
+  vtkSmartPointer<vtkPolyData> capped = vtkSmartPointer<vtkPolyData>::New();
+  capped->DeepCopy(cap->GetOutput());
+  return capped;
+}
+
+TemporaryFolder::TemporaryFolder(const std::string& tag)
+{
+  std::string pattern = (fs::temp_directory_path() / ("bender-" + tag + "-XXXXXX")).string();
+  std::vector<char> buffer(pattern.begin(), pattern.end());
+  buffer.push_back('\0');
+  if (!mkdtemp(buffer.data()))
+  {
+    throw std::runtime_error("cannot create a temporary folder");
+  }
+  this->Folder = buffer.data();
+}
+
+TemporaryFolder::~TemporaryFolder()
+{
+  std::error_code ec;
+  if (!std::getenv("BENDER_KEEP_TEST_FILES"))
+  {
+    fs::remove_all(this->Folder, ec);
+  }
+}
+
+std::string RunIn(const std::string& folder, const std::string& command, int& status)
+{
+  std::string quoted = "'";
+  for (const char c : folder)
+  {
+    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  quoted += "'";
+  const std::string full = "cd " + quoted + " && (" + command + ") </dev/null 2>&1";
+  FILE* pipe = popen(full.c_str(), "r");
+  if (!pipe)
+  {
+    status = -1;
+    return "";
+  }
+  std::string output;
+  std::array<char, 4096> buffer;
+  std::size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+  {
+    output.append(buffer.data(), n);
+  }
+  const int raw = pclose(pipe);
+  status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+  return output;
+}
+
+bool OnPath(const std::string& program)
+{
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':'))
+  {
+    if (!dir.empty() && access((fs::path(dir) / program).c_str(), X_OK) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string ReadText(const std::string& path)
+{
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+} // namespace bender::test
