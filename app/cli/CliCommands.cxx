@@ -27,6 +27,7 @@ const std::vector<CliCommand>& CliCommandTable()
     { "centerline", "vessel centerlines with the inscribed-sphere radius", RunCenterlineCommand },
     { "measure", "per-branch vessel measures, before and after a warp", RunMeasureCommand },
     { "cfd-case", "an OpenFOAM case of a labelled vessel (and its run)", RunCfdCaseCommand },
+    { "cfd-case", "an OpenFOAM case of a labelled vessel (and its run)", RunCfdCaseCommand },
     { "tracker",
       "stream poses from a Polhemus Fastrak, OpenIGTLink, a recording or the simulator",
       RunTrackerCommand },

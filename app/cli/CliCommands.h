@@ -24,6 +24,7 @@ int RunRenderCommand(const std::vector<std::string>& args);
 int RunCenterlineCommand(const std::vector<std::string>& args);
 int RunMeasureCommand(const std::vector<std::string>& args);
 int RunCfdCaseCommand(const std::vector<std::string>& args);
+int RunCfdCaseCommand(const std::vector<std::string>& args);
 
 namespace bender
 {
