@@ -6,6 +6,7 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -544,9 +545,17 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(vtkInformation*,
   vtkCellData* outCD = output->GetCellData();
   outCD->CopyNormalsOff();
   outCD->CopyAllocate(inCD, static_cast<vtkIdType>(tris.size()));
+  // Each child triangle inherits its parent's cell data (the CFD patch labels among them);
+  // the field data (the patch names and types) is passed on as is.
   for (std::size_t t = 0; t < tris.size(); ++t)
   {
     outCD->CopyData(inCD, triCell[t], static_cast<vtkIdType>(t));
+  }
+  // (vtkFieldData::PassData skips string arrays: add every array.)
+  vtkFieldData* inFD = input->GetFieldData();
+  for (int a = 0; inFD && a < inFD->GetNumberOfArrays(); ++a)
+  {
+    output->GetFieldData()->AddArray(inFD->GetAbstractArray(a));
   }
   return 1;
 }

@@ -19,8 +19,9 @@
  * Input: polygons are fan-triangulated and strips converted; vertices and lines are dropped.
  * Output points are double. Point data is interpolated linearly at new vertices (normals are
  * dropped: stale after a warp); cell data is copied from the input cell each triangle comes
- * from (e.g. cap labels). With KeepInitialPositions, the output carries the pre-warp position
- * of every vertex as the 3-component double point array "InitialPosition", so that the
+ * from (the CFD patch labels of PatchLabels.h: CellEntityIds, ModelFaceID) and field data is
+ * passed (their PatchNames, PatchTypes). With KeepInitialPositions, the output carries the pre-warp
+ * position of every vertex as the 3-component double point array "InitialPosition", so that the
  * subdivided surface can be compared with the exact warp, or warped again.
  *
  * Coordinates are those of the input (LPS millimetres for segmented vessels); Tolerance is in

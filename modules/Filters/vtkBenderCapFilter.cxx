@@ -10,7 +10,6 @@
 #include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -474,9 +473,33 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
         *std::min_element(b.Rim.begin(), b.Rim.end());
     });
 
+  // Labels already on the input (a labelled surface capped again) are kept: its patches keep
+  // their ids, names and types, and the new caps come after them.
+  std::vector<int> inputIds;
+  std::vector<bender::PatchLabel> inputPatches;
+  if (bender::HasPatchLabels(input))
+  {
+    try
+    {
+      inputIds = bender::CellPatchIds(input);
+      inputPatches = bender::ReadPatchLabels(input);
+    }
+    catch (const bender::Error& e)
+    {
+      return fail(e.what());
+    }
+  }
+  int firstCapId = 2;
+  bool inputHasInlet = false;
+  for (const bender::PatchLabel& label : inputPatches)
+  {
+    firstCapId = std::max(firstCapId, label.id + 1);
+    inputHasInlet = inputHasInlet || label.type == bender::PatchType::Inlet;
+  }
+
   // Names: by position, then the defaults for the others.
   std::vector<std::string> names(loops.size());
-  int inlet = loops.empty() ? -1 : 0;
+  int inlet = loops.empty() || inputHasInlet ? -1 : 0;
   for (const CapName& entry : this->Names)
   {
     if (loops.empty())
@@ -507,6 +530,15 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
   }
   {
     std::set<std::string> taken(names.begin(), names.end());
+    for (const bender::PatchLabel& label : inputPatches)
+    {
+      if (taken.count(label.name))
+      {
+        return fail("the cap name '" + label.name + "' is already the name of patch " +
+          std::to_string(label.id) + " of the input");
+      }
+      taken.insert(label.name);
+    }
     int next = 1;
     for (std::size_t k = 0; k < loops.size(); ++k)
     {
@@ -542,7 +574,8 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
   for (std::size_t t = 0; t < tris.size(); t += 3)
   {
     cells.push_back({ { tris[t], tris[t + 1], tris[t + 2] } });
-    ids.push_back(bender::kWallEntityId);
+    ids.push_back(
+      inputIds.empty() ? bender::kWallEntityId : inputIds[static_cast<std::size_t>(source[t / 3])]);
   }
   const vtkIdType wallTriangles = static_cast<vtkIdType>(cells.size());
 
@@ -557,7 +590,7 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
   for (std::size_t k = 0; k < loops.size(); ++k)
   {
     Loop& loop = loops[k];
-    const int id = static_cast<int>(k) + 2;
+    const int id = static_cast<int>(k) + firstCapId;
     const double* c = loop.Centre;
     if (this->ProjectRim)
     {
@@ -708,9 +741,11 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
       }
     }
   }
-  std::vector<bender::PatchLabel> patches{
-    { bender::kWallEntityId, "wall", bender::PatchType::Wall }
-  };
+  std::vector<bender::PatchLabel> patches = inputPatches;
+  if (patches.empty() || patches.front().id != bender::kWallEntityId)
+  {
+    patches.insert(patches.begin(), { bender::kWallEntityId, "wall", bender::PatchType::Wall });
+  }
   for (const CapInfo& info : this->Caps)
   {
     patches.push_back(
@@ -724,14 +759,6 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
   {
     return fail(e.what());
   }
-  vtkNew<vtkIntArray> legacy;
-  legacy->SetName(PatchIdArrayName());
-  legacy->SetNumberOfTuples(total);
-  for (vtkIdType t = 0; t < total; ++t)
-  {
-    legacy->SetValue(t, ids[static_cast<std::size_t>(t)] - 1);
-  }
-  outCD->AddArray(legacy);
   return 1;
 }
 

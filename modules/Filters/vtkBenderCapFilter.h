@@ -26,9 +26,9 @@
  * cap area (ties by smallest rim vertex id: reproducible); PatchNames / PatchTypes: the largest
  * cap is "inlet" (Inlet), the others "outlet_1", "outlet_2", ... (Outlet) in that order. Names
  * can be given by position (AddCapName): the cap whose centre is nearest to the point gets the
- * name, and an entry marked inlet makes its cap the inlet instead of the largest one. During
- * the switch of the exporters to PatchLabels the legacy int array "PatchId" (= id - 1) is
- * still written (PatchIdArrayName()).
+ * name, and an entry marked inlet makes its cap the inlet instead of the largest one. An input
+ * that already carries labels keeps them (ids, names, types); its new caps get the ids after
+ * the largest one, and none is the default inlet when the input already has an inlet.
  *
  * Other cell data is copied for wall triangles and zero for caps; point data is copied, and
  * interior cap points get the average over their rim. Normals are dropped.
@@ -39,8 +39,9 @@
  * Coordinates and units are those of the input (LPS mm for segmented vessels).
  *
  * Errors (vtkErrorMacro, return 0, empty output, GetLastError() one line): a non-finite input
- * coordinate, an invalid or duplicated cap name, two names pointing at the same cap. An empty
- * input or a closed surface is not an error (output = input, triangulated, all wall).
+ * coordinate, an invalid or duplicated cap name, two names pointing at the same cap, invalid
+ * labels on the input. An empty input or a closed surface is not an error (output = input,
+ * triangulated, all wall unless labelled).
  */
 
 #ifndef vtkBenderCapFilter_h
@@ -79,14 +80,10 @@ public:
   void AddCapName(const double point[3], const std::string& name, bool inlet = false);
   void ClearCapNames();
 
-  /** Name of the legacy per-cell patch label array (wall 0, caps 1..n), kept while the
-   * exporters move to CellEntityIds. */
-  static const char* PatchIdArrayName() { return "PatchId"; }
-
   /** One cap of the last update. */
   struct CapInfo
   {
-    int Id = 0; ///< CellEntityIds value (2..n+1)
+    int Id = 0; ///< CellEntityIds value (2..n+1 on an unlabelled input)
     std::string Name;
     bool Inlet = false;
     std::array<double, 3> Centre{ { 0, 0, 0 } }; ///< area centroid, on the cap's plane

@@ -18,6 +18,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -271,17 +272,76 @@ TEST_F(CapQuality, NamesByPosition)
   EXPECT_EQ(cap->GetNumberOfCaps(), 2);
 }
 
-TEST_F(CapQuality, ClosedSurfaceIsAllWall)
+TEST_F(CapQuality, ClosedSurfaceIsAllWallOrKeepsItsLabels)
 {
   auto frustum = Frustum(3.0, 1.5, 20.0, 40, 10);
   vtkNew<vtkBenderCapFilter> first;
   first->SetInputData(frustum);
   first->Update();
+  // Capped again: nothing to cap, the labels stay.
   vtkNew<vtkBenderCapFilter> again;
   again->SetInputData(first->GetOutput());
+  again->Update();
+  EXPECT_EQ(again->GetNumberOfCaps(), 0);
+  EXPECT_EQ(bender::ReadPatchLabels(again->GetOutput()).size(), 3u);
+  EXPECT_EQ(bender::CellPatchIds(again->GetOutput()), bender::CellPatchIds(first->GetOutput()));
+  // Without labels: all wall.
+  vtkNew<vtkPolyData> plain;
+  plain->SetPoints(first->GetOutput()->GetPoints());
+  plain->SetPolys(first->GetOutput()->GetPolys());
+  again->SetInputData(plain);
   again->Update();
   EXPECT_EQ(again->GetNumberOfCaps(), 0);
   const auto labels = bender::ReadPatchLabels(again->GetOutput());
   ASSERT_EQ(labels.size(), 1u);
   EXPECT_EQ(labels[0].name, "wall");
+}
+
+TEST_F(CapQuality, LabelsOfTheInputAreKept)
+{
+  // Cap a frustum, name its small cap, then remove that cap: the open, labelled surface capped
+  // again keeps wall and inlet, and its new cap comes after them.
+  auto frustum = Frustum(3.0, 1.5, 20.0, 48, 20);
+  vtkNew<vtkBenderCapFilter> first;
+  first->SetInputData(frustum);
+  first->Update();
+  vtkPolyData* closed = first->GetOutput();
+  const std::vector<int> ids = bender::CellPatchIds(closed);
+  vtkNew<vtkCellArray> kept;
+  std::vector<int> keptIds;
+  const auto tris = bender::CollectTriangles(closed);
+  for (std::size_t t = 0; t < ids.size(); ++t)
+  {
+    if (ids[t] != 3)
+    {
+      const vtkIdType tri[3] = { tris[3 * t], tris[3 * t + 1], tris[3 * t + 2] };
+      kept->InsertNextCell(3, tri);
+      keptIds.push_back(ids[t]);
+    }
+  }
+  vtkNew<vtkPolyData> open;
+  open->SetPoints(closed->GetPoints());
+  open->SetPolys(kept);
+  bender::WritePatchLabels(open,
+    keptIds,
+    { { 1, "wall", bender::PatchType::Wall }, { 2, "aorta", bender::PatchType::Inlet } });
+  vtkNew<vtkBenderCapFilter> again;
+  bendertest::VtkErrorWatch errors(again);
+  again->SetInputData(open);
+  again->Update();
+  ASSERT_TRUE(errors.ExpectNone());
+  ASSERT_EQ(again->GetNumberOfCaps(), 1);
+  EXPECT_EQ(again->GetCaps()[0].Id, 3);
+  EXPECT_FALSE(again->GetCaps()[0].Inlet);
+  const auto labels = bender::ReadPatchLabels(again->GetOutput());
+  ASSERT_EQ(labels.size(), 3u);
+  EXPECT_EQ(labels[1].name, "aorta");
+  EXPECT_EQ(labels[1].type, bender::PatchType::Inlet);
+  EXPECT_EQ(labels[2].name, "outlet_1");
+  EXPECT_EQ(labels[2].type, bender::PatchType::Outlet);
+  const std::vector<int> after = bender::CellPatchIds(again->GetOutput());
+  EXPECT_TRUE(std::equal(keptIds.begin(), keptIds.end(), after.begin())); // input cells first
+  bender::MeshCheckOptions check;
+  check.requireClosed = true;
+  EXPECT_TRUE(bender::CheckMesh(again->GetOutput(), nullptr, check).Clean());
 }

@@ -1,0 +1,88 @@
+#ifndef bender_PrepareForCfd_h
+#define bender_PrepareForCfd_h
+
+// "Prepare for CFD" (issue 11): a vessel surface made ready for a CFD mesher in one call:
+//  1. the ends clipped perpendicular to the centerline (VesselClip.h; the centerlines are
+//     computed when not given), or, with Clip off, the open ends already there;
+//  2. names and roles: the largest end is the inlet, the others outlets (outlet_1, outlet_2,
+//     ... by decreasing area); names by position (the end whose centre is nearest gets it; an
+//     entry marked Inlet, or named "inlet", makes its end the inlet);
+//  3. flow extensions along each end's outward normal (FlowExtensions.h; default 10 radii at
+//     the inlet, 5 at the outlets, per end by position; 0 for none);
+//  4. flat quality caps labelled through PatchLabels.h (vtkBenderCapFilter): CellEntityIds and
+//     ModelFaceID 1 on the wall (extensions included), 2.. on the caps, PatchNames/PatchTypes.
+//     Cap off: the surface stays open and is labelled all wall.
+// Units are the surface's (mm for Bender's surfaces); nothing is written to disk.
+
+#include "PatchLabels.h"
+#include "VesselClip.h"
+
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace bender
+{
+
+struct CfdEndName
+{
+  std::array<double, 3> Position{ { 0, 0, 0 } };
+  std::string Name;   ///< a valid patch name (IsValidPatchName), not "wall"
+  bool Inlet = false; ///< this end is the inlet (also when Name is "inlet")
+};
+
+struct CfdEndFactor
+{
+  std::array<double, 3> Position{ { 0, 0, 0 } };
+  double Factor = 0.0; ///< flow-extension length / radius of the nearest end, [0, 100]
+};
+
+struct PrepareForCfdOptions
+{
+  /// Centerlines of the surface (polylines with MaximumInscribedSphereRadius); null: computed.
+  vtkSmartPointer<vtkPolyData> Centerlines;
+  /// Clip the vessel ends (default). Off: use the surface's open ends as they are.
+  bool Clip = true;
+  /// Per-end clip positions or distances (see ClipEndRequest).
+  std::vector<ClipEndRequest> Ends;
+  std::vector<CfdEndName> Names;
+  double InletExtension = 10.0;               ///< flow-extension factor of the inlet, [0, 100]
+  double OutletExtension = 5.0;               ///< of the outlets, [0, 100]
+  std::vector<CfdEndFactor> ExtensionFactors; ///< per end, by position
+  bool Cap = true;
+  /// Names the surface in error messages ("aneurysm.stl").
+  std::string InputName = "the surface";
+};
+
+struct CfdEnd
+{
+  std::string Name;
+  int Id = 0; ///< CellEntityIds value of its cap (2..); the same numbering when not capped
+  PatchType Type = PatchType::Outlet;
+  std::array<double, 3> Centre{ { 0, 0, 0 } }; ///< of the cap (the far end of its extension)
+  std::array<double, 3> Normal{ { 0, 0, 1 } }; ///< unit, outwards
+  double Radius = 0.0;                         ///< equivalent radius sqrt(Area / pi)
+  double Area = 0.0;
+  double ExtensionLength = 0.0;
+  std::array<double, 3> ClipCentre{ { 0, 0, 0 } }; ///< centre of the vessel's own rim
+};
+
+struct PrepareForCfdResult
+{
+  vtkSmartPointer<vtkPolyData> Surface; ///< labelled (PatchLabels.h)
+  std::vector<CfdEnd> Ends;             ///< by id
+  std::vector<std::string> Warnings;
+};
+
+/// Throws bender::InputError, one line starting with options.InputName: an empty surface, no
+/// centerline, a clip plane that cuts no vessel, fewer than two ends, Cap without Clip on a
+/// surface with no open end, bad names or factors.
+PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptions& options = {});
+
+} // namespace bender
+
+#endif

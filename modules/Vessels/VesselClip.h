@@ -1,0 +1,111 @@
+#ifndef bender_VesselClip_h
+#define bender_VesselClip_h
+
+// Clipping the ends of a vessel surface perpendicular to its centerline (issue 11).
+//
+// Each vessel end of the centerlines is cut by the plane through a centerline point and
+// perpendicular to the centerline's tangent there; only the piece of the surface that belongs
+// to the vessel at that point is cut: the ring of triangles that the plane crosses within a
+// ball around the centerline point (1.5 radii, widened up to 4 radii until the ring closes
+// around the vessel), and the part of the surface beyond that ring (towards the end) is
+// removed. A neighbouring vessel that the plane also crosses, farther away or not connected to
+// the ring, is left whole. Works on closed surfaces (segmentations: the rounded or flat end is
+// cut off) and on open ones (an oblique or ragged open end is re-cut perpendicular; when the
+// plane still meets the old rim the cut moves inwards, for the default distance only).
+//
+// The vessel ends of a centerline polydata (polylines with point data
+// MaximumInscribedSphereRadius; the Paths or Branches of ComputeCenterlines, or a file written
+// by `bender-cli centerline`): the polyline end points that are not bifurcations. End points
+// closer than a quarter radius are one end (the shared inlet of the per-outlet paths); a group
+// whose polylines leave it in directions more than 90 degrees apart, or that another polyline
+// passes within a radius of, or that the cell data StartBifurcationId / EndBifurcationId of
+// the branches mark, is a bifurcation.
+//
+// Default clip distance ("where the inscribed radius has settled"), measured along the
+// centerline from its end point s = 0 inwards, with r(s) the inscribed radius and r0 the
+// larger of r(0) and the median radius within four median radii of the end (a closed end's tip
+// has a small radius): the smallest s >= r0 such that over [s, s + 2 r(s)] r stays within 10 %
+// of r(s) and the tangent turns by less than 5 degrees. When no such s exists before
+// min(half the centerline's length, 10 r0): the first s where the radius alone has settled,
+// else the s in [r0, that limit] where r varies least over its window. Open ends: the centerline
+// ends at the rim's centre, and the cut is at least one radius inside it; closed ends: the
+// centerline stops about one radius before the end (see CenterlineOptions::EndTrimFactor), so the
+// cut is about two radii from the end.
+//
+// Coordinates and units are those of the inputs (LPS mm for Bender's surfaces).
+
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace bender
+{
+
+using ClipPoint = std::array<double, 3>;
+
+/// A user's choice for one end.
+struct ClipEndRequest
+{
+  /// With Distance >= 0: a point near the vessel end to clip (the nearest end is taken).
+  /// With Distance < 0: a point near the centerline where to cut; the cut is at the nearest
+  /// centerline point, and the side towards the nearer vessel end (along the centerline) is
+  /// removed.
+  ClipPoint Position{ { 0, 0, 0 } };
+  /// mm from the vessel end along the centerline; < 0: see Position.
+  double Distance = -1.0;
+};
+
+struct ClipOptions
+{
+  /// Ends with a user's position or distance; the others are cut at the default distance.
+  std::vector<ClipEndRequest> Ends;
+};
+
+/// One clipped end.
+struct ClippedEnd
+{
+  ClipPoint Centre{ { 0, 0, 0 } };        ///< area centroid of the rim, on the cut plane
+  ClipPoint Normal{ { 0, 0, 1 } };        ///< unit, outwards (from the vessel through the cut)
+  double Radius = 0.0;                    ///< equivalent radius sqrt(area / pi) of the rim
+  double Area = 0.0;                      ///< of the planar region inside the rim
+  double InscribedRadius = 0.0;           ///< of the centerline at the cut
+  ClipPoint CenterlineEnd{ { 0, 0, 0 } }; ///< the vessel end on the centerline
+  double Distance = 0.0;                  ///< along the centerline from its end to the cut
+  bool UserChosen = false;                ///< from ClipOptions::Ends
+  /// Rim point ids in the output surface, in the order the wall's triangles run them.
+  std::vector<long long> Rim;
+};
+
+struct ClipResult
+{
+  /// The surface with every end open (triangles only, unused points removed; point and cell
+  /// data are not kept).
+  vtkSmartPointer<vtkPolyData> Surface;
+  std::vector<ClippedEnd> Ends; ///< in the order of the centerline's ends
+  std::vector<std::string> Warnings;
+};
+
+/// The vessel ends of a centerline polydata (see above): each end's position and inscribed
+/// radius. Throws InputError when the polydata has no polyline or no radius array.
+struct CenterlineEnd
+{
+  ClipPoint Position{ { 0, 0, 0 } };
+  double Radius = 0.0;
+};
+std::vector<CenterlineEnd> FindCenterlineEnds(vtkPolyData* centerlines);
+
+/// Clips every vessel end of `surface` (a triangle surface; polygons are triangulated). Throws
+/// InputError (one line) for an empty or non-finite surface, centerlines without ends, a
+/// requested position or distance whose plane cuts no vessel cleanly, and when the default
+/// cut of an end fails.
+ClipResult ClipVesselEnds(vtkPolyData* surface,
+  vtkPolyData* centerlines,
+  const ClipOptions& options = {});
+
+} // namespace bender
+
+#endif

@@ -1,0 +1,189 @@
+// PrepareForCfd: the gmsh aneurysm (open) and the demo segmentation (closed) become closed,
+// clean, outward, labelled surfaces with an inlet and two outlets, flat caps and flow
+// extensions; labels survive a VTP round trip, a warp and adaptive subdivision; every bad input
+// is one InputError line naming the surface.
+
+#include "PrepareForCfd.h"
+#include "BenderErrors.h"
+#include "BenderMeshCheck.h"
+#include "DemoPipeline.h"
+#include "MeshIO.h"
+#include "PatchLabels.h"
+#include "vtkBenderAdaptiveSubdivisionFilter.h"
+#include "vtkBenderWarpFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkOutputWindow.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+using namespace bender;
+
+namespace
+{
+const std::string Aneurysm = std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl";
+
+/// Checks a prepared surface: closed, manifold, consistent, outwards, the labels and ends.
+void ExpectReady(const PrepareForCfdResult& r, std::size_t ends)
+{
+  MeshCheckOptions check;
+  check.requireClosed = true;
+  check.selfIntersections = false; // see FlowExtensionTest
+  const MeshCheckReport report = CheckMesh(r.Surface, nullptr, check);
+  EXPECT_TRUE(report.Clean()) << FormatReportText(report, "prepared");
+  EXPECT_GT(report.volume, 0.0);
+  const std::vector<PatchLabel> labels = ReadPatchLabels(r.Surface);
+  ASSERT_EQ(labels.size(), ends + 1);
+  EXPECT_EQ(labels[0].name, "wall");
+  ASSERT_EQ(r.Ends.size(), ends);
+  int inlets = 0;
+  for (std::size_t k = 0; k < ends; ++k)
+  {
+    EXPECT_EQ(r.Ends[k].Id, static_cast<int>(k) + 2);
+    EXPECT_EQ(labels[k + 1].name, r.Ends[k].Name);
+    EXPECT_EQ(labels[k + 1].type, r.Ends[k].Type);
+    inlets += r.Ends[k].Type == PatchType::Inlet ? 1 : 0;
+    EXPECT_NEAR(
+      std::hypot(r.Ends[k].Normal[0], r.Ends[k].Normal[1], r.Ends[k].Normal[2]), 1.0, 1e-9);
+    EXPECT_GT(r.Ends[k].Area, 0.0);
+  }
+  EXPECT_EQ(inlets, 1);
+}
+
+class PrepareForCfdTest : public ::testing::Test
+{
+protected:
+  void SetUp() override { vtkOutputWindow::GetInstance()->SetDisplayModeToNever(); }
+};
+} // namespace
+
+TEST_F(PrepareForCfdTest, AneurysmIsClippedExtendedCappedAndLabelled)
+{
+  auto surface = ReadMesh(Aneurysm);
+  PrepareForCfdOptions options;
+  options.InputName = "aneurysm_data.stl";
+  const PrepareForCfdResult r = PrepareForCfd(surface, options);
+  ExpectReady(r, 3);
+  EXPECT_EQ(r.Ends[0].Name, "inlet"); // the largest end
+  EXPECT_EQ(r.Ends[1].Name, "outlet_1");
+  EXPECT_EQ(r.Ends[2].Name, "outlet_2");
+  EXPECT_NEAR(r.Ends[0].ExtensionLength, 10.0 * std::sqrt(r.Ends[0].Area / M_PI), 0.05 * 44);
+
+  // Labels through a VTP round trip.
+  const std::string path =
+    (std::filesystem::temp_directory_path() / "bender_prepare_for_cfd.vtp").string();
+  WriteMesh(r.Surface, path);
+  auto back = ReadMesh(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(CellPatchIds(back), CellPatchIds(r.Surface));
+  const auto labels = ReadPatchLabels(back);
+  ASSERT_EQ(labels.size(), 4u);
+  EXPECT_EQ(labels[1].name, "inlet");
+
+  // Through a warp and adaptive subdivision: every triangle keeps its parent's label, so the
+  // area of each patch is (nearly) unchanged by the subdivision.
+  vtkNew<vtkBenderWarpFilter> warp;
+  warp->SetInputData(r.Surface);
+  warp->Update();
+  EXPECT_EQ(CellPatchIds(warp->GetOutput()), CellPatchIds(r.Surface));
+  vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivide;
+  subdivide->SetInputData(r.Surface);
+  subdivide->Update();
+  vtkPolyData* fine = subdivide->GetOutput();
+  ASSERT_GE(fine->GetNumberOfPolys(), r.Surface->GetNumberOfPolys());
+  EXPECT_EQ(ReadPatchLabels(fine).size(), 4u);
+  EXPECT_EQ(ReadPatchLabels(fine)[2].name, "outlet_1");
+}
+
+TEST_F(PrepareForCfdTest, NamesByPositionNoExtensionNoCap)
+{
+  auto surface = ReadMesh(Aneurysm);
+  PrepareForCfdOptions first;
+  first.InletExtension = first.OutletExtension = 0.0;
+  const PrepareForCfdResult plain = PrepareForCfd(surface, first);
+  ExpectReady(plain, 3);
+  for (const CfdEnd& end : plain.Ends)
+  {
+    EXPECT_EQ(end.ExtensionLength, 0.0);
+    EXPECT_LT(std::sqrt(std::pow(end.Centre[0] - end.ClipCentre[0], 2) +
+                std::pow(end.Centre[1] - end.ClipCentre[1], 2) +
+                std::pow(end.Centre[2] - end.ClipCentre[2], 2)),
+      0.05 * end.Radius);
+  }
+  // Name the second outlet as the inlet, by a point near its cap.
+  PrepareForCfdOptions named = first;
+  named.Names.push_back({ plain.Ends[2].Centre, "ascending_aorta", true });
+  named.Names.push_back({ plain.Ends[0].Centre, "side", false });
+  const PrepareForCfdResult r = PrepareForCfd(surface, named);
+  ExpectReady(r, 3);
+  std::map<std::string, PatchType> types;
+  for (const CfdEnd& end : r.Ends)
+  {
+    types[end.Name] = end.Type;
+  }
+  EXPECT_EQ(types.at("ascending_aorta"), PatchType::Inlet);
+  EXPECT_EQ(types.at("side"), PatchType::Outlet);
+  EXPECT_EQ(types.count("outlet_1"), 1u);
+
+  PrepareForCfdOptions open = first;
+  open.Cap = false;
+  const PrepareForCfdResult o = PrepareForCfd(surface, open);
+  EXPECT_EQ(CheckMesh(o.Surface).boundaryLoops.size(), 3u);
+  EXPECT_EQ(ReadPatchLabels(o.Surface).size(), 1u);
+}
+
+TEST_F(PrepareForCfdTest, DemoSegmentationGetsThreeEnds)
+{
+  const DemoVessel demo = SegmentDemoVessel(DemoVesselPath());
+  ASSERT_TRUE(CheckMesh(demo.surface).closed);
+  PrepareForCfdOptions options;
+  options.InputName = "demo segmentation";
+  const PrepareForCfdResult r = PrepareForCfd(demo.surface, options);
+  ExpectReady(r, 3);
+}
+
+TEST_F(PrepareForCfdTest, BadInputsAreOneLineErrors)
+{
+  auto expectError = [](vtkPolyData* s, const PrepareForCfdOptions& o, const std::string& part)
+  {
+    try
+    {
+      PrepareForCfd(s, o);
+      ADD_FAILURE() << "no exception for " << part;
+    }
+    catch (const InputError& e)
+    {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("in.stl: ", 0), 0u) << what;
+      EXPECT_NE(what.find(part), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  };
+  PrepareForCfdOptions options;
+  options.InputName = "in.stl";
+  vtkNew<vtkPolyData> empty;
+  expectError(empty, options, "no triangles");
+  // --cap without clipping on a closed surface: no open end.
+  const DemoVessel demo = SegmentDemoVessel(DemoVesselPath());
+  PrepareForCfdOptions noClip = options;
+  noClip.Clip = false;
+  expectError(demo.surface, noClip, "no open end to cap");
+  // A clip position far from every vessel.
+  auto surface = ReadMesh(Aneurysm);
+  PrepareForCfdOptions far = options;
+  far.Ends.push_back({ { { 500, 500, 500 } }, -1.0 });
+  expectError(surface, far, "is not on a vessel");
+  // A single open end: a tube closed at one end has one end only.
+  PrepareForCfdOptions names = options;
+  names.Names.push_back({ { { 0, 0, 0 } }, "bad name", false });
+  expectError(surface, names, "invalid end name");
+  PrepareForCfdOptions factor = options;
+  factor.InletExtension = -1;
+  expectError(surface, factor, "not in [0, 100]");
+}

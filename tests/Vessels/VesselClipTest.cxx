@@ -1,0 +1,332 @@
+// VesselClip: the ends of analytic vessels (an open Y, the same Y closed, a narrow Y whose
+// children run side by side, an obliquely cut tube) and of the gmsh aneurysm are cut by planes
+// perpendicular to the centerline, leaving one open surface with one planar rim per end and
+// the neighbouring vessels whole; bad requests are one-line InputErrors.
+
+#include "VesselClip.h"
+#include "BenderErrors.h"
+#include "BenderMeshCheck.h"
+#include "MeshIO.h"
+#include "VesselArrayNames.h"
+#include "VesselCenterlines.h"
+#include "VesselTestUtilities.h"
+#include "vtkBenderCapFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataNormals.h>
+
+#include <cmath>
+
+using namespace bender;
+using namespace bender::test;
+
+namespace
+{
+double Dot3(const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+double Dist(const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+  const std::array<double, 3> d{ { a[0] - b[0], a[1] - b[1], a[2] - b[2] } };
+  return std::sqrt(Dot3(d, d));
+}
+
+std::array<double, 3> UnitOf(std::array<double, 3> a)
+{
+  const double n = std::sqrt(Dot3(a, a));
+  return { { a[0] / n, a[1] / n, a[2] / n } };
+}
+
+/// Checks what every clip result must satisfy: one open, manifold, consistent component whose
+/// boundary loops are exactly the rims, each rim on its plane.
+void ExpectCleanOpenResult(const ClipResult& r, std::size_t ends, vtkPolyData* input)
+{
+  ASSERT_EQ(r.Ends.size(), ends);
+  const MeshCheckReport report = CheckMesh(r.Surface);
+  EXPECT_EQ(report.components, 1);
+  EXPECT_EQ(report.boundaryLoops.size(), ends);
+  EXPECT_EQ(report.nonManifoldEdges, 0);
+  EXPECT_EQ(report.nonManifoldVertices, 0);
+  EXPECT_EQ(report.inconsistentEdges, 0);
+  EXPECT_LE(report.degenerateTriangles, CheckMesh(input).degenerateTriangles);
+  for (const ClippedEnd& end : r.Ends)
+  {
+    ASSERT_GE(end.Rim.size(), 3u);
+    for (long long v : end.Rim)
+    {
+      std::array<double, 3> p;
+      r.Surface->GetPoint(v, p.data());
+      const std::array<double, 3> d{
+        { p[0] - end.Centre[0], p[1] - end.Centre[1], p[2] - end.Centre[2] }
+      };
+      EXPECT_LE(std::abs(Dot3(d, end.Normal)), 1e-9 * end.Radius);
+    }
+    EXPECT_GT(end.Radius, 0.5 * end.InscribedRadius);
+    EXPECT_LT(Dist(end.Centre, end.CenterlineEnd), end.Distance + end.Radius);
+  }
+}
+
+struct Y
+{
+  vtkSmartPointer<vtkPolyData> Surface;
+  std::array<double, 3> Axis[3]; // unit directions outwards: trunk, left, right
+};
+
+Y MakeY(double halfAngleDegrees, double rt, double rc)
+{
+  const double a = halfAngleDegrees * M_PI / 180.0;
+  const Point3 o{ { 0, 0, 0 } };
+  const Point3 left{ { -40 * std::sin(a), 0, 40 * std::cos(a) } };
+  const Point3 right{ { 40 * std::sin(a), 0, 40 * std::cos(a) } };
+  const std::vector<Segment> tubes = {
+    { { { 0, 0, -40 } }, o, rt }, { o, left, rc }, { o, right, rc }
+  };
+  const double bounds[6] = { -25, 25, -4.5, 4.5, -25, 25 };
+  Y y;
+  y.Surface = ImplicitTubes(tubes, bounds, 0.4);
+  y.Axis[0] = { { 0, 0, -1 } };
+  y.Axis[1] = { { -std::sin(a), 0, std::cos(a) } };
+  y.Axis[2] = { { std::sin(a), 0, std::cos(a) } };
+  return y;
+}
+
+/// The axis (of three) an end's normal is closest to; the angle in degrees.
+int NearestAxis(const Y& y, const ClippedEnd& end, double& degrees)
+{
+  int best = 0;
+  for (int k = 1; k < 3; ++k)
+  {
+    if (Dot3(end.Normal, y.Axis[k]) > Dot3(end.Normal, y.Axis[best]))
+    {
+      best = k;
+    }
+  }
+  degrees = std::acos(std::min(1.0, Dot3(end.Normal, y.Axis[best]))) * 180.0 / M_PI;
+  return best;
+}
+
+/// The Y of 35 degrees and its centerlines, computed once.
+const Y& Y35()
+{
+  static const Y y = MakeY(35.0, 3.0, 2.4);
+  return y;
+}
+const CenterlineResult& Y35Centerlines()
+{
+  static const CenterlineResult cl = ComputeCenterlines(Y35().Surface);
+  return cl;
+}
+
+class VesselClipTest : public ::testing::Test
+{
+protected:
+  void SetUp() override { vtkOutputWindow::GetInstance()->SetDisplayModeToNever(); }
+};
+} // namespace
+
+TEST_F(VesselClipTest, OpenYEndsArePerpendicularToTheAxes)
+{
+  const Y& y = Y35();
+  const CenterlineResult& cl = Y35Centerlines();
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  ASSERT_EQ(FindCenterlineEnds(cl.Paths).size(), 3u);
+  ASSERT_EQ(FindCenterlineEnds(cl.Branches).size(), 3u); // the bifurcation is not an end
+  const ClipResult r = ClipVesselEnds(y.Surface, cl.Paths);
+  ExpectCleanOpenResult(r, 3, y.Surface);
+  bool seen[3] = { false, false, false };
+  for (const ClippedEnd& end : r.Ends)
+  {
+    double degrees = 0;
+    const int axis = NearestAxis(y, end, degrees);
+    seen[axis] = true;
+    EXPECT_LT(degrees, 2.0) << "end at " << end.Centre[0] << " " << end.Centre[2];
+    EXPECT_NEAR(end.Radius, axis == 0 ? 3.0 : 2.4, 0.1);
+    EXPECT_GE(end.Distance, end.InscribedRadius * 0.99); // at least one radius inside
+    // The cut is at least a radius inside the old open end (measured along the axis).
+    EXPECT_LT(
+      std::abs(end.Centre[2]), 25.0 - 0.9 * end.InscribedRadius * std::abs(y.Axis[axis][2]));
+  }
+  EXPECT_TRUE(seen[0] && seen[1] && seen[2]);
+}
+
+TEST_F(VesselClipTest, ClosedYIsOpenedAtItsThreeEnds)
+{
+  const Y& y = Y35();
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(y.Surface);
+  cap->Update();
+  ASSERT_TRUE(CheckMesh(cap->GetOutput()).closed);
+  vtkSmartPointer<vtkPolyData> closed = cap->GetOutput();
+  const CenterlineResult cl = ComputeCenterlines(closed);
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  const ClipResult r = ClipVesselEnds(closed, cl.Branches);
+  ExpectCleanOpenResult(r, 3, closed);
+  for (const ClippedEnd& end : r.Ends)
+  {
+    // The centerline of a closed surface runs a few degrees off the axis near an oblique flat
+    // end (it veers towards the end's corner); the cut follows the centerline (5 degrees: 4.8
+    // measured), where the open Y's is within 2 degrees of the axis.
+    double degrees = 0;
+    NearestAxis(y, end, degrees);
+    EXPECT_LT(degrees, 6.0);
+    // The flat caps (z = -25, z = 25) are gone: the whole rim is inside the box.
+    for (long long v : end.Rim)
+    {
+      std::array<double, 3> p;
+      r.Surface->GetPoint(v, p.data());
+      EXPECT_LT(std::abs(p[2]), 24.9);
+    }
+  }
+}
+
+TEST_F(VesselClipTest, NeighbourRunningAlongsideIsNotCut)
+{
+  // Children 2 x 8 degrees apart: near their ends the gap between them is about one radius,
+  // so each end's plane, extended, crosses the other child.
+  const Y y = MakeY(8.0, 3.0, 2.0);
+  const CenterlineResult cl = ComputeCenterlines(y.Surface);
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  ClipOptions options;
+  // Cut the left child deep, 8 mm from its end (where the children are 2.2 mm apart).
+  const double z = 25.0;
+  options.Ends.push_back({ { { -z * std::tan(8.0 * M_PI / 180.0), 0, z } }, 8.0 });
+  const ClipResult r = ClipVesselEnds(y.Surface, cl.Paths, options);
+  ExpectCleanOpenResult(r, 3, y.Surface);
+  // The right child keeps its length: its points reach near its own default cut.
+  double leftReach = 0, rightReach = 0;
+  for (vtkIdType i = 0; i < r.Surface->GetNumberOfPoints(); ++i)
+  {
+    std::array<double, 3> p;
+    r.Surface->GetPoint(i, p.data());
+    if (p[0] < -0.5)
+    {
+      leftReach = std::max(leftReach, Dot3(p, y.Axis[1]));
+    }
+    else if (p[0] > 0.5)
+    {
+      rightReach = std::max(rightReach, Dot3(p, y.Axis[2]));
+    }
+  }
+  int user = 0;
+  for (const ClippedEnd& end : r.Ends)
+  {
+    user += end.UserChosen ? 1 : 0;
+    if (end.UserChosen)
+    {
+      EXPECT_NEAR(end.Distance, 8.0, 1e-9);
+    }
+  }
+  EXPECT_EQ(user, 1);
+  EXPECT_LT(leftReach, rightReach - 4.0) << leftReach << " " << rightReach;
+}
+
+TEST_F(VesselClipTest, ObliqueOpenEndIsRecutPerpendicular)
+{
+  // A straight tube along z whose top end is cut at 30 degrees.
+  auto tube = SweptTube([](double t) { return Point3{ { 0, 0, t } }; }, 0.0, 30.0, 121, 48, 2.0);
+  for (vtkIdType i = 0; i < tube->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    tube->GetPoint(i, p);
+    if (p[2] > 29.99)
+    {
+      p[2] += std::tan(30.0 * M_PI / 180.0) * p[0];
+      tube->GetPoints()->SetPoint(i, p);
+    }
+  }
+  const CenterlineResult cl = ComputeCenterlines(tube);
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  const ClipResult r = ClipVesselEnds(tube, cl.Paths);
+  ExpectCleanOpenResult(r, 2, tube);
+  for (const ClippedEnd& end : r.Ends)
+  {
+    EXPECT_GT(std::abs(end.Normal[2]), std::cos(1.0 * M_PI / 180.0));
+    EXPECT_NEAR(end.Radius, 2.0, 0.05);
+    if (end.Normal[2] > 0)
+    {
+      EXPECT_LT(end.Centre[2], 30.0 - 2.0 * std::tan(30.0 * M_PI / 180.0)); // below the slant
+    }
+  }
+}
+
+TEST_F(VesselClipTest, AneurysmThreeEndsPerpendicularDomeWhole)
+{
+  auto surface = ReadMesh(std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl");
+  const CenterlineResult cl = ComputeCenterlines(surface);
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  const ClipResult r = ClipVesselEnds(surface, cl.Paths);
+  ExpectCleanOpenResult(r, 3, surface);
+  vtkDataArray* tangent = cl.Branches->GetPointData()->GetArray(VesselArrays::FrenetTangent);
+  ASSERT_NE(tangent, nullptr);
+  for (const ClippedEnd& end : r.Ends)
+  {
+    // The tangent of the nearest centerline point.
+    vtkIdType nearest = 0;
+    double best = 1e300;
+    for (vtkIdType i = 0; i < cl.Branches->GetNumberOfPoints(); ++i)
+    {
+      std::array<double, 3> p;
+      cl.Branches->GetPoint(i, p.data());
+      if (Dist(p, end.Centre) < best)
+      {
+        best = Dist(p, end.Centre);
+        nearest = i;
+      }
+    }
+    std::array<double, 3> t;
+    tangent->GetTuple(nearest, t.data());
+    t = UnitOf(t);
+    const double degrees = std::acos(std::min(1.0, std::abs(Dot3(t, end.Normal)))) * 180 / M_PI;
+    EXPECT_LT(degrees, 5.0);
+    EXPECT_LT(best, 0.25 * end.Radius); // the rim is centred on the centerline
+  }
+  // Only the three end pieces are removed: most of the area is kept, the dome included.
+  const double before = CheckMesh(surface).area;
+  const double after = CheckMesh(r.Surface).area;
+  EXPECT_GT(after, 0.6 * before);
+  EXPECT_LT(after, before);
+}
+
+TEST_F(VesselClipTest, BadRequestsAreOneLineErrors)
+{
+  const Y& y = Y35();
+  const CenterlineResult& cl = Y35Centerlines();
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  ClipOptions far;
+  far.Ends.push_back({ { { 100, 100, 100 } }, -1.0 });
+  try
+  {
+    ClipVesselEnds(y.Surface, cl.Paths, far);
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("is not on a vessel"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+  ClipOptions tooDeep;
+  tooDeep.Ends.push_back({ { { 0, 0, -25 } }, 500.0 });
+  EXPECT_THROW(ClipVesselEnds(y.Surface, cl.Paths, tooDeep), InputError);
+  vtkNew<vtkPolyData> empty;
+  EXPECT_THROW(ClipVesselEnds(empty, cl.Paths), InputError);
+  vtkNew<vtkPolyData> noRadius;
+  noRadius->DeepCopy(cl.Paths);
+  noRadius->GetPointData()->RemoveArray(VesselArrays::MaximumInscribedSphereRadius);
+  try
+  {
+    ClipVesselEnds(y.Surface, noRadius);
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("MaximumInscribedSphereRadius"), std::string::npos);
+  }
+}
