@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <vector>
 
 vtkStandardNewMacro(vtkBenderWarpFilter);
@@ -340,7 +341,15 @@ int vtkBenderWarpFilter::RequestData(vtkInformation*,
           static_cast<std::size_t>(n),
           cache.Records.data(),
           bound.data(),
-          this->Spec.initial.start.position);
+          this->Spec.initial.start.position,
+          [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+          {
+            vtkSMPTools::For(0,
+              static_cast<vtkIdType>(count),
+              1,
+              [&body](vtkIdType first, vtkIdType last)
+              { body(static_cast<std::size_t>(first), static_cast<std::size_t>(last)); });
+          });
       });
     cache.Points = inPts;
     cache.PointsTime = inPts->GetMTime();

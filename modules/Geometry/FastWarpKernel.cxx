@@ -469,15 +469,51 @@ void FastWarpLayout::Build(const T* xyz,
   const std::uint8_t* bound,
   const Vec3& origin)
 {
+  this->Build(xyz,
+    n,
+    records,
+    bound,
+    origin,
+    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+    { body(0, count); });
+}
+
+template<typename T>
+void FastWarpLayout::Build(const T* xyz,
+  std::size_t n,
+  const BoundPoint* records,
+  const std::uint8_t* bound,
+  const Vec3& origin,
+  const ParallelFor& parallelFor)
+{
   this->Center = origin;
-  // Counts first, then every array written by index (no push_back in the loop).
-  std::size_t boundCount = 0;
-  std::size_t pairCount = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  // Fixed chunks (independent of the thread count): counts first, then each chunk writes its
+  // points at its offsets, so the layout is the serial one whoever runs which chunk.
+  const std::size_t chunkSize = std::max<std::size_t>(4096, (n + 255) / 256);
+  const std::size_t chunks = (n + chunkSize - 1) / chunkSize;
+  std::vector<std::size_t> boundCounts(chunks + 1, 0), pairCounts(chunks + 1, 0);
+  parallelFor(chunks,
+    [&](std::size_t c0, std::size_t c1)
+    {
+      for (std::size_t c = c0; c < c1; ++c)
+      {
+        std::size_t nb = 0, np = 0;
+        for (std::size_t i = c * chunkSize; i < std::min(n, (c + 1) * chunkSize); ++i)
+        {
+          nb += bound[i] ? 1 : 0;
+          np += bound[i] && records[i].lambda0 < 1.0 ? 1 : 0;
+        }
+        boundCounts[c + 1] = nb;
+        pairCounts[c + 1] = np;
+      }
+    });
+  for (std::size_t c = 0; c < chunks; ++c)
   {
-    boundCount += bound[i] ? 1 : 0;
-    pairCount += bound[i] && records[i].lambda0 < 1.0 ? 1 : 0;
+    boundCounts[c + 1] += boundCounts[c];
+    pairCounts[c + 1] += pairCounts[c];
   }
+  const std::size_t boundCount = boundCounts[chunks];
+  const std::size_t pairCount = pairCounts[chunks];
   const std::size_t singleCount = boundCount - pairCount;
   this->Ids.resize(boundCount);
   this->Pairs.resize(pairCount);
@@ -494,30 +530,37 @@ void FastWarpLayout::Build(const T* xyz,
   float* pz = this->Pz.data();
   float* sv = this->S.data();
   float* fv = this->F.data();
-  std::size_t k = 0, p = 0, m = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!bound[i])
+  parallelFor(chunks,
+    [&](std::size_t c0, std::size_t c1)
     {
-      continue;
-    }
-    const auto id = static_cast<std::int64_t>(i);
-    ids[k++] = id;
-    const BoundPoint& rec = records[i];
-    if (rec.lambda0 < 1.0)
-    {
-      pairs[p++] = id;
-      continue;
-    }
-    const T* q = xyz + 3 * i;
-    singles[m] = id;
-    px[m] = static_cast<float>(static_cast<double>(q[0]) - origin.x);
-    py[m] = static_cast<float>(static_cast<double>(q[1]) - origin.y);
-    pz[m] = static_cast<float>(static_cast<double>(q[2]) - origin.z);
-    sv[m] = static_cast<float>(std::clamp(rec.s0, 0.0, 1.0));
-    fv[m] = static_cast<float>(rec.f);
-    ++m;
-  }
+      for (std::size_t c = c0; c < c1; ++c)
+      {
+        std::size_t k = boundCounts[c], p = pairCounts[c], m = k - p;
+        for (std::size_t i = c * chunkSize; i < std::min(n, (c + 1) * chunkSize); ++i)
+        {
+          if (!bound[i])
+          {
+            continue;
+          }
+          const auto id = static_cast<std::int64_t>(i);
+          ids[k++] = id;
+          const BoundPoint& rec = records[i];
+          if (rec.lambda0 < 1.0)
+          {
+            pairs[p++] = id;
+            continue;
+          }
+          const T* q = xyz + 3 * i;
+          singles[m] = id;
+          px[m] = static_cast<float>(static_cast<double>(q[0]) - origin.x);
+          py[m] = static_cast<float>(static_cast<double>(q[1]) - origin.y);
+          pz[m] = static_cast<float>(static_cast<double>(q[2]) - origin.z);
+          sv[m] = static_cast<float>(std::clamp(rec.s0, 0.0, 1.0));
+          fv[m] = static_cast<float>(rec.f);
+          ++m;
+        }
+      }
+    });
 }
 
 template<typename T>
@@ -569,6 +612,18 @@ template void FastWarpLayout::Build<float>(const float*,
   const BoundPoint*,
   const std::uint8_t*,
   const Vec3&);
+template void FastWarpLayout::Build<float>(const float*,
+  std::size_t,
+  const BoundPoint*,
+  const std::uint8_t*,
+  const Vec3&,
+  const ParallelFor&);
+template void FastWarpLayout::Build<double>(const double*,
+  std::size_t,
+  const BoundPoint*,
+  const std::uint8_t*,
+  const Vec3&,
+  const ParallelFor&);
 template void FastWarpLayout::Build<double>(const double*,
   std::size_t,
   const BoundPoint*,

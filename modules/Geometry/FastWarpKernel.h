@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace bender
@@ -53,6 +54,18 @@ public:
     std::size_t begin,
     std::size_t end) const;
 
+  /// Same, written interleaved: xyz[3 k + c] for k in [begin, end), each point plus
+  /// `shift` (3 floats; null for none). Returns how many results are not finite.
+  std::size_t EvaluateInterleaved(const float* px,
+    const float* py,
+    const float* pz,
+    const float* s,
+    const float* f,
+    float* xyz,
+    const float* shift,
+    std::size_t begin,
+    std::size_t end) const;
+
 private:
   SimdLevel Simd = BestLevel();
   /// 16 floats per sample j: m_j (real w x y z, dual w x y z), then m_{j+1} - m_j.
@@ -81,6 +94,19 @@ public:
     const BoundPoint* records,
     const std::uint8_t* bound,
     const Vec3& origin);
+
+  /// Runs body(first, last) over subranges covering [0, count), possibly concurrently.
+  using ParallelFor =
+    std::function<void(std::size_t count, const std::function<void(std::size_t, std::size_t)>&)>;
+  /// Same layout as Build, computed in parallel with `parallelFor` (for instance vtkSMPTools):
+  /// counts per fixed chunk, then every chunk written at its offset.
+  template<typename T>
+  void Build(const T* xyz,
+    std::size_t n,
+    const BoundPoint* records,
+    const std::uint8_t* bound,
+    const Vec3& origin,
+    const ParallelFor& parallelFor);
   void Clear();
 
   const Vec3& Origin() const { return this->Center; }

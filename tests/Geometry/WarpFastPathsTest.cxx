@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <memory>
 
 namespace
@@ -265,6 +266,61 @@ TEST(FastWarpKernel, OutOfRangeParametersStayInsideTheTable)
       EXPECT_TRUE(std::isfinite(o[d][k])) << "s = " << s[k];
     }
   }
+}
+
+TEST(FastWarpLayout, ParallelBuildEqualsTheSerialOne)
+{
+  // Chunks run in any order and split anywhere must give the serial layout.
+  bender::WarpSpec spec;
+  spec.initial.start = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 0, 1 } };
+  // A U-turn: points between the legs have two projections.
+  spec.initial.end = { { 0, 12, 0 }, { -1, 0, 0 }, { 0, 0, 1 } };
+  spec.final = spec.initial;
+  spec.final.end.position = { 2, 14, 1 };
+  spec.radius = 9.0;
+  const bender::WarpBinding binding(spec, bender::BlendMode::TwoProjections);
+  std::mt19937_64 rng(5);
+  std::vector<float> xyz;
+  for (int i = 0; i < 30011; ++i)
+  {
+    const Vec3 p = bendertest::RandomPoint(rng, 1.0) * 20.0 + Vec3{ 5.0, 6.0, 0.0 };
+    xyz.insert(
+      xyz.end(), { static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z) });
+  }
+  const std::size_t n = xyz.size() / 3;
+  std::vector<bender::BoundPoint> records(n);
+  std::vector<std::uint8_t> bound(n);
+  binding.BindRange(xyz.data(), 0, n, records.data(), bound.data());
+  bender::FastWarpLayout serial, parallel;
+  serial.Build(xyz.data(), n, records.data(), bound.data(), spec.initial.start.position);
+  parallel.Build(xyz.data(),
+    n,
+    records.data(),
+    bound.data(),
+    spec.initial.start.position,
+    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+    {
+      // Backwards, one chunk at a time.
+      for (std::size_t c = count; c-- > 0;)
+      {
+        body(c, c + 1);
+      }
+    });
+  ASSERT_GT(serial.SingleIds().size(), 1000u);
+  ASSERT_GT(serial.PairIds().size(), 100u);
+  EXPECT_EQ(serial.BoundIds(), parallel.BoundIds());
+  EXPECT_EQ(serial.SingleIds(), parallel.SingleIds());
+  EXPECT_EQ(serial.PairIds(), parallel.PairIds());
+  // And the kernel's results from both layouts are the same floats.
+  const auto warp = TryWarp(spec);
+  ASSERT_TRUE(warp);
+  const bender::WarpEvaluator table(*warp, bender::WarpPrecision::Table);
+  bender::FastWarpKernel kernel;
+  kernel.SetMotion(*table.GetMotionTable(), serial.Origin());
+  std::vector<float> a(xyz), b(xyz);
+  serial.EvaluateSingles(kernel, a.data(), 0, serial.SingleIds().size());
+  parallel.EvaluateSingles(kernel, b.data(), 0, parallel.SingleIds().size());
+  EXPECT_EQ(a, b);
 }
 
 TEST(WarpEvaluator, BatchedExactAgreesWithTheSinglePointWarp)
