@@ -8,6 +8,7 @@
 #include "vtkBenderWarpFilter.h"
 
 #include "BenchMachine.h"
+#include "FastWarpKernel.h"
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
@@ -198,6 +199,8 @@ int main(int argc, char** argv)
     bender_bench::MachineLine().c_str(),
     vtkSMPTools::GetBackend(),
     vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::printf("warp kernels: %s (table and exact precision, chosen at run time)\n",
+    bender::FastWarpKernel::LevelName(bender::FastWarpKernel::BestLevel()));
   std::vector<std::string> spreads;
 
   const int sides = 1000;

@@ -5,6 +5,7 @@
 
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -271,6 +272,7 @@ int vtkBenderWarpFilter::RequestData(vtkInformation*,
     output->CopyStructure(input);
     output->GetPointData()->PassData(input->GetPointData());
     output->GetCellData()->PassData(input->GetCellData());
+    output->GetFieldData()->PassData(input->GetFieldData());
     return 1;
   }
 
@@ -420,6 +422,9 @@ int vtkBenderWarpFilter::RequestData(vtkInformation*,
   output->SetPoints(this->OutputPoints);
   output->GetPointData()->PassData(input->GetPointData());
   output->GetCellData()->PassData(input->GetCellData());
+  // Field data (for instance the CFD patch names and types of issue 11) describes the surface,
+  // not its positions: it stays.
+  output->GetFieldData()->PassData(input->GetFieldData());
   // Normals are stale after a warp: remove them (recompute downstream).
   output->GetPointData()->SetNormals(nullptr);
   output->GetCellData()->SetNormals(nullptr);

@@ -10,6 +10,7 @@
 #include <vtkCellData.h>
 #include <vtkCylinderSource.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkNew.h>
@@ -20,6 +21,7 @@
 #include <vtkPolyDataNormals.h>
 #include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkTriangleFilter.h>
 
 #include <cmath>
@@ -227,6 +229,36 @@ TEST(WarpFilter, KeepsBindingWhileOnlyTheFinalRibbonMoves)
   tube->GetPoints()->Modified();
   filter->Update();
   EXPECT_EQ(filter->GetBindingCount(), 4);
+}
+
+TEST(WarpFilter, PassesFieldDataWhenWarpingAndWhenPassingThrough)
+{
+  // The CFD patch names (issue 11) live in field data: a warp must not drop them.
+  auto tube = Tube(VTK_FLOAT);
+  vtkNew<vtkStringArray> names;
+  names->SetName("PatchNames");
+  names->InsertNextValue("wall");
+  names->InsertNextValue("inlet");
+  tube->GetFieldData()->AddArray(names);
+  vtkNew<vtkBenderWarpFilter> filter;
+  filter->SetInputData(tube);
+  filter->SetWarp(Bend90());
+  for (bool passThrough : { false, true })
+  {
+    filter->SetPassThrough(passThrough);
+    filter->Update();
+    auto* got = vtkStringArray::SafeDownCast(
+      filter->GetOutput()->GetFieldData()->GetAbstractArray("PatchNames"));
+    ASSERT_NE(got, nullptr) << (passThrough ? "pass-through" : "warped");
+    ASSERT_EQ(got->GetNumberOfValues(), 2);
+    EXPECT_EQ(got->GetValue(1), "inlet");
+  }
+  // And the warped output moved (the field data did not replace the points).
+  filter->SetPassThrough(false);
+  filter->Update();
+  EXPECT_GT(bender::Distance(PointOf(filter->GetOutput(), tube->GetNumberOfPoints() - 1),
+              PointOf(tube, tube->GetNumberOfPoints() - 1)),
+    1.0);
 }
 
 TEST(WarpFilter, ParallelResultEqualsSequential)
