@@ -9,15 +9,20 @@
 #include "MeshIO.h"
 #include "SegmentPanel.h"
 #include "SegmentationSession.h"
+#include "WarpPlanIO.h"
 #include "WorkRunner.h"
 
 #include <QAction>
+#include <QDir>
 #include <QDragEnterEvent>
 #include <QDropEvent>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QPushButton>
+#include <QSettings>
 #include <QUrl>
 
 #include <vtkPolyData.h>
@@ -27,6 +32,26 @@ namespace
 std::string Name(const QString& path)
 {
   return QFileInfo(path).fileName().toStdString();
+}
+
+// A file of a DICOM series: the .dcm extension or the "DICM" magic after the 128-byte preamble.
+bool IsDicomFile(const QString& path)
+{
+  const QFileInfo info(path);
+  if (!info.isFile())
+  {
+    return false;
+  }
+  if (info.suffix().compare("dcm", Qt::CaseInsensitive) == 0)
+  {
+    return true;
+  }
+  QFile file(path);
+  if (!file.open(QIODevice::ReadOnly) || file.size() < 132 || !file.seek(128))
+  {
+    return false;
+  }
+  return file.read(4) == "DICM";
 }
 }
 
@@ -57,11 +82,15 @@ FileOpener::FileOpener(bender::BenderSession& session,
     {
       const QString file = QFileDialog::getOpenFileName(this->Window,
         "Open",
-        QString(),
+        FileOpener::lastFolder("open"),
         "All supported (*.stl *.obj *.ply *.vtp *.vtk *.off *.json *.nrrd *.nhdr *.nii *.nii.gz "
-        "*.mha *.mhd *.vti);;All files (*)");
-      if (!file.isEmpty())
-        this->openFile(file);
+        "*.mha *.mhd *.vti *.dcm);;DICOM series: pick any file of its folder (*.dcm *);;All "
+        "files (*)");
+      if (file.isEmpty())
+        return;
+      FileOpener::rememberFolder("open", file);
+      // A DICOM file stands for its series: the folder is read as one volume.
+      this->openFile(IsDicomFile(file) ? QFileInfo(file).absolutePath() : file);
     });
   connect(actions, &MainActions::recentFileChosen, this, &FileOpener::openFile);
   connect(actions->Demo, &QAction::triggered, this, &FileOpener::startDemo);
@@ -71,9 +100,11 @@ FileOpener::FileOpener(bender::BenderSession& session,
     [this]()
     {
       const QString f = QFileDialog::getOpenFileName(
-        this->Window, "Load plan", QString(), "Plans (*.bender.json *.json)");
-      if (!f.isEmpty())
-        this->openFile(f);
+        this->Window, "Load plan", FileOpener::lastFolder("plan"), "Plans (*.bender.json *.json)");
+      if (f.isEmpty())
+        return;
+      FileOpener::rememberFolder("plan", f);
+      this->openFile(f);
     });
   connect(actions->Segment, &QAction::triggered, this, &FileOpener::segmentVolume);
   window->setAcceptDrops(true);
@@ -87,7 +118,17 @@ bool FileOpener::openFile(const QString& path)
     return false;
   }
   const std::string file = path.toStdString();
-  switch (bender::ClassifyFile(file, QFileInfo(path).isDir()))
+  const bender::FileKind kind = bender::ClassifyFile(file, QFileInfo(path).isDir());
+  if (kind == bender::FileKind::Plan)
+  {
+    return this->openPlan(path);
+  }
+  if (kind != bender::FileKind::Unknown &&
+    !this->confirmDiscard("Open " + QFileInfo(path).fileName()))
+  {
+    return false;
+  }
+  switch (kind)
   {
     case bender::FileKind::Session:
       return this->Worker->runSessionJob(this->Session,
@@ -98,13 +139,7 @@ bool FileOpener::openFile(const QString& path)
             this->View->resetCamera();
         });
     case bender::FileKind::Plan:
-      return this->Worker->runSessionJob(this->Session,
-        this->Session.BeginLoadPlan(file),
-        [this, path](bender::SessionJob&, bool ok)
-        {
-          if (ok)
-            this->Actions->addRecentFile(path);
-        });
+      return this->openPlan(path);
     case bender::FileKind::Mesh:
       return this->openMesh(path);
     case bender::FileKind::Volume:
@@ -115,6 +150,111 @@ bool FileOpener::openFile(const QString& path)
   this->Session.AddMessage(
     bender::MessageSeverity::Error, bender::UnknownFileTypeMessage(Name(path)));
   return false;
+}
+
+bool FileOpener::openPlan(const QString& path)
+{
+  const std::string file = path.toStdString();
+  bender::WarpPlan plan;
+  try
+  {
+    plan = bender::ReadWarpPlan(file);
+  }
+  catch (const std::exception& e)
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error, e.what());
+    return false;
+  }
+  if (this->Session.IsPlanApplied(plan))
+  {
+    const QString text = QString("%1: its %2 warps are the last ones applied to this surface; "
+                                 "replaying it would bend the bent surface again")
+                           .arg(QFileInfo(path).fileName())
+                           .arg(plan.warps.size());
+    if (!this->Interactive)
+    {
+      this->Session.AddMessage(
+        bender::MessageSeverity::Warning, text.toStdString() + ": not applied again");
+      return false;
+    }
+    if (QMessageBox::question(this->Window,
+          "Plan already applied",
+          text + ".\nApply it once more?",
+          QMessageBox::Yes | QMessageBox::No,
+          QMessageBox::No) != QMessageBox::Yes)
+    {
+      this->Session.AddMessage(
+        bender::MessageSeverity::Info, text.toStdString() + ": not applied again");
+      return false;
+    }
+  }
+  return this->Worker->runSessionJob(this->Session,
+    this->Session.BeginReplay(plan, Name(path)),
+    [this, path](bender::SessionJob&, bool ok)
+    {
+      if (ok)
+      {
+        this->Actions->addRecentFile(path);
+        this->Gesture->showSessionRibbon();
+      }
+    });
+}
+
+bool FileOpener::confirmDiscard(const QString& what)
+{
+  if (!this->Interactive || !this->Session.HasUnsavedChanges())
+  {
+    return true;
+  }
+  QMessageBox box(QMessageBox::Question,
+    "Save changes?",
+    QString("The surface has warps that are not saved in a plan (%1 committed)%2.\n%3 replaces "
+            "them: save the plan first?")
+      .arg(this->Session.GetHistoryPosition())
+      .arg(this->Session.GetState() == bender::GrabState::Grabbed ? ", and a bend under way" : "")
+      .arg(what),
+    QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel,
+    this->Window);
+  box.setObjectName("saveChanges");
+  box.button(QMessageBox::Save)->setText("Save plan...");
+  box.setDefaultButton(QMessageBox::Save);
+  const int answer = box.exec();
+  if (answer == QMessageBox::Discard)
+  {
+    if (this->Session.GetState() == bender::GrabState::Grabbed)
+    {
+      this->Session.CancelGrab("discarded");
+    }
+    this->Session.MarkSaved(); // explicitly discarded: nothing left to keep
+    return true;
+  }
+  if (answer != QMessageBox::Save)
+  {
+    return false;
+  }
+  const QString file = QFileDialog::getSaveFileName(this->Window,
+    "Save plan",
+    FileOpener::lastFolder("plan") + "/plan.bender.json",
+    "Plans (*.bender.json)");
+  if (file.isEmpty())
+  {
+    return false;
+  }
+  FileOpener::rememberFolder("plan", file);
+  return this->Session.SavePlan(file.toStdString());
+}
+
+QString FileOpener::lastFolder(const QString& kind)
+{
+  const QString folder = QSettings().value("folders/" + kind).toString();
+  return !folder.isEmpty() && QFileInfo(folder).isDir() ? folder : QDir::homePath();
+}
+
+void FileOpener::rememberFolder(const QString& kind, const QString& path)
+{
+  const QFileInfo info(path);
+  QSettings().setValue(
+    "folders/" + kind, info.isDir() ? info.absoluteFilePath() : info.absolutePath());
 }
 
 bool FileOpener::openMesh(const QString& path)
@@ -170,7 +310,7 @@ bool FileOpener::openVolume(const QString& path)
 bool FileOpener::segmentVolume()
 {
   std::string problem;
-  if (this->Worker->refuseWhenBusy(this->Session) ||
+  if (this->Worker->refuseWhenBusy(this->Session) || !this->confirmDiscard("Segmenting") ||
     !this->Segmentation.SetSettings(this->Segment->settings(), problem))
   {
     if (!problem.empty())
@@ -204,7 +344,7 @@ bool FileOpener::segmentVolume()
 
 void FileOpener::startDemo()
 {
-  if (this->Worker->refuseWhenBusy(this->Session))
+  if (this->Worker->refuseWhenBusy(this->Session) || !this->confirmDiscard("The demo"))
   {
     return;
   }

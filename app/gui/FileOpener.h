@@ -20,6 +20,13 @@ class WorkRunner;
 /// segmentation, files dropped on the window and the recovery offered at start. The kind of a
 /// file is bender::ClassifyFile's (Logic); reading, segmenting, replaying and recovering run on
 /// the window's worker and their results go into the sessions on the GUI thread.
+///
+/// No lost work: Open (a mesh, a volume, a session), Demo and segmenting again ask "Save
+/// changes?" (Save plan / Discard / Cancel) while the session has unsaved warps
+/// (BenderSession::HasUnsavedChanges); a plan whose warps are already the last ones committed
+/// is not replayed again without asking (refused with a message when not interactive). The
+/// file dialogs start in the folder used last (QSettings "folders/<kind>"); File > Open takes a
+/// DICOM series by any file of its folder.
 class FileOpener : public QObject
 {
   Q_OBJECT
@@ -40,6 +47,18 @@ public:
   bool segmentVolume();
   /// Asks whether to recover the autosaved session (Bender did not close cleanly).
   void offerRecovery();
+  /// Dialogs may be shown (the window's MainWindowOptions::interactive); without, nothing is
+  /// asked: unsaved work is replaced as before and a plan applied twice is refused.
+  void setInteractive(bool interactive) { this->Interactive = interactive; }
+  bool isInteractive() const { return this->Interactive; }
+  /// Before `what` (Open, Demo, Quit, ...) replaces the work: true to go on. With unsaved
+  /// warps and interactive, asks Save plan (then goes on when saved) / Discard (the work counts
+  /// as discarded: the autosave may go) / Cancel.
+  bool confirmDiscard(const QString& what);
+  /// The folder a file dialog of `kind` ("open", "plan", "recording", ...) starts in: the one
+  /// used last, else the home folder; rememberFolder stores the folder of `path`.
+  static QString lastFolder(const QString& kind);
+  static void rememberFolder(const QString& kind, const QString& path);
 
 signals:
   /// The volume or its mask changed (the slice views follow).
@@ -54,6 +73,7 @@ protected:
 private:
   bool openMesh(const QString& path);
   bool openVolume(const QString& path);
+  bool openPlan(const QString& path);
 
   bender::BenderSession& Session;
   bender::SegmentationSession& Segmentation;
@@ -64,6 +84,7 @@ private:
   BendPanel* Bend;
   SegmentPanel* Segment;
   QWidget* Window;
+  bool Interactive = false;
 };
 
 #endif

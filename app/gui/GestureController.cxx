@@ -4,6 +4,7 @@
 #include "BenderSession.h"
 #include "BenderView.h"
 #include "MainActions.h"
+#include "ProblemOverlay.h"
 #include "RibbonPlacement.h"
 #include "VesselController.h"
 #include "WorkRunner.h"
@@ -13,14 +14,20 @@
 #include <QAbstractSpinBox>
 #include <QAction>
 #include <QApplication>
+#include <QDialog>
+#include <QDialogButtonBox>
 #include <QDockWidget>
 #include <QKeyEvent>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPlainTextEdit>
+#include <QPushButton>
 #include <QTextEdit>
+#include <QTimer>
+#include <QVBoxLayout>
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
 namespace
@@ -85,8 +92,16 @@ GestureController::GestureController(bender::BenderSession& session,
       this->View->setPicking(false);
       this->HasFirstPick = false;
       this->Bend->showState(this->Session);
-      this->Session.CancelGrab("cancelled by the user");
+      this->cancelHeld();
     });
+  // After an undo or a redo (the window's handlers run first) the ribbon lies on the surface.
+  for (QAction* history : { actions->Undo, actions->Redo })
+  {
+    connect(history,
+      &QAction::triggered,
+      this,
+      [this]() { QTimer::singleShot(0, this, &GestureController::showSessionRibbon); });
+  }
   connect(
     this->View, &BenderView::ribbonInteraction, this, &GestureController::onRibbonInteraction);
   connect(this->View,
@@ -107,6 +122,35 @@ GestureController::GestureController(bender::BenderSession& session,
     });
   connect(this->Bend, &BendPanel::parametersChanged, this, &GestureController::applyParameters);
   qApp->installEventFilter(this);
+
+  this->Overlay = std::make_unique<ProblemOverlay>(this->View->renderer());
+  this->GuardDialog = new QDialog(window);
+  this->GuardDialog->setObjectName("commitGuard");
+  this->GuardDialog->setWindowTitle("Commit held: check the bend");
+  this->GuardDialog->setModal(false);
+  auto* layout = new QVBoxLayout(this->GuardDialog);
+  this->GuardText = new QLabel(this->GuardDialog);
+  this->GuardText->setObjectName("commitGuardText");
+  this->GuardText->setWordWrap(true);
+  this->GuardText->setMinimumWidth(380);
+  layout->addWidget(this->GuardText);
+  auto* buttons = new QDialogButtonBox(this->GuardDialog);
+  auto* reduce = buttons->addButton("Reduce R and retry", QDialogButtonBox::AcceptRole);
+  reduce->setObjectName("guardReduce");
+  reduce->setToolTip("A smaller region of influence: below r_min when the space-inversion rule "
+                     "failed, else 80% of R; the release is checked again");
+  auto* cancel = buttons->addButton("Cancel the bend", QDialogButtonBox::RejectRole);
+  cancel->setObjectName("guardCancel");
+  cancel->setToolTip("Nothing is committed; the surface and the ribbon go back (Esc)");
+  auto* keep = buttons->addButton("Keep the warp", QDialogButtonBox::DestructiveRole);
+  keep->setObjectName("guardKeep");
+  keep->setToolTip("Commit the warp as it is, with the problems shown (undo with Ctrl+Z)");
+  layout->addWidget(buttons);
+  connect(reduce, &QPushButton::clicked, this, &GestureController::reduceRadiusAndRetry);
+  connect(cancel, &QPushButton::clicked, this, &GestureController::cancelHeld);
+  connect(keep, &QPushButton::clicked, this, &GestureController::keepHeld);
+  // Closing the dialog is no choice: the commit stays held (the bend goes on).
+  connect(this->GuardDialog, &QDialog::rejected, this, [this]() { this->Overlay->Hide(); });
 }
 
 GestureController::~GestureController()
@@ -155,11 +199,114 @@ bool GestureController::release()
       if (ok)
       {
         // The ribbon stays where the hands left it: the committed (final) ribbon.
+        this->hideCommitGuard();
         this->View->ribbonWidget()->GetRibbonRepresentation()->SetRibbon(
           this->Session.GetFinalRibbon());
       }
+      else if (this->Session.IsCommitHeld())
+      {
+        this->showCommitGuard();
+      }
+      else
+      {
+        this->hideCommitGuard();
+        this->showSessionRibbon();
+      }
       this->View->render();
     });
+}
+
+void GestureController::showCommitGuard()
+{
+  const bender::CommitCheck& check = this->Session.GetHeldCheck();
+  QString text = "<b>The bend was not committed.</b> The check of the region it changed found:<ul>";
+  for (const std::string& problem : check.problems)
+  {
+    text += "<li>" + QString::fromStdString(problem).toHtmlEscaped() + "</li>";
+  }
+  text += "</ul>";
+  if (!check.problemCells.empty())
+  {
+    text += QString("The %1 triangles concerned are drawn in yellow and red on the vessel.<br>")
+              .arg(check.problemCells.size());
+  }
+  const double rmin = check.minimumRadius;
+  text += QString("R = %1 mm, r_min = %2.")
+            .arg(check.radius, 0, 'f', 2)
+            .arg(std::isfinite(rmin) && rmin < 1e6 ? QString("%1 mm").arg(rmin, 0, 'f', 2)
+                                                   : QString("none (straight wire)"));
+  this->GuardText->setText(text);
+  this->Overlay->Show(check.problemTriangles);
+  this->GuardDialog->show();
+  this->GuardDialog->raise();
+  this->View->render();
+}
+
+void GestureController::hideCommitGuard()
+{
+  this->Overlay->Hide();
+  this->GuardDialog->hide();
+}
+
+bool GestureController::reduceRadiusAndRetry()
+{
+  if (this->Session.GetState() != bender::GrabState::Grabbed)
+  {
+    this->hideCommitGuard();
+    return false;
+  }
+  const bender::CommitCheck check = this->Session.GetHeldCheck();
+  bender::WarpParameters parameters = this->Bend->parameters();
+  const double radius = this->Session.GetParameters().radius;
+  double reduced = 0.8 * radius;
+  if (check.spaceInversionRisk && std::isfinite(check.minimumRadius))
+  {
+    reduced = std::min(reduced, 0.9 * check.minimumRadius);
+  }
+  parameters.radius = std::max(reduced, 1e-3);
+  this->Bend->setParameters(parameters);
+  this->applyParameters();
+  this->Session.AddMessage(bender::MessageSeverity::Info,
+    QString("R reduced from %1 to %2 mm; checking the bend again")
+      .arg(radius, 0, 'f', 2)
+      .arg(parameters.radius, 0, 'f', 2)
+      .toStdString());
+  this->hideCommitGuard();
+  return this->release();
+}
+
+void GestureController::cancelHeld()
+{
+  this->hideCommitGuard();
+  this->Session.CancelGrab("cancelled by the user");
+  this->showSessionRibbon();
+}
+
+bool GestureController::keepHeld()
+{
+  this->hideCommitGuard();
+  if (!this->Session.KeepHeldCommit())
+  {
+    return false;
+  }
+  this->View->ribbonWidget()->GetRibbonRepresentation()->SetRibbon(this->Session.GetFinalRibbon());
+  this->View->render();
+  return true;
+}
+
+void GestureController::showSessionRibbon()
+{
+  if (this->Session.GetState() == bender::GrabState::Grabbed)
+  {
+    return;
+  }
+  auto* widget = this->View->ribbonWidget();
+  const auto& ribbon = this->Session.GetRibbon();
+  if (ribbon && widget->GetEnabled())
+  {
+    widget->GetRibbonRepresentation()->SetRibbon(*ribbon);
+  }
+  this->View->render();
 }
 
 void GestureController::showRibbon(const bender::RibbonSpec& ribbon, double vesselRadius)
@@ -298,6 +445,11 @@ void GestureController::setRibbon(const bender::RibbonSpec& ribbon)
       this->Vessels->moved();
     }
   }
+  else if (rep->GetValid())
+  {
+    // The ribbon on the surface: its r_min, the trackers' anchor.
+    this->Session.PlaceRibbon(ribbon);
+  }
   this->View->render();
 }
 
@@ -322,6 +474,15 @@ void GestureController::onRibbonInteraction()
     if (this->Vessels)
     {
       this->Vessels->moved();
+    }
+  }
+  else if (!this->Session.IsBusy())
+  {
+    // A handle moved before the grab: the session's ribbon follows (r_min, trackers).
+    auto* rep = this->View->ribbonWidget()->GetRibbonRepresentation();
+    if (rep->GetValid())
+    {
+      this->View->quietly([this, rep]() { this->Session.PlaceRibbon(rep->GetRibbon()); });
     }
   }
 }

@@ -5,6 +5,8 @@
 
 #include <QObject>
 
+#include <memory>
+
 namespace bender
 {
 class BenderSession;
@@ -12,7 +14,10 @@ class BenderSession;
 class BendPanel;
 class BenderView;
 class MainActions;
+class ProblemOverlay;
+class QDialog;
 class QLabel;
+class QPushButton;
 class QWidget;
 class VesselController;
 class WorkRunner;
@@ -33,6 +38,12 @@ class WorkRunner;
 /// keeps its letters). Space held grabs and its release releases: an application event filter
 /// takes Space for every widget of the window but text fields, and ignores key auto-repeat, so
 /// one press is one grab and one release one commit.
+///
+/// The commit guard: when the session holds a release (BenderSession::IsCommitHeld: flipped or
+/// crossing triangles, or R >= r_min), the problem triangles are drawn over the surface
+/// (ProblemOverlay) and a non-modal dialog ("commitGuard") offers: reduce R and retry, cancel
+/// the bend, keep the warp. The ribbon widget always shows the session's ribbon when nothing is
+/// grabbed: back where it was after a cancel or an undo, the final one after a release or redo.
 class GestureController : public QObject
 {
   Q_OBJECT
@@ -68,6 +79,19 @@ public:
   void applyParameters();
   /// True while Space is held down after a grab it started.
   bool isSpaceHeld() const { return this->SpaceHeld; }
+  /// Dialogs may be shown (the window's MainWindowOptions::interactive); the guard's dialog
+  /// is non-modal and shown either way.
+  void setInteractive(bool interactive) { this->Interactive = interactive; }
+  /// The commit guard's dialog and overlay (for tests): null / hidden when nothing is held.
+  QDialog* commitGuardDialog() const { return this->GuardDialog; }
+  ProblemOverlay* problemOverlay() const { return this->Overlay.get(); }
+  /// The guard's choices, as its buttons do them. reduceRadiusAndRetry sets R below r_min when
+  /// the space-inversion rule failed (0.9 r_min), else to 0.8 R, and starts the release again.
+  bool reduceRadiusAndRetry();
+  void cancelHeld();
+  bool keepHeld();
+  /// Puts the widget's ribbon back to the session's ribbon (nothing grabbed).
+  void showSessionRibbon();
 
 protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
@@ -77,6 +101,8 @@ private:
   void onPick(const double point[3]);
   void placeSettled(const bender::RibbonSpec& ribbon, double vesselRadius, double radius);
   bool isOurs(QObject* watched) const;
+  void showCommitGuard();
+  void hideCommitGuard();
 
   bender::BenderSession& Session;
   BenderView* View;
@@ -88,6 +114,10 @@ private:
   VesselController* Vessels = nullptr;
   bool HasFirstPick = false;
   double FirstPick[3] = { 0, 0, 0 };
+  bool Interactive = false;
+  std::unique_ptr<ProblemOverlay> Overlay;
+  QDialog* GuardDialog = nullptr;
+  QLabel* GuardText = nullptr;
 };
 
 #endif

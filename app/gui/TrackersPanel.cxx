@@ -1,5 +1,7 @@
 #include "TrackersPanel.h"
 
+#include "FileOpener.h"
+
 #include "BenderSession.h"
 #include "BenderView.h"
 #include "IgtlDevice.h"
@@ -56,9 +58,11 @@ bender::HandMapping Hands(int left, int right)
   return hands;
 }
 
+// The absolute mapping (no ribbon yet): the automatic scale (0) is 1 there.
 bender::TrackerCalibration Calibration(double scale)
 {
-  return bender::TrackerCalibration(bender::Quaternion{}, bender::Vec3{}, scale);
+  return bender::TrackerCalibration(
+    bender::Quaternion{}, bender::Vec3{}, scale > 0.0 ? scale : 1.0);
 }
 }
 
@@ -231,10 +235,14 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   form->addRow("Right hand (end) station", this->Right);
   this->Scale = new QDoubleSpinBox(this);
   this->Scale->setObjectName("motionScale");
-  this->Scale->setRange(0.01, 100.0);
+  this->Scale->setRange(0.0, 100.0);
   this->Scale->setDecimals(3);
-  this->Scale->setValue(1.0);
-  this->Scale->setToolTip("Model millimetres per millimetre of hand motion");
+  this->Scale->setSingleStep(0.05);
+  this->Scale->setSpecialValueText("auto (hands' span = ribbon length)");
+  this->Scale->setValue(0.0);
+  this->Scale->setToolTip(
+    "Model millimetres per millimetre of hand motion; auto: the distance between the hands "
+    "maps onto the ribbon's length when they are anchored to it (at connect and at each grab)");
   form->addRow("Motion scale", this->Scale);
 
   auto* buttons = new QHBoxLayout;
@@ -246,10 +254,16 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   buttons->addWidget(this->DisconnectButton);
   layout->addLayout(buttons);
   this->AlignButton = new QPushButton("Align hands to the ribbon", this);
-  this->AlignButton->setToolTip("Moves the calibration so that the hands' midpoint maps to the "
-                                "middle of the ribbon shown now");
+  this->AlignButton->setObjectName("trackerAlign");
+  this->AlignButton->setToolTip(
+    "Anchors the hands, as they are now, to the ribbon shown: the left hand holds its start, the "
+    "right hand its end; from then on the ribbon moves by the hands' displacements (connecting "
+    "and each stylus press anchor them too, so the ribbon never jumps)");
   layout->addWidget(this->AlignButton);
   this->Clutch = new QCheckBox("Clutch (move the hands without moving the ribbon)", this);
+  this->Clutch->setObjectName("trackerClutch");
+  this->Clutch->setToolTip("While a bend is held by the stylus: the ribbon stays where it is and "
+                           "the hands move freely; off again, the hands hold it from there");
   layout->addWidget(this->Clutch);
   this->Status = new QLabel("not connected", this);
   this->Status->setObjectName("trackerStatus");
@@ -302,10 +316,13 @@ TrackersPanel::TrackersPanel(QWidget* parent)
     this,
     [this]()
     {
-      const QString file = QFileDialog::getOpenFileName(
-        this, "Tracker recording", QString(), "Fastrak recordings (*.fastrak);;All files (*)");
+      const QString file = QFileDialog::getOpenFileName(this,
+        "Tracker recording",
+        FileOpener::lastFolder("recording"),
+        "Fastrak recordings (*.fastrak);;All files (*)");
       if (!file.isEmpty())
       {
+        FileOpener::rememberFolder("recording", file);
         this->Device->setText("replay:" + file);
       }
     });
@@ -316,8 +333,31 @@ TrackersPanel::TrackersPanel(QWidget* parent)
     this,
     [this]()
     {
+      if (!this->Trackers)
+        return;
+      vtkBenderRibbonWidget* widget = this->View->ribbonWidget();
+      if (!widget->GetEnabled())
+      {
+        this->Session->AddMessage(bender::MessageSeverity::Error,
+          "Align: place a ribbon first (P, then click on the vessel)");
+        return;
+      }
+      const bender::RibbonSpec ribbon = widget->GetRibbonRepresentation()->GetRibbon();
+      if (this->Trackers->AlignTo(ribbon))
+      {
+        // Seen at once: the ribbon the hands hold now is the one on screen.
+        widget->GetRibbonRepresentation()->SetRibbon(ribbon);
+        this->setStatus(QString::fromStdString(this->Trackers->StatusText()));
+        this->View->render();
+      }
+    });
+  connect(this->Scale,
+    QOverload<double>::of(&QDoubleSpinBox::valueChanged),
+    this,
+    [this](double scale)
+    {
       if (this->Trackers)
-        this->Trackers->AlignTo(this->View->ribbonWidget()->GetRibbonRepresentation()->GetRibbon());
+        this->Trackers->SetRelativeScale(scale);
     });
   connect(this->Clutch,
     &QCheckBox::toggled,
@@ -420,6 +460,7 @@ bool TrackersPanel::connectDevice()
   options.igtlToolNames = { this->IgtlTool1->text().trimmed().toStdString(),
     this->IgtlTool2->text().trimmed().toStdString() };
   const std::string spec = this->deviceSpec().toStdString();
+  this->Trackers->SetRelativeScale(this->motionScale());
   try
   {
     // Refused here, before any thread: a bad spec, scale or tool names.
@@ -514,14 +555,22 @@ void TrackersPanel::poll()
   // The session's changes during the poll do not render: one frame at its end.
   this->View->quietly([this, &result]() { result = this->Trackers->Poll(); });
   vtkBenderRibbonWidget* widget = this->View->ribbonWidget();
-  if (const auto ribbon = this->Trackers->CurrentRibbon())
+  const bool grabbed = this->Session->GetState() == bender::GrabState::Grabbed;
+  if (const auto ribbon = this->Trackers->CurrentRibbon();
+      ribbon && (grabbed || !this->Trackers->IsRelative()))
   {
-    // The widget shows what the hands hold; the live warp already moved in Poll.
+    // The widget shows what the hands hold; the live warp already moved in Poll. Anchored to
+    // the ribbon (relative), the hands move it only while the stylus holds it.
     widget->GetRibbonRepresentation()->SetRibbon(*ribbon);
     if (!widget->GetEnabled() && this->Session->HasSurface())
     {
       widget->On();
     }
+  }
+  if (result.cancelled && !grabbed && this->Session->GetRibbon() && widget->GetEnabled())
+  {
+    // A bend cancelled by the device: the ribbon goes back onto the surface.
+    widget->GetRibbonRepresentation()->SetRibbon(*this->Session->GetRibbon());
   }
   // A release started the commit on the worker; its end shows the committed ribbon.
   this->setStatus(QString::fromStdString(this->Trackers->StatusText()));

@@ -589,6 +589,19 @@ bool BenderSession::ReplayPlan(const WarpPlan& plan, const std::string& name)
   return this->RunNow(this->BeginReplay(plan, name));
 }
 
+bool BenderSession::IsPlanApplied(const WarpPlan& plan) const
+{
+  const std::vector<WarpSpec> committed = this->History.CommittedWarps();
+  if (plan.warps.empty() || committed.size() < plan.warps.size())
+  {
+    return false;
+  }
+  WarpPlan last;
+  last.warps.assign(
+    committed.end() - static_cast<std::ptrdiff_t>(plan.warps.size()), committed.end());
+  return SerializeWarpPlan(last) == SerializeWarpPlan(plan);
+}
+
 bool BenderSession::ApplyWarp(const WarpSpec& warp)
 {
   WarpPlan plan;

@@ -246,6 +246,9 @@ public:
   bool LoadPlan(const std::string& path);
   /// Applies every warp of `plan` in order, each as one undo step; all or nothing.
   bool ReplayPlan(const WarpPlan& plan, const std::string& name);
+  /// True when the last committed warps are exactly `plan`'s (the plan was applied already:
+  /// loading it again would bend the bent surface once more).
+  bool IsPlanApplied(const WarpPlan& plan) const;
   /// Applies one warp (exact, with its subdivision if any) as one undo step.
   bool ApplyWarp(const WarpSpec& warp);
   ///@}

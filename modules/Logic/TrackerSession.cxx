@@ -312,6 +312,22 @@ std::string TrackerSession::StatusText() const
     out << ", station " << station.station << " " << std::fixed << std::setprecision(0)
         << station.RateHz() << " Hz";
   }
+  if (this->Input && this->Input->IsRelative())
+  {
+    out << std::defaultfloat << std::setprecision(3) << "; hands anchored to the ribbon";
+    if (const auto& anchor = this->Input->Anchor())
+    {
+      out << " (1 mm of hand motion = " << anchor->scale << " mm)";
+    }
+    else
+    {
+      out << " when both are seen";
+    }
+  }
+  else
+  {
+    out << "; absolute positions (no ribbon placed)";
+  }
   if (this->ClutchEngaged())
   {
     out << ", clutch engaged";
