@@ -2,6 +2,7 @@
 #define ProblemOverlay_h
 
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
 #include <vtkType.h>
 
 class vtkActor;
@@ -29,7 +30,7 @@ public:
   vtkActor* GetActor() const;
 
 private:
-  vtkRenderer* Renderer;
+  vtkSmartPointer<vtkRenderer> Renderer; // held: the view may go first at window close
   vtkNew<vtkPolyDataMapper> Mapper;
   vtkNew<vtkActor> Actor;
   vtkNew<vtkPolyData> Triangles;

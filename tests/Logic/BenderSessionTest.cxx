@@ -3,6 +3,7 @@
 #include "BenderSession.h"
 #include "LogicTestUtilities.h"
 #include "MeshIO.h"
+#include "PatchLabels.h"
 #include "WarpPlanIO.h"
 
 #include <vtkCellData.h>
@@ -345,18 +346,20 @@ TEST_F(BenderSessionTest, ExportCapsTheOpenEndsIntoNamedPatchesForCfd)
   ASSERT_TRUE(this->Session.Export(folder + "/vessel.stl", cfd));
   std::ifstream in(folder + "/vessel.stl");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* solid : { "solid wall", "solid cap_1", "solid cap_2" })
+  // The patch names of the labels (PatchLabels.h): the wall, the largest end the inlet.
+  for (const char* solid : { "solid wall", "solid inlet", "solid outlet_1" })
   {
     EXPECT_NE(text.find(solid), std::string::npos) << solid;
   }
-  EXPECT_EQ(text.find("solid cap_3"), std::string::npos) << "the tube has two open ends";
+  EXPECT_EQ(text.find("solid outlet_2"), std::string::npos) << "the tube has two open ends";
 
   // The labelled VTP reassembles into a closed, consistently oriented surface.
   ExportSurfaceOptions vtp;
   vtp.cap = true;
   ASSERT_TRUE(this->Session.Export(folder + "/vessel.vtp", vtp));
   auto capped = ReadMesh(folder + "/vessel.vtp");
-  ASSERT_NE(capped->GetCellData()->GetArray("PatchId"), nullptr);
+  ASSERT_TRUE(HasPatchLabels(capped));
+  ASSERT_NE(capped->GetCellData()->GetArray("CellEntityIds"), nullptr);
   MeshCheckOptions closed;
   closed.requireClosed = true;
   const MeshCheckReport report = CheckMesh(capped, nullptr, closed);
