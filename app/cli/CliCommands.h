@@ -23,7 +23,7 @@ int RunExportCommand(const std::vector<std::string>& args);
 int RunRenderCommand(const std::vector<std::string>& args);
 int RunCenterlineCommand(const std::vector<std::string>& args);
 int RunMeasureCommand(const std::vector<std::string>& args);
-int RunCfdCaseCommand(const std::vector<std::string>& args);
+int RunClipCommand(const std::vector<std::string>& args);
 int RunCfdCaseCommand(const std::vector<std::string>& args);
 
 namespace bender
