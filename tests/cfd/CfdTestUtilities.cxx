@@ -1,10 +1,14 @@
 #include "CfdTestUtilities.h"
 
 #include "ApplyPlan.h"
+#include "DemoPipeline.h"
 #include "MeshIO.h"
+#include "PatchLabels.h"
+#include "PrepareForCfd.h"
 #include "WarpPlanIO.h"
 #include "vtkBenderCapFilter.h"
 
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 
 #include <array>
@@ -45,6 +49,47 @@ vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent)
   vtkSmartPointer<vtkPolyData> capped = vtkSmartPointer<vtkPolyData>::New();
   capped->DeepCopy(cap->GetOutput());
   return capped;
+}
+
+void KeepPatchNames(vtkPolyData* labelled, vtkPolyData* warped)
+{
+  for (const char* name : { kPatchNamesArrayName, kPatchTypesArrayName })
+  {
+    if (!warped->GetFieldData()->GetAbstractArray(name) &&
+      labelled->GetFieldData()->GetAbstractArray(name))
+    {
+      warped->GetFieldData()->AddArray(labelled->GetFieldData()->GetAbstractArray(name));
+    }
+  }
+}
+
+vtkSmartPointer<vtkPolyData> PreparedDemoVessel(bool bent)
+{
+  static vtkSmartPointer<vtkPolyData> prepared[2];
+  auto& result = prepared[bent ? 1 : 0];
+  if (result)
+  {
+    return result;
+  }
+  static vtkSmartPointer<vtkPolyData> original;
+  if (!original)
+  {
+    // 0.8 mm voxels (the demo job uses 0.5): a quarter of the triangles, meshed in seconds.
+    DemoOptions demoOptions;
+    demoOptions.spacing = 0.8;
+    const DemoVessel demo = SegmentDemoVessel(DemoVesselPath(), demoOptions);
+    PrepareForCfdOptions options;
+    options.InputName = "the segmented demo vessel";
+    original = PrepareForCfd(demo.surface, options).Surface;
+  }
+  result = original;
+  if (bent)
+  {
+    const WarpPlan plan = ReadWarpPlan(DemoPlanPath());
+    result = ApplyPlan(original, plan).output;
+    KeepPatchNames(original, result);
+  }
+  return result;
 }
 
 TemporaryFolder::TemporaryFolder(const std::string& tag)
