@@ -141,6 +141,26 @@ TEST_F(CliMesherExport, SmeshHasEveryMarkerAndTheSidecar)
   EXPECT_EQ(markers[2], bender_test::Segments);
 }
 
+TEST_F(CliMesherExport, PolyAndTheSidecarOnRequest)
+{
+  // A single binary STL writes the sidecar only when asked.
+  Result r = Run("export " + Q(Input) + " -o " + Q(Tmp("s.stl")) + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.errors;
+  EXPECT_FALSE(std::filesystem::exists(Tmp("s.patches.json")));
+  r = Run("export " + Q(Input) + " -o " + Q(Tmp("j.stl")) + " --patches-json --quiet");
+  ASSERT_EQ(r.status, 0) << r.errors;
+  const auto sidecar = nlohmann::json::parse(ReadText(Tmp("j.patches.json")));
+  EXPECT_EQ(sidecar.at("unit"), "mm");
+  EXPECT_NEAR(sidecar.at("patches")[1].at("equivalentDiameter").get<double>(), 2.0, 0.01);
+  // TetGen .poly: one polygon per facet, with its marker.
+  r = Run("export " + Q(Input) + " -o " + Q(Tmp("v.poly")) + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.errors;
+  const std::string poly = ReadText(Tmp("v.poly"));
+  EXPECT_NE(poly.find("TetGen .poly"), std::string::npos);
+  EXPECT_NE(poly.find("\n1 0 3\n3 "), std::string::npos); // a facet of the outlet
+  EXPECT_TRUE(std::filesystem::exists(Tmp("v.patches.json")));
+}
+
 TEST_F(CliMesherExport, RefusesWhatCannotBeWritten)
 {
   // --cap on a closed surface without labelled ends: nothing to cap, nothing written.
