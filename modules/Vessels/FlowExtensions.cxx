@@ -42,30 +42,59 @@ V3 Unit(const V3& a)
   return n > 0 ? V3{ { a[0] / n, a[1] / n, a[2] / n } } : V3{ { 0, 0, 0 } };
 }
 
-/// Distance between segments [a0, a1] and [b0, b1] (sampled finely enough for clearances).
-double SegmentDistance(const V3& a0, const V3& a1, const V3& b0, const V3& b1)
+/// True when extension `b` (its axis and rings of radius reachB, sampled) enters the cylinder
+/// of extension `a` (beyond a's rim plane, within 1.1 reachA of its axis).
+bool Sweeps(const FlowExtensionEnd& a,
+  const V3& axisA,
+  double lengthA,
+  double reachA,
+  const FlowExtensionEnd& b,
+  const V3& axisB,
+  double lengthB,
+  double reachB)
 {
-  double best = std::numeric_limits<double>::infinity();
-  const int n = 64;
-  for (int i = 0; i <= n; ++i)
+  if (lengthA <= 0)
   {
-    const double s = static_cast<double>(i) / n;
-    const V3 p{
-      { a0[0] + s * (a1[0] - a0[0]), a0[1] + s * (a1[1] - a0[1]), a0[2] + s * (a1[2] - a0[2]) }
-    };
-    // Closest point of the second segment to p, exactly.
-    const V3 d = Sub(b1, b0);
-    const double l2 = Dot(d, d);
-    const double t = l2 > 0 ? std::clamp(Dot(Sub(p, b0), d) / l2, 0.0, 1.0) : 0.0;
-    const V3 q{ { b0[0] + t * d[0], b0[1] + t * d[1], b0[2] + t * d[2] } };
-    best = std::min(best, Norm(Sub(p, q)));
+    return false;
   }
-  return best;
+  V3 e1 = Cross(axisB, std::abs(axisB[0]) < 0.9 ? V3{ { 1, 0, 0 } } : V3{ { 0, 1, 0 } });
+  e1 = Unit(e1);
+  const V3 e2 = Cross(axisB, e1);
+  const int rings = std::max(1, static_cast<int>(std::ceil(2.0 * lengthB / reachB)));
+  for (int k = 0; k <= rings; ++k)
+  {
+    const double d = lengthB * k / rings;
+    for (int j = -1; j < 16; ++j)
+    {
+      const double angle = 2.0 * M_PI * j / 16.0;
+      const double r = j < 0 ? 0.0 : reachB;
+      V3 p;
+      for (int e = 0; e < 3; ++e)
+      {
+        p[e] = b.Centre[e] + d * axisB[e] + r * (std::cos(angle) * e1[e] + std::sin(angle) * e2[e]);
+      }
+      const V3 q = Sub(p, a.Centre);
+      const double along = Dot(q, axisA);
+      if (along <= 0 || along > lengthA)
+      {
+        continue;
+      }
+      const V3 radial{
+        { q[0] - along * axisA[0], q[1] - along * axisA[1], q[2] - along * axisA[2] }
+      };
+      if (Norm(radial) < 1.1 * reachA)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 /// The length of each extension: Factor x radius, reduced where it would run into the
 /// surface (a point of the surface within 1.2 radii of the axis, beyond the rim's plane) or
-/// into another extension (axes closer than 1.2 x the sum of the radii), never below zero.
+/// into another extension (sampled rings of one inside the other's cylinder, 1.1 radii),
+/// never below zero.
 std::vector<double> ClearLengths(vtkPolyData* surface,
   const std::vector<FlowExtensionEnd>& ends,
   const FlowExtensionOptions& options,
@@ -139,14 +168,10 @@ std::vector<double> ClearLengths(vtkPolyData* surface,
         {
           continue;
         }
-        auto tip = [&](std::size_t k)
-        {
-          return V3{ { ends[k].Centre[0] + length[k] * axis[k][0],
-            ends[k].Centre[1] + length[k] * axis[k][1],
-            ends[k].Centre[2] + length[k] * axis[k][2] } };
-        };
-        const double gap = SegmentDistance(ends[a].Centre, tip(a), ends[b].Centre, tip(b));
-        if (gap < 1.2 * (reach[a] + reach[b]))
+        const bool collide =
+          Sweeps(ends[a], axis[a], length[a], reach[a], ends[b], axis[b], length[b], reach[b]) ||
+          Sweeps(ends[b], axis[b], length[b], reach[b], ends[a], axis[a], length[a], reach[a]);
+        if (collide)
         {
           clear = false;
           std::size_t& longer = length[a] >= length[b] ? a : b;

@@ -15,8 +15,9 @@
 // for a flat cap (vtkBenderCapFilter).
 //
 // An extension that would run into the vessel (a surface point beyond the rim's plane within
-// 1.2 rim radii of its axis) or into another extension (axes closer than 1.2 x the sum of their
-// rim radii: outlets pointing towards each other) is made shorter, with a warning; it may
+// 1.2 rim radii of its axis) or into another extension (a ring of one inside the other's
+// cylinder, widened by 10 %: outlets pointing towards each other) is made shorter, with a
+// warning (the longer of the two loses a tenth at a time); it may
 // become 0 long. Coordinates and units are those of the input.
 
 #include <vtkSmartPointer.h>

@@ -92,6 +92,8 @@ TEST_F(PrepareForCfdTest, AneurysmIsClippedExtendedCappedAndLabelled)
   warp->SetInputData(r.Surface);
   warp->Update();
   EXPECT_EQ(CellPatchIds(warp->GetOutput()), CellPatchIds(r.Surface));
+  ASSERT_EQ(ReadPatchLabels(warp->GetOutput()).size(), 4u);
+  EXPECT_EQ(ReadPatchLabels(warp->GetOutput())[1].name, "inlet"); // field data passed too
   vtkNew<vtkBenderAdaptiveSubdivisionFilter> subdivide;
   subdivide->SetInputData(r.Surface);
   subdivide->Update();
