@@ -6,7 +6,9 @@
 #include "PrepareForCfd.h"
 #include "BenderErrors.h"
 #include "BenderMeshCheck.h"
+#include "BenderSession.h"
 #include "DemoPipeline.h"
+#include "LogicTestUtilities.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
 #include "vtkBenderAdaptiveSubdivisionFilter.h"
@@ -188,4 +190,60 @@ TEST_F(PrepareForCfdTest, BadInputsAreOneLineErrors)
   PrepareForCfdOptions factor = options;
   factor.InletExtension = -1;
   expectError(surface, factor, "not in [0, 100]");
+}
+
+// Labels through the application's bend: a labelled tube bent with subdivision at release keeps
+// its patches (children inherit their parent's label, the names stay), and undo gives back the
+// labels of the unbent surface exactly.
+TEST_F(PrepareForCfdTest, LabelsSurviveABendWithSubdivisionUndoAndRedo)
+{
+  PrepareForCfdOptions options;
+  options.Clip = false; // the tube's open ends as they are
+  options.InletExtension = options.OutletExtension = 0.0;
+  const PrepareForCfdResult prepared = PrepareForCfd(test::MakeTube(0, 60, 3), options);
+  ExpectReady(prepared, 2);
+  BenderSession session;
+  ASSERT_TRUE(session.SetSurface(prepared.Surface, "tube"));
+  WarpParameters parameters;
+  parameters.radius = 6.0;
+  parameters.subdivide = true;
+  parameters.subdivisionTolerance = 0.01;
+  ASSERT_TRUE(session.SetParameters(parameters));
+  const RibbonSpec initial = test::StraightRibbon(20, 40);
+  ASSERT_TRUE(session.Grab(initial));
+  RibbonSpec bent = initial;
+  const double a = 40.0 * M_PI / 180.0;
+  const Vec3 arm = initial.end.position - initial.start.position;
+  bent.end.position = initial.start.position + Rotate({ 0, 0, 1 }, a, arm);
+  bent.end.tangent = Rotate({ 0, 0, 1 }, a, initial.end.tangent);
+  ASSERT_TRUE(session.MoveFinal(bent));
+  ASSERT_TRUE(session.Release());
+  vtkPolyData* after = session.GetSurface();
+  ASSERT_GT(after->GetNumberOfPolys(), prepared.Surface->GetNumberOfPolys()); // subdivided
+  const auto labels = ReadPatchLabels(after);
+  ASSERT_EQ(labels.size(), 3u);
+  EXPECT_EQ(labels[1].name, prepared.Ends[0].Name);
+  EXPECT_EQ(labels[2].name, prepared.Ends[1].Name);
+  // The caps are far from the bend: their triangles are the same in number.
+  std::map<int, int> before, now;
+  for (int id : CellPatchIds(prepared.Surface))
+  {
+    ++before[id];
+  }
+  for (int id : CellPatchIds(after))
+  {
+    ++now[id];
+  }
+  EXPECT_EQ(now[2], before[2]);
+  EXPECT_EQ(now[3], before[3]);
+  EXPECT_GT(now[1], before[1]);
+  MeshCheckOptions check;
+  check.requireClosed = true;
+  EXPECT_TRUE(CheckMesh(after, nullptr, check).closed);
+  ASSERT_TRUE(session.Undo());
+  EXPECT_EQ(CellPatchIds(session.GetSurface()), CellPatchIds(prepared.Surface));
+  EXPECT_EQ(ReadPatchLabels(session.GetSurface()).size(), 3u);
+  ASSERT_TRUE(session.Redo());
+  EXPECT_EQ(CellPatchIds(session.GetSurface()), CellPatchIds(after));
+  EXPECT_EQ(ReadPatchLabels(session.GetSurface())[1].name, prepared.Ends[0].Name);
 }
