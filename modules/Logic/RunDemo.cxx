@@ -2,13 +2,17 @@
 
 #include "ApplyPlan.h"
 #include "BenderErrors.h"
+#include "CfdCase.h"
 #include "ExportSurface.h"
 #include "MeshIO.h"
+#include "PatchLabels.h"
+#include "PrepareForCfd.h"
 #include "RenderToPng.h"
 #include "WarpPlanIO.h"
 
 #include "AtomicFile.h"
 
+#include <vtkFieldData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
@@ -116,6 +120,72 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
     for (const std::string& file : ExportSurface(bent, exportOptions).written)
     {
       result.written.push_back(file);
+    }
+  }
+  if (options.cfd)
+  {
+    // Issue 11: the vessel made CFD-ready, bent like the demo vessel, in metres, as a case.
+    try
+    {
+      say("Preparing the vessel for CFD (ends clipped, flow extensions, labelled caps)...");
+      PrepareForCfdOptions prepare;
+      prepare.InputName =
+        result.segmented ? "the segmented demo vessel" : fs::path(vesselPath).filename().string();
+      const PrepareForCfdResult prepared = PrepareForCfd(surface, prepare);
+      for (const std::string& w : prepared.Warnings)
+      {
+        warn(w);
+      }
+      options.progress.ThrowIfCancelled("demo CFD");
+      vtkSmartPointer<vtkPolyData> cfdBent = ApplyPlan(prepared.Surface, plan, applyOptions).output;
+      for (const char* array : { kPatchNamesArrayName, kPatchTypesArrayName })
+      {
+        if (!cfdBent->GetFieldData()->GetAbstractArray(array) &&
+          prepared.Surface->GetFieldData()->GetAbstractArray(array))
+        {
+          cfdBent->GetFieldData()->AddArray(
+            prepared.Surface->GetFieldData()->GetAbstractArray(array));
+        }
+      }
+      ExportSurfaceOptions stl;
+      stl.output = out("demo-cfd.stl");
+      stl.protectedPath = vesselPath;
+      stl.unit = "m";
+      stl.stlEncoding = StlEncoding::Ascii;
+      stl.patches = StlPatchMode::Solids;
+      stl.patchesJson = true;
+      ExportSurfaceOptions vtp;
+      vtp.output = out("demo-cfd.vtp");
+      vtp.protectedPath = vesselPath;
+      for (const auto* exportOptions : { &stl, &vtp })
+      {
+        for (const std::string& file : ExportSurface(cfdBent, *exportOptions).written)
+        {
+          result.written.push_back(file);
+        }
+      }
+      CfdCaseOptions caseOptions;
+      caseOptions.caseDirectory = out("demo-openfoam");
+      caseOptions.force = true; // the job's own folder, rewritten at every run
+      caseOptions.sourceName = "demo-cfd.vtp";
+      const CfdCaseResult written = WriteOpenFoamCase(cfdBent, caseOptions);
+      result.cfdCase = written.caseDirectory;
+      result.written.push_back(written.caseDirectory);
+      say(FormatCfdCase(written));
+      if (options.runCfd)
+      {
+        CfdRunOptions runOptions;
+        runOptions.onLine = say;
+        say(FormatCfdRun(RunOpenFoamCase(written.caseDirectory, runOptions)));
+      }
+    }
+    catch (const Cancelled&)
+    {
+      throw;
+    }
+    catch (const std::exception& e)
+    {
+      warn(std::string("the CFD step failed: ") + e.what());
     }
   }
   try

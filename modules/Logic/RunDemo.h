@@ -24,6 +24,13 @@ struct RunDemoOptions
   /// Render demo.png (a private Xvfb is started without a display; skipped with a warning
   /// when rendering is impossible).
   bool screenshot = true;
+  /// Also make the vessel CFD-ready (PrepareForCfd: ends clipped, flow extensions, labelled
+  /// caps), bend it by the plan and write it in metres (demo-cfd.stl, named solids, with
+  /// demo-cfd.patches.json; demo-cfd.vtp in mm with the labels) and an OpenFOAM case
+  /// (demo-openfoam/, WriteOpenFoamCase). A failure of this step is a warning.
+  bool cfd = true;
+  /// Run the OpenFOAM case (RunOpenFoamCase; OpenFOAM must be installed: else a warning).
+  bool runCfd = false;
   ProgressReporter progress;
   /// Lines for the user ("Segmenting...", the check report); warnings start with "warning: ".
   std::function<void(const std::string& line, bool warning)> onMessage;
@@ -36,11 +43,13 @@ struct RunDemoResult
   bool checkClean = false;          ///< the check found no problem
   std::vector<std::string> written; ///< every file written, in order
   std::vector<std::string> warnings;
+  std::string cfdCase; ///< the OpenFOAM case folder, empty when not written
 };
 
 /// The demo job: segment the demo vessel (or read it), apply the demo plan (ApplyPlan), check
-/// (CheckForExport), export STL and VTP (ExportSurface, LPS mm), save the plan, render a
-/// screenshot (RenderToPng), all into options.outputDirectory. Throws InputError when the
+/// (CheckForExport), export STL and VTP (ExportSurface, LPS mm), the CFD-ready bent vessel in
+/// metres and its OpenFOAM case (options.cfd), save the plan, render a screenshot
+/// (RenderToPng), all into options.outputDirectory. Throws InputError when the
 /// vessel or plan cannot be read or a file cannot be written, Cancelled.
 RunDemoResult RunDemo(const RunDemoOptions& options);
 

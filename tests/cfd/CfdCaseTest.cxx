@@ -7,6 +7,7 @@
 #include "CliCommands.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
+#include "RunDemo.h"
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -461,6 +462,49 @@ TEST(CfdCase, CommandLine)
   const std::string help =
     bender::test::RunIn(folder.Path(), std::string(BENDER_CLI_PATH) + " --help", status);
   EXPECT_NE(help.find("cfd-case"), std::string::npos) << help;
+}
+
+} // namespace
+
+namespace
+{
+
+TEST(CfdCase, TheDemoJobEndsWithACfdReadyBentVesselAndItsCase)
+{
+  bender::test::TemporaryFolder folder("cfd-demo");
+  bender::RunDemoOptions options;
+  options.outputDirectory = folder.Path() + "/demo";
+  options.segment = false; // the open aneurysm: its ends are re-cut perpendicular
+  options.screenshot = false;
+  options.vesselPath = std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl";
+  options.planPath = std::string(BENDER_SOURCE_DIR) + "/data/demo/demo.bender.json";
+  const bender::RunDemoResult result = bender::RunDemo(options);
+  for (const auto& w : result.warnings)
+  {
+    EXPECT_EQ(w.find("CFD"), std::string::npos) << w;
+  }
+  ASSERT_EQ(result.cfdCase, options.outputDirectory + "/demo-openfoam");
+  for (const char* file : { "demo-cfd.stl",
+         "demo-cfd.patches.json",
+         "demo-cfd.vtp",
+         "demo-openfoam/Allrun",
+         "demo-openfoam/constant/triSurface/vessel.stl" })
+  {
+    EXPECT_TRUE(fs::exists(options.outputDirectory + "/" + file)) << file;
+  }
+  // The CFD surface: labelled wall, inlet and two outlets, bent like demo-bent (the plan moves
+  // it), in metres in the STL.
+  const auto cfd = bender::ReadMesh(options.outputDirectory + "/demo-cfd.vtp");
+  const auto labels = bender::ReadPatchLabels(cfd);
+  ASSERT_EQ(labels.size(), 4u);
+  EXPECT_EQ(labels[1].name, "inlet");
+  EXPECT_EQ(labels[1].type, bender::PatchType::Inlet);
+  const std::string stl = ReadText(options.outputDirectory + "/demo-cfd.stl");
+  EXPECT_NE(stl.find("unit m"), std::string::npos);
+  EXPECT_NE(stl.find("\nsolid outlet_2\n"), std::string::npos);
+  // A second run replaces the case.
+  EXPECT_NO_THROW(bender::RunDemo(options));
+  EXPECT_TRUE(fs::exists(options.outputDirectory + "/demo-openfoam/Allrun"));
 }
 
 } // namespace
