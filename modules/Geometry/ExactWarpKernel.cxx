@@ -183,9 +183,11 @@ BENDER_EXACT_INLINE void WarpAt(const Path& pi,
   FrameOf(pf, s, fw, fx, fy, fz, ofx, ofy, ofz);
   // q = qf conj(qi), signed as the reference.
   double w = fw * iw + fx * ix + fy * iy + fz * iz;
-  double vx = -fw * ix + fx * iw - fy * iz + fz * iy;
-  double vy = -fw * iy + fx * iz + fy * iw - fz * ix;
-  double vz = -fw * iz - fx * iy + fy * ix + fz * iw;
+  // Products that cancel when the frames are equal are paired, so that the identity comes out
+  // exactly (v == 0, then a pure translation by exactly zero).
+  double vx = (fx * iw - fw * ix) + (fz * iy - fy * iz);
+  double vy = (fy * iw - fw * iy) + (fx * iz - fz * ix);
+  double vz = (fz * iw - fw * iz) + (fy * ix - fx * iy);
   const bool flip = refw * w + refx * vx + refy * vy + refz * vz < 0.0;
   w = flip ? -w : w;
   vx = flip ? -vx : vx;

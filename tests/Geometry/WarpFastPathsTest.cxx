@@ -394,6 +394,55 @@ TEST(WarpEvaluator, BatchedExactAgreesWithTheSinglePointWarp)
   EXPECT_GT(pairs, 10u);
 }
 
+TEST(WarpEvaluator, ExactIdentityLeavesPointsBitForBit)
+{
+  // Where the two ribbons' frames are equal the motion is exactly the identity: the points
+  // there must keep their coordinates bit for bit (the commit guard counts a point as moved on
+  // any difference). Final = initial everywhere, and a bend whose start is shared (s = 0).
+  std::mt19937_64 rng(77);
+  for (int trial = 0; trial < 6; ++trial)
+  {
+    bender::WarpSpec spec;
+    spec.initial = bendertest::RandomRibbon(rng, 10.0);
+    spec.final = spec.initial;
+    spec.radius = 5.0;
+    const auto warp = TryWarp(spec);
+    ASSERT_TRUE(warp);
+    const bender::WarpBinding binding(spec, bender::BlendMode::TwoProjections);
+    const bender::WarpEvaluator exact(*warp, bender::WarpPrecision::Exact);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<double> xyz;
+    for (int i = 0; i < 257; ++i)
+    {
+      const Vec3 p =
+        warp->Initial().Wire().PointAt(u(rng)) + bendertest::RandomUnit(rng) * (5.0 * u(rng));
+      xyz.insert(xyz.end(), { p.x, p.y, p.z });
+    }
+    const std::size_t n = xyz.size() / 3;
+    std::vector<bender::BoundPoint> records(n);
+    std::vector<std::uint8_t> bound(n);
+    binding.BindRange(xyz.data(), 0, n, records.data(), bound.data());
+    std::vector<std::int64_t> ids;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (bound[i])
+      {
+        ids.push_back(static_cast<std::int64_t>(i));
+      }
+    }
+    ASSERT_GT(ids.size(), 50u);
+    std::vector<double> out(xyz.size(), 0.0);
+    exact.EvaluateRange(xyz.data(), out.data(), records.data(), ids.data(), 0, ids.size());
+    for (std::int64_t i : ids)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        ASSERT_EQ(out[3 * i + d], xyz[3 * i + d]) << "trial " << trial << " point " << i;
+      }
+    }
+  }
+}
+
 TEST(WarpEvaluator, ExactResultsDoNotDependOnTheSplitOfTheRange)
 {
   // Threads evaluate disjoint ranges; a thread count only changes where ranges split. Every
