@@ -344,6 +344,11 @@ KernelPieces PiecesOf(const float* start,
 
 bool FastWarpKernel::Supports(SimdLevel level)
 {
+#ifdef BENDER_KERNEL_DISPATCH
+  // May run during static initialisation (ExactWarpKernel picks its kernel then), before the
+  // CPU model is read: read it here.
+  __builtin_cpu_init();
+#endif
   switch (level)
   {
     case SimdLevel::Baseline:
