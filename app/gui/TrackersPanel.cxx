@@ -464,7 +464,7 @@ bool TrackersPanel::connectDevice()
   try
   {
     // Refused here, before any thread: a bad spec, scale or tool names.
-    bender::TrackerCalibration(bender::Quaternion{}, bender::Vec3{}, this->motionScale());
+    Calibration(this->motionScale());
     const bender::TrackerDeviceSpec parsed = bender::TrackerDeviceSpec::Parse(spec);
     if (parsed.kind == bender::TrackerDeviceSpec::Kind::Replay ||
       parsed.kind == bender::TrackerDeviceSpec::Kind::Simulator)

@@ -635,6 +635,7 @@ bool BenderSession::Autosave()
   {
     SessionSnapshot snapshot;
     snapshot.sourcePath = this->SourcePath;
+    snapshot.surfaceName = this->SurfaceName;
     if (snapshot.sourcePath.empty())
     {
       // A surface made here (segmentation) has no file: keep one beside the autosave.
@@ -841,6 +842,7 @@ void SessionJob::Run(const ProgressReporter& progress)
       {
         const SessionSnapshot snapshot = ReadSessionFile(this->SessionPath);
         this->SourcePath = snapshot.sourcePath;
+        this->SurfaceName = snapshot.surfaceName;
         this->Plan = snapshot.plan;
         try
         {
@@ -1034,8 +1036,9 @@ bool BenderSession::FinishRecover(SessionJob& job)
   // session being recovered with an empty plan.
   const std::string autosavePath = this->AutosavePath;
   this->AutosavePath.clear();
-  bool recovered =
-    this->SetSurface(job.Input, FileName(job.SourcePath), ownCopy ? std::string() : job.SourcePath);
+  // The surface keeps the name it had (not the name of the autosave's copy of it).
+  const std::string name = job.SurfaceName.empty() ? FileName(job.SourcePath) : job.SurfaceName;
+  bool recovered = this->SetSurface(job.Input, name, ownCopy ? std::string() : job.SourcePath);
   if (recovered)
   {
     for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)

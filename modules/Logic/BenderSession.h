@@ -99,6 +99,7 @@ private:
   vtkSmartPointer<vtkPolyData> Before; // the surface before the warps (check)
   std::string SessionPath;             // Recover
   std::string SourcePath;              // Recover: the source read by the job
+  std::string SurfaceName;             // Recover: the surface's name in the session file
   std::string Path;                    // Export
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;

@@ -28,6 +28,10 @@ void WriteSessionFile(const SessionSnapshot& snapshot, const std::string& path)
   root["format"] = "bender-session";
   root["version"] = 1;
   root["source"] = snapshot.sourcePath;
+  if (!snapshot.surfaceName.empty())
+  {
+    root["name"] = snapshot.surfaceName;
+  }
   root["frame"] = snapshot.frame;
   try
   {
@@ -105,6 +109,14 @@ SessionSnapshot ReadSessionFile(const std::string& path)
   SessionSnapshot snapshot;
   snapshot.sourcePath = root["source"].get<std::string>();
   snapshot.frame = root.value("frame", std::string("LPS"));
+  if (root.contains("name"))
+  {
+    if (!root["name"].is_string())
+    {
+      throw SessionFileError(Name(path) + ": name: not a string");
+    }
+    snapshot.surfaceName = root["name"].get<std::string>();
+  }
   try
   {
     snapshot.plan = WarpPlanFromJson(root["plan"], Name(path) + ": plan");

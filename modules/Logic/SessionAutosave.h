@@ -23,6 +23,9 @@ public:
 struct SessionSnapshot
 {
   std::string sourcePath; ///< absolute path of the surface the plan applies to
+  /// The surface's name in the window ("demo vessel (segmented)", "aneurysm.stl"); optional
+  /// ("name" in the file), empty when unknown.
+  std::string surfaceName;
   std::string frame = "LPS";
   WarpPlan plan;
 };

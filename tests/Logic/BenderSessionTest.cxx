@@ -416,6 +416,10 @@ TEST_F(BenderSessionTest, AutosaveRecoversAfterACrash)
   ASSERT_TRUE(recovered.Recover(autosave));
   EXPECT_EQ(recovered.GetHistoryPosition(), 1u);
   EXPECT_LE(MaxDifference(recovered.GetSurface(), bent), 1e-12);
+  // Named as before the crash, not after the autosave's copy of the surface.
+  EXPECT_EQ(recovered.GetSurfaceName(), "segmented");
+  // Recovered warps are in no saved plan.
+  EXPECT_TRUE(recovered.HasUnsavedChanges());
   ASSERT_TRUE(recovered.Undo());
   EXPECT_EQ(MaxDifference(recovered.GetSurface(), this->Tube), 0.0);
   recovered.DiscardAutosave();
