@@ -37,14 +37,24 @@ Vec3 Max(const Vec3& a, const Vec3& b)
 {
   return { std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z) };
 }
-// Sign of the volume of (a, b, c, d): > 0 when d is above the plane of (a, b, c).
-double Orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
-{
-  return Dot(Cross(b - a, c - a), d - a);
-}
 int Sign(double v)
 {
   return (v > 0) - (v < 0);
+}
+
+// Sign of the volume of (a, b, c, d), > 0 when d is above the plane of (a, b, c), and 0 when d
+// is within a relative 1e-6 of that plane: the volume compared with the product of the three edge
+// lengths from a (the sine of the angles involved). Coordinates stored as floats (STL, most VTP
+// files) put points that are coplanar by construction (the facets of a cylinder, a flat cap) up to
+// about 1e-7 off each other's planes, with random signs; without the tolerance two disjoint
+// triangles of one flat strip were reported as crossing. A genuine crossing at an angle of more
+// than about 1e-6 rad is still found.
+int OrientSign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double volume = Dot(Cross(u, v), w);
+  const double scale = std::sqrt(Dot(u, u) * Dot(v, v) * Dot(w, w));
+  return std::abs(volume) <= 1e-6 * scale ? 0 : Sign(volume);
 }
 
 // Segment pq properly crosses triangle abc (strictly: touching and coplanar cases are not
@@ -55,15 +65,15 @@ bool SegmentCrossesTriangle(const Vec3& p,
   const Vec3& b,
   const Vec3& c)
 {
-  const int sp = Sign(Orient(a, b, c, p));
-  const int sq = Sign(Orient(a, b, c, q));
+  const int sp = OrientSign(a, b, c, p);
+  const int sq = OrientSign(a, b, c, q);
   if (sp == 0 || sq == 0 || sp == sq)
   {
     return false;
   }
-  const int s1 = Sign(Orient(p, q, a, b));
-  const int s2 = Sign(Orient(p, q, b, c));
-  const int s3 = Sign(Orient(p, q, c, a));
+  const int s1 = OrientSign(p, q, a, b);
+  const int s2 = OrientSign(p, q, b, c);
+  const int s3 = OrientSign(p, q, c, a);
   return s1 != 0 && s1 == s2 && s2 == s3;
 }
 

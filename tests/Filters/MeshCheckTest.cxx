@@ -8,10 +8,12 @@
 
 #include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
 #include <vtkCleanPolyData.h>
 #include <vtkCubeSource.h>
 #include <vtkCylinderSource.h>
 #include <vtkIntersectionPolyDataFilter.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPlaneSource.h>
 #include <vtkPoints.h>
@@ -186,6 +188,105 @@ TEST(MeshCheck, SelfIntersectionsFound)
   // Apart, no intersection.
   const auto apart = bender::CheckMesh(Sphere(1.0, 24, 3.0));
   EXPECT_EQ(apart.selfIntersections, 0);
+}
+
+TEST(MeshCheck, CoplanarFacetsOfACylinderDoNotIntersect)
+{
+  // Two triangles of one flat column of a flow extension (rings 21-22 and 22-23 of the
+  // clipped aneurysm's inlet extension, exact coordinates): coplanar by construction, disjoint,
+  // each point within rounding (1e-15) of the other's plane. The check once reported them as
+  // crossing because the signs of those rounding-level volumes agreed by chance.
+  {
+    vtkNew<vtkPoints> p;
+    p->SetDataTypeToDouble();
+    p->InsertNextPoint(7.0167314266380183, -29.095882942876091, 44.470627097914175);
+    p->InsertNextPoint(6.76536076674026, -29.254602707277044, 44.118662371027831);
+    p->InsertNextPoint(6.7909750870186976, -29.682896358665076, 44.293509377419419);
+    p->InsertNextPoint(7.0423457469164559, -29.524176594264123, 44.645474104305762);
+    p->InsertNextPoint(6.8165894072971351, -30.111190010053107, 44.468356383811006);
+    p->InsertNextPoint(7.0679600671948934, -29.952470245652155, 44.82032111069735);
+    vtkNew<vtkCellArray> c;
+    const vtkIdType t1[3] = { 0, 1, 2 }, t2[3] = { 3, 4, 5 };
+    c->InsertNextCell(3, t1);
+    c->InsertNextCell(3, t2);
+    vtkNew<vtkPolyData> pair;
+    pair->SetPoints(p);
+    pair->SetPolys(c);
+    EXPECT_EQ(bender::CheckMesh(pair).selfIntersections, 0);
+  }
+  // A whole cylinder of such columns, float coordinates, turned off the axes and far from the
+  // origin: no pair.
+  const int columns = 60, rings = 40;
+  const double radius = 3.0, pitch = 0.75;
+  const double c = std::cos(0.7), s = std::sin(0.7), c2 = std::cos(0.4), s2 = std::sin(0.4);
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToFloat();
+  for (int r = 0; r < rings; ++r)
+  {
+    for (int j = 0; j < columns; ++j)
+    {
+      const double a = 2.0 * vtkMath::Pi() * j / columns;
+      const double x = radius * std::cos(a), y = radius * std::sin(a), z = r * pitch;
+      const double x1 = c * x - s * y, y1 = s * x + c * y;
+      pts->InsertNextPoint(x1 + 101.3, c2 * y1 - s2 * z - 57.9, s2 * y1 + c2 * z + 212.4);
+    }
+  }
+  vtkNew<vtkCellArray> polys;
+  for (int r = 0; r + 1 < rings; ++r)
+  {
+    for (int j = 0; j < columns; ++j)
+    {
+      const vtkIdType a = r * columns + j, b = r * columns + (j + 1) % columns;
+      const vtkIdType t1[3] = { a, b, b + columns };
+      const vtkIdType t2[3] = { a, b + columns, a + columns };
+      polys->InsertNextCell(3, t1);
+      polys->InsertNextCell(3, t2);
+    }
+  }
+  vtkNew<vtkPolyData> tube;
+  tube->SetPoints(pts);
+  tube->SetPolys(polys);
+  const auto r = bender::CheckMesh(tube);
+  EXPECT_EQ(r.selfIntersections, 0);
+  EXPECT_TRUE(r.intersectingPairs.empty());
+
+  // The same tube pushed through itself (a second copy crossing it at right angles) is still
+  // found: the tolerance only ignores what is coplanar within float rounding.
+  vtkNew<vtkPoints> crossed;
+  crossed->SetDataTypeToFloat();
+  vtkNew<vtkCellArray> crossedPolys;
+  for (int copy = 0; copy < 2; ++copy)
+  {
+    for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      tube->GetPoint(i, p);
+      if (copy == 1)
+      {
+        // Swap two axes about the tube's middle: the copy runs across the original.
+        const double mid[3] = { 101.3, -57.9 - 15.0 * s2, 212.4 + 15.0 * c2 };
+        const double d[3] = { p[0] - mid[0], p[1] - mid[1], p[2] - mid[2] };
+        p[0] = mid[0] + d[2];
+        p[1] = mid[1] + d[1];
+        p[2] = mid[2] - d[0];
+      }
+      crossed->InsertNextPoint(p);
+    }
+    const vtkIdType offset = copy * pts->GetNumberOfPoints();
+    const auto it = vtk::TakeSmartPointer(polys->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      vtkIdType n;
+      const vtkIdType* ids;
+      it->GetCurrentCell(n, ids);
+      const vtkIdType t[3] = { ids[0] + offset, ids[1] + offset, ids[2] + offset };
+      crossedPolys->InsertNextCell(3, t);
+    }
+  }
+  vtkNew<vtkPolyData> both;
+  both->SetPoints(crossed);
+  both->SetPolys(crossedPolys);
+  EXPECT_GT(bender::CheckMesh(both).selfIntersections, 10);
 }
 
 TEST(MeshCheck, FlipsSinceBeforeTheWarp)
