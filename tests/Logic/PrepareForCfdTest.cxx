@@ -36,7 +36,6 @@ void ExpectReady(const PrepareForCfdResult& r, std::size_t ends)
 {
   MeshCheckOptions check;
   check.requireClosed = true;
-  check.selfIntersections = false; // see FlowExtensionTest
   const MeshCheckReport report = CheckMesh(r.Surface, nullptr, check);
   EXPECT_TRUE(report.Clean()) << FormatReportText(report, "prepared");
   EXPECT_GT(report.volume, 0.0);
