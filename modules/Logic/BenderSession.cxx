@@ -724,6 +724,7 @@ std::shared_ptr<SessionJob> BenderSession::BeginRelease()
   }
   job->Name = "release";
   job->Guard = this->GuardCommits;
+  job->GuardRule = this->GuardSpaceInversionRule;
   this->Busy = true;
   return job;
 }
@@ -875,7 +876,12 @@ void SessionJob::Run(const ProgressReporter& progress)
               same = ApplyWarp(this->Input, plain, options);
             }
             progress.ThrowIfCancelled("commit check");
-            this->Check = CheckCommit(this->Input, same, warp);
+            // The rule R < r_min alone does not hold a commit: it is sufficient for safety, not a
+            // sign of damage; the surface itself is measured (flips, crossings). The risk stays
+            // in the check and in the warning shown while bending.
+            CommitCheckOptions options;
+            options.spaceInversionRule = this->GuardRule;
+            this->Check = CheckCommit(this->Input, same, warp, options);
           }
         }
         break;

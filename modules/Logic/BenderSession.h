@@ -103,7 +103,8 @@ private:
   std::string Path;                    // Export
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
-  bool Guard = false; // Release: check the changed region before committing
+  bool Guard = false;     // Release: check the changed region before committing
+  bool GuardRule = false; // ... and hold on the space-inversion rule alone
   CommitCheck Check;
   ApplyPlanResult Steps;
   MeshCheckReport Report;
@@ -187,6 +188,10 @@ public:
   bool Release();
   ///@{ The commit guard
   void SetCommitGuard(bool on) { this->GuardCommits = on; }
+  /// Also hold a commit on the space-inversion rule alone (R >= r_min, no flipped or crossing
+  /// triangle measured). Off by default: the rule is sufficient for safety, not a sign of
+  /// damage; its warning is shown while bending.
+  void SetCommitGuardRule(bool on) { this->GuardSpaceInversionRule = on; }
   bool GetCommitGuard() const { return this->GuardCommits; }
   bool IsCommitHeld() const { return this->Held.has_value(); }
   /// The failed check of the held commit (an unchecked, empty one when none is held).
@@ -340,6 +345,7 @@ private:
   double MinimumRadius = std::numeric_limits<double>::infinity();
   std::optional<RibbonSpec> CurrentRibbon;
   bool GuardCommits = true;
+  bool GuardSpaceInversionRule = false;
   std::optional<HeldCommit> Held;
   unsigned long long ChangeCount = 0;
   unsigned long long SavedChangeCount = 0;

@@ -451,7 +451,8 @@ TEST_F(BenderSessionTest, SpaceInversionRiskIsReportedAndRadiusChangesRebind)
   parameters.radius = 12;
   ASSERT_TRUE(this->Session.SetParameters(parameters));
   EXPECT_GT(this->Session.GetNumberOfBoundPoints(), boundAt6);
-  // The commit guard holds the risky warp; the user keeps it.
+  // The commit guard (with the rule on) holds the risky warp; the user keeps it.
+  this->Session.SetCommitGuardRule(true);
   EXPECT_FALSE(this->Session.Release());
   ASSERT_TRUE(this->Session.IsCommitHeld());
   EXPECT_TRUE(this->Session.GetHeldCheck().spaceInversionRisk);

@@ -165,8 +165,19 @@ TEST_F(GuardedSessionTest, AFailedCheckHoldsTheCommitUntilTheUserKeepsIt)
 TEST_F(GuardedSessionTest, ReducingRDropsTheHeldResultAndTheRetryPasses)
 {
   // A 90 degree swing with R = 6: r_min of the final wire (4.2 mm) is below R, although the
-  // surface shows no flip yet.
+  // surface shows no flip yet: held only when the rule alone holds (off by default).
   const RibbonSpec initial = StraightRibbon(20, 40);
+  {
+    BenderSession unruled;
+    ASSERT_TRUE(unruled.SetSurface(this->Tube, "tube"));
+    ASSERT_TRUE(unruled.SetParameters(this->Session.GetParameters()));
+    ASSERT_TRUE(unruled.Grab(initial));
+    ASSERT_TRUE(unruled.MoveFinal(Bent(initial, 90)));
+    EXPECT_TRUE(unruled.GetSpaceInversionRisk());
+    EXPECT_TRUE(unruled.Release());
+    EXPECT_EQ(unruled.GetHistoryPosition(), 1u);
+  }
+  this->Session.SetCommitGuardRule(true);
   ASSERT_TRUE(this->Session.Grab(initial));
   ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 90)));
   EXPECT_FALSE(this->Session.Release());
