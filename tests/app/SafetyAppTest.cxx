@@ -239,7 +239,7 @@ private slots:
     QVERIFY(this->Window->saveScreenshot(this->artefact("safety-trackers-bent.png")));
     QVERIFY(session.HasUnsavedChanges());
     // Undo: the ribbon goes back onto the surface, where it was grabbed.
-    QTest::keyClick(this->Window.get(), Qt::Key_Z, Qt::ControlModifier);
+    this->Window->actions()->Undo->trigger(); // Edit > Undo (Ctrl+Z)
     QTRY_VERIFY(session.GetHistoryPosition() == 0);
     QTRY_VERIFY(RibbonDistance(this->widgetRibbon(), this->Placed) < 1e-9);
   }
