@@ -147,6 +147,8 @@ void MainWindow::buildPanels()
     this->Bend,
     this->Segment,
     this);
+  this->Files->setInteractive(this->Options.interactive);
+  this->Gesture->setInteractive(this->Options.interactive);
   this->Exports = new ExportFlow(
     this->Session, this->Worker, this->Actions, this->Export, this->Options.interactive, this);
   GestureController* gesture = this->Gesture;
@@ -461,9 +463,19 @@ bool MainWindow::saveViewScreenshot(const QString& path)
 
 void MainWindow::closeEvent(QCloseEvent* event)
 {
+  // Unsaved warps: Save plan / Discard / Cancel (interactive windows only).
+  if (!this->Files->confirmDiscard("Quit"))
+  {
+    event->ignore();
+    return;
+  }
   this->Worker->cancelAndWait();
   this->disconnectTrackers();
-  // A clean exit: nothing to recover next time.
-  this->Session.DiscardAutosave();
+  // The autosave goes only once the work was saved or explicitly discarded: otherwise the next
+  // start offers to recover it.
+  if (!this->Session.HasUnsavedChanges())
+  {
+    this->Session.DiscardAutosave();
+  }
   event->accept();
 }

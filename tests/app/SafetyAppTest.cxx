@@ -24,6 +24,7 @@
 #include <QDialog>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QLabel>
 #include <QMessageBox>
 #include <QPushButton>
@@ -347,6 +348,43 @@ private slots:
     QVERIFY(files->confirmDiscard("Quit"));
     QVERIFY(!askedAgain);
     files->setInteractive(false);
+  }
+
+  void quitAsksAndKeepsTheAutosaveOfUnsavedWork()
+  {
+    QTemporaryDir folder;
+    const QString autosave = folder.filePath("autosave.bender-session.json");
+    auto window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(folder.path()));
+    window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(window.get()));
+    bender::BenderSession& session = window->session();
+    QVERIFY(session.SetSurface(bendertest::Tube(0, 60, 3), "tube"));
+    bender::RibbonSpec ribbon;
+    ribbon.start.position = { 20, 0, 0 };
+    ribbon.end.position = { 40, 0, 0 };
+    bender::WarpParameters parameters = session.GetParameters();
+    parameters.radius = 6;
+    QVERIFY(session.SetParameters(parameters));
+    QVERIFY(session.Grab(ribbon));
+    QVERIFY(session.MoveFinal(Swung(ribbon, 30)));
+    QVERIFY(session.Release());
+    QVERIFY(QFileInfo::exists(autosave));
+    // Interactive: Quit asks; Cancel keeps the window open.
+    window->files()->setInteractive(true);
+    QString asked;
+    this->answerNextMessageBox(QMessageBox::Cancel, &asked);
+    window->close();
+    QVERIFY(!asked.isEmpty());
+    QVERIFY(window->isVisible());
+    // Not asked (a test window): the window closes, the unsaved warps stay recoverable.
+    window->files()->setInteractive(false);
+    QVERIFY(window->close());
+    QVERIFY(QFileInfo::exists(autosave));
+    bender::BenderSession recovered;
+    QVERIFY(recovered.Recover(autosave.toStdString()));
+    QCOMPARE(recovered.GetHistoryPosition(), std::size_t(1));
+    QCOMPARE(recovered.GetSurfaceName(), std::string("tube"));
+    window.reset();
   }
 
   void dialogsRememberTheLastFolder()
