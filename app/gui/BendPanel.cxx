@@ -28,9 +28,10 @@ BendPanel::BendPanel(MainActions* actions, QWidget* parent)
   this->Radius->setSuffix(" mm");
   this->Radius->setToolTip("Radius R of the region of influence around the initial wire");
   form->addRow("Radius R", this->Radius);
-  this->MinimumRadius = new QLabel("r_min: shown while grabbed", this);
-  this->MinimumRadius->setToolTip("Smallest arc radius of the initial wire: R >= r_min risks "
-                                  "space inversion (paper 3.8)");
+  this->MinimumRadius = new QLabel("r_min: no ribbon placed", this);
+  this->MinimumRadius->setToolTip("Smallest arc radius of the ribbon's wire (initial or final, "
+                                  "whichever is smaller): R >= r_min risks space inversion "
+                                  "(paper 3.8)");
   this->MinimumRadius->setObjectName("minimumRadius");
   this->MinimumRadius->setWordWrap(true);
   form->addRow("", this->MinimumRadius);
@@ -132,13 +133,15 @@ void BendPanel::showState(const bender::BenderSession& session, bool placingRibb
   // The toggle is offered once a flip occurred, and stays so that it can be turned back off.
   this->ReverseScrews->setEnabled(
     (grabbed && session.GetFlipOccurred()) || this->ReverseScrews->isChecked());
-  if (grabbed)
+  // The one r_min of the session (the status bar's warning quotes the same value): the smaller
+  // of the initial and final wire's while grabbed, the placed ribbon's otherwise, cleared with
+  // the ribbon.
   {
-    const double rmin = session.GetInitialMinimumRadius();
+    const double rmin = session.GetMinimumRadius();
     // A straight wire has an infinite r_min; a nearly straight one an absurdly large one.
-    QString text = (std::isfinite(rmin) && rmin < 1e6)
-      ? QString("r_min = %1 mm").arg(rmin, 0, 'f', 2)
-      : QString("r_min: none (straight wire)");
+    QString text = !session.GetRibbon() && !grabbed ? QString("r_min: no ribbon placed")
+      : (std::isfinite(rmin) && rmin < 1e6)         ? QString("r_min = %1 mm").arg(rmin, 0, 'f', 2)
+                                                    : QString("r_min: none (straight wire)");
     if (session.GetSpaceInversionRisk())
     {
       text += "\nWarning: " + QString::fromStdString(session.GetSpaceInversionWarning());

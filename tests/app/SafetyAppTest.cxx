@@ -163,6 +163,33 @@ private slots:
     QVERIFY(!session.HasUnsavedChanges());
   }
 
+  void theBendPanelShowsTheSessionsOneMinimumRadius()
+  {
+    // The panel and the status bar's warning quote one r_min, the session's: while grabbed the
+    // smaller of the initial and the final wire's (here the straight placed wire swung into an
+    // arc), and the placed ribbon's once the bend is cancelled.
+    bender::BenderSession& session = this->Window->session();
+    auto* label = this->Window->findChild<QLabel*>("minimumRadius");
+    QVERIFY(label);
+    const auto expected = [&]
+    {
+      const double rmin = session.GetMinimumRadius();
+      return std::isfinite(rmin) && rmin < 1e6 ? QString("r_min = %1 mm").arg(rmin, 0, 'f', 2)
+                                               : QString("r_min: none (straight wire)");
+    };
+    QVERIFY(this->Window->grab());
+    this->Window->setRibbon(Swung(this->Placed, 30));
+    QTRY_VERIFY(std::isfinite(session.GetMinimumRadius()) && session.GetMinimumRadius() < 1e6);
+    QTRY_VERIFY2(label->text().contains(expected()), qPrintable(label->text()));
+    if (session.GetSpaceInversionRisk())
+    {
+      QVERIFY(label->text().contains(QString::fromStdString(session.GetSpaceInversionWarning())));
+    }
+    this->Window->gesture()->cancelHeld();
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    QTRY_VERIFY2(label->text().contains(expected()), qPrintable(label->text()));
+  }
+
   void cleanup()
   {
     // Each function starts with nothing grabbed or held, whatever the previous one left.
