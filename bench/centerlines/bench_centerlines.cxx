@@ -5,26 +5,46 @@
 // surface on a 2-core machine. Figures taken on a loaded machine are not final: say so when
 // quoting them.
 //
-// usage: bench_centerlines [REPEATS] [SURFACE ...]   (default 5 repeats, the two surfaces)
+// With --invariance it also prints how far the centerline moves (in % of the local inscribed
+// radius and in mm, away from the ends and the bifurcation regions) under a rigid motion, a
+// finer (linear subdivision) and a coarser (quadric decimation) remeshing of each surface, and
+// between the gmsh aneurysm and its segmentation-path phantom (the demo segmentation).
+//
+// usage: bench_centerlines [--invariance] [REPEATS] [SURFACE ...]   (default 5 repeats, the
+// two surfaces)
 
 #include "DemoPipeline.h"
 #include "MeshIO.h"
+#include "VesselArrayNames.h"
 #include "VesselCenterlines.h"
 
 #include "BenchMachine.h"
 
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkLinearSubdivisionFilter.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkQuadricDecimation.h>
 #include <vtkSmartPointer.h>
+#include <vtkTransform.h>
+#include <vtkTransformPolyDataFilter.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace
 {
+using bender::Point3;
+
 void Run(const std::string& name, vtkPolyData* surface, int repeats)
 {
   std::printf("\n%s: %lld points, %lld triangles\n",
@@ -46,13 +66,14 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
     {
       stages[k].push_back(values[k]);
     }
-    std::printf("  run %d: %s, %zu endpoints, %lld branches, %d Voronoi vertices; "
-                "prep %.3f delaunay %.3f voronoi %.3f endpoints %.3f paths %.3f smoothing %.3f "
-                "branches %.3f total %.3f s\n",
+    std::printf("  run %d: %s, %zu endpoints, %lld branches, %d Delaunay points, %d Voronoi "
+                "vertices; prep %.3f delaunay %.3f voronoi %.3f endpoints %.3f paths %.3f "
+                "smoothing %.3f branches %.3f total %.3f s\n",
       r + 1,
       result.Ok ? "ok" : result.Message.c_str(),
       result.Endpoints.size(),
       static_cast<long long>(result.Branches->GetNumberOfCells()),
+      result.NumberOfDelaunayPoints,
       result.NumberOfVoronoiVertices,
       values[0],
       values[1],
@@ -74,27 +95,196 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
   }
   std::printf("\n");
 }
+
+double SegmentDistance(const Point3& p, const Point3& a, const Point3& b)
+{
+  double ab[3], ap[3], l2 = 0, t = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    ab[c] = b[c] - a[c];
+    ap[c] = p[c] - a[c];
+    l2 += ab[c] * ab[c];
+    t += ab[c] * ap[c];
+  }
+  t = l2 > 0 ? std::clamp(t / l2, 0.0, 1.0) : 0.0;
+  double d2 = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double x = ap[c] - t * ab[c];
+    d2 += x * x;
+  }
+  return std::sqrt(d2);
+}
+
+std::vector<std::vector<Point3>> Polylines(vtkPolyData* lines)
+{
+  std::vector<std::vector<Point3>> out;
+  vtkCellArray* cells = lines->GetLines();
+  cells->InitTraversal();
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  while (cells->GetNextCell(n, ids))
+  {
+    std::vector<Point3> line(static_cast<std::size_t>(n));
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      lines->GetPoint(ids[k], line[k].data());
+    }
+    out.push_back(line);
+  }
+  return out;
+}
+
+struct Deviation
+{
+  double Millimetres = 0;
+  double OfRadius = 0; // largest distance / local inscribed radius
+  int Points = 0;
+};
+
+// Distances from the points of a's paths to b's paths, skipping points within `skip` x the
+// largest end radius of the ends and bifurcations of a.
+Deviation Compare(const bender::CenterlineResult& a, vtkPolyData* bPaths, double skip)
+{
+  Deviation d;
+  double largest = 0;
+  std::vector<Point3> excluded(a.Bifurcations);
+  for (const auto& e : a.Endpoints)
+  {
+    largest = std::max(largest, e.Radius);
+    excluded.push_back(e.Position);
+  }
+  const auto lines = Polylines(bPaths);
+  vtkDataArray* radius =
+    a.Paths->GetPointData()->GetArray(bender::VesselArrays::MaximumInscribedSphereRadius);
+  for (vtkIdType i = 0; i < a.Paths->GetNumberOfPoints(); ++i)
+  {
+    Point3 p;
+    a.Paths->GetPoint(i, p.data());
+    bool skipped = false;
+    for (const auto& x : excluded)
+    {
+      skipped = skipped || std::hypot(p[0] - x[0], p[1] - x[1], p[2] - x[2]) < skip * largest;
+    }
+    if (skipped)
+    {
+      continue;
+    }
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& line : lines)
+    {
+      for (std::size_t k = 0; k + 1 < line.size(); ++k)
+      {
+        best = std::min(best, SegmentDistance(p, line[k], line[k + 1]));
+      }
+    }
+    d.Millimetres = std::max(d.Millimetres, best);
+    d.OfRadius = std::max(d.OfRadius, best / radius->GetTuple1(i));
+    ++d.Points;
+  }
+  return d;
+}
+
+void Print(const char* what, const Deviation& d)
+{
+  std::printf("  %-34s %6.2f %% of the radius, %.3f mm (%d points)\n",
+    what,
+    100.0 * d.OfRadius,
+    d.Millimetres,
+    d.Points);
+}
+
+void Invariance(const std::string& name, vtkPolyData* surface)
+{
+  std::printf(
+    "\n%s: invariance, away from the ends and bifurcations (2 end radii)\n", name.c_str());
+  const bender::CenterlineResult base = bender::ComputeCenterlines(surface);
+  if (!base.Ok)
+  {
+    std::printf("  failed: %s\n", base.Message.c_str());
+    return;
+  }
+  vtkNew<vtkTransform> motion;
+  motion->Translate(12.0, -7.0, 30.0);
+  motion->RotateWXYZ(37.0, 0.3, -0.8, 0.5);
+  vtkNew<vtkTransformPolyDataFilter> moveSurface;
+  moveSurface->SetInputData(surface);
+  moveSurface->SetTransform(motion);
+  moveSurface->Update();
+  vtkNew<vtkTransformPolyDataFilter> moveLines;
+  moveLines->SetInputData(base.Paths);
+  moveLines->SetTransform(motion);
+  moveLines->Update();
+  const bender::CenterlineResult moved = bender::ComputeCenterlines(moveSurface->GetOutput());
+  if (moved.Ok)
+  {
+    Print("rigid motion", Compare(moved, moveLines->GetOutput(), 2.0));
+  }
+  vtkNew<vtkLinearSubdivisionFilter> finer;
+  finer->SetInputData(surface);
+  finer->SetNumberOfSubdivisions(1);
+  finer->Update();
+  const bender::CenterlineResult fine = bender::ComputeCenterlines(finer->GetOutput());
+  if (fine.Ok)
+  {
+    Print("finer (linear subdivision x4)", Compare(fine, base.Paths, 2.0));
+  }
+  vtkNew<vtkQuadricDecimation> coarser;
+  coarser->SetInputData(surface);
+  coarser->SetTargetReduction(0.5);
+  coarser->Update();
+  const bender::CenterlineResult coarse = bender::ComputeCenterlines(coarser->GetOutput());
+  if (coarse.Ok)
+  {
+    Print("coarser (quadric decimation / 2)", Compare(coarse, base.Paths, 2.0));
+  }
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+  int first = 1;
+  bool invariance = false;
+  if (argc > 1 && std::strcmp(argv[1], "--invariance") == 0)
+  {
+    invariance = true;
+    ++first;
+  }
+  const int repeats = argc > first ? std::max(1, std::atoi(argv[first])) : 5;
   std::printf(
     "bench_centerlines: %s; medians of %d runs\n", bender_bench::MachineLine().c_str(), repeats);
   try
   {
-    if (argc > 2)
+    if (argc > first + 1)
     {
-      for (int i = 2; i < argc; ++i)
+      for (int i = first + 1; i < argc; ++i)
       {
-        Run(argv[i], bender::ReadMesh(argv[i]), repeats);
+        auto surface = bender::ReadMesh(argv[i]);
+        Run(argv[i], surface, repeats);
+        if (invariance)
+        {
+          Invariance(argv[i], surface);
+        }
       }
       return 0;
     }
     const std::string aneurysm = std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl";
-    Run("gmsh aneurysm (open)", bender::ReadMesh(aneurysm), repeats);
+    auto source = bender::ReadMesh(aneurysm);
+    Run("gmsh aneurysm (open)", source, repeats);
     const bender::DemoVessel demo = bender::SegmentDemoVessel(bender::DemoVesselPath());
     Run("demo segmentation (closed)", demo.surface, repeats);
+    if (invariance)
+    {
+      Invariance("gmsh aneurysm (open)", source);
+      Invariance("demo segmentation (closed)", demo.surface);
+      const bender::CenterlineResult a = bender::ComputeCenterlines(demo.surface);
+      const bender::CenterlineResult b = bender::ComputeCenterlines(source);
+      if (a.Ok && b.Ok)
+      {
+        std::printf("\nphantom (demo segmentation) vs gmsh aneurysm\n");
+        Print("segmented to source", Compare(a, b.Paths, 2.0));
+      }
+    }
   }
   catch (const std::exception& e)
   {

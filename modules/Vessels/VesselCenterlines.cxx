@@ -1117,6 +1117,7 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
       }
     }
   }
+  result.NumberOfDelaunayPoints = static_cast<int>(samples.size());
   std::vector<Tetra> tetras;
   std::string delaunayError;
   if (!Tetrahedralise(samples, tetras, delaunayError))

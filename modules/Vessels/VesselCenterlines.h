@@ -110,6 +110,7 @@ struct CenterlineResult
   std::vector<Point3> Bifurcations;
   double Step = 0.0; ///< the resampling step used (mm)
   CenterlineStageTimes Times;
+  int NumberOfDelaunayPoints = 0; ///< surface samples tetrahedralised (wall and caps)
   int NumberOfVoronoiVertices = 0;
 };
 
