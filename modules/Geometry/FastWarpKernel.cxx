@@ -195,9 +195,13 @@ BENDER_ALWAYS_INLINE int KernelBody(const float* table,
       // s >= start: the pieces' starts are their predecessors' ends (the same floats) and
       // s >= 0, so u >= 0 and truncation is the floor.
       const float u = (sk - start) * scale;
-      const int j0 = static_cast<int>(u);
-      const int j1 = j0 > 0 ? j0 : 0; // an s outside [0, 1] or NaN never reads outside
-      const int j = j1 < span ? j1 : span;
+      // Clamped in float before the conversion (converting a NaN or an out-of-range float to
+      // int is undefined behaviour): an s outside [0, 1] or NaN never reads outside the table
+      // (NaN compares false, so it becomes interval 0; its result stays NaN and is caught by the
+      // finiteness check).
+      const float u0 = u > 0.0f ? u : 0.0f;
+      const float limit = static_cast<float>(span);
+      const int j = static_cast<int>(u0 < limit ? u0 : limit);
       frac[k] = u - static_cast<float>(j);
       index[k] = 16 * (first + j);
     }
