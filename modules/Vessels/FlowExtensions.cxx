@@ -1,5 +1,6 @@
 #include "FlowExtensions.h"
 
+#include "ArrayVector.h"
 #include "BenderErrors.h"
 #include "MeshTopology.h"
 
@@ -18,29 +19,14 @@ namespace bender
 {
 namespace
 {
-using V3 = std::array<double, 3>;
-
-V3 Sub(const V3& a, const V3& b)
-{
-  return { { a[0] - b[0], a[1] - b[1], a[2] - b[2] } };
-}
-double Dot(const V3& a, const V3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 Cross(const V3& a, const V3& b)
-{
-  return { { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] } };
-}
-double Norm(const V3& a)
-{
-  return std::sqrt(Dot(a, a));
-}
-V3 Unit(const V3& a)
-{
-  const double n = Norm(a);
-  return n > 0 ? V3{ { a[0] / n, a[1] / n, a[2] / n } } : V3{ { 0, 0, 0 } };
-}
+using vessel_detail::Cross;
+using vessel_detail::Distance;
+using vessel_detail::Dot;
+using vessel_detail::Lerp;
+using vessel_detail::Norm;
+using vessel_detail::Sub;
+using vessel_detail::Unit;
+using vessel_detail::V3;
 
 /// True when extension `b` (its axis and rings of radius reachB, sampled) enters the cylinder
 /// of extension `a` (beyond a's rim plane, within 1.1 reachA of its axis).

@@ -1,5 +1,6 @@
 #include "VesselClip.h"
 
+#include "ArrayVector.h"
 #include "BenderErrors.h"
 #include "MeshTopology.h"
 #include "VesselArrayNames.h"
@@ -24,38 +25,15 @@ namespace bender
 {
 namespace
 {
-using V3 = std::array<double, 3>;
+using vessel_detail::Cross;
+using vessel_detail::Distance;
+using vessel_detail::Dot;
+using vessel_detail::Lerp;
+using vessel_detail::Norm;
+using vessel_detail::Sub;
+using vessel_detail::Unit;
+using vessel_detail::V3;
 using Tri = std::array<std::int64_t, 3>;
-
-V3 Sub(const V3& a, const V3& b)
-{
-  return { { a[0] - b[0], a[1] - b[1], a[2] - b[2] } };
-}
-double Dot(const V3& a, const V3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 Cross(const V3& a, const V3& b)
-{
-  return { { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] } };
-}
-double Norm(const V3& a)
-{
-  return std::sqrt(Dot(a, a));
-}
-double Distance(const V3& a, const V3& b)
-{
-  return Norm(Sub(a, b));
-}
-V3 Lerp(const V3& a, const V3& b, double t)
-{
-  return { { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]) } };
-}
-V3 Unit(const V3& a)
-{
-  const double n = Norm(a);
-  return n > 0 ? V3{ { a[0] / n, a[1] / n, a[2] / n } } : V3{ { 0, 0, 0 } };
-}
 
 std::string Format(const V3& p)
 {
