@@ -206,6 +206,13 @@ bool CheckPlyBytesUnescaped(const std::string& data, std::string& problem)
       continue;
     }
     const std::string where = "PLY header line " + std::to_string(lineNumber) + ": ";
+    if (keyword.empty())
+    {
+      // vtkPLY reads a blank header line as a line of no words and then dereferences a null
+      // element (found by fuzz_mesh_ply).
+      problem = where + "blank line in the header";
+      return false;
+    }
     if (keyword == "format")
     {
       words >> format;
@@ -279,7 +286,7 @@ bool CheckPlyBytesUnescaped(const std::string& data, std::string& problem)
     {
       sawEnd = true;
     }
-    else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty())
+    else if (keyword != "comment" && keyword != "obj_info")
     {
       problem = where + "unexpected \"" + QuoteBytes(keyword, 20) + "\"";
       return false;

@@ -438,6 +438,18 @@ TEST(InputValidation, PlyHeaderControlBytesAreRefused)
   ExpectRefused(dir / "vt.ply", "control or non-ASCII byte in the header");
 }
 
+// Found by fuzz_mesh_ply: a blank line between two property lines of the header crashed
+// vtkPLY (null element in find_element).
+TEST(InputValidation, PlyHeaderBlankLinesAreRefused)
+{
+  TempDir dir;
+  WriteText(dir / "blank.ply",
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\n"
+    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  ExpectRefused(dir / "blank.ply", "PLY header line 6: blank line in the header");
+}
+
 // Found by fuzz_mesh_vtp: a compressed block header announcing a 2^62-byte block made
 // vtkXMLDataParser allocate it.
 TEST(InputValidation, VtpCompressedBlockHeadersAreBounded)
