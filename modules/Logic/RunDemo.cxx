@@ -5,14 +5,12 @@
 #include "CfdCase.h"
 #include "ExportSurface.h"
 #include "MeshIO.h"
-#include "PatchLabels.h"
 #include "PrepareForCfd.h"
 #include "RenderToPng.h"
 #include "WarpPlanIO.h"
 
 #include "AtomicFile.h"
 
-#include <vtkFieldData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
@@ -124,29 +122,23 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
   }
   if (options.cfd)
   {
-    // Issue 11: the vessel made CFD-ready, bent like the demo vessel, in metres, as a case.
+    // Issue 11: the bent vessel made CFD-ready (ends clipped, flow extensions, labelled caps),
+    // in metres, as a case. The bend comes first: flow extensions are modelling artefacts that
+    // must continue the final ends, and a plan placed on the whole vessel, applied to the
+    // clipped and extended one, moves the near part of an extension but not its far part (the
+    // demo plan then folds 519 triangles).
     try
     {
-      say("Preparing the vessel for CFD (ends clipped, flow extensions, labelled caps)...");
+      say("Preparing the bent vessel for CFD (ends clipped, flow extensions, labelled caps)...");
       PrepareForCfdOptions prepare;
-      prepare.InputName =
-        result.segmented ? "the segmented demo vessel" : fs::path(vesselPath).filename().string();
-      const PrepareForCfdResult prepared = PrepareForCfd(surface, prepare);
+      prepare.InputName = "the bent demo vessel";
+      const PrepareForCfdResult prepared = PrepareForCfd(bent, prepare);
       for (const std::string& w : prepared.Warnings)
       {
         warn(w);
       }
       options.progress.ThrowIfCancelled("demo CFD");
-      vtkSmartPointer<vtkPolyData> cfdBent = ApplyPlan(prepared.Surface, plan, applyOptions).output;
-      for (const char* array : { kPatchNamesArrayName, kPatchTypesArrayName })
-      {
-        if (!cfdBent->GetFieldData()->GetAbstractArray(array) &&
-          prepared.Surface->GetFieldData()->GetAbstractArray(array))
-        {
-          cfdBent->GetFieldData()->AddArray(
-            prepared.Surface->GetFieldData()->GetAbstractArray(array));
-        }
-      }
+      const vtkSmartPointer<vtkPolyData> cfdBent = prepared.Surface;
       ExportSurfaceOptions stl;
       stl.output = out("demo-cfd.stl");
       stl.protectedPath = vesselPath;

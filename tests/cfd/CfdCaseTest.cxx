@@ -3,6 +3,7 @@
 
 #include "CfdCase.h"
 #include "BenderErrors.h"
+#include "BenderMeshCheck.h"
 #include "CfdTestUtilities.h"
 #include "CliCommands.h"
 #include "MeshIO.h"
@@ -499,6 +500,11 @@ TEST(CfdCase, TheDemoJobEndsWithACfdReadyBentVesselAndItsCase)
   ASSERT_EQ(labels.size(), 4u);
   EXPECT_EQ(labels[1].name, "inlet");
   EXPECT_EQ(labels[1].type, bender::PatchType::Inlet);
+  // Closed, manifold, outwards and nothing crossing (the check of the export).
+  bender::MeshCheckOptions check;
+  check.requireClosed = true;
+  const bender::MeshCheckReport report = bender::CheckMesh(cfd, nullptr, check);
+  EXPECT_TRUE(report.Clean()) << bender::FormatReportText(report, "demo-cfd.vtp");
   const std::string stl = ReadText(options.outputDirectory + "/demo-cfd.stl");
   EXPECT_NE(stl.find("unit m"), std::string::npos);
   EXPECT_NE(stl.find("\nsolid outlet_2\n"), std::string::npos);

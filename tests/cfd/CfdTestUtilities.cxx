@@ -51,18 +51,6 @@ vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent)
   return capped;
 }
 
-void KeepPatchNames(vtkPolyData* labelled, vtkPolyData* warped)
-{
-  for (const char* name : { kPatchNamesArrayName, kPatchTypesArrayName })
-  {
-    if (!warped->GetFieldData()->GetAbstractArray(name) &&
-      labelled->GetFieldData()->GetAbstractArray(name))
-    {
-      warped->GetFieldData()->AddArray(labelled->GetFieldData()->GetAbstractArray(name));
-    }
-  }
-}
-
 vtkSmartPointer<vtkPolyData> PreparedDemoVessel(bool bent)
 {
   static vtkSmartPointer<vtkPolyData> prepared[2];
@@ -71,24 +59,24 @@ vtkSmartPointer<vtkPolyData> PreparedDemoVessel(bool bent)
   {
     return result;
   }
-  static vtkSmartPointer<vtkPolyData> original;
-  if (!original)
+  static vtkSmartPointer<vtkPolyData> segmented;
+  if (!segmented)
   {
     // 0.8 mm voxels (the demo job uses 0.5): a quarter of the triangles, meshed in seconds.
     DemoOptions demoOptions;
     demoOptions.spacing = 0.8;
-    const DemoVessel demo = SegmentDemoVessel(DemoVesselPath(), demoOptions);
-    PrepareForCfdOptions options;
-    options.InputName = "the segmented demo vessel";
-    original = PrepareForCfd(demo.surface, options).Surface;
+    segmented = SegmentDemoVessel(DemoVesselPath(), demoOptions).surface;
   }
-  result = original;
+  // As the demo job does: bend the segmented vessel, then make it CFD-ready (the flow
+  // extensions continue the final ends; the demo plan applied after them folds the surface).
+  vtkSmartPointer<vtkPolyData> surface = segmented;
   if (bent)
   {
-    const WarpPlan plan = ReadWarpPlan(DemoPlanPath());
-    result = ApplyPlan(original, plan).output;
-    KeepPatchNames(original, result);
+    surface = ApplyPlan(segmented, ReadWarpPlan(DemoPlanPath())).output;
   }
+  PrepareForCfdOptions options;
+  options.InputName = bent ? "the bent demo vessel" : "the segmented demo vessel";
+  result = PrepareForCfd(surface, options).Surface;
   return result;
 }
 

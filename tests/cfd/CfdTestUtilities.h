@@ -18,14 +18,10 @@ namespace bender::test
 vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent);
 
 /// The segmented demo vessel (SegmentDemoVessel: the MRA-like phantom of the aneurysm,
-/// segmented; a closed blob), made CFD-ready by PrepareForCfd (ends clipped perpendicular to
-/// the centerlines, flow extensions, labelled caps), bent by the demo plan when `bent`.
-/// Computed once per process and bend. LPS mm.
+/// segmented; a closed blob), bent by the demo plan when `bent`, then made CFD-ready by
+/// PrepareForCfd (ends clipped perpendicular to the centerlines, flow extensions, labelled
+/// caps), as the demo job does. Computed once per process and bend. LPS mm.
 vtkSmartPointer<vtkPolyData> PreparedDemoVessel(bool bent);
-
-/// The warp keeps the cells' labels but not the field data of their names: put the names of
-/// `labelled` back on `warped` (same cells).
-void KeepPatchNames(vtkPolyData* labelled, vtkPolyData* warped);
 
 /// A new empty folder under the system's temporary folder, removed by the destructor.
 class TemporaryFolder
