@@ -1601,24 +1601,25 @@ bool CheckVtkXml(std::string_view data,
           return false;
         }
       }
-      if (const std::string* format = tag.Get("format"))
+      const std::string* format = tag.Get("format");
+      if (format && *format != "ascii" && *format != "binary" && *format != "appended")
       {
-        if (*format != "ascii" && *format != "binary" && *format != "appended")
+        problem = "VTK XML DataArray with format \"" + QuoteBytes(*format) + "\"";
+        return false;
+      }
+      // VTK's reader takes an array with an offset attribute as appended whatever its format
+      // attribute says (or when it has none: a misspelt "formAt" let an unchecked block header
+      // announce a 2^61-byte block; found by fuzz_mesh_vtp).
+      const std::string* offset = tag.Get("offset");
+      if ((format && *format == "appended") || offset)
+      {
+        std::uint64_t o = 0;
+        if (!offset || !ParseCount(*offset, o))
         {
-          problem = "VTK XML DataArray with format \"" + QuoteBytes(*format) + "\"";
+          problem = "VTK XML appended DataArray without a valid offset";
           return false;
         }
-        if (*format == "appended")
-        {
-          const std::string* offset = tag.Get("offset");
-          std::uint64_t o = 0;
-          if (!offset || !ParseCount(*offset, o))
-          {
-            problem = "VTK XML appended DataArray without a valid offset";
-            return false;
-          }
-          offsets.push_back(o);
-        }
+        offsets.push_back(o);
       }
       totalBytes += static_cast<long double>(tuples) * components * size;
       if (totalBytes > static_cast<long double>(budgetBytes))

@@ -450,6 +450,23 @@ TEST(InputValidation, PlyHeaderBlankLinesAreRefused)
   ExpectRefused(dir / "blank.ply", "PLY header line 6: blank line in the header");
 }
 
+// Found by fuzz_mesh_vtp: VTK reads an array with an offset attribute as appended even when its
+// format attribute is misspelt, so its block headers must be checked too.
+TEST(InputValidation, VtpArraysWithAnOffsetAreCheckedWhateverTheirFormat)
+{
+  TempDir dir;
+  WriteMesh(Triangle(), dir / "ok.vtp");
+  std::string bytes = ReadText(dir / "ok.vtp");
+  const std::size_t format = bytes.find("format=\"appended\"");
+  ASSERT_NE(format, std::string::npos);
+  bytes.replace(format, 6, "formAt");
+  const std::size_t data = bytes.find('_', bytes.find("<AppendedData")) + 1;
+  ASSERT_LT(data + 16, bytes.size());
+  bytes[data + 8 + 7] = 0x73; // the first block's size word (UInt64, little endian): top byte
+  WriteText(dir / "formAt.vtp", bytes);
+  ExpectRefused(dir / "formAt.vtp", "compressed block header at offset 0");
+}
+
 // Found by fuzz_mesh_vtp: a compressed block header announcing a 2^62-byte block made
 // vtkXMLDataParser allocate it.
 TEST(InputValidation, VtpCompressedBlockHeadersAreBounded)
