@@ -302,6 +302,17 @@ bool CheckPlyBytesUnescaped(const std::string& data, std::string& problem)
     problem = "PLY header without a \"format\" line";
     return false;
   }
+  // vtkPLY frees an invalid pointer when closing a file with an element that has records but
+  // no properties (found by fuzz_mesh_ply).
+  for (const Element& element : elements)
+  {
+    if (element.count > 0 && element.properties.empty())
+    {
+      problem = "PLY element \"" + QuoteBytes(element.name, 40) + "\" has " +
+        std::to_string(element.count) + " records but no properties";
+      return false;
+    }
+  }
   // vtkPLYReader uses face indices without checking them (a wrong one crashes it), and frees
   // an uninitialised pointer when a face element lacks "vertex_indices".
   std::int64_t vertexCount = 0;

@@ -450,6 +450,18 @@ TEST(InputValidation, PlyHeaderBlankLinesAreRefused)
   ExpectRefused(dir / "blank.ply", "PLY header line 6: blank line in the header");
 }
 
+// Found by fuzz_mesh_ply: an element with records but no properties made vtkPLY free an
+// invalid pointer when closing the file.
+TEST(InputValidation, PlyElementsWithoutPropertiesAreRefused)
+{
+  TempDir dir;
+  WriteText(dir / "empty.ply",
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement extra 4\nelement face 1\n"
+    "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  ExpectRefused(dir / "empty.ply", "PLY element \"extra\" has 4 records but no properties");
+}
+
 // Found by fuzz_mesh_vtp: VTK reads an array with an offset attribute as appended even when its
 // format attribute is misspelt, so its block headers must be checked too.
 TEST(InputValidation, VtpArraysWithAnOffsetAreCheckedWhateverTheirFormat)
