@@ -302,14 +302,14 @@ bool CheckPlyBytesUnescaped(const std::string& data, std::string& problem)
     problem = "PLY header without a \"format\" line";
     return false;
   }
-  // vtkPLY frees an invalid pointer when closing a file with an element that has records but
-  // no properties (found by fuzz_mesh_ply).
+  // vtkPLY frees an invalid pointer when closing a file with an element that has no properties,
+  // even one of no records (found by fuzz_mesh_ply).
   for (const Element& element : elements)
   {
-    if (element.count > 0 && element.properties.empty())
+    if (element.properties.empty())
     {
-      problem = "PLY element \"" + QuoteBytes(element.name, 40) + "\" has " +
-        std::to_string(element.count) + " records but no properties";
+      problem = "PLY element \"" + QuoteBytes(element.name, 40) + "\" (" +
+        std::to_string(element.count) + " records) has no properties";
       return false;
     }
   }

@@ -450,8 +450,8 @@ TEST(InputValidation, PlyHeaderBlankLinesAreRefused)
   ExpectRefused(dir / "blank.ply", "PLY header line 6: blank line in the header");
 }
 
-// Found by fuzz_mesh_ply: an element with records but no properties made vtkPLY free an
-// invalid pointer when closing the file.
+// Found by fuzz_mesh_ply: an element without properties (with records or none) made vtkPLY
+// free an invalid pointer when closing the file.
 TEST(InputValidation, PlyElementsWithoutPropertiesAreRefused)
 {
   TempDir dir;
@@ -459,7 +459,12 @@ TEST(InputValidation, PlyElementsWithoutPropertiesAreRefused)
     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
     "property float z\nelement extra 4\nelement face 1\n"
     "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-  ExpectRefused(dir / "empty.ply", "PLY element \"extra\" has 4 records but no properties");
+  ExpectRefused(dir / "empty.ply", "PLY element \"extra\" (4 records) has no properties");
+  WriteText(dir / "none.ply",
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement extra 0\nelement face 1\n"
+    "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  ExpectRefused(dir / "none.ply", "PLY element \"extra\" (0 records) has no properties");
 }
 
 // Found by fuzz_mesh_vtp: VTK reads an array with an offset attribute as appended even when its
