@@ -362,6 +362,13 @@ bool CheckPlyBytesUnescaped(const std::string& data, std::string& problem)
   {
     // vtkPLY reads one record per line, with fgets into a 4096-byte buffer: a record split over
     // two lines, two records on one line or a longer line crash it. Check exactly that.
+    // A NUL byte ends fgets' string early and made vtkPLYReader free a face's list twice
+    // (found by fuzz_mesh_ply): text data has none.
+    if (const std::size_t nul = data.find('\0', pos); nul != std::string::npos)
+    {
+      problem = "ASCII PLY data holds a NUL byte at offset " + std::to_string(nul);
+      return false;
+    }
     std::size_t lineStart = pos;
     std::size_t bodyLine = lineNumber;
     std::string_view line;

@@ -467,6 +467,20 @@ TEST(InputValidation, PlyElementsWithoutPropertiesAreRefused)
   ExpectRefused(dir / "none.ply", "PLY element \"extra\" (0 records) has no properties");
 }
 
+// Found by fuzz_mesh_ply: a NUL byte at the end of the last ASCII record made vtkPLYReader
+// free a face's index list twice.
+TEST(InputValidation, PlyAsciiDataWithANulByteIsRefused)
+{
+  TempDir dir;
+  std::string text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                     "property float y\nproperty float z\nelement face 1\n"
+                     "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                     "3 0 1 2";
+  text.push_back('\0');
+  WriteText(dir / "nul.ply", text);
+  ExpectRefused(dir / "nul.ply", "ASCII PLY data holds a NUL byte at offset");
+}
+
 // Found by fuzz_mesh_vtp: VTK reads an array with an offset attribute as appended even when its
 // format attribute is misspelt, so its block headers must be checked too.
 TEST(InputValidation, VtpArraysWithAnOffsetAreCheckedWhateverTheirFormat)
