@@ -6,6 +6,7 @@
 #include "MainWindow.h"
 
 #include <QString>
+#include <QtTest>
 
 #include <vtkCellArray.h>
 #include <vtkNew.h>
@@ -56,6 +57,24 @@ inline MainWindowOptions TestWindowOptions(const QString& folder)
   options.offerRecovery = false;
   options.interactive = false;
   return options;
+}
+
+/// Shows a test window at the suites' size (1280 x 900) and waits until it is exposed (and,
+/// with `active`, the active window, for keyboard input). False when the wait timed out.
+inline bool ShowTestWindow(MainWindow& window, bool active)
+{
+  window.resize(1280, 900);
+  window.show();
+  if (!QTest::qWaitForWindowExposed(&window))
+  {
+    return false;
+  }
+  if (!active)
+  {
+    return true;
+  }
+  window.activateWindow();
+  return QTest::qWaitForWindowActive(&window);
 }
 
 } // namespace bendertest

@@ -133,11 +133,7 @@ private slots:
       }
     };
     this->Window = std::make_unique<MainWindow>(options);
-    this->Window->resize(1280, 900);
-    this->Window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));
-    this->Window->activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(this->Window.get()));
+    QVERIFY(bendertest::ShowTestWindow(*this->Window, true));
   }
 
   void cleanupTestCase()

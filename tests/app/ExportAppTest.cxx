@@ -92,9 +92,7 @@ private slots:
   {
     QVERIFY(this->Folder.isValid());
     this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
-    this->Window->resize(1280, 900);
-    this->Window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));
+    QVERIFY(bendertest::ShowTestWindow(*this->Window, false));
     // An open tube of radius 5 mm from x = -20 to 20: two open ends to cap.
     QVERIFY(this->Window->session().SetSurface(bendertest::Tube(-20, 20, 5, 41, 32), "tube"));
   }

@@ -148,9 +148,7 @@ private slots:
     QCoreApplication::setOrganizationName("BenderSafetyTest");
     QSettings().clear();
     this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
-    this->Window->resize(1280, 900);
-    this->Window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));
+    QVERIFY(bendertest::ShowTestWindow(*this->Window, false));
     this->Window->startDemo();
     QVERIFY(this->Window->waitUntilIdle(180000));
     bender::BenderSession& session = this->Window->session();

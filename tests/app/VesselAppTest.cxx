@@ -151,11 +151,7 @@ private slots:
   {
     QVERIFY(this->Folder.isValid());
     this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
-    this->Window->resize(1280, 900);
-    this->Window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(this->Window.get()));
-    this->Window->activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(this->Window.get()));
+    QVERIFY(bendertest::ShowTestWindow(*this->Window, true));
   }
 
   void cleanupTestCase()
