@@ -1007,21 +1007,6 @@ CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& opti
 namespace
 {
 
-bool OnPath(const std::string& program)
-{
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  std::string dir;
-  while (std::getline(dirs, dir, ':'))
-  {
-    if (!dir.empty() && access((fs::path(dir) / program).c_str(), X_OK) == 0)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
 /// The data lines of a postProcessing .dat file of the latest start time, as words.
 std::vector<std::vector<std::string>> ReadDat(const fs::path& caseDir,
   const std::string& object,
@@ -1118,12 +1103,27 @@ std::string ReadWhole(const fs::path& path)
 
 } // namespace
 
+bool IsOnPath(const std::string& program)
+{
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':'))
+  {
+    if (!dir.empty() && access((fs::path(dir) / program).c_str(), X_OK) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 std::string FindOpenFoamProblem(int processors)
 {
   for (const char* program :
     { "blockMesh", "surfaceFeatureExtract", "snappyHexMesh", "checkMesh", "simpleFoam" })
   {
-    if (!OnPath(program))
+    if (!IsOnPath(program))
     {
       return std::string("OpenFOAM is not installed: ") + program +
         " is not on PATH (Debian: apt-get install openfoam; elsewhere source OpenFOAM's "
@@ -1134,7 +1134,7 @@ std::string FindOpenFoamProblem(int processors)
   {
     for (const char* program : { "decomposePar", "reconstructPar", "mpirun" })
     {
-      if (!OnPath(program))
+      if (!IsOnPath(program))
       {
         return std::string("a parallel run needs ") + program + ", which is not on PATH";
       }

@@ -95,6 +95,9 @@ struct CfdCaseResult
 /// folder without force, an unwritable folder.
 CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& options);
 
+/// True when `program` is an executable file in one of PATH's folders.
+bool IsOnPath(const std::string& program);
+
 /// Where OpenFOAM is: empty when simpleFoam, blockMesh, surfaceFeatureExtract, snappyHexMesh
 /// and checkMesh are on PATH (and mpirun when processors > 1); else what is missing, one line.
 std::string FindOpenFoamProblem(int processors = 1);

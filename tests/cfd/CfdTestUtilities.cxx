@@ -128,21 +128,6 @@ std::string RunIn(const std::string& folder, const std::string& command, int& st
   return output;
 }
 
-bool OnPath(const std::string& program)
-{
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  std::string dir;
-  while (std::getline(dirs, dir, ':'))
-  {
-    if (!dir.empty() && access((fs::path(dir) / program).c_str(), X_OK) == 0)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
 std::string ReadText(const std::string& path)
 {
   std::ifstream in(path);

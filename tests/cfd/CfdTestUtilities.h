@@ -4,6 +4,8 @@
 // Shared by the CFD case tests: the real surfaces (the gmsh aneurysm capped with labelled ends,
 // original and bent by the demo plan), fresh folders and running external programs.
 
+#include "CfdCase.h"
+
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
@@ -41,9 +43,6 @@ private:
 /// together; status is the exit status (-1 when it could not run or was killed).
 std::string RunIn(const std::string& folder, const std::string& command, int& status);
 
-/// True when program is an executable on PATH.
-bool OnPath(const std::string& program);
-
 /// The whole text of a file ("" when unreadable).
 std::string ReadText(const std::string& path);
 
@@ -54,7 +53,7 @@ std::string ReadText(const std::string& path);
 #define BENDER_REQUIRE_PROGRAM(program)                                                            \
   do                                                                                               \
   {                                                                                                \
-    if (!bender::test::OnPath(program))                                                            \
+    if (!bender::IsOnPath(program))                                                                \
     {                                                                                              \
       if (std::getenv("BENDER_REQUIRE_CFD"))                                                       \
       {                                                                                            \
