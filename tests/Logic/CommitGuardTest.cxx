@@ -18,23 +18,13 @@
 #include <sstream>
 
 using namespace bender;
+using bender::test::Bent;
 using bender::test::MakeTube;
 using bender::test::MaxDifference;
 using bender::test::StraightRibbon;
 
 namespace
 {
-
-// The end of the ribbon swung by `degrees` about +z around the start, tangent following.
-RibbonSpec Bent(const RibbonSpec& straight, double degrees)
-{
-  const double a = degrees * 3.14159265358979323846 / 180.0;
-  RibbonSpec bent = straight;
-  const Vec3 arm = straight.end.position - straight.start.position;
-  bent.end.position = straight.start.position + Rotate({ 0, 0, 1 }, a, arm);
-  bent.end.tangent = Rotate({ 0, 0, 1 }, a, straight.end.tangent);
-  return bent;
-}
 
 WarpSpec Warp(const RibbonSpec& initial, const RibbonSpec& final, double radius)
 {

@@ -61,6 +61,16 @@ RibbonSpec StraightRibbon(double a, double b)
   return ribbon;
 }
 
+RibbonSpec Bent(const RibbonSpec& straight, double degrees)
+{
+  const double a = degrees * 3.14159265358979323846 / 180.0;
+  RibbonSpec bent = straight;
+  const Vec3 arm = straight.end.position - straight.start.position;
+  bent.end.position = straight.start.position + Rotate({ 0, 0, 1 }, a, arm);
+  bent.end.tangent = Rotate({ 0, 0, 1 }, a, straight.end.tangent);
+  return bent;
+}
+
 double MaxDifference(vtkPolyData* a, vtkPolyData* b)
 {
   if (!a || !b || a->GetNumberOfPoints() != b->GetNumberOfPoints())

@@ -25,6 +25,9 @@ vtkSmartPointer<vtkPolyData> MakeTube(double x0,
 /// A straight ribbon along +x from (a,0,0) to (b,0,0), normal +z.
 RibbonSpec StraightRibbon(double a, double b);
 
+/// The ribbon with its end swung by `degrees` about +z around the start, tangent following.
+RibbonSpec Bent(const RibbonSpec& straight, double degrees);
+
 /// Largest coordinate difference between two surfaces of the same points; infinity when the
 /// point counts differ.
 double MaxDifference(vtkPolyData* a, vtkPolyData* b);
