@@ -648,6 +648,10 @@ bool BenderSession::Autosave()
       snapshot.sourcePath = this->AutosaveSourcePath;
     }
     snapshot.plan = this->GetPlan();
+    if (this->AutosaveDecorator)
+    {
+      this->AutosaveDecorator(snapshot);
+    }
     WriteSessionFile(snapshot, this->AutosavePath);
   }
   catch (const std::exception& e)

@@ -22,12 +22,15 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkAlgorithmOutput;
 
 namespace bender
 {
+
+struct SessionSnapshot;
 
 /// Where the session is in the bend gesture.
 enum class GrabState
@@ -289,6 +292,13 @@ public:
   void SetAutosavePath(const std::string& path);
   const std::string& GetAutosavePath() const { return this->AutosavePath; }
   bool Autosave();
+  /// Adds what the session does not hold (the window: volume, segmentation parameters,
+  /// ribbon, Bend parameters) to every autosave, just before it is written. Null (default):
+  /// nothing added.
+  void SetAutosaveDecorator(std::function<void(SessionSnapshot&)> decorator)
+  {
+    this->AutosaveDecorator = std::move(decorator);
+  }
   /// Removes the autosave files (a clean exit).
   void DiscardAutosave();
   /// Loads the source of a session file and replays its plan.
@@ -359,6 +369,7 @@ private:
   std::string SurfaceName;
   std::string AutosavePath;
   std::string AutosaveSourcePath;
+  std::function<void(SessionSnapshot&)> AutosaveDecorator;
 
   std::vector<LogicMessage> Messages;
   std::function<void(const LogicMessage&)> MessageCallback;
