@@ -335,11 +335,56 @@ std::string TrackerSession::StatusText() const
   return out.str();
 }
 
+std::optional<RibbonSpec> TrackerSession::MappedHands() const
+{
+  if (!this->Device || !this->Input)
+  {
+    return std::nullopt;
+  }
+  const HandMapping& hands = this->Input->Hands();
+  const std::optional<TrackerPose> left = this->Device->LatestPose(hands.leftStation);
+  const std::optional<TrackerPose> right = this->Device->LatestPose(hands.rightStation);
+  if (!left || !right)
+  {
+    return std::nullopt;
+  }
+  RibbonSpec mapped;
+  if (this->Input->IsRelative())
+  {
+    const std::optional<RibbonAnchor>& anchor = this->Input->Anchor();
+    if (!anchor)
+    {
+      return std::nullopt;
+    }
+    mapped.start = RelativeRibbonEnd(*left, Hand::Left, *anchor);
+    mapped.end = RelativeRibbonEnd(*right, Hand::Right, *anchor);
+  }
+  else
+  {
+    mapped.start = RibbonEndFromPose(*left, Hand::Left, this->Input->Calibration());
+    mapped.end = RibbonEndFromPose(*right, Hand::Right, this->Input->Calibration());
+  }
+  return mapped;
+}
+
 bool TrackerSession::AlignTo(const RibbonSpec& target)
 {
+  if (this->Input && this->Device)
+  {
+    // Anchored as the hands are now, not as the last poll saw them.
+    for (const int station :
+      { this->Input->Hands().leftStation, this->Input->Hands().rightStation })
+    {
+      if (const std::optional<TrackerPose> pose = this->Device->LatestPose(station))
+      {
+        this->Input->UpdatePose(*pose);
+      }
+    }
+  }
   if (!this->Input || !this->CurrentRibbon())
   {
-    this->Session.AddMessage(MessageSeverity::Error, "Align: both hands must be seen first");
+    this->Session.AddMessage(MessageSeverity::Error,
+      this->Input ? "Align: both hands must be seen first" : "Align: connect a tracker first");
     return false;
   }
   if (this->Input->IsGrabbing() || this->Session.GetState() == GrabState::Grabbed)
@@ -347,6 +392,7 @@ bool TrackerSession::AlignTo(const RibbonSpec& target)
     this->Session.AddMessage(MessageSeverity::Error, "Align: release or cancel the grab first");
     return false;
   }
+  const std::optional<RibbonSpec> before = this->MappedHands();
   try
   {
     this->Input->AnchorTo(target);
@@ -356,11 +402,21 @@ bool TrackerSession::AlignTo(const RibbonSpec& target)
     this->Session.AddMessage(MessageSeverity::Error, std::string("Align: ") + e.what());
     return false;
   }
+  // The ribbon the session holds between grabs is the target now (SyncRibbon would otherwise
+  // anchor the hands back to the session's ribbon if the two differ).
+  this->Synced = this->Session.GetRibbon();
   std::ostringstream text;
-  text << "Hands anchored to the ribbon: the left hand holds its start, the right hand its end";
+  text << std::fixed << std::setprecision(1)
+       << "Hands aligned: the left hand now holds the ribbon's start, the right hand its end";
+  if (before)
+  {
+    text << " (their markers moved " << Distance(before->start.position, target.start.position)
+         << " mm and " << Distance(before->end.position, target.end.position) << " mm onto them)";
+  }
   if (const auto& anchor = this->Input->Anchor())
   {
-    text << std::setprecision(3) << "; 1 mm of hand motion moves it " << anchor->scale << " mm";
+    text << std::defaultfloat << std::setprecision(3) << "; 1 mm of hand motion moves an end "
+         << anchor->scale << " mm; nothing was bent";
   }
   this->Session.AddMessage(MessageSeverity::Info, text.str());
   return true;

@@ -86,6 +86,15 @@ public:
 
   /// The ribbon the hands hold now (model space), if both hands have been seen.
   std::optional<RibbonSpec> CurrentRibbon() const;
+  /// Where the hands map now (model space), whether or not the stylus is held: the left hand's
+  /// end as `start`, the right hand's as `end`, from the device's newest poses. Anchored
+  /// (relative mapping): the anchored ribbon end moved and turned by the hand's motion since
+  /// the anchor (RelativeRibbonEnd), so between grabs it drifts away from the ribbon as the
+  /// hands move while the ribbon stays; right after an anchoring (connect, a stylus press,
+  /// AlignTo) it is the ribbon's ends. Absolute: through the calibration (RibbonEndFromPose).
+  /// While grabbing it is the ribbon being bent. Empty when not connected, before both hands
+  /// are seen, or anchored to a ribbon the hands have not been seen holding yet.
+  std::optional<RibbonSpec> MappedHands() const;
   /// Motion scale of the relative mapping: > 0 model mm per hand mm, 0 automatic (the hands'
   /// span is the ribbon's length). False, with a message, outside [0, 1000].
   bool SetRelativeScale(double scale);
@@ -99,11 +108,13 @@ public:
   TrackerCalibration GetCalibration() const;
   /// Replaces the calibration (alignment and motion scale); refused while grabbing.
   bool SetCalibration(const TrackerCalibration& calibration);
-  /// Anchors the hands to a ribbon in model space (e.g. the one on screen) as they are now:
-  /// the ribbon shown becomes `target`, the left hand holds its start and the right hand its
-  /// end, the direction between the hands is the ribbon's direction and the left hand's
-  /// normal its start normal (the relative mapping; see RibbonAnchor). False (with a message)
-  /// when the hands are not both seen or a grab is under way.
+  /// Anchors the hands to a ribbon in model space (e.g. the one on screen) as they are now
+  /// (the device's newest poses): the ribbon shown becomes `target`, the left hand holds its
+  /// start and the right hand its end, the direction between the hands is the ribbon's
+  /// direction and the left hand's normal its start normal (the relative mapping; see
+  /// RibbonAnchor). Afterwards MappedHands() is `target`'s ends; the message says how far each
+  /// hand's mapped point moved onto its end. Nothing is warped. False (with a message) when
+  /// not connected, the hands are not both seen or a grab is under way.
   bool AlignTo(const RibbonSpec& target);
 
   /// Device name and per-station rates for the Trackers panel.

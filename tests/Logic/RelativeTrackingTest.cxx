@@ -4,8 +4,8 @@
 // the hands' rotations; between grabs the ribbon stays.
 #include "BenderSession.h"
 #include "LogicTestUtilities.h"
-#include "SimulatedDevice.h"
 #include "TrackerSession.h"
+#include "TrackerTestUtilities.h"
 #include "TwoHandRibbonInput.h"
 
 #include <vtkPolyData.h>
@@ -188,46 +188,17 @@ TEST(RelativeTracking, TheClutchReanchorsWithoutAJump)
   EXPECT_NEAR(Distance(input.CurrentRibbon()->end.position, before.end.position), 2.0, 1e-9);
 }
 
-namespace
-{
-
-// Polls the tracker session until its device stops, checking after each poll.
-template<typename Check>
-void PollUntilEnded(TrackerSession& trackers, double maxSeconds, Check check)
-{
-  const auto start = std::chrono::steady_clock::now();
-  while (
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < maxSeconds)
-  {
-    const auto result = trackers.Poll();
-    check(result);
-    if (result.ended)
-    {
-      return;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  FAIL() << "the device did not stop within " << maxSeconds << " s";
-}
-
-std::unique_ptr<TrackerDevice> Simulator(double duration)
-{
-  SimulatedDevice::Options options;
-  options.rateHz = 60;
-  options.realtime = true;
-  options.duration = duration;
-  return std::make_unique<SimulatedDevice>(options);
-}
-
-}
+using test::PollUntilEnded;
+using test::Simulator;
 
 TEST(RelativeTracking, ConnectingTheSimulatorMovesNoPointAndNotTheRibbon)
 {
   // The simulator's hands rest 200 mm apart at x = -100 and 100 and press the stylus at 1 s;
   // the ribbon on screen is 40 mm long elsewhere. Until the press nothing may move.
-  auto tube = test::MakeTube(-150, 150, 10, 121, 24);
-  BenderSession session;
-  ASSERT_TRUE(session.SetSurface(tube, "tube"));
+  test::TubeSession tubeSession(10, 121, 24);
+  ASSERT_TRUE(tubeSession.ready);
+  BenderSession& session = tubeSession.session;
+  const auto& tube = tubeSession.tube;
   const RibbonSpec placed = test::StraightRibbon(10, 50);
   ASSERT_TRUE(session.PlaceRibbon(placed));
   TrackerSession trackers(session);
@@ -257,9 +228,9 @@ TEST(RelativeTracking, TheSimulatorBendsTheRibbonFromWhereItIs)
   // degrees (an arch), the right one rolled by 45 degrees, release at 5 s. Anchored to a 40 mm
   // ribbon on a tube of radius 4, the automatic scale is 40 / 200: each end moves 4 mm
   // inwards.
-  auto tube = test::MakeTube(-150, 150, 4, 301, 24);
-  BenderSession session;
-  ASSERT_TRUE(session.SetSurface(tube, "tube"));
+  test::TubeSession tubeSession(4, 301, 24);
+  ASSERT_TRUE(tubeSession.ready);
+  BenderSession& session = tubeSession.session;
   WarpParameters parameters;
   // As the window places a ribbon on a vessel: R = 2.2 radii, a plateau reaching 1.2 radii;
   // R stays below the arch's smallest arc radius (about 32 / (2 sin 60) = 18.5 mm).
@@ -294,20 +265,14 @@ TEST(RelativeTracking, TheSimulatorBendsTheRibbonFromWhereItIs)
 
 TEST(RelativeTracking, AlignReanchorsTheHandsToTheGivenRibbon)
 {
-  auto tube = test::MakeTube(-150, 150, 10, 61, 16);
-  BenderSession session;
-  ASSERT_TRUE(session.SetSurface(tube, "tube"));
+  test::TubeSession tubeSession(10, 61, 16);
+  ASSERT_TRUE(tubeSession.ready);
+  BenderSession& session = tubeSession.session;
+  const auto& tube = tubeSession.tube;
   TrackerSession trackers(session);
   ASSERT_TRUE(trackers.Connect(Simulator(0.9)));
   EXPECT_FALSE(trackers.IsRelative()); // no ribbon on the session: absolute
-  std::optional<RibbonSpec> hands;
-  for (int i = 0; i < 400 && !hands; ++i)
-  {
-    trackers.Poll();
-    hands = trackers.CurrentRibbon();
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(hands);
+  ASSERT_TRUE(test::PollUntil(trackers, [&]() { return trackers.CurrentRibbon().has_value(); }));
   ASSERT_TRUE(trackers.AlignTo(Elsewhere()));
   EXPECT_TRUE(trackers.IsRelative());
   EXPECT_LT(RibbonDistance(*trackers.CurrentRibbon(), Elsewhere()), 1e-6);
