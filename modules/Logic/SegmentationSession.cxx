@@ -5,14 +5,50 @@
 #include "VolumeIO.h"
 #include "WarpPlanIO.h"
 
+#include <algorithm>
 #include <exception>
+#include <filesystem>
+#include <sstream>
+#include <system_error>
 
 namespace bender
 {
 
 void SegmentationSession::ReadJob::Run(const ProgressReporter& progress)
 {
-  this->volume = std::make_shared<const Volume>(ReadVolume(this->path, {}, progress));
+  VolumeReadOptions options;
+  options.dicomSeriesUid = this->dicomSeriesUid;
+  std::error_code ec;
+  if (options.dicomSeriesUid.empty() && std::filesystem::is_directory(this->path, ec))
+  {
+    // A folder with several series: the largest, and the user is told which.
+    const std::vector<DicomSeriesInfo> series = ListDicomSeries(this->path);
+    if (series.size() > 1)
+    {
+      const auto largest = std::max_element(series.begin(),
+        series.end(),
+        [](const DicomSeriesInfo& a, const DicomSeriesInfo& b)
+        { return a.sliceCount < b.sliceCount; });
+      options.dicomSeriesUid = largest->uid;
+      std::ostringstream text;
+      text << std::filesystem::path(this->path).filename().string() << ": " << series.size()
+           << " DICOM series in this folder; read the largest, "
+           << (largest->description.empty() ? std::string("(no description)")
+                                            : "\"" + largest->description + "\"")
+           << " (" << largest->sliceCount << " slices, UID " << largest->uid << "); the others:";
+      for (const DicomSeriesInfo& other : series)
+      {
+        if (other.uid != largest->uid)
+        {
+          text << " " << (other.description.empty() ? other.uid : other.description) << " ("
+               << other.sliceCount << " slices)";
+        }
+      }
+      this->note = text.str();
+    }
+  }
+  this->volume = std::make_shared<const Volume>(ReadVolume(this->path, options, progress));
+  this->seriesRead = options.dicomSeriesUid;
 }
 
 void SegmentationSession::SegmentJob::Run(const ProgressReporter& progress)
@@ -58,11 +94,13 @@ void SegmentationSession::FinishDemo(const DemoJob& job)
 
 void SegmentationSession::SetVolume(std::shared_ptr<const Volume> volume,
   const std::string& name,
-  std::shared_ptr<const LabelMap> mask)
+  std::shared_ptr<const LabelMap> mask,
+  const VolumeSource& source)
 {
   this->LoadedVolume = std::move(volume);
   this->Mask = this->LoadedVolume ? std::move(mask) : nullptr;
   this->VolumeName = this->LoadedVolume ? name : std::string();
+  this->Source = this->LoadedVolume ? source : VolumeSource{};
 }
 
 void SegmentationSession::Clear()
@@ -91,16 +129,32 @@ bool SegmentationSession::SetSettings(const SegmentationSettings& settings, std:
 }
 
 std::shared_ptr<SegmentationSession::ReadJob> SegmentationSession::BeginRead(
-  const std::string& path) const
+  const std::string& path,
+  const std::string& dicomSeriesUid) const
 {
   auto job = std::make_shared<ReadJob>();
   job->path = path;
+  job->dicomSeriesUid = dicomSeriesUid;
   return job;
 }
 
-void SegmentationSession::FinishRead(const ReadJob& job)
+void SegmentationSession::FinishRead(const ReadJob& job, const std::string& name)
 {
-  this->SetVolume(job.volume, job.path);
+  if (!job.volume)
+  {
+    return;
+  }
+  std::filesystem::path file = std::filesystem::path(job.path).lexically_normal();
+  if (file.filename().empty() && file.has_parent_path())
+  {
+    file = file.parent_path(); // "folder/"
+  }
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(file, ec);
+  VolumeSource source;
+  source.path = ec ? file.string() : absolute.string();
+  source.dicomSeriesUid = job.seriesRead;
+  this->SetVolume(job.volume, name.empty() ? file.filename().string() : name, nullptr, source);
 }
 
 std::shared_ptr<SegmentationSession::SegmentJob> SegmentationSession::BeginSegment(

@@ -33,13 +33,30 @@ struct SegmentationSettings
 class SegmentationSession
 {
 public:
-  /// Reads a volume file or DICOM folder (ReadVolume) on the job's thread.
+  /// Reads a volume file or DICOM folder (ReadVolume) on the job's thread. A DICOM folder
+  /// holding several series: the series `dicomSeriesUid` when set, else the largest (most
+  /// slices; the first by UID among equals), and `note` says which was read and what else the
+  /// folder holds.
   struct ReadJob
   {
     std::string path;
+    std::string dicomSeriesUid;
     std::shared_ptr<const Volume> volume;
-    /// Throws the reader's errors (bender::Error) and bender::Cancelled.
+    /// The series read from a DICOM folder holding several; empty otherwise.
+    std::string seriesRead;
+    /// One sentence for the user when a choice was made for them; empty otherwise.
+    std::string note;
+    /// Throws the reader's errors (bender::Error: a folder with no DICOM series, a missing
+    /// file, ...) and bender::Cancelled.
     void Run(const ProgressReporter& progress);
+  };
+
+  /// Where the loaded volume came from: the file or DICOM folder (absolute) and the series
+  /// read from a folder holding several. An empty path: a volume made here (the demo's).
+  struct VolumeSource
+  {
+    std::string path;
+    std::string dicomSeriesUid;
   };
 
   /// Segments a volume and extracts its surface (SegmentVessels, then ExtractSurface).
@@ -73,11 +90,15 @@ public:
   /// The mask of the last segmentation of the loaded volume; null before one.
   const std::shared_ptr<const LabelMap>& GetMask() const { return this->Mask; }
   const std::string& GetVolumeName() const { return this->VolumeName; }
+  /// Where the loaded volume was read from (empty without a volume or for one made here).
+  const VolumeSource& GetVolumeSource() const { return this->Source; }
 
-  /// Makes `volume` the loaded one (its mask, if any, with it); null unloads.
+  /// Makes `volume` the loaded one (its mask, if any, with it); null unloads. `source`: the
+  /// file it was read from, if any.
   void SetVolume(std::shared_ptr<const Volume> volume,
     const std::string& name,
-    std::shared_ptr<const LabelMap> mask = nullptr);
+    std::shared_ptr<const LabelMap> mask = nullptr,
+    const VolumeSource& source = {});
   /// Forgets the volume and the mask (a mesh was opened instead).
   void Clear();
 
@@ -85,9 +106,10 @@ public:
   bool SetSettings(const SegmentationSettings& settings, std::string& problem);
   const SegmentationSettings& GetSettings() const { return this->Settings; }
 
-  std::shared_ptr<ReadJob> BeginRead(const std::string& path) const;
-  /// Takes the job's volume as the loaded one.
-  void FinishRead(const ReadJob& job);
+  std::shared_ptr<ReadJob> BeginRead(const std::string& path,
+    const std::string& dicomSeriesUid = {}) const;
+  /// Takes the job's volume as the loaded one, named `name` (empty: the file's name).
+  void FinishRead(const ReadJob& job, const std::string& name = {});
   /// Null, and `problem` says why, without a loaded volume.
   std::shared_ptr<SegmentJob> BeginSegment(std::string& problem) const;
   /// Keeps the mask when the job segmented the volume still loaded.
@@ -99,6 +121,7 @@ private:
   std::shared_ptr<const Volume> LoadedVolume;
   std::shared_ptr<const LabelMap> Mask;
   std::string VolumeName;
+  VolumeSource Source;
   SegmentationSettings Settings;
 };
 

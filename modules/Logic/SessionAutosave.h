@@ -1,8 +1,11 @@
 #ifndef bender_SessionAutosave_h
 #define bender_SessionAutosave_h
 
+#include "SegmentationSession.h"
+#include "Volume.h"
 #include "WarpPlan.h"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -16,10 +19,42 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// What an autosave keeps so that a crash loses nothing: a reference to the source surface
-/// (a mesh file; a segmented surface is saved beside the autosave file first) and the plan
-/// committed so far. JSON: {"format": "bender-session", "version": 1, "source": PATH,
-/// "frame": "LPS", "plan": {warp-file-format.md object}}.
+/// The volume behind the session's surface: where it was read from and what it was, so that
+/// recovery reads it again and can tell whether the file found there is still the same volume.
+struct SessionVolume
+{
+  /// Absolute path of the volume file or DICOM folder.
+  std::string path;
+  /// The volume's name in the window; empty: the file's name.
+  std::string name;
+  /// The series read from a DICOM folder holding several; empty otherwise.
+  std::string dicomSeriesUid;
+  /// Size, spacing, origin and direction: the volume's identity (SameVolumeGeometry).
+  ImageGeometry geometry;
+};
+
+/// The ribbon lying on the surface and the Bend parameters it was placed with.
+struct SessionRibbon
+{
+  RibbonSpec ribbon;
+  double radius = 10.0; ///< R of the next warp, model units, > 0
+  DecaySpec decay;
+  /// The radius of the vessel the ribbon was placed on (the handles' size); 0: unknown.
+  double vesselRadius = 0.0;
+};
+
+/// What an autosave keeps so that a crash loses nothing: a reference to the source surface (a
+/// mesh file; a segmented surface is saved beside the autosave file first), the surface's
+/// name, the plan committed so far and, when the window has them, the volume, the
+/// segmentation parameters and the placed ribbon.
+///
+/// JSON, version 2: {"format": "bender-session", "version": 2, "source": PATH, "name": NAME,
+/// "frame": "LPS", "plan": {warp-file-format.md object}, "volume": {"path", "name", "series",
+/// "size": [3], "spacing": [3], "origin": [3], "direction": [9]}, "segmentation": {every
+/// SegmentationParameters and SurfaceParameters field by name}, "ribbon": {"start", "end":
+/// {"position", "tangent", "normal"}, "extraTurns", "radius", "decay", "plateau",
+/// "vesselRadius"}}. "name", "volume", "segmentation" and "ribbon" are optional. Version 1
+/// files (source, name, frame, plan) are still read.
 struct SessionSnapshot
 {
   std::string sourcePath; ///< absolute path of the surface the plan applies to
@@ -28,14 +63,36 @@ struct SessionSnapshot
   std::string surfaceName;
   std::string frame = "LPS";
   WarpPlan plan;
+  std::optional<SessionVolume> volume;
+  std::optional<SegmentationSettings> segmentation;
+  std::optional<SessionRibbon> ribbon;
 };
 
+/// The version WriteSessionFile writes.
+constexpr int SessionFileVersion = 2;
+
 /// Writes atomically (temporary file in the same folder, then rename); creates the folder.
-/// Throws SessionFileError.
+/// Throws SessionFileError (a non-finite number, an unwritable folder).
 void WriteSessionFile(const SessionSnapshot& snapshot, const std::string& path);
 
-/// Reads and validates (the plan as ReadWarpPlan would). Throws SessionFileError.
+/// Reads and validates (the plan as ReadWarpPlan would, the segmentation parameters as
+/// ValidateSegmentationParameters). Throws SessionFileError naming the file and the field.
 SessionSnapshot ReadSessionFile(const std::string& path);
+
+/// True when `a` and `b` are the same grid: equal sizes, spacing and origin within 1e-6 of the
+/// larger magnitude (at least 1e-6 mm), direction within 1e-6.
+bool SameVolumeGeometry(const ImageGeometry& a, const ImageGeometry& b);
+
+/// "256x256x130 voxels of 0.9x0.9x1.2 mm" for messages.
+std::string DescribeVolumeGeometry(const ImageGeometry& geometry);
+
+/// Where the window keeps a volume that has no file (the demo's) beside the autosave
+/// `sessionPath`.
+std::string SessionVolumeCopyPath(const std::string& sessionPath);
+
+/// Removes the files the window keeps beside the autosave `sessionPath` (the volume copy); the
+/// session file itself and the surface copy are BenderSession::DiscardAutosave's.
+void RemoveSessionSideFiles(const std::string& sessionPath);
 
 } // namespace bender
 
