@@ -1,8 +1,11 @@
 #include "ExportFlow.h"
 
 #include "BenderSession.h"
+#include "BenderView.h"
+#include "CfdEndsOverlay.h"
 #include "ExportPanel.h"
 #include "MainActions.h"
+#include "VesselController.h"
 #include "WorkRunner.h"
 
 #include "BenderErrors.h"
@@ -22,6 +25,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QMessageBox>
+#include <QPointer>
 #include <QPushButton>
 #include <QTimer>
 #include <QVBoxLayout>
@@ -181,6 +185,140 @@ ExportDialog* ExportFlow::openExportDialog()
   return dialog;
 }
 
+void ExportFlow::attachView(BenderView* view, VesselController* vessels)
+{
+  this->View = view;
+  this->Vessels = vessels;
+  delete this->Overlay;
+  this->Overlay = new CfdEndsOverlay(view->renderer(), view->ribbonRenderer(), this);
+  this->Overlay->setVisible(this->Panel->isVisible());
+  connect(vessels, &VesselController::centerlinesChanged, this, &ExportFlow::listEnds);
+  connect(this->Worker, &WorkRunner::finished, this, &ExportFlow::followSurface);
+  connect(this->Panel,
+    &ExportPanel::shownChanged,
+    this,
+    [this](bool shown)
+    {
+      this->Overlay->setVisible(shown);
+      this->renderView();
+    });
+  // The disc dragged in the view and the cut typed in the table: one distance per end.
+  connect(this->Overlay,
+    &CfdEndsOverlay::distanceChanged,
+    this,
+    [this](int end, double distance)
+    {
+      if (this->Panel->listsCenterlineEnds())
+      {
+        this->Panel->setCutDistance(end, distance);
+      }
+    });
+  connect(this->Panel,
+    &ExportPanel::cutDistanceEdited,
+    this,
+    [this](int row, double distance)
+    {
+      if (this->Panel->listsCenterlineEnds() && !this->Overlay->showsPatches())
+      {
+        this->Overlay->setDistance(row, distance);
+        this->renderView();
+      }
+    });
+  connect(this->Panel,
+    &ExportPanel::endNamesChanged,
+    this,
+    [this]()
+    {
+      if (!this->Panel->listsCenterlineEnds())
+      {
+        return;
+      }
+      for (int k = 0; k < this->Overlay->numberOfEnds(); ++k)
+      {
+        this->Overlay->setLabel(k, this->Panel->endName(k), this->Panel->endIsInlet(k));
+      }
+      this->renderView();
+    });
+  this->listEnds();
+}
+
+void ExportFlow::renderView()
+{
+  if (this->View)
+  {
+    this->View->render();
+  }
+}
+
+void ExportFlow::listEnds()
+{
+  if (!this->Overlay)
+  {
+    return;
+  }
+  vtkPolyData* current = this->Session.HasSurface() ? this->Session.GetSurface() : nullptr;
+  if (current && current == this->Prepared && current->GetMTime() == this->PreparedTime)
+  {
+    return; // the prepared surface: its caps stay shown
+  }
+  const bender::VesselSession& vessels = this->Vessels->vessels();
+  std::vector<bender::CenterlineEndPath> paths;
+  if (current && vessels.HasCenterlines() && vessels.IsUpToDate(this->Session) &&
+    vessels.GetPaths())
+  {
+    try
+    {
+      paths = bender::FindCenterlineEndPaths(vessels.GetPaths());
+    }
+    catch (const std::exception&)
+    {
+      paths.clear(); // no vessel end to show (the Measurements panel says why)
+    }
+  }
+  if (paths.empty())
+  {
+    this->EndCenterlines = nullptr;
+    this->EndsFor = nullptr;
+    this->Overlay->clear();
+    if (this->Panel->listsCenterlineEnds())
+    {
+      this->Panel->clearEnds();
+    }
+    this->renderView();
+    return;
+  }
+  this->EndCenterlines = vtkSmartPointer<vtkPolyData>::New();
+  this->EndCenterlines->DeepCopy(vessels.GetPaths());
+  this->EndsFor = current;
+  this->EndsForTime = current->GetMTime();
+  this->Panel->showCenterlineEnds(paths);
+  this->Overlay->setEnds(paths);
+  for (int k = 0; k < this->Overlay->numberOfEnds(); ++k)
+  {
+    this->Overlay->setLabel(k, this->Panel->endName(k), this->Panel->endIsInlet(k));
+  }
+  this->renderView();
+}
+
+void ExportFlow::followSurface()
+{
+  if (!this->Overlay)
+  {
+    return;
+  }
+  vtkPolyData* current = this->Session.HasSurface() ? this->Session.GetSurface() : nullptr;
+  const bool prepared =
+    current && current == this->Prepared && current->GetMTime() == this->PreparedTime;
+  const bool listed =
+    current && current == this->EndsFor && current->GetMTime() == this->EndsForTime;
+  if ((this->Overlay->showsPatches() && !prepared) ||
+    (this->Overlay->numberOfEnds() > 0 && !listed))
+  {
+    this->Overlay->clear(); // the new surface's ends come with its centerlines
+    this->renderView();
+  }
+}
+
 bool ExportFlow::prepareForCfd()
 {
   if (this->Worker->refuseWhenBusy(this->Session))
@@ -193,9 +331,16 @@ bool ExportFlow::prepareForCfd()
     this->Panel->showReport("Prepare for CFD: open or segment a surface first.");
     return false;
   }
+  if (this->Session.GetState() == bender::GrabState::Grabbed)
+  {
+    this->Panel->showReport("Prepare for CFD: release the bend first.");
+    return false;
+  }
   const bool again =
     this->PreparedFrom && current == this->Prepared && current->GetMTime() == this->PreparedTime;
-  if (!again)
+  const bool listed = this->Panel->listsCenterlineEnds() && this->EndCenterlines &&
+    current == this->EndsFor && current->GetMTime() == this->EndsForTime;
+  if (!again && !listed)
   {
     this->Panel->clearEnds(); // the listed ends belong to another surface
   }
@@ -205,48 +350,114 @@ bool ExportFlow::prepareForCfd()
     source = vtkSmartPointer<vtkPolyData>::New();
     source->DeepCopy(current);
   }
+  // The centerlines the discs were placed on (the cuts are arc lengths on them); computed in
+  // the job when there are none yet.
+  vtkSmartPointer<vtkPolyData> centerlines;
+  vtkPolyData* known = again ? this->PreparedCenterlines.GetPointer()
+                             : (listed ? this->EndCenterlines.GetPointer() : nullptr);
+  if (known)
+  {
+    centerlines = vtkSmartPointer<vtkPolyData>::New();
+    centerlines->DeepCopy(known); // the job's own copy
+  }
   bender::PrepareForCfdOptions options = this->Panel->prepareOptions();
+  options.Centerlines = centerlines;
   const std::string name = this->Session.GetSurfaceName();
   options.InputName = name.empty() ? "the surface" : name;
-  bender::PrepareForCfdResult result;
-  QApplication::setOverrideCursor(Qt::WaitCursor);
-  try
+  const vtkMTimeType time = current->GetMTime();
+  QPointer<ExportFlow> self(this);
+  return this->Worker->run("Prepare for CFD",
+    [self, source, options, centerlines, current, time](
+      const bender::ProgressReporter& progress) -> WorkRunner::Finisher
+    {
+      auto result = std::make_shared<bender::PrepareForCfdResult>();
+      try
+      {
+        *result = bender::PrepareForCfd(source, options, progress);
+      }
+      catch (const bender::Cancelled&)
+      {
+        throw; // the worker says so; nothing changed
+      }
+      catch (const std::exception& e)
+      {
+        const QString what = QString("Prepare for CFD failed: ") + e.what();
+        return [self, what]()
+        {
+          if (self)
+          {
+            self->Panel->showReport(what);
+            self->Session.AddMessage(bender::MessageSeverity::Error, what.toStdString());
+            self->Worker->markFailed();
+          }
+        };
+      }
+      return [self, result, source, centerlines, current, time]()
+      {
+        if (self)
+        {
+          self->applyPrepared(result, source, centerlines, current, time);
+        }
+      };
+    });
+}
+
+void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult>& result,
+  const vtkSmartPointer<vtkPolyData>& source,
+  const vtkSmartPointer<vtkPolyData>& centerlines,
+  vtkPolyData* from,
+  vtkMTimeType fromTime)
+{
+  vtkPolyData* current = this->Session.HasSurface() ? this->Session.GetSurface() : nullptr;
+  if (current != from || !current || current->GetMTime() != fromTime ||
+    this->Session.GetState() == bender::GrabState::Grabbed)
   {
-    result = bender::PrepareForCfd(source, options);
+    this->Panel->showReport(
+      "Prepare for CFD: the surface changed while it was prepared; nothing was applied.");
+    this->Worker->markFailed();
+    return;
   }
-  catch (const std::exception& e)
-  {
-    QApplication::restoreOverrideCursor();
-    this->Panel->showReport(QString("Prepare for CFD failed: ") + e.what());
-    return false;
-  }
-  QApplication::restoreOverrideCursor();
-  if (!this->Session.SetSurface(result.Surface, name, this->Session.GetSourcePath()))
+  const std::string name = this->Session.GetSurfaceName();
+  if (!this->Session.SetSurface(result->Surface, name, this->Session.GetSourcePath()))
   {
     this->Panel->showReport("Prepare for CFD: the prepared surface could not be loaded.");
-    return false;
+    this->Worker->markFailed();
+    return;
   }
   this->PreparedFrom = source;
+  this->PreparedCenterlines = centerlines;
   this->Prepared = this->Session.GetSurface();
   this->PreparedTime = this->Prepared ? this->Prepared->GetMTime() : 0;
-  this->Panel->showEnds(result.Ends);
-  QString report = QString("Prepared for CFD: %1 ends, capped and labelled (wall 1, ends 2..)\n")
-                     .arg(result.Ends.size());
-  for (const bender::CfdEnd& end : result.Ends)
+  this->Panel->showEnds(result->Ends);
+  if (this->Overlay)
   {
-    report += QString("  %1 (%2, id %3): radius %4 mm, extension %5 mm\n")
+    this->Overlay->setPatches(this->Prepared, result->Ends);
+    this->renderView();
+  }
+  QString report = QString("Prepared for CFD: %1 ends, capped and labelled (wall 1, ends 2..)\n")
+                     .arg(result->Ends.size());
+  for (const bender::CfdEnd& end : result->Ends)
+  {
+    report += QString("  %1 (%2, id %3): radius %4 mm, extension %5 mm")
                 .arg(QString::fromStdString(end.Name))
                 .arg(bender::PatchTypeName(end.Type))
                 .arg(end.Id)
                 .arg(end.Radius, 0, 'f', 2)
                 .arg(end.ExtensionLength, 0, 'f', 1);
+    if (end.ClipDistance >= 0)
+    {
+      report += QString(", cut %1 mm from the end").arg(end.ClipDistance, 0, 'f', 2);
+    }
+    report += "\n";
   }
-  for (const std::string& warning : result.Warnings)
+  for (const std::string& warning : result->Warnings)
   {
     report += "  warning: " + QString::fromStdString(warning) + "\n";
   }
   this->Panel->showReport(report);
-  return true;
+  this->Session.AddMessage(bender::MessageSeverity::Info,
+    "Prepared for CFD: " + std::to_string(result->Ends.size()) +
+      " ends clipped, extended, capped and labelled (Export panel)");
 }
 
 bool ExportFlow::exportSurface(const QString& path, bool proceedOnProblems)

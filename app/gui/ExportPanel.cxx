@@ -16,6 +16,9 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include <algorithm>
+#include <cmath>
+
 ExportOptionsForm::ExportOptionsForm(QWidget* parent)
   : QWidget(parent)
 {
@@ -253,13 +256,19 @@ ExportPanel::ExportPanel(MainActions* actions, QWidget* parent)
   this->OutletFactor->setValue(5.0);
   prepareForm->addRow("Inlet extension", this->InletFactor);
   prepareForm->addRow("Outlet extensions", this->OutletFactor);
-  this->Ends = new QTableWidget(0, 4, prepare);
+  this->Ends = new QTableWidget(0, 5, prepare);
   this->Ends->setObjectName("endsTable");
-  this->Ends->setHorizontalHeaderLabels({ "Name", "Role", "Radius (mm)", "Extension (x r)" });
+  this->Ends->setHorizontalHeaderLabels(
+    { "Name", "Role", "Radius\n(mm)", "Extension\n(x r)", "Cut at\n(mm from end)" });
+  this->Ends->horizontalHeaderItem(CutColumn)->setToolTip(
+    "Where the end is cut: mm along the centerline from the vessel end (drag the "
+    "end's disc in the 3D view, or type)");
   this->Ends->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  this->Ends->horizontalHeader()->setSectionResizeMode(NameColumn, QHeaderView::ResizeToContents);
   this->Ends->verticalHeader()->setVisible(false);
-  this->Ends->setMinimumHeight(90);
-  this->Ends->setToolTip("Edit a name or an extension, then Prepare for CFD again");
+  this->Ends->setMinimumHeight(110);
+  this->Ends->setToolTip("Edit a name, an extension or where the end is cut (or drag the end's "
+                         "disc in the 3D view), then Prepare for CFD");
   prepareLayout->addWidget(this->Ends);
   this->Prepare = new QPushButton("Prepare for CFD", prepare);
   this->Prepare->setObjectName("prepareButton");
@@ -267,6 +276,17 @@ ExportPanel::ExportPanel(MainActions* actions, QWidget* parent)
                             "extensions and flat labelled caps");
   prepareLayout->addWidget(this->Prepare);
   connect(this->Prepare, &QPushButton::clicked, this, &ExportPanel::prepareRequested);
+  connect(this->Ends,
+    &QTableWidget::cellChanged,
+    this,
+    [this](int row, int column) { this->endEdited(row, column); });
+  for (QDoubleSpinBox* box : { this->InletFactor, this->OutletFactor })
+  {
+    connect(box,
+      QOverload<double>::of(&QDoubleSpinBox::valueChanged),
+      this,
+      &ExportPanel::defaultFactorsChanged);
+  }
   layout->addWidget(prepare);
 
   this->Form = new ExportOptionsForm(this);
@@ -279,57 +299,263 @@ ExportPanel::ExportPanel(MainActions* actions, QWidget* parent)
   layout->addWidget(this->Report, 1);
 }
 
+std::array<double, 3> ExportPanel::rowPosition(const EndRow& row) const
+{
+  if (!this->BeforePrepare)
+  {
+    return row.Prepared.ClipCentre;
+  }
+  return bender::ClipPlaneAt(row.Path, std::max(0.0, row.Distance)).Centre;
+}
+
 bender::PrepareForCfdOptions ExportPanel::prepareOptions() const
 {
   bender::PrepareForCfdOptions options;
   options.Clip = this->Clip->isChecked();
   options.InletExtension = this->InletFactor->value();
   options.OutletExtension = this->OutletFactor->value();
-  // The listed ends, by the centre of their own rim: names and factors as edited.
-  for (int row = 0; row < this->Ends->rowCount() && row < static_cast<int>(this->Listed.size());
+  // Before Prepare, what was edited; after, every end as listed (Prepare again makes the same
+  // ends with the edits). Names and factors go by where the end is cut, cuts by the end.
+  for (int row = 0; row < this->Ends->rowCount() && row < static_cast<int>(this->Rows.size());
        ++row)
   {
-    const bender::CfdEnd& end = this->Listed[static_cast<std::size_t>(row)];
-    const QTableWidgetItem* name = this->Ends->item(row, 0);
-    const QTableWidgetItem* factor = this->Ends->item(row, 3);
-    bender::CfdEndName entry;
-    entry.Position = end.ClipCentre;
-    entry.Name = name ? name->text().trimmed().toStdString() : end.Name;
-    entry.Inlet = end.Type == bender::PatchType::Inlet;
-    options.Names.push_back(entry);
+    const EndRow& end = this->Rows[static_cast<std::size_t>(row)];
+    const std::array<double, 3> position = this->rowPosition(end);
+    const QTableWidgetItem* name = this->Ends->item(row, NameColumn);
+    const QTableWidgetItem* factor = this->Ends->item(row, FactorColumn);
+    if (!this->BeforePrepare || end.NameEdited)
+    {
+      bender::CfdEndName entry;
+      entry.Position = position;
+      entry.Name = name ? name->text().trimmed().toStdString() : end.AutoName;
+      entry.Inlet = end.Inlet;
+      options.Names.push_back(entry);
+    }
     bool ok = false;
     const double value = factor ? factor->text().toDouble(&ok) : 0.0;
-    if (ok)
+    if (ok && (!this->BeforePrepare || end.FactorEdited))
     {
-      options.ExtensionFactors.push_back({ end.ClipCentre, value });
+      options.ExtensionFactors.push_back({ position, value });
+    }
+    if (options.Clip && end.Distance >= 0 && (!this->BeforePrepare || end.DistanceChosen))
+    {
+      const std::array<double, 3> at =
+        this->BeforePrepare ? end.Path.Position : end.Prepared.CenterlineEnd;
+      options.Ends.push_back({ at, end.Distance });
     }
   }
   return options;
 }
 
+void ExportPanel::fillRow(int row)
+{
+  const EndRow& end = this->Rows[static_cast<std::size_t>(row)];
+  const bool filling = this->Filling;
+  this->Filling = true;
+  auto fixed = [](const QString& text)
+  {
+    auto* item = new QTableWidgetItem(text);
+    item->setFlags(item->flags() & ~Qt::ItemIsEditable);
+    return item;
+  };
+  const bender::CfdEnd& prepared = end.Prepared;
+  double radius = prepared.Radius;
+  double factor = prepared.Radius > 0 ? prepared.ExtensionLength / prepared.Radius : 0.0;
+  if (this->BeforePrepare)
+  {
+    radius = bender::ClipPlaneAt(end.Path, std::max(0.0, end.Distance)).Radius;
+    factor = end.Inlet ? this->InletFactor->value() : this->OutletFactor->value();
+  }
+  if (!end.NameEdited || !this->Ends->item(row, NameColumn))
+  {
+    this->Ends->setItem(
+      row, NameColumn, new QTableWidgetItem(QString::fromStdString(end.AutoName)));
+  }
+  this->Ends->setItem(row, RoleColumn, fixed(end.Inlet ? "inlet" : "outlet"));
+  this->Ends->setItem(row, RadiusColumn, fixed(QString::number(radius, 'f', 2)));
+  if (!end.FactorEdited || !this->Ends->item(row, FactorColumn))
+  {
+    this->Ends->setItem(row, FactorColumn, new QTableWidgetItem(QString::number(factor, 'f', 1)));
+  }
+  if (end.Distance >= 0)
+  {
+    auto* cut = new QTableWidgetItem(QString::number(end.Distance, 'f', 2));
+    cut->setToolTip(QString("0 to %1 mm; %2")
+                      .arg(end.MaximumDistance, 0, 'f', 1)
+                      .arg(end.DistanceChosen ? "chosen" : "default: where the radius settles"));
+    this->Ends->setItem(row, CutColumn, cut);
+  }
+  else
+  {
+    this->Ends->setItem(row, CutColumn, fixed("not clipped"));
+  }
+  this->Filling = filling;
+}
+
 void ExportPanel::showEnds(const std::vector<bender::CfdEnd>& ends)
 {
-  this->Listed = ends;
-  this->Ends->setRowCount(static_cast<int>(ends.size()));
-  for (int row = 0; row < static_cast<int>(ends.size()); ++row)
+  const QSignalBlocker block(this->Ends);
+  this->BeforePrepare = false;
+  this->Rows.clear();
+  for (const bender::CfdEnd& end : ends)
   {
-    const bender::CfdEnd& end = ends[static_cast<std::size_t>(row)];
-    auto* role = new QTableWidgetItem(bender::PatchTypeName(end.Type));
-    role->setFlags(role->flags() & ~Qt::ItemIsEditable);
-    auto* radius = new QTableWidgetItem(QString::number(end.Radius, 'f', 2));
-    radius->setFlags(radius->flags() & ~Qt::ItemIsEditable);
-    const double factor = end.Radius > 0 ? end.ExtensionLength / end.Radius : 0.0;
-    this->Ends->setItem(row, 0, new QTableWidgetItem(QString::fromStdString(end.Name)));
-    this->Ends->setItem(row, 1, role);
-    this->Ends->setItem(row, 2, radius);
-    this->Ends->setItem(row, 3, new QTableWidgetItem(QString::number(factor, 'f', 1)));
+    EndRow row;
+    row.Prepared = end;
+    row.AutoName = end.Name;
+    row.Inlet = end.Type == bender::PatchType::Inlet;
+    row.Distance = end.ClipDistance;
+    row.MaximumDistance = 1e9;
+    this->Rows.push_back(row);
+  }
+  this->Ends->setRowCount(static_cast<int>(this->Rows.size()));
+  for (int row = 0; row < static_cast<int>(this->Rows.size()); ++row)
+  {
+    this->fillRow(row);
+  }
+}
+
+void ExportPanel::showCenterlineEnds(const std::vector<bender::CenterlineEndPath>& paths)
+{
+  const QSignalBlocker block(this->Ends);
+  this->BeforePrepare = true;
+  this->Rows.clear();
+  // The names Prepare gives: the largest end is the inlet, the others outlet_1, ... by
+  // decreasing size (predicted from the inscribed radius at the cut).
+  std::vector<double> radius;
+  for (const bender::CenterlineEndPath& path : paths)
+  {
+    EndRow row;
+    row.Path = path;
+    row.Distance = std::clamp(path.DefaultDistance, 0.0, path.MaximumDistance);
+    row.MaximumDistance = path.MaximumDistance;
+    radius.push_back(bender::ClipPlaneAt(path, row.Distance).Radius);
+    this->Rows.push_back(row);
+  }
+  std::vector<std::size_t> order(paths.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    order[k] = k;
+  }
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&radius](std::size_t a, std::size_t b) { return radius[a] > radius[b]; });
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    EndRow& row = this->Rows[order[k]];
+    row.Inlet = k == 0;
+    row.AutoName = k == 0 ? "inlet" : "outlet_" + std::to_string(k);
+  }
+  this->Ends->setRowCount(static_cast<int>(this->Rows.size()));
+  for (int row = 0; row < static_cast<int>(this->Rows.size()); ++row)
+  {
+    this->fillRow(row);
   }
 }
 
 void ExportPanel::clearEnds()
 {
-  this->Listed.clear();
+  this->Rows.clear();
+  this->BeforePrepare = false;
   this->Ends->setRowCount(0);
+}
+
+void ExportPanel::setCutDistance(int row, double distance)
+{
+  if (row < 0 || row >= static_cast<int>(this->Rows.size()) || !std::isfinite(distance))
+  {
+    return;
+  }
+  EndRow& end = this->Rows[static_cast<std::size_t>(row)];
+  if (end.Distance < 0)
+  {
+    return;
+  }
+  end.Distance = std::clamp(distance, 0.0, end.MaximumDistance);
+  end.DistanceChosen = true;
+  const QSignalBlocker block(this->Ends);
+  this->fillRow(row);
+}
+
+double ExportPanel::cutDistance(int row) const
+{
+  return row >= 0 && row < static_cast<int>(this->Rows.size())
+    ? this->Rows[static_cast<std::size_t>(row)].Distance
+    : -1.0;
+}
+
+QString ExportPanel::endName(int row) const
+{
+  const QTableWidgetItem* item =
+    row >= 0 && row < this->Ends->rowCount() ? this->Ends->item(row, NameColumn) : nullptr;
+  return item ? item->text().trimmed() : QString();
+}
+
+bool ExportPanel::endIsInlet(int row) const
+{
+  return row >= 0 && row < static_cast<int>(this->Rows.size()) &&
+    (this->Rows[static_cast<std::size_t>(row)].Inlet || this->endName(row) == "inlet");
+}
+
+void ExportPanel::endEdited(int row, int column)
+{
+  if (this->Filling || row < 0 || row >= static_cast<int>(this->Rows.size()))
+  {
+    return;
+  }
+  EndRow& end = this->Rows[static_cast<std::size_t>(row)];
+  if (column == NameColumn)
+  {
+    end.NameEdited = true;
+    emit this->endNamesChanged();
+  }
+  else if (column == FactorColumn)
+  {
+    end.FactorEdited = true;
+  }
+  else if (column == CutColumn && end.Distance >= 0)
+  {
+    const QTableWidgetItem* item = this->Ends->item(row, CutColumn);
+    bool ok = false;
+    const double value = item ? item->text().trimmed().toDouble(&ok) : 0.0;
+    if (ok && std::isfinite(value))
+    {
+      end.Distance = std::clamp(value, 0.0, end.MaximumDistance);
+      end.DistanceChosen = true;
+    }
+    // Shown as taken (clamped, or the previous value for text that is no number).
+    const QSignalBlocker block(this->Ends);
+    this->fillRow(row);
+    if (ok)
+    {
+      emit this->cutDistanceEdited(row, end.Distance);
+    }
+  }
+}
+
+void ExportPanel::defaultFactorsChanged()
+{
+  // Before Prepare the factors not edited follow the defaults.
+  if (!this->BeforePrepare)
+  {
+    return;
+  }
+  const QSignalBlocker block(this->Ends);
+  for (int row = 0; row < static_cast<int>(this->Rows.size()); ++row)
+  {
+    this->fillRow(row);
+  }
+}
+
+void ExportPanel::showEvent(QShowEvent* event)
+{
+  QWidget::showEvent(event);
+  emit this->shownChanged(true);
+}
+
+void ExportPanel::hideEvent(QHideEvent* event)
+{
+  QWidget::hideEvent(event);
+  emit this->shownChanged(false);
 }
 
 bender::ExportSurfaceOptions ExportPanel::options(const QString& path) const

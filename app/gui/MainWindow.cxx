@@ -151,6 +151,7 @@ void MainWindow::buildPanels()
   this->Gesture->setInteractive(this->Options.interactive);
   this->Exports = new ExportFlow(
     this->Session, this->Worker, this->Actions, this->Export, this->Options.interactive, this);
+  this->Exports->attachView(this->View, this->Vessels); // the CFD ends in the view (H2)
   GestureController* gesture = this->Gesture;
   this->TrackersUi->attach(
     this->Trackers.get(), &this->Session, this->View, [gesture]() { return gesture->release(); });

@@ -31,6 +31,8 @@ struct End
   std::string Name;
   bool Inlet = false;
   double Factor = -1.0;
+  std::array<double, 3> CenterlineEnd{ { 0, 0, 0 } };
+  double ClipDistance = -1.0;
 };
 
 template<typename T>
@@ -48,7 +50,9 @@ std::size_t Nearest(const std::vector<End>& ends, const T& position)
 }
 } // namespace
 
-PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptions& options)
+PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
+  const PrepareForCfdOptions& options,
+  const ProgressReporter& progress)
 {
   const std::string& input = options.InputName;
   auto error = [&input](const std::string& what) { return InputError(input + ": " + what); };
@@ -73,6 +77,7 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptio
       vtkSmartPointer<vtkPolyData> centerlines = options.Centerlines;
       if (!centerlines)
       {
+        progress.Report("centerlines", 0.0);
         const CenterlineResult cl = ComputeCenterlines(surface);
         if (!cl.Ok)
         {
@@ -80,6 +85,8 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptio
         }
         centerlines = cl.Paths;
       }
+      progress.ThrowIfCancelled("centerlines");
+      progress.Report("clip", 0.2);
       ClipOptions clip;
       clip.Ends = options.Ends;
       ClipResult clipped = ClipVesselEnds(surface, centerlines, clip);
@@ -87,7 +94,16 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptio
       open = clipped.Surface;
       for (const ClippedEnd& c : clipped.Ends)
       {
-        ends.push_back({ c.Rim, c.Centre, c.Normal, c.Radius, c.Area, "", false, -1.0 });
+        ends.push_back({ c.Rim,
+          c.Centre,
+          c.Normal,
+          c.Radius,
+          c.Area,
+          "",
+          false,
+          -1.0,
+          c.CenterlineEnd,
+          c.Distance });
       }
     }
     else
@@ -95,8 +111,16 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptio
       open = surface;
       for (const FlowExtensionEnd& e : OpenEnds(surface))
       {
-        ends.push_back(
-          { e.Rim, e.Centre, e.Normal, e.Radius, M_PI * e.Radius * e.Radius, "", false, -1.0 });
+        ends.push_back({ e.Rim,
+          e.Centre,
+          e.Normal,
+          e.Radius,
+          M_PI * e.Radius * e.Radius,
+          "",
+          false,
+          -1.0,
+          e.Centre,
+          -1.0 });
       }
       if (ends.empty())
       {
@@ -191,6 +215,8 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptio
   }
 
   // Flow extensions.
+  progress.ThrowIfCancelled("clip");
+  progress.Report("flow extensions", 0.5);
   std::vector<FlowExtensionEnd> request;
   for (const End& end : ends)
   {
@@ -222,6 +248,8 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptio
     out.Area = ends[k].Area;
     out.ExtensionLength = extended.Ends[k].Length;
     out.ClipCentre = ends[k].Centre;
+    out.CenterlineEnd = ends[k].CenterlineEnd;
+    out.ClipDistance = ends[k].ClipDistance;
     result.Ends.push_back(out);
   }
   if (!options.Cap)
@@ -232,6 +260,8 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptio
     WritePatchLabels(result.Surface, ids, { { kWallEntityId, "wall", PatchType::Wall } });
     return result;
   }
+  progress.ThrowIfCancelled("flow extensions");
+  progress.Report("caps", 0.7);
   vtkNew<vtkBenderCapFilter> cap;
   cap->SetInputData(extended.Surface);
   for (const CfdEnd& end : result.Ends)

@@ -15,6 +15,7 @@
 // Units are the surface's (mm for Bender's surfaces); nothing is written to disk.
 
 #include "PatchLabels.h"
+#include "Progress.h"
 #include "VesselClip.h"
 
 #include <vtkSmartPointer.h>
@@ -69,6 +70,11 @@ struct CfdEnd
   double Area = 0.0;
   double ExtensionLength = 0.0;
   std::array<double, 3> ClipCentre{ { 0, 0, 0 } }; ///< centre of the vessel's own rim
+  /// With Clip: the vessel end on the centerline (CenterlineEndPath::Position) and the arc
+  /// length from it to the cut (ClipEndRequest{CenterlineEnd, ClipDistance} cuts there again).
+  /// Without Clip: ClipDistance is -1.
+  std::array<double, 3> CenterlineEnd{ { 0, 0, 0 } };
+  double ClipDistance = -1.0;
 };
 
 struct PrepareForCfdResult
@@ -80,8 +86,12 @@ struct PrepareForCfdResult
 
 /// Throws bender::InputError, one line starting with options.InputName: an empty surface, no
 /// centerline, a clip plane that cuts no vessel, fewer than two ends, Cap without Clip on a
-/// surface with no open end, bad names or factors.
-PrepareForCfdResult PrepareForCfd(vtkPolyData* surface, const PrepareForCfdOptions& options = {});
+/// surface with no open end, bad names or factors. `progress`: the stages ("centerlines",
+/// "clip", "flow extensions", "caps") are reported and the cancel flag is polled between them
+/// (bender::Cancelled; nothing returned, `surface` untouched either way).
+PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
+  const PrepareForCfdOptions& options = {},
+  const ProgressReporter& progress = {});
 
 } // namespace bender
 

@@ -769,6 +769,74 @@ std::vector<CenterlineEnd> FindCenterlineEnds(vtkPolyData* centerlines)
   return ends;
 }
 
+namespace
+{
+Profile ProfileOf(const CenterlineEndPath& path)
+{
+  Profile p;
+  p.X = path.Points;
+  p.S = path.ArcLengths;
+  p.R = path.Radii;
+  return p;
+}
+} // namespace
+
+std::vector<CenterlineEndPath> FindCenterlineEndPaths(vtkPolyData* centerlines)
+{
+  std::vector<CenterlineEndPath> paths;
+  for (const EndGroup& g : EndGroups(centerlines))
+  {
+    CenterlineEndPath path;
+    path.Position = g.Position;
+    path.Radius = g.Radius;
+    path.Points = g.Longest.X;
+    path.ArcLengths = g.Longest.S;
+    path.Radii = g.Longest.R;
+    path.DefaultDistance = SettledDistance(g.Longest);
+    path.MaximumDistance = 0.5 * g.Longest.Length();
+    paths.push_back(std::move(path));
+  }
+  return paths;
+}
+
+ClipPlane ClipPlaneAt(const CenterlineEndPath& path, double distance)
+{
+  ClipPlane plane;
+  if (path.Points.size() < 2 || path.ArcLengths.size() != path.Points.size() ||
+    path.Radii.size() != path.Points.size())
+  {
+    return plane;
+  }
+  const Profile p = ProfileOf(path);
+  const double s = std::clamp(std::isfinite(distance) ? distance : 0.0, 0.0, p.Length());
+  plane.Centre = p.At(s, &plane.Radius);
+  const V3 t = p.Tangent(s);
+  plane.Normal = { { -t[0], -t[1], -t[2] } };
+  return plane;
+}
+
+double NearestDistanceOnPath(const CenterlineEndPath& path, const ClipPoint& point)
+{
+  double best = 0.0, bestD = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < path.Points.size() && i + 1 < path.ArcLengths.size(); ++i)
+  {
+    if (path.ArcLengths[i] > path.MaximumDistance)
+    {
+      break;
+    }
+    const V3 d = Sub(path.Points[i + 1], path.Points[i]);
+    const double dd = Dot(d, d);
+    const double t = dd > 0 ? std::clamp(Dot(Sub(point, path.Points[i]), d) / dd, 0.0, 1.0) : 0.0;
+    const double distance = Distance(Lerp(path.Points[i], path.Points[i + 1], t), point);
+    if (distance < bestD)
+    {
+      bestD = distance;
+      best = path.ArcLengths[i] + t * (path.ArcLengths[i + 1] - path.ArcLengths[i]);
+    }
+  }
+  return std::clamp(best, 0.0, path.MaximumDistance);
+}
+
 ClipResult ClipVesselEnds(vtkPolyData* surface,
   vtkPolyData* centerlines,
   const ClipOptions& options)

@@ -98,6 +98,38 @@ struct CenterlineEnd
 };
 std::vector<CenterlineEnd> FindCenterlineEnds(vtkPolyData* centerlines);
 
+/// A vessel end's centerline walked from the end inwards: the path along which
+/// ClipVesselEnds moves the end's clip plane (ClipEndRequest::Distance is an arc length on it).
+struct CenterlineEndPath
+{
+  ClipPoint Position{ { 0, 0, 0 } }; ///< the vessel end (as FindCenterlineEnds)
+  double Radius = 0.0;               ///< inscribed radius at the end
+  std::vector<ClipPoint> Points;     ///< from the end inwards, no repeated point
+  std::vector<double> ArcLengths;    ///< of Points, from 0
+  std::vector<double> Radii;         ///< inscribed radius at Points
+  double DefaultDistance = 0.0;      ///< the default cut ("where the radius has settled")
+  double MaximumDistance = 0.0;      ///< the farthest cut a request may ask: half the path
+};
+
+/// The paths of the vessel ends of FindCenterlineEnds, in the same order (the order of
+/// ClipResult::Ends). Throws InputError as FindCenterlineEnds.
+std::vector<CenterlineEndPath> FindCenterlineEndPaths(vtkPolyData* centerlines);
+
+/// The plane that ClipVesselEnds cuts by at arc length `distance` (clamped to the path) of
+/// `path`: its centre (the centerline point), its unit normal pointing outwards (towards the
+/// end) and the inscribed radius there. For the default distance ClipVesselEnds may move the
+/// cut inwards (an oblique old rim in the way); for a requested distance it cuts here or fails.
+struct ClipPlane
+{
+  ClipPoint Centre{ { 0, 0, 0 } };
+  ClipPoint Normal{ { 0, 0, 1 } };
+  double Radius = 0.0;
+};
+ClipPlane ClipPlaneAt(const CenterlineEndPath& path, double distance);
+
+/// The arc length in [0, path.MaximumDistance] of the path point nearest `point`.
+double NearestDistanceOnPath(const CenterlineEndPath& path, const ClipPoint& point);
+
 /// Clips every vessel end of `surface` (a triangle surface; polygons are triangulated). Throws
 /// InputError (one line) for an empty or non-finite surface, centerlines without ends, a
 /// requested position or distance whose plane cuts no vessel cleanly, and when the default

@@ -11,6 +11,7 @@
 #include "LogicTestUtilities.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
+#include "VesselCenterlines.h"
 #include "vtkBenderAdaptiveSubdivisionFilter.h"
 #include "vtkBenderWarpFilter.h"
 
@@ -20,6 +21,7 @@
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -139,6 +141,86 @@ TEST_F(PrepareForCfdTest, NamesByPositionNoExtensionNoCap)
   const PrepareForCfdResult o = PrepareForCfd(surface, open);
   EXPECT_EQ(CheckMesh(o.Surface).boundaryLoops.size(), 3u);
   EXPECT_EQ(ReadPatchLabels(o.Surface).size(), 1u);
+}
+
+// The application's cuts: an end cut where its disc was dragged (an arc length along the
+// end's centerline path) is cut exactly there; the result says where each end was cut, and
+// asking for those cuts again gives the same ends; the stages are reported and a set cancel
+// flag stops the call.
+TEST_F(PrepareForCfdTest, CutsWhereAskedAlongTheCenterlineReportsAndCancels)
+{
+  auto surface = ReadMesh(Aneurysm);
+  const CenterlineResult cl = ComputeCenterlines(surface);
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  const std::vector<CenterlineEndPath> paths = FindCenterlineEndPaths(cl.Paths);
+  ASSERT_EQ(paths.size(), 3u);
+  const CenterlineEndPath& path = paths[1];
+  const double d = path.DefaultDistance + 2.0;
+  ASSERT_LT(d, path.MaximumDistance);
+  PrepareForCfdOptions options;
+  options.Centerlines = cl.Paths;
+  options.InletExtension = options.OutletExtension = 0.0;
+  options.Ends.push_back({ path.Position, d });
+  std::vector<std::string> stages;
+  ProgressReporter progress;
+  progress.onProgress = [&stages](const std::string& stage, double) { stages.push_back(stage); };
+  const PrepareForCfdResult r = PrepareForCfd(surface, options, progress);
+  ExpectReady(r, 3);
+  EXPECT_EQ(stages, (std::vector<std::string>{ "clip", "flow extensions", "caps" }));
+  int found = 0;
+  for (const CfdEnd& end : r.Ends)
+  {
+    ASSERT_GE(end.ClipDistance, 0.0);
+    if (end.CenterlineEnd != path.Position)
+    {
+      continue;
+    }
+    ++found;
+    EXPECT_NEAR(end.ClipDistance, d, 1e-12);
+    const ClipPlane plane = ClipPlaneAt(path, d);
+    const double off = (end.ClipCentre[0] - plane.Centre[0]) * plane.Normal[0] +
+      (end.ClipCentre[1] - plane.Centre[1]) * plane.Normal[1] +
+      (end.ClipCentre[2] - plane.Centre[2]) * plane.Normal[2];
+    EXPECT_LT(std::abs(off), 1e-6 * plane.Radius);
+    // The cap (no extension) is the cut.
+    EXPECT_LT(std::hypot(end.Centre[0] - end.ClipCentre[0],
+                end.Centre[1] - end.ClipCentre[1],
+                end.Centre[2] - end.ClipCentre[2]),
+      0.05 * end.Radius);
+  }
+  EXPECT_EQ(found, 1);
+  // The cuts as the result says, asked again: the same ends.
+  PrepareForCfdOptions again = options;
+  again.Ends.clear();
+  for (const CfdEnd& end : r.Ends)
+  {
+    again.Ends.push_back({ end.CenterlineEnd, end.ClipDistance });
+  }
+  const PrepareForCfdResult same = PrepareForCfd(surface, again);
+  ASSERT_EQ(same.Ends.size(), r.Ends.size());
+  for (std::size_t k = 0; k < r.Ends.size(); ++k)
+  {
+    EXPECT_EQ(same.Ends[k].Name, r.Ends[k].Name);
+    for (int e = 0; e < 3; ++e)
+    {
+      EXPECT_NEAR(same.Ends[k].ClipCentre[e], r.Ends[k].ClipCentre[e], 1e-9);
+    }
+  }
+  // Cancelled: nothing returned, the input untouched.
+  const vtkIdType points = surface->GetNumberOfPoints();
+  std::atomic<bool> cancel{ true };
+  ProgressReporter cancelled;
+  cancelled.cancel = &cancel;
+  EXPECT_THROW(PrepareForCfd(surface, options, cancelled), Cancelled);
+  EXPECT_EQ(surface->GetNumberOfPoints(), points);
+  // Without Clip no end is cut.
+  PrepareForCfdOptions open;
+  open.Clip = false;
+  open.InletExtension = open.OutletExtension = 0.0;
+  for (const CfdEnd& end : PrepareForCfd(surface, open).Ends)
+  {
+    EXPECT_EQ(end.ClipDistance, -1.0);
+  }
 }
 
 TEST_F(PrepareForCfdTest, DemoSegmentationGetsThreeEnds)

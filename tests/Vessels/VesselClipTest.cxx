@@ -157,6 +157,81 @@ TEST_F(VesselClipTest, OpenYEndsArePerpendicularToTheAxes)
   EXPECT_TRUE(seen[0] && seen[1] && seen[2]);
 }
 
+TEST_F(VesselClipTest, EndPathsGiveThePlanesTheClipCutsBy)
+{
+  // The application slides each end's clip plane along FindCenterlineEndPaths' path and asks
+  // for the cut at that arc length: ClipVesselEnds must cut exactly on ClipPlaneAt's plane.
+  const Y& y = Y35();
+  const CenterlineResult& cl = Y35Centerlines();
+  ASSERT_TRUE(cl.Ok) << cl.Message;
+  const std::vector<CenterlineEndPath> paths = FindCenterlineEndPaths(cl.Paths);
+  const std::vector<CenterlineEnd> ends = FindCenterlineEnds(cl.Paths);
+  ASSERT_EQ(paths.size(), 3u);
+  const ClipResult defaults = ClipVesselEnds(y.Surface, cl.Paths);
+  ASSERT_EQ(defaults.Ends.size(), 3u);
+  for (std::size_t k = 0; k < paths.size(); ++k)
+  {
+    const CenterlineEndPath& path = paths[k];
+    EXPECT_EQ(path.Position, ends[k].Position);
+    ASSERT_GE(path.Points.size(), 2u);
+    ASSERT_EQ(path.ArcLengths.size(), path.Points.size());
+    EXPECT_EQ(path.Points.front(), path.Position);
+    for (std::size_t i = 1; i < path.ArcLengths.size(); ++i)
+    {
+      EXPECT_NEAR(path.ArcLengths[i] - path.ArcLengths[i - 1],
+        Dist(path.Points[i], path.Points[i - 1]),
+        1e-9);
+    }
+    EXPECT_NEAR(path.MaximumDistance, 0.5 * path.ArcLengths.back(), 1e-9);
+    // The default: at least a radius in, where the default clip cut (the open Y's first try
+    // succeeds).
+    EXPECT_GT(path.DefaultDistance, 0.9 * path.Radius);
+    EXPECT_NEAR(defaults.Ends[k].Distance, path.DefaultDistance, 1e-9);
+
+    // A cut 3 mm deeper than the default, requested by the end and the distance.
+    const double d = path.DefaultDistance + 3.0;
+    ASSERT_LT(d, path.MaximumDistance);
+    const ClipPlane plane = ClipPlaneAt(path, d);
+    EXPECT_NEAR(NearestDistanceOnPath(path, plane.Centre), d, 1e-6);
+    EXPECT_NEAR(Dot3(plane.Normal, plane.Normal), 1.0, 1e-12);
+    // Outwards: towards the end.
+    EXPECT_GT(Dot3(plane.Normal,
+                { { path.Position[0] - plane.Centre[0],
+                  path.Position[1] - plane.Centre[1],
+                  path.Position[2] - plane.Centre[2] } }),
+      0.0);
+    ClipOptions options;
+    options.Ends.push_back({ path.Position, d });
+    const ClipResult r = ClipVesselEnds(y.Surface, cl.Paths, options);
+    ExpectCleanOpenResult(r, 3, y.Surface);
+    const ClippedEnd& end = r.Ends[k];
+    EXPECT_TRUE(end.UserChosen);
+    EXPECT_NEAR(end.Distance, d, 1e-12);
+    EXPECT_GT(Dot3(end.Normal, plane.Normal), 1.0 - 1e-9);
+    EXPECT_NEAR(end.InscribedRadius, plane.Radius, 1e-12);
+    for (long long v : end.Rim)
+    {
+      std::array<double, 3> p;
+      r.Surface->GetPoint(v, p.data());
+      EXPECT_LE(std::abs(Dot3(
+                  { { p[0] - plane.Centre[0], p[1] - plane.Centre[1], p[2] - plane.Centre[2] } },
+                  plane.Normal)),
+        1e-9 * plane.Radius);
+    }
+    // The rim is centred on the centerline (the tubes are round) and 3 mm deeper than the
+    // default's.
+    EXPECT_LT(Dist(end.Centre, plane.Centre), 0.1 * plane.Radius);
+    EXPECT_NEAR(Dist(end.Centre, defaults.Ends[k].Centre), 3.0, 0.1 * plane.Radius);
+  }
+  // Clamped to the path.
+  const ClipPlane before = ClipPlaneAt(paths[0], -5.0);
+  EXPECT_EQ(before.Centre, paths[0].Position);
+  // The far end of the path is beyond the range: the nearest allowed point is its limit.
+  EXPECT_NEAR(NearestDistanceOnPath(paths[0], paths[0].Points.back()),
+    paths[0].MaximumDistance,
+    1e-9);
+}
+
 TEST_F(VesselClipTest, ClosedYIsOpenedAtItsThreeEnds)
 {
   const Y& y = Y35();

@@ -1,39 +1,103 @@
 // The export side of the window (issue 11): the Ctrl+E dialog offers the preset "OpenFOAM (m,
 // named solids)", caps, patches, frame, unit and the sidecar, and writes what it shows; named
 // solids never turn a binary STL into ASCII silently; the TetGen preset writes a .smesh; --cap
-// on a closed surface fails the export. Run under Xvfb (QT_QPA_PLATFORM=xcb); the dialog's
-// screenshot is kept in test-artifacts/.
+// on a closed surface fails the export. The Prepare for CFD step on the demo vessel: a disc
+// per vessel end in the 3D view, dragged with the mouse along its centerline (the table's cut
+// distance follows, and a typed distance moves the disc), then Prepare (a worker job: the
+// window keeps processing events) cuts exactly there and shows the labelled caps; a cancelled
+// Prepare changes nothing. Run under Xvfb (QT_QPA_PLATFORM=xcb); the screenshots are kept in
+// test-artifacts/.
 #include "AppTestUtilities.h"
+#include "BenderView.h"
+#include "CfdEndsOverlay.h"
 #include "ExportFlow.h"
 #include "ExportPanel.h"
 #include "MainActions.h"
 #include "MainWindow.h"
+#include "VesselController.h"
 
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMouseEvent>
 #include <QPlainTextEdit>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QStatusBar>
 #include <QSurfaceFormat>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
+#include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QtTest>
 
+#include <vtkCamera.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkPolyData.h>
+#include <vtkRenderer.h>
 #include <vtkSphereSource.h>
 
 #include "PatchLabels.h"
+#include "VesselClip.h"
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+namespace
+{
+using P3 = std::array<double, 3>;
+
+double Dot(const P3& a, const P3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+P3 Minus(const P3& a, const P3& b)
+{
+  return { { a[0] - b[0], a[1] - b[1], a[2] - b[2] } };
+}
+
+/// The area centroid of the cells labelled `id` (a cap).
+P3 CapCentre(vtkPolyData* surface, int id)
+{
+  vtkDataArray* ids = surface->GetCellData()->GetArray(bender::kCellEntityIdsArrayName);
+  P3 sum{ { 0, 0, 0 } };
+  double area = 0;
+  for (vtkIdType c = 0; ids && c < surface->GetNumberOfCells(); ++c)
+  {
+    if (static_cast<int>(ids->GetTuple1(c)) != id)
+      continue;
+    vtkIdType n;
+    const vtkIdType* pts;
+    surface->GetCellPoints(c, n, pts);
+    P3 p[3];
+    for (int k = 0; k < 3; ++k)
+      surface->GetPoint(pts[k], p[k].data());
+    const P3 u = Minus(p[1], p[0]), v = Minus(p[2], p[0]);
+    const P3 cr{
+      { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] }
+    };
+    const double a = 0.5 * std::sqrt(Dot(cr, cr));
+    for (int e = 0; e < 3; ++e)
+      sum[e] += a * (p[0][e] + p[1][e] + p[2][e]) / 3.0;
+    area += a;
+  }
+  return { { sum[0] / area, sum[1] / area, sum[2] / area } };
+}
+} // namespace
 
 class ExportAppTest : public QObject
 {
@@ -42,6 +106,28 @@ class ExportAppTest : public QObject
 private:
   QTemporaryDir Folder;
   std::unique_ptr<MainWindow> Window;
+  // While HoldJobs, every worker job waits at its start until Released (or cancelled): the
+  // test sees the window while Prepare for CFD runs.
+  std::atomic<bool> HoldJobs{ false };
+  std::atomic<bool> Released{ false };
+  // Saved between the Prepare tests.
+  vtkMTimeType PreparedTime = 0;
+
+  QVTKOpenGLNativeWidget* view() { return this->Window->view(); }
+
+  QPoint widgetPoint(const double display[2])
+  {
+    const double ratio = this->view()->devicePixelRatioF();
+    return QPoint(static_cast<int>(std::lround(display[0] / ratio)),
+      this->view()->height() - 1 - static_cast<int>(std::lround(display[1] / ratio)));
+  }
+
+  void sendMouseMove(const QPoint& at, Qt::MouseButtons buttons)
+  {
+    QMouseEvent move(QEvent::MouseMove, at, Qt::NoButton, buttons, Qt::NoModifier);
+    QApplication::sendEvent(this->view(), &move);
+    QCoreApplication::processEvents();
+  }
 
   ExportOptionsForm* panelForm()
   {
@@ -91,7 +177,18 @@ private slots:
   void initTestCase()
   {
     QVERIFY(this->Folder.isValid());
-    this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
+    MainWindowOptions options = bendertest::TestWindowOptions(this->Folder.path());
+    options.workHook = [this](const bender::ProgressReporter& progress)
+    {
+      // A safety limit only: the test releases the job long before.
+      for (int waited = 0;
+           this->HoldJobs && !this->Released && !progress.Cancelled() && waited < 60000;
+           waited += 5)
+      {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    };
+    this->Window = std::make_unique<MainWindow>(options);
     QVERIFY(bendertest::ShowTestWindow(*this->Window, false));
     // An open tube of radius 5 mm from x = -20 to 20: two open ends to cap.
     QVERIFY(this->Window->session().SetSurface(bendertest::Tube(-20, 20, 5, 41, 32), "tube"));
@@ -224,6 +321,7 @@ private slots:
     }
     panel->Clip->setChecked(false); // the tube's ends are open already
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
+    QVERIFY(this->Window->waitUntilIdle(120000)); // a job on the worker
     QCOMPARE(panel->Ends->rowCount(), 2);
     int inletRow = -1, outletRow = -1;
     for (int row = 0; row < 2; ++row)
@@ -252,6 +350,7 @@ private slots:
     panel->Ends->item(outletRow, 0)->setText("aorta_out");
     panel->Ends->item(outletRow, 3)->setText("0");
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
+    QVERIFY(this->Window->waitUntilIdle(120000));
     QCOMPARE(panel->Ends->rowCount(), 2);
     labels = bender::ReadPatchLabels(session.GetSurface());
     QCOMPARE(labels.size(), std::size_t(3));
@@ -265,6 +364,7 @@ private slots:
     // A bad name is refused with one line in the report; the surface stays.
     panel->Ends->item(outletRow, 0)->setText("no spaces");
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
+    QVERIFY(this->Window->waitUntilIdle(120000));
     QVERIFY(panel->findChild<QPlainTextEdit*>("checkReport")
               ->toPlainText()
               .startsWith("Prepare for CFD failed"));
@@ -289,6 +389,264 @@ private slots:
     QCOMPARE(finished.first().first().toBool(), false);
     QVERIFY(!QFileInfo::exists(stl));
     QVERIFY(!QFileInfo::exists(this->Folder.filePath("sphere.patches.json")));
+  }
+
+  void theVesselEndsAreDiscsDraggedAlongTheCenterlineAndPreparedThere()
+  {
+    auto* panel = this->Window->findChild<ExportPanel*>();
+    auto* panels = this->Window->findChild<QTabWidget*>("panels");
+    QVERIFY(panel && panels);
+    this->Window->startDemo();
+    QVERIFY(this->Window->waitUntilIdle(180000));
+    QVERIFY(this->Window->waitForCenterlines(180000));
+    panels->setCurrentWidget(panel);
+    QApplication::processEvents();
+    panel->Clip->setChecked(true);
+    CfdEndsOverlay* overlay = this->Window->exports()->endsOverlay();
+    QVERIFY(overlay);
+    QVERIFY(overlay->isVisible());
+    QVERIFY(!overlay->showsPatches());
+
+    // One disc per vessel end of the centerlines, on its plane, 1.5 inscribed radii wide.
+    const std::vector<bender::CenterlineEnd> ends =
+      bender::FindCenterlineEnds(this->Window->vessels()->vessels().GetPaths());
+    QCOMPARE(ends.size(), std::size_t(3)); // the demo: an inlet and two outlets
+    QCOMPARE(overlay->numberOfEnds(), 3);
+    QCOMPARE(overlay->numberOfDiscsShown(), 3);
+    QVERIFY(panel->listsCenterlineEnds());
+    QCOMPARE(panel->Ends->rowCount(), 3);
+    int inlets = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const bender::ClipPlane plane = overlay->plane(k);
+      QVERIFY(plane.Radius > 0.5);
+      vtkPolyData* disc = overlay->disc(k);
+      QVERIFY(disc && disc->GetNumberOfPoints() >= 24);
+      for (vtkIdType i = 0; i < disc->GetNumberOfPoints(); ++i)
+      {
+        P3 p;
+        disc->GetPoint(i, p.data());
+        const P3 d = Minus(p, plane.Centre);
+        QVERIFY(std::abs(Dot(d, plane.Normal)) < 1e-6 * plane.Radius);
+        QVERIFY(std::abs(std::sqrt(Dot(d, d)) - 1.5 * plane.Radius) < 1e-6 * plane.Radius);
+      }
+      // The disc starts where the clip cuts by default; the table says so.
+      QCOMPARE(overlay->distance(k), overlay->path(k).DefaultDistance);
+      QCOMPARE(panel->Ends->item(k, ExportPanel::CutColumn)->text(),
+        QString::number(overlay->distance(k), 'f', 2));
+      QVERIFY(overlay->label(k).startsWith(panel->endName(k)));
+      inlets += panel->endIsInlet(k) ? 1 : 0;
+    }
+    QCOMPARE(inlets, 1);
+    // Another panel: the discs go; back to Export: they come back.
+    panels->setCurrentIndex(0);
+    QApplication::processEvents();
+    QCOMPARE(overlay->numberOfDiscsShown(), 0);
+    panels->setCurrentWidget(panel);
+    QApplication::processEvents();
+    QCOMPARE(overlay->numberOfDiscsShown(), 3);
+
+    // Drag the end whose move shows best on the screen, by about two radii inwards.
+    this->Window->benderView()->resetCamera();
+    this->Window->render();
+    int end = -1;
+    double best = 0, target = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const bender::CenterlineEndPath& path = overlay->path(k);
+      const double d0 = overlay->distance(k);
+      const double t = d0 + std::min(2.0 * path.Radius, 0.8 * (path.MaximumDistance - d0));
+      double a[2], b[2];
+      QVERIFY(overlay->pathDisplayPosition(k, d0, a));
+      QVERIFY(overlay->pathDisplayPosition(k, t, b));
+      const double pixels = std::hypot(b[0] - a[0], b[1] - a[1]);
+      if (pixels > best)
+      {
+        best = pixels;
+        end = k;
+        target = t;
+      }
+    }
+    QVERIFY2(best > 20, qPrintable(QString::number(best)));
+    const double start = overlay->distance(end);
+    const double radius = overlay->plane(end).Radius;
+    const bender::ClipPlane before = overlay->plane(end);
+    double handle[2], goal[2];
+    QVERIFY(overlay->handleDisplayPosition(end, handle));
+    QVERIFY(overlay->pathDisplayPosition(end, target, goal));
+    QVERIFY(handle[0] > 0 && handle[0] < this->view()->width() && handle[1] > 0 &&
+      handle[1] < this->view()->height());
+    vtkCamera* camera = this->Window->renderer()->GetActiveCamera();
+    double eye[3];
+    camera->GetPosition(eye);
+    QTest::mousePress(this->view(), Qt::LeftButton, Qt::NoModifier, this->widgetPoint(handle));
+    QCOMPARE(overlay->draggedEnd(), end);
+    for (int step = 1; step <= 8; ++step)
+    {
+      const double at[2] = { handle[0] + (goal[0] - handle[0]) * step / 8.0,
+        handle[1] + (goal[1] - handle[1]) * step / 8.0 };
+      this->sendMouseMove(this->widgetPoint(at), Qt::LeftButton);
+    }
+    QTest::mouseRelease(this->view(), Qt::LeftButton, Qt::NoModifier, this->widgetPoint(goal));
+    QCOMPARE(overlay->draggedEnd(), -1);
+    // The disc moved along the centerline by the drag (to a pixel), perpendicular to it there;
+    // the camera did not move (the drag was the disc's).
+    const double dragged = overlay->distance(end);
+    QVERIFY2(std::abs(dragged - target) < 0.25 * radius,
+      qPrintable(QString("%1 -> %2, wanted %3").arg(start).arg(dragged).arg(target)));
+    QVERIFY(dragged - start > 1.0 * radius);
+    double eyeAfter[3];
+    camera->GetPosition(eyeAfter);
+    QCOMPARE(eyeAfter[0], eye[0]);
+    QCOMPARE(eyeAfter[2], eye[2]);
+    const bender::ClipPlane moved = overlay->plane(end);
+    const bender::ClipPlane expected = bender::ClipPlaneAt(overlay->path(end), dragged);
+    QCOMPARE(moved.Centre, expected.Centre);
+    QVERIFY(std::sqrt(Dot(Minus(moved.Centre, before.Centre), Minus(moved.Centre, before.Centre))) >
+      0.9 * radius);
+    // The table follows the drag.
+    QCOMPARE(panel->cutDistance(end), dragged);
+    QCOMPARE(
+      panel->Ends->item(end, ExportPanel::CutColumn)->text(), QString::number(dragged, 'f', 2));
+
+    // A distance typed in the table moves another end's disc.
+    const int typed = (end + 1) % 3;
+    const double typedDistance = std::round((overlay->distance(typed) + 1.5) * 100.0) / 100.0;
+    panel->Ends->item(typed, ExportPanel::CutColumn)
+      ->setText(QString::number(typedDistance, 'f', 2));
+    QVERIFY(std::abs(overlay->distance(typed) - typedDistance) < 1e-9);
+    // Past the range: clamped, in the table too.
+    const int third = (end + 2) % 3;
+    panel->Ends->item(third, ExportPanel::CutColumn)->setText("100000");
+    QCOMPARE(overlay->distance(third), overlay->path(third).MaximumDistance);
+    QCOMPARE(panel->cutDistance(third), overlay->path(third).MaximumDistance);
+    panel->Ends->item(third, ExportPanel::CutColumn)
+      ->setText(QString::number(overlay->path(third).DefaultDistance, 'f', 2));
+    QApplication::processEvents();
+    const QString shots = QString(BENDER_ARTIFACT_DIR);
+    QDir().mkpath(shots);
+    QVERIFY(this->Window->grabWindowImage().save(shots + "/cfd-ends.png"));
+
+    // Prepare for CFD, no flow extension (the caps are the cuts), on the worker: the window
+    // keeps processing events (a timer ticks, the progress bar shows) while it runs.
+    const bender::ClipPlane cutDragged = overlay->plane(end);
+    const bender::ClipPlane cutTyped = overlay->plane(typed);
+    panel->InletFactor->setValue(0.0);
+    panel->OutletFactor->setValue(0.0);
+    this->HoldJobs = true;
+    this->Released = false;
+    int ticksWhileBusy = 0;
+    bool progressShown = false;
+    QTimer timer;
+    timer.setInterval(10);
+    connect(&timer,
+      &QTimer::timeout,
+      [&]()
+      {
+        if (!this->Window->isBusy())
+          return;
+        ++ticksWhileBusy;
+        for (QProgressBar* bar : this->Window->statusBar()->findChildren<QProgressBar*>())
+          progressShown = progressShown || bar->isVisible();
+        if (ticksWhileBusy >= 5)
+          this->Released = true;
+      });
+    timer.start();
+    QSignalSpy finished(this->Window.get(), &MainWindow::workFinished);
+    QTest::mouseClick(panel->Prepare, Qt::LeftButton);
+    QVERIFY(this->Window->isBusy()); // started, not done: the click returned at once
+    QVERIFY(this->Window->waitUntilIdle(180000));
+    timer.stop();
+    this->HoldJobs = false;
+    QVERIFY(ticksWhileBusy >= 5);
+    QVERIFY(progressShown);
+    QCOMPARE(finished.count(), 1);
+    QVERIFY2(finished.first().first().toBool(),
+      qPrintable(panel->findChild<QPlainTextEdit*>("checkReport")->toPlainText()));
+
+    // The caps are where the discs were: on the dragged plane, centred on the centerline.
+    vtkPolyData* surface = this->Window->session().GetSurface();
+    const auto labels = bender::ReadPatchLabels(surface);
+    QCOMPARE(labels.size(), std::size_t(4)); // wall and three ends
+    for (const bender::ClipPlane& cut : { cutDragged, cutTyped })
+    {
+      int nearest = -1;
+      double nearestDistance = 1e300;
+      for (const auto& label : labels)
+      {
+        if (label.id < 2)
+          continue;
+        const P3 c = CapCentre(surface, label.id);
+        const double d = std::sqrt(Dot(Minus(c, cut.Centre), Minus(c, cut.Centre)));
+        if (d < nearestDistance)
+        {
+          nearestDistance = d;
+          nearest = label.id;
+        }
+      }
+      QVERIFY(nearest >= 2);
+      const P3 c = CapCentre(surface, nearest);
+      const double off = Dot(Minus(c, cut.Centre), cut.Normal);
+      QVERIFY2(std::abs(off) < 0.05 * cut.Radius,
+        qPrintable(QString("cap %1 off its plane by %2 mm").arg(nearest).arg(off)));
+      QVERIFY2(nearestDistance < 0.5 * cut.Radius,
+        qPrintable(
+          QString("cap %1 is %2 mm from the centerline").arg(nearest).arg(nearestDistance)));
+    }
+    // Not where the dragged end is cut by default.
+    {
+      const P3 shift = Minus(cutDragged.Centre, before.Centre);
+      QVERIFY(std::abs(Dot(shift, before.Normal)) > 0.8 * radius);
+    }
+
+    // After Prepare the discs go, the caps are shown labelled with their names; the table
+    // lists the prepared ends with their cuts.
+    QVERIFY(overlay->showsPatches());
+    QCOMPARE(overlay->numberOfDiscsShown(), 0);
+    QCOMPARE(overlay->numberOfPatchLabelsShown(), 3);
+    std::vector<QString> names = overlay->patchLabels();
+    std::sort(names.begin(), names.end());
+    QCOMPARE(names, (std::vector<QString>{ "inlet", "outlet_1", "outlet_2" }));
+    QVERIFY(overlay->caps()->GetNumberOfCells() > 0);
+    QVERIFY(!panel->listsCenterlineEnds());
+    QCOMPARE(panel->Ends->rowCount(), 3);
+    bool draggedListed = false;
+    for (int row = 0; row < 3; ++row)
+    {
+      draggedListed = draggedListed || std::abs(panel->cutDistance(row) - dragged) < 1e-9;
+    }
+    QVERIFY(draggedListed);
+    // The centerlines of the prepared surface arrive: its caps stay shown.
+    QVERIFY(this->Window->waitForCenterlines(180000));
+    QApplication::processEvents();
+    QVERIFY(overlay->showsPatches());
+    QCOMPARE(overlay->numberOfPatchLabelsShown(), 3);
+    this->Window->render();
+    QVERIFY(this->Window->grabWindowImage().save(shots + "/cfd-prepared.png"));
+    this->PreparedTime = surface->GetMTime();
+  }
+
+  void aCancelledPrepareChangesNothing()
+  {
+    auto* panel = this->Window->findChild<ExportPanel*>();
+    vtkPolyData* surface = this->Window->session().GetSurface();
+    QVERIFY(this->PreparedTime != 0 && surface->GetMTime() == this->PreparedTime);
+    this->HoldJobs = true;
+    this->Released = false;
+    QSignalSpy finished(this->Window.get(), &MainWindow::workFinished);
+    QTest::mouseClick(panel->Prepare, Qt::LeftButton); // again, from the surface before
+    QVERIFY(this->Window->isBusy());
+    auto* cancel = this->Window->statusBar()->findChild<QPushButton*>("cancelWork");
+    QVERIFY(cancel && cancel->isVisible());
+    QTest::mouseClick(cancel, Qt::LeftButton);
+    QVERIFY(this->Window->waitUntilIdle(180000));
+    this->HoldJobs = false;
+    QCOMPARE(finished.count(), 1);
+    QCOMPARE(finished.first().first().toBool(), false);
+    QCOMPARE(this->Window->session().GetSurface(), surface);
+    QCOMPARE(surface->GetMTime(), this->PreparedTime);
+    QVERIFY(this->Window->exports()->endsOverlay()->showsPatches());
+    QCOMPARE(bender::ReadPatchLabels(surface).size(), std::size_t(4));
   }
 };
 
