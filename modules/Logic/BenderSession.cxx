@@ -8,7 +8,12 @@
 #include "SessionAutosave.h"
 #include "WarpPlanIO.h"
 #include <vtkAlgorithmOutput.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataAlgorithm.h>
+#include <vtkQuadricClustering.h>
 
 #include <algorithm>
 #include <cmath>
@@ -67,13 +72,123 @@ vtkSmartPointer<vtkPolyData> InputOrEmpty(vtkPolyData* surface)
 {
   return surface ? vtkSmartPointer<vtkPolyData>(surface) : vtkSmartPointer<vtkPolyData>::New();
 }
+
+}
+
+vtkSmartPointer<vtkPolyData> MakeLevelOfDetail(vtkPolyData* surface)
+{
+  if (!surface || surface->GetNumberOfPoints() == 0)
+  {
+    return vtkSmartPointer<vtkPolyData>::New();
+  }
+  vtkNew<vtkQuadricClustering> decimate;
+  decimate->SetInputData(surface);
+  decimate->SetNumberOfDivisions(100, 100, 100);
+  decimate->AutoAdjustNumberOfDivisionsOn();
+  decimate->UseInputPointsOff();
+  decimate->CopyCellDataOff();
+  decimate->Update();
+  vtkSmartPointer<vtkPolyData> copy = decimate->GetOutput();
+  return copy;
+}
+
+namespace
+{
+// The level of detail of the committed surface (its input): the decimated copy, made when
+// the output is pulled and the input changed, or the copy a release job made for this input.
+class vtkBenderLevelOfDetailSource : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkBenderLevelOfDetailSource* New();
+  vtkTypeMacro(vtkBenderLevelOfDetailSource, vtkPolyDataAlgorithm);
+  /// `copy` is the decimated copy of `input` (in its present state): used instead of
+  /// decimating again.
+  void SetPrepared(vtkPolyData* input, vtkPolyData* copy)
+  {
+    this->PreparedFor = input;
+    this->PreparedTime = input ? input->GetMTime() : 0;
+    this->Prepared = copy;
+    this->Modified();
+  }
+  long long GetBuildCount() const { return this->Builds; }
+
+protected:
+  vtkBenderLevelOfDetailSource() = default;
+  int RequestData(vtkInformation*,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override
+  {
+    vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+    vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+    if (!input || !output)
+    {
+      return 0;
+    }
+    if (this->Prepared && input == this->PreparedFor && input->GetMTime() == this->PreparedTime)
+    {
+      output->ShallowCopy(this->Prepared);
+    }
+    else
+    {
+      output->ShallowCopy(MakeLevelOfDetail(input));
+      if (input->GetNumberOfPoints() > 0)
+      {
+        ++this->Builds;
+      }
+    }
+    return 1;
+  }
+
+private:
+  vtkBenderLevelOfDetailSource(const vtkBenderLevelOfDetailSource&) = delete;
+  void operator=(const vtkBenderLevelOfDetailSource&) = delete;
+  vtkPolyData* PreparedFor = nullptr; // identity only
+  vtkMTimeType PreparedTime = 0;
+  vtkSmartPointer<vtkPolyData> Prepared;
+  long long Builds = 0;
+};
+vtkStandardNewMacro(vtkBenderLevelOfDetailSource);
+
+vtkBenderLevelOfDetailSource* LevelOfDetail(vtkPolyDataAlgorithm* source)
+{
+  return static_cast<vtkBenderLevelOfDetailSource*>(source);
+}
 }
 
 BenderSession::BenderSession()
+  : ProxySource(vtkSmartPointer<vtkBenderLevelOfDetailSource>::New())
 {
   this->LiveFilter->SetPrecision(WarpPrecision::Table);
   this->LiveFilter->PassThroughOn();
   this->LiveFilter->SetInputData(InputOrEmpty(nullptr));
+  this->ProxySource->SetInputData(InputOrEmpty(nullptr));
+  this->ProxyFilter->SetPrecision(WarpPrecision::Table);
+  this->ProxyFilter->PassThroughOn();
+  this->ProxyFilter->SetInputConnection(this->ProxySource->GetOutputPort());
+}
+
+vtkAlgorithmOutput* BenderSession::GetProxyOutputPort() const
+{
+  return this->ProxyFilter->GetOutputPort();
+}
+
+vtkPolyData* BenderSession::GetProxySurface() const
+{
+  this->ProxyFilter->Update();
+  return this->ProxyFilter->GetOutput();
+}
+
+long long BenderSession::GetProxyBuildCount() const
+{
+  return LevelOfDetail(this->ProxySource)->GetBuildCount() + this->ProxyJobBuilds;
+}
+
+bool BenderSession::WantsProxy() const
+{
+  vtkPolyData* surface = this->History.Current();
+  return surface &&
+    static_cast<long long>(surface->GetNumberOfPolys() + surface->GetNumberOfStrips()) >
+    this->LodThreshold;
 }
 
 BenderSession::~BenderSession() = default;
@@ -116,13 +231,23 @@ void BenderSession::SetChangeCallback(std::function<void()> callback)
   this->ChangeCallback = std::move(callback);
 }
 
-void BenderSession::ShowCommitted()
+void BenderSession::ShowCommitted(vtkPolyData* proxy)
 {
   // The pipeline stays connected: the committed surface passes through the live filter.
   this->LiveFilter->PassThroughOn();
   this->LiveFilter->SetPreparedWarp(nullptr);
   this->LiveWarp.reset();
   this->LiveFilter->SetInputData(InputOrEmpty(this->History.Current()));
+  // The level of detail follows (decimated when pulled, unless a job made the copy).
+  this->ProxyDrag = false;
+  this->ProxyFilter->PassThroughOn();
+  this->ProxyFilter->SetPreparedWarp(nullptr);
+  this->ProxySource->SetInputData(InputOrEmpty(this->History.Current()));
+  if (proxy)
+  {
+    LevelOfDetail(this->ProxySource)->SetPrepared(this->History.Current(), proxy);
+    ++this->ProxyJobBuilds;
+  }
 }
 
 bool BenderSession::RefuseWhenBusy(const std::string& what)
@@ -149,13 +274,25 @@ bool BenderSession::SetLiveWarp(const WarpSpec& warp, std::string& problem)
     problem = e.what();
     return false;
   }
+  // Dragging a big surface, the decimated copy is warped (and validated) now; the full
+  // surface's filter holds the warp and computes only when its output is asked for.
+  vtkBenderWarpFilter* shown =
+    this->ProxyDrag ? this->ProxyFilter.GetPointer() : this->LiveFilter.GetPointer();
   this->LiveFilter->SetPreparedWarp(built);
-  this->LiveFilter->Update();
-  if (!this->LiveFilter->GetLastError().empty())
+  if (this->ProxyDrag)
   {
-    problem = this->LiveFilter->GetLastError();
+    this->ProxyFilter->SetPreparedWarp(built);
+  }
+  shown->Update();
+  if (!shown->GetLastError().empty())
+  {
+    problem = shown->GetLastError();
     // Back to the last valid warp so that the display stays consistent.
     this->LiveFilter->SetPreparedWarp(this->LiveWarp);
+    if (this->ProxyDrag)
+    {
+      this->ProxyFilter->SetPreparedWarp(this->LiveWarp);
+    }
     return false;
   }
   this->LiveWarp = built;
@@ -207,7 +344,7 @@ bool BenderSession::SetSurface(vtkPolyData* surface,
   this->SourcePath = sourcePath;
   this->SurfaceName = name;
   this->AutosaveSourcePath.clear();
-  this->ShowCommitted();
+  this->ShowCommitted(nullptr);
   std::ostringstream text;
   text << "Loaded " << name << ": " << surface->GetNumberOfPoints() << " points, "
        << surface->GetNumberOfPolys() + surface->GetNumberOfStrips() << " cells";
@@ -352,7 +489,7 @@ bool BenderSession::KeepHeldCommit()
   this->History.Commit(held.warp, held.result);
   ++this->ChangeCount;
   this->State = GrabState::Released;
-  this->ShowCommitted();
+  this->ShowCommitted(held.proxy);
   this->SetRibbonInformation(held.warp.final);
   this->Report(MessageSeverity::Warning,
     "Warp " + std::to_string(this->History.Position()) +
@@ -385,9 +522,12 @@ void BenderSession::UpdateLiveInformation()
 
 long long BenderSession::GetNumberOfBoundPoints() const
 {
-  return this->State == GrabState::Grabbed
-    ? static_cast<long long>(this->LiveFilter->GetNumberOfBoundPoints())
-    : 0;
+  if (this->State != GrabState::Grabbed)
+  {
+    return 0;
+  }
+  return static_cast<long long>(this->ProxyDrag ? this->ProxyFilter->GetNumberOfBoundPoints()
+                                                : this->LiveFilter->GetNumberOfBoundPoints());
 }
 
 bool BenderSession::Grab(const RibbonSpec& initial)
@@ -426,10 +566,13 @@ bool BenderSession::Grab(const RibbonSpec& initial)
   this->LiveWarp.reset();
   this->LiveFilter->SetInputData(InputOrEmpty(this->History.Current()));
   this->LiveFilter->PassThroughOff();
+  // A big surface is dragged as its decimated copy (made now unless it is ready).
+  this->ProxyDrag = this->WantsProxy();
+  this->ProxyFilter->SetPassThrough(!this->ProxyDrag);
   std::string problem;
   if (!this->SetLiveWarp(warp, problem))
   {
-    this->ShowCommitted();
+    this->ShowCommitted(nullptr);
     this->Report(MessageSeverity::Error, "Grab refused: " + problem);
     return false;
   }
@@ -441,9 +584,17 @@ bool BenderSession::Grab(const RibbonSpec& initial)
   this->WarnedInversion = false;
   this->UpdateLiveInformation();
   std::ostringstream text;
-  text << "Grabbed (" << Describe(this->Parameters)
-       << "): " << this->LiveFilter->GetNumberOfBoundPoints()
-       << " points inside the region of influence";
+  text << "Grabbed (" << Describe(this->Parameters) << "): ";
+  if (this->ProxyDrag)
+  {
+    text << "dragging a copy of " << this->GetProxySurface()->GetNumberOfPolys() << " triangles, "
+         << this->ProxyFilter->GetNumberOfBoundPoints()
+         << " of its points inside the region of influence (the whole surface at release)";
+  }
+  else
+  {
+    text << this->LiveFilter->GetNumberOfBoundPoints() << " points inside the region of influence";
+  }
   this->Report(MessageSeverity::Info, text.str());
   this->Changed();
   return true;
@@ -493,7 +644,7 @@ void BenderSession::CancelGrab(const std::string& reason)
   }
   this->State = GrabState::Idle;
   this->Held.reset();
-  this->ShowCommitted();
+  this->ShowCommitted(nullptr);
   // The ribbon goes back onto the committed surface, where it was grabbed.
   this->SetRibbonInformation(this->Live.initial);
   this->Report(MessageSeverity::Warning,
@@ -522,7 +673,7 @@ bool BenderSession::Undo()
   // The ribbon goes back to where the undone warp grabbed it.
   this->SetRibbonInformation(warps.back().initial);
   this->State = GrabState::Idle;
-  this->ShowCommitted();
+  this->ShowCommitted(nullptr);
   this->Report(MessageSeverity::Info, "Undid warp " + std::to_string(this->History.Position() + 1));
   this->Autosave();
   this->Changed();
@@ -548,7 +699,7 @@ bool BenderSession::Redo()
   ++this->ChangeCount;
   this->SetRibbonInformation(this->History.CommittedWarps().back().final);
   this->State = GrabState::Idle;
-  this->ShowCommitted();
+  this->ShowCommitted(nullptr);
   this->Report(MessageSeverity::Info, "Redid warp " + std::to_string(this->History.Position()));
   this->Autosave();
   this->Changed();
@@ -727,6 +878,8 @@ std::shared_ptr<SessionJob> BenderSession::BeginRelease()
     job->Input->DeepCopy(this->History.Current());
   }
   job->Name = "release";
+  // The level of detail of the result is made in the job too (off the session's thread).
+  job->MakeProxy = this->ProxyDrag;
   job->Guard = this->GuardCommits;
   job->GuardRule = this->GuardSpaceInversionRule;
   this->Busy = true;
@@ -887,6 +1040,11 @@ void SessionJob::Run(const ProgressReporter& progress)
             options.spaceInversionRule = this->GuardRule;
             this->Check = CheckCommit(this->Input, same, warp, options);
           }
+          if (this->JobKind == Kind::Release && this->MakeProxy)
+          {
+            progress.ThrowIfCancelled("level of detail");
+            this->Proxy = MakeLevelOfDetail(this->Steps.output);
+          }
         }
         break;
       case Kind::Check:
@@ -955,7 +1113,7 @@ bool BenderSession::FinishRelease(SessionJob& job)
   {
     const bool cancelled = job.Result == SessionJob::Outcome::Cancelled;
     this->State = GrabState::Idle;
-    this->ShowCommitted();
+    this->ShowCommitted(nullptr);
     this->SetRibbonInformation(this->Live.initial);
     this->Report(cancelled ? MessageSeverity::Warning : MessageSeverity::Error,
       std::string(cancelled ? "Release cancelled" : "Release failed") +
@@ -966,7 +1124,7 @@ bool BenderSession::FinishRelease(SessionJob& job)
   if (job.Plan.warps.empty())
   {
     this->State = GrabState::Idle;
-    this->ShowCommitted();
+    this->ShowCommitted(nullptr);
     this->SetRibbonInformation(this->Live.initial);
     this->Report(MessageSeverity::Info, "Released without moving: no warp recorded");
     this->Changed();
@@ -977,7 +1135,7 @@ bool BenderSession::FinishRelease(SessionJob& job)
   if (job.Guard && job.Check.checked && !job.Check.Passed())
   {
     // Held: the grab goes on with the live warp on screen until the user chooses.
-    this->Held = HeldCommit{ warp, job.Steps.output, job.Check };
+    this->Held = HeldCommit{ warp, job.Steps.output, job.Check, job.Proxy };
     this->Report(MessageSeverity::Warning,
       "Commit held: " + job.Check.Summary() + ". Reduce R, cancel (Esc) or keep the warp");
     this->Changed();
@@ -986,7 +1144,7 @@ bool BenderSession::FinishRelease(SessionJob& job)
   this->History.Commit(warp, result);
   ++this->ChangeCount;
   this->State = GrabState::Released;
-  this->ShowCommitted();
+  this->ShowCommitted(job.Proxy);
   this->SetRibbonInformation(warp.final);
   std::ostringstream text;
   text << "Warp " << this->History.Position() << " committed";
@@ -1021,7 +1179,7 @@ bool BenderSession::FinishReplay(SessionJob& job)
     this->SetRibbonInformation(job.Plan.warps.back().final);
   }
   this->State = GrabState::Idle;
-  this->ShowCommitted();
+  this->ShowCommitted(nullptr);
   this->Report(MessageSeverity::Info,
     "Replayed " + std::to_string(job.Plan.warps.size()) + " warps of " + job.Name);
   this->Autosave();
@@ -1060,7 +1218,7 @@ bool BenderSession::FinishRecover(SessionJob& job)
       ++this->ChangeCount; // recovered warps are in no saved plan
       this->SetRibbonInformation(job.Plan.warps.back().final);
     }
-    this->ShowCommitted();
+    this->ShowCommitted(nullptr);
   }
   this->AutosavePath = autosavePath;
   if (!recovered)

@@ -26,11 +26,18 @@
 #include <vector>
 
 class vtkAlgorithmOutput;
+class vtkPolyDataAlgorithm;
 
 namespace bender
 {
 
 struct SessionSnapshot;
+
+/// The decimated copy drawn (and warped while dragging) instead of a surface of many
+/// triangles: vtkQuadricClustering with bins of about 1/120 of the surface's size, points
+/// placed by the bins' quadrics (about 40k triangles for the 1.3 M-triangle benchmark vessel).
+/// An empty surface for none or an empty one.
+vtkSmartPointer<vtkPolyData> MakeLevelOfDetail(vtkPolyData* surface);
 
 /// Where the session is in the bend gesture.
 enum class GrabState
@@ -106,10 +113,12 @@ private:
   std::string Path;                    // Export
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
+  bool MakeProxy = false; // Release: decimate the result for the level of detail
   bool Guard = false;     // Release: check the changed region before committing
   bool GuardRule = false; // ... and hold on the space-inversion rule alone
   CommitCheck Check;
   ApplyPlanResult Steps;
+  vtkSmartPointer<vtkPolyData> Proxy; // Release of a big surface: the result's decimated copy
   MeshCheckReport Report;
   std::vector<std::string> Written;
   Outcome Result = Outcome::Pending;
@@ -131,6 +140,14 @@ private:
 /// is the input of a vtkBenderWarpFilter (Table precision) whose output port GetOutputPort()
 /// a mapper connects to. Idle, the filter passes the surface through (no copy); grabbed, each
 /// move builds the RibbonWarp once (validation included) and hands it to the filter.
+///
+/// Level of detail: a second pipeline, GetProxyOutputPort(), gives a decimated copy of the
+/// committed surface (vtkQuadricClustering, made when first asked for, once per surface
+/// version; after a release the job makes it off the session's thread) through its own warp
+/// filter. A grab on a surface of more than GetLevelOfDetailThreshold() triangles binds the
+/// copy and every move warps the copy alone (IsDraggingProxy()); the full surface's filter
+/// is handed the same warp but computes only when its output is asked for (GetDisplaySurface,
+/// a visible mapper). The release commits the exact warp of the full surface as always.
 class BenderSession
 {
 public:
@@ -227,8 +244,29 @@ public:
   bool GetFlipOccurred() const { return this->FlipOccurred; }
   /// The sentence describing the space-inversion risk of the live warp; empty when none.
   const std::string& GetSpaceInversionWarning() const { return this->InversionWarning; }
-  /// Points inside the region of influence of the current grab.
+  /// Points inside the region of influence of the current grab (of the decimated copy while
+  /// IsDraggingProxy()).
   long long GetNumberOfBoundPoints() const;
+  ///@}
+
+  ///@{ Level of detail while dragging big surfaces
+  /// Surfaces with more triangles than this are dragged as a decimated copy; default 500000
+  /// (the view's rotation threshold). Takes effect at the next grab.
+  void SetLevelOfDetailThreshold(long long triangles) { this->LodThreshold = triangles; }
+  long long GetLevelOfDetailThreshold() const { return this->LodThreshold; }
+  /// The decimated copy of the committed surface, warped live while IsDraggingProxy() and
+  /// passed through otherwise. Connected once, like GetOutputPort(); computed only when pulled.
+  vtkAlgorithmOutput* GetProxyOutputPort() const;
+  /// The same output, brought up to date (tests).
+  vtkPolyData* GetProxySurface() const;
+  /// True while grabbed with the decimated copy (a big surface, no commit held): moves warp
+  /// the copy, the full surface is warped at release (or when its output is pulled).
+  bool IsDraggingProxy() const
+  {
+    return this->State == GrabState::Grabbed && this->ProxyDrag && !this->Held;
+  }
+  /// How many decimated copies were made (on this thread or in release jobs): for tests.
+  long long GetProxyBuildCount() const;
   ///@}
 
   ///@{ History (exact coordinates restored)
@@ -321,7 +359,6 @@ public:
 private:
   void Report(MessageSeverity severity, const std::string& text);
   void Changed();
-  void ShowCommitted();
   bool RefuseWhenBusy(const std::string& what);
   std::shared_ptr<SessionJob> NewJob(SessionJob::Kind kind, const std::string& title);
   bool RunNow(const std::shared_ptr<SessionJob>& job);
@@ -330,6 +367,8 @@ private:
   bool FinishRecover(SessionJob& job);
   bool FinishExport(SessionJob& job);
   bool SetLiveWarp(const WarpSpec& warp, std::string& problem);
+  /// Whether the next grab of the committed surface drags the decimated copy.
+  bool WantsProxy() const;
   void UpdateLiveInformation();
   void SetRibbonInformation(const std::optional<RibbonSpec>& ribbon);
   void DropHeld();
@@ -339,7 +378,11 @@ private:
     WarpSpec warp;
     vtkSmartPointer<vtkPolyData> result;
     CommitCheck check;
+    vtkSmartPointer<vtkPolyData> proxy; // the result's decimated copy (big surfaces)
   };
+  /// The committed surface is shown (the live warps pass it through); `proxy`, when given, is
+  /// its decimated copy made by a job.
+  void ShowCommitted(vtkPolyData* proxy);
 
   WarpHistory History;
   WarpParameters Parameters;
@@ -362,6 +405,12 @@ private:
 
   vtkNew<vtkBenderWarpFilter> LiveFilter;
   std::shared_ptr<const RibbonWarp> LiveWarp;
+  // The level of detail: committed surface -> decimated copy (made once per version) -> warp.
+  vtkSmartPointer<vtkPolyDataAlgorithm> ProxySource;
+  vtkNew<vtkBenderWarpFilter> ProxyFilter;
+  long long LodThreshold = 500000;
+  bool ProxyDrag = false;
+  long long ProxyJobBuilds = 0;
   long long WarpBuildCount = 0;
   bool Busy = false;
 
