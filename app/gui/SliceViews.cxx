@@ -1,12 +1,20 @@
 #include "SliceViews.h"
 
+#include "BenderView.h"
+#include "CursorOverlay.h"
+
+#include <QComboBox>
 #include <QGridLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QStringList>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCornerAnnotation.h>
 #include <vtkDataArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -19,18 +27,98 @@
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <vector>
 
 namespace
 {
+// Each view's colour (its title, its trace in the other views, its plane in the 3D view):
+// axial red, coronal green, sagittal yellow.
+const unsigned char ViewColours[3][3] = { { 242, 97, 89 }, { 115, 217, 102 }, { 242, 217, 77 } };
+// The LPS axis along each view's normal: axial z (S), coronal y (P), sagittal x (L).
+int AxisOf(int view)
+{
+  return view == SliceViews::Axial ? 2 : (view == SliceViews::Coronal ? 1 : 0);
+}
+
+/// The slice views' mouse: a left click or drag moves the cursor (through `MoveCursor`, with
+/// the event's display position), Shift+left drag sets the window/level (the image style's
+/// plain left drag); the rest is vtkInteractorStyleImage's (right zoom, middle pan).
+class SliceStyle : public vtkInteractorStyleImage
+{
+public:
+  static SliceStyle* New();
+  vtkTypeMacro(SliceStyle, vtkInteractorStyleImage);
+
+  std::function<void(int, int)> MoveCursor;
+
+  void OnLeftButtonDown() override
+  {
+    vtkRenderWindowInteractor* rwi = this->Interactor;
+    if (rwi->GetShiftKey() && !rwi->GetControlKey())
+    {
+      // The image style's window/level is its left drag without modifiers.
+      rwi->SetShiftKey(0);
+      this->Superclass::OnLeftButtonDown();
+      rwi->SetShiftKey(1);
+      return;
+    }
+    const int* at = rwi->GetEventPosition();
+    this->FindPokedRenderer(at[0], at[1]);
+    if (!this->CurrentRenderer)
+    {
+      return;
+    }
+    this->Dragging = true;
+    this->GrabFocus(this->EventCallbackCommand);
+    if (this->MoveCursor)
+    {
+      this->MoveCursor(at[0], at[1]);
+    }
+  }
+  void OnMouseMove() override
+  {
+    if (!this->Dragging)
+    {
+      this->Superclass::OnMouseMove();
+      return;
+    }
+    const int* at = this->Interactor->GetEventPosition();
+    if (this->MoveCursor)
+    {
+      this->MoveCursor(at[0], at[1]);
+    }
+  }
+  void OnLeftButtonUp() override
+  {
+    if (!this->Dragging)
+    {
+      this->Superclass::OnLeftButtonUp();
+      return;
+    }
+    this->Dragging = false;
+    this->ReleaseFocus();
+  }
+
+private:
+  bool Dragging = false;
+};
+vtkStandardNewMacro(SliceStyle);
+
 // The patient direction a vector points to most (LPS: +x left, +y posterior, +z superior).
 const char* Letter(const double v[3])
 {
@@ -127,8 +215,11 @@ struct SliceViews::View
   vtkNew<vtkImageSlice> slice;
   vtkNew<vtkImageResliceMapper> overlayMapper;
   vtkNew<vtkImageSlice> overlay;
-  vtkNew<vtkInteractorStyleImage> style;
+  vtkNew<SliceStyle> style;
   vtkNew<vtkCornerAnnotation> annotation;
+  vtkNew<vtkPolyData> crosshairData;
+  vtkNew<vtkPolyDataMapper> crosshairMapper;
+  vtkNew<vtkActor> crosshair;
   vtkNew<vtkCallbackCommand> inputObserver;
   vtkNew<vtkCallbackCommand> renderObserver;
   double viewDirection[3] = { 0, 0, 1 };
@@ -230,9 +321,11 @@ SliceViews::SliceViews(QWidget* parent)
     view->index = i;
     view->widget = new QVTKOpenGLNativeWidget(this);
     view->widget->setObjectName(QString("slice%1").arg(names[i]));
-    view->widget->setToolTip(QString("%1 slice: mouse wheel or Up/Down moves the slice, left "
-                                     "drag sets the window/level, right drag zooms")
-                               .arg(names[i]));
+    view->widget->setToolTip(
+      QString("%1 slice: a left click or drag moves the cursor (the other slices follow it); "
+              "the mouse wheel or Up/Down moves the slice; Shift+left drag sets the "
+              "window/level, right drag zooms, middle drag pans")
+        .arg(names[i]));
     view->widget->setRenderWindow(view->window);
     view->window->AddRenderer(view->renderer);
     view->renderer->SetBackground(0.05, 0.05, 0.07);
@@ -245,8 +338,24 @@ SliceViews::SliceViews(QWidget* parent)
     view->overlay->GetProperty()->SetLookupTable(maskColours);
     view->overlay->GetProperty()->SetInterpolationTypeToNearest();
     view->overlay->GetProperty()->UseLookupTableScalarRangeOn();
+    view->overlay->PickableOff();
     view->style->SetInteractionModeToImageSlicing();
+    // The window/level drag sets the volume's slice (the first image), not the mask's (the
+    // style's default, the topmost image, is the mask overlay).
+    view->style->SetCurrentImageNumber(0);
+    view->style->MoveCursor = [this, i](int x, int y)
+    {
+      double position[3];
+      this->displayToCursor(i, x, y, position);
+      this->setCursor(position);
+    };
     view->window->GetInteractor()->SetInteractorStyle(view->style);
+    view->crosshairMapper->SetInputData(view->crosshairData);
+    view->crosshairMapper->SetScalarModeToUseCellData();
+    view->crosshair->SetMapper(view->crosshairMapper);
+    view->crosshair->GetProperty()->SetLineWidth(1.5);
+    view->crosshair->GetProperty()->LightingOff();
+    view->crosshair->PickableOff();
     view->inputObserver->SetCallback(&OnInput);
     view->inputObserver->SetClientData(view);
     for (unsigned long event : { vtkCommand::MouseWheelForwardEvent,
@@ -267,10 +376,68 @@ SliceViews::SliceViews(QWidget* parent)
     std::copy(directions[i], directions[i] + 3, view->viewDirection);
     std::copy(ups[i], ups[i] + 3, view->viewUp);
     auto* label = new QLabel(names[i], this);
+    label->setStyleSheet(QString("color: rgb(%1, %2, %3); font-weight: bold;")
+                           .arg(ViewColours[i][0])
+                           .arg(ViewColours[i][1])
+                           .arg(ViewColours[i][2]));
     layout->addWidget(label, 0, i);
     layout->addWidget(view->widget, 1, i);
   }
   layout->setRowStretch(1, 1);
+  auto* row = new QHBoxLayout;
+  this->CursorLabel = new QLabel("Cursor: no volume", this);
+  this->CursorLabel->setObjectName("sliceCursor");
+  this->CursorLabel->setToolTip("The cursor shared by the slice views and the 3D view (LPS "
+                                "model coordinates, mm), the intensity of the voxel under it "
+                                "and whether it is segmented");
+  this->CursorLabel->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  row->addWidget(this->CursorLabel, 1);
+  row->addWidget(new QLabel("In the 3D view:", this));
+  this->CursorStyle = new QComboBox(this);
+  this->CursorStyle->setObjectName("sliceCursorStyle");
+  this->CursorStyle->addItem("no cursor");
+  this->CursorStyle->addItem("crosshair");
+  this->CursorStyle->addItem("crosshair and slice planes");
+  this->CursorStyle->setCurrentIndex(CursorOverlay::Crosshair);
+  this->CursorStyle->setToolTip("How the cursor is drawn in the 3D view; there, Shift+click on "
+                                "the surface moves the cursor and the slices to that point");
+  row->addWidget(this->CursorStyle);
+  layout->addLayout(row, 2, 0, 1, 3);
+  connect(this->CursorStyle,
+    QOverload<int>::of(&QComboBox::currentIndexChanged),
+    this,
+    [this](int index)
+    {
+      if (!this->Overlay)
+        return;
+      this->Overlay->setStyle(static_cast<CursorOverlay::Style>(index));
+      if (this->LinkedView)
+        this->LinkedView->render();
+    });
+}
+
+void SliceViews::linkView(BenderView* view)
+{
+  if (this->Overlay || !view)
+  {
+    return;
+  }
+  this->LinkedView = view;
+  this->Overlay =
+    new CursorOverlay(view->ribbonRenderer(), view->renderer(), view->surfaceActor(), this);
+  this->Overlay->setBusy([view]() { return view->isPicking(); });
+  this->Overlay->setStyle(static_cast<CursorOverlay::Style>(this->CursorStyle->currentIndex()));
+  const double none[6] = { 0, -1, 0, -1, 0, -1 };
+  this->Overlay->setBounds(this->Volume ? this->Bounds : none);
+  this->Overlay->setPosition(this->Cursor);
+  connect(this->Overlay,
+    &CursorOverlay::picked,
+    this,
+    [this](double x, double y, double z)
+    {
+      const double position[3] = { x, y, z };
+      this->setCursor(position);
+    });
 }
 
 SliceViews::~SliceViews()
@@ -299,6 +466,13 @@ void SliceViews::volumeBounds(double bounds[6]) const
 
 void SliceViews::setVolume(vtkImageData* volume, vtkImageData* mask)
 {
+  const double previous[6] = { this->Bounds[0],
+    this->Bounds[1],
+    this->Bounds[2],
+    this->Bounds[3],
+    this->Bounds[4],
+    this->Bounds[5] };
+  const bool hadVolume = this->Volume != nullptr;
   this->Volume = volume;
   this->Mask = mask;
   if (volume)
@@ -330,6 +504,13 @@ void SliceViews::setVolume(vtkImageData* volume, vtkImageData* mask)
       }
     }
     this->StepLength = std::max(1e-6, *std::min_element(spacing, spacing + 3));
+    if (!hadVolume || !std::equal(previous, previous + 6, this->Bounds))
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        this->Cursor[axis] = 0.5 * (this->Bounds[2 * axis] + this->Bounds[2 * axis + 1]);
+      }
+    }
   }
   for (View* view : this->Views)
   {
@@ -352,10 +533,13 @@ void SliceViews::setVolume(vtkImageData* volume, vtkImageData* mask)
       view->overlay->SetUserMatrix(Placement(mask));
       view->renderer->AddViewProp(view->overlay);
     }
+    view->renderer->AddViewProp(view->crosshair);
     view->renderer->AddViewProp(view->annotation);
-    const double centre[3] = { 0.5 * (this->Bounds[0] + this->Bounds[1]),
+    // Framed on the box's centre, sliced through the cursor.
+    double centre[3] = { 0.5 * (this->Bounds[0] + this->Bounds[1]),
       0.5 * (this->Bounds[2] + this->Bounds[3]),
       0.5 * (this->Bounds[4] + this->Bounds[5]) };
+    centre[AxisOf(view->index)] = this->Cursor[AxisOf(view->index)];
     vtkCamera* camera = view->renderer->GetActiveCamera();
     camera->ParallelProjectionOn();
     const double distance = 2.0 *
@@ -370,7 +554,18 @@ void SliceViews::setVolume(vtkImageData* volume, vtkImageData* mask)
     camera->SetClippingRange(0.5 * distance, 1.5 * distance);
     view->fit();
   }
+  if (this->Overlay)
+  {
+    const double none[6] = { 0, -1, 0, -1, 0, -1 };
+    this->Overlay->setBounds(volume ? this->Bounds : none);
+    this->Overlay->setPosition(this->Cursor);
+  }
+  this->updateCrosshairs();
   this->render();
+  if (this->LinkedView)
+  {
+    this->LinkedView->render();
+  }
 }
 
 vtkRenderer* SliceViews::renderer(int view) const
@@ -392,8 +587,7 @@ double SliceViews::slicePosition(int view) const
 {
   const View* v = this->Views[std::max(0, std::min(2, view))];
   const double* focal = v->renderer->GetActiveCamera()->GetFocalPoint();
-  const int axis = view == Axial ? 2 : (view == Coronal ? 1 : 0);
-  return focal[axis];
+  return focal[AxisOf(view)];
 }
 
 void SliceViews::moveSlice(int view, int steps)
@@ -402,28 +596,240 @@ void SliceViews::moveSlice(int view, int steps)
   {
     return;
   }
-  View* v = this->Views[std::max(0, std::min(2, view))];
-  vtkCamera* camera = v->renderer->GetActiveCamera();
-  const int axis = view == Axial ? 2 : (view == Coronal ? 1 : 0);
+  const View* v = this->Views[std::max(0, std::min(2, view))];
+  const int axis = AxisOf(v->index);
   // Forward (wheel up) goes towards the viewer's side: S, A, L.
-  double focal[3], position[3];
-  camera->GetFocalPoint(focal);
-  camera->GetPosition(position);
   const double step = -steps * this->StepLength;
-  const double target = std::min(this->Bounds[2 * axis + 1],
-    std::max(this->Bounds[2 * axis], focal[axis] + step * v->viewDirection[axis]));
-  const double shift = target - focal[axis];
-  focal[axis] += shift;
-  position[axis] += shift;
-  camera->SetFocalPoint(focal);
-  camera->SetPosition(position);
-  v->window->Render();
+  double position[3] = { this->Cursor[0], this->Cursor[1], this->Cursor[2] };
+  position[axis] += step * v->viewDirection[axis];
+  this->setCursor(position);
+}
+
+void SliceViews::setCursor(const double position[3])
+{
+  if (!this->Volume)
+  {
+    return;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double p = std::isfinite(position[axis]) ? position[axis] : this->Cursor[axis];
+    this->Cursor[axis] = std::min(this->Bounds[2 * axis + 1], std::max(this->Bounds[2 * axis], p));
+  }
+  // Each view's slice through the cursor: its camera slides along its normal (the pan and the
+  // zoom stay).
+  for (View* v : this->Views)
+  {
+    const int axis = AxisOf(v->index);
+    vtkCamera* camera = v->renderer->GetActiveCamera();
+    double focal[3], eye[3];
+    camera->GetFocalPoint(focal);
+    camera->GetPosition(eye);
+    const double shift = this->Cursor[axis] - focal[axis];
+    focal[axis] += shift;
+    eye[axis] += shift;
+    camera->SetFocalPoint(focal);
+    camera->SetPosition(eye);
+  }
+  if (this->Overlay)
+  {
+    this->Overlay->setPosition(this->Cursor);
+  }
+  this->updateCrosshairs();
+  this->render();
+  if (this->LinkedView)
+  {
+    this->LinkedView->render();
+  }
+  emit this->cursorMoved(this->Cursor[0], this->Cursor[1], this->Cursor[2]);
+}
+
+vtkImageData* SliceViews::volume() const
+{
+  return this->Volume;
+}
+
+void SliceViews::cursor(double position[3]) const
+{
+  std::copy(this->Cursor, this->Cursor + 3, position);
+}
+
+void SliceViews::displayToCursor(int view, int x, int y, double position[3]) const
+{
+  const View* v = this->Views[std::max(0, std::min(2, view))];
+  // A parallel projection: the display point on the focal plane is the point in the slice.
+  vtkRenderer* renderer = v->renderer;
+  renderer->SetDisplayPoint(x, y, 0.5);
+  renderer->DisplayToWorld();
+  double world[4];
+  renderer->GetWorldPoint(world);
+  const double w = world[3] != 0.0 ? world[3] : 1.0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    position[axis] = world[axis] / w;
+  }
+  position[AxisOf(v->index)] = this->Cursor[AxisOf(v->index)];
+}
+
+namespace
+{
+// The voxel nearest `point` (LPS), false outside the image's extent.
+bool NearestVoxel(vtkImageData* image, const double point[3], int ijk[3])
+{
+  if (!image)
+  {
+    return false;
+  }
+  double continuous[3];
+  image->TransformPhysicalPointToContinuousIndex(point, continuous);
+  const int* extent = image->GetExtent();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!std::isfinite(continuous[axis]))
+    {
+      return false;
+    }
+    ijk[axis] = static_cast<int>(std::lround(continuous[axis]));
+    if (ijk[axis] < extent[2 * axis] || ijk[axis] > extent[2 * axis + 1])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+}
+
+bool SliceViews::cursorValue(double& value) const
+{
+  int ijk[3];
+  if (!NearestVoxel(this->Volume, this->Cursor, ijk) || !this->Volume->GetPointData()->GetScalars())
+  {
+    return false;
+  }
+  value = this->Volume->GetScalarComponentAsDouble(ijk[0], ijk[1], ijk[2], 0);
+  return true;
+}
+
+bool SliceViews::cursorSegmented() const
+{
+  int ijk[3];
+  if (!NearestVoxel(this->Mask, this->Cursor, ijk) || !this->Mask->GetPointData()->GetScalars())
+  {
+    return false;
+  }
+  return this->Mask->GetScalarComponentAsDouble(ijk[0], ijk[1], ijk[2], 0) > 0.0;
+}
+
+int SliceViews::sliceIndex(int view) const
+{
+  if (!this->Volume)
+  {
+    return -1;
+  }
+  // The volume axis closest to the view's normal: the largest entry of the direction matrix's
+  // row for the view's LPS axis.
+  const int axis = AxisOf(std::max(0, std::min(2, view)));
+  vtkMatrix3x3* direction = this->Volume->GetDirectionMatrix();
+  int along = 0;
+  for (int c = 1; c < 3; ++c)
+  {
+    if (std::abs(direction->GetElement(axis, c)) > std::abs(direction->GetElement(axis, along)))
+    {
+      along = c;
+    }
+  }
+  double continuous[3];
+  this->Volume->TransformPhysicalPointToContinuousIndex(this->Cursor, continuous);
+  const int* extent = this->Volume->GetExtent();
+  const long index = std::lround(continuous[along]);
+  return static_cast<int>(
+    std::min<long>(extent[2 * along + 1], std::max<long>(extent[2 * along], index)));
+}
+
+QString SliceViews::cursorText() const
+{
+  if (!this->Volume)
+  {
+    return "Cursor: no volume";
+  }
+  static const char* const plus[3] = { "L", "P", "S" };
+  static const char* const minus[3] = { "R", "A", "I" };
+  QStringList parts;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    parts << QString("%1 %2")
+               .arg(this->Cursor[axis] >= 0 ? plus[axis] : minus[axis])
+               .arg(std::abs(this->Cursor[axis]), 0, 'f', 1);
+  }
+  QString text = QString("Cursor %1 mm").arg(parts.join(", "));
+  double value = 0.0;
+  if (this->cursorValue(value))
+  {
+    text += QString(": %1").arg(value, 0, 'g', 5);
+    if (this->cursorSegmented())
+    {
+      text += " (segmented)";
+    }
+  }
+  return text;
+}
+
+vtkPolyData* SliceViews::crosshair(int view) const
+{
+  return this->Views[std::max(0, std::min(2, view))]->crosshairData;
+}
+
+void SliceViews::updateCrosshairs()
+{
+  if (this->CursorLabel)
+  {
+    this->CursorLabel->setText(this->cursorText());
+  }
+  if (!this->Volume)
+  {
+    return;
+  }
+  for (View* v : this->Views)
+  {
+    // In view v, the slice of view w is the line where w's axis is at the cursor, running
+    // along the third axis over the box; drawn half a voxel in front of the slice.
+    const int normal = AxisOf(v->index);
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    vtkNew<vtkCellArray> lines;
+    vtkNew<vtkUnsignedCharArray> colours;
+    colours->SetName("Colors");
+    colours->SetNumberOfComponents(3);
+    for (int w = 0; w < 3; ++w)
+    {
+      if (w == v->index)
+      {
+        continue;
+      }
+      const int fixed = AxisOf(w);
+      const int running = 3 - normal - fixed;
+      double a[3], b[3];
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        a[axis] = b[axis] = this->Cursor[axis] - 0.5 * this->StepLength * v->viewDirection[axis];
+      }
+      a[running] = this->Bounds[2 * running];
+      b[running] = this->Bounds[2 * running + 1];
+      const vtkIdType ids[2] = { points->InsertNextPoint(a), points->InsertNextPoint(b) };
+      lines->InsertNextCell(2, ids);
+      colours->InsertNextTypedTuple(ViewColours[w]);
+    }
+    v->crosshairData->SetPoints(points);
+    v->crosshairData->SetLines(lines);
+    v->crosshairData->GetCellData()->SetScalars(colours);
+    v->crosshairData->Modified();
+  }
 }
 
 QString SliceViews::positionText(int view) const
 {
   const double position = this->slicePosition(view);
-  const int axis = view == Axial ? 2 : (view == Coronal ? 1 : 0);
+  const int axis = AxisOf(view);
   double direction[3] = { 0, 0, 0 };
   direction[axis] = position >= 0 ? 1.0 : -1.0;
   return QString("%1 %2 mm").arg(Letter(direction)).arg(std::abs(position), 0, 'f', 1);

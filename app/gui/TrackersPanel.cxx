@@ -28,7 +28,20 @@
 #include <QVBoxLayout>
 #include <QtConcurrent/QtConcurrent>
 
+#include <vtkActor.h>
+#include <vtkBillboardTextActor3D.h>
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkSphereSource.h>
+#include <vtkTextProperty.h>
+
+#include <algorithm>
 
 #include <atomic>
 #include <condition_variable>
@@ -186,8 +199,146 @@ private:
   std::thread Thread;
 };
 
+/// Where the two hands map now, drawn in the view's ribbon layer (above the surface): an
+/// orange ball per hand with its label, and a line from each ball to the ribbon end that hand
+/// holds (nothing when they coincide, after an anchoring).
+class TrackersPanel::HandMarkers
+{
+public:
+  HandMarkers()
+  {
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    vtkNew<vtkCellArray> lines;
+    this->TetherData->SetPoints(points);
+    this->TetherData->SetLines(lines);
+    this->TetherMapper->SetInputData(this->TetherData);
+    this->Tether->SetMapper(this->TetherMapper);
+    this->Tether->GetProperty()->SetColor(1.0, 0.62, 0.15);
+    this->Tether->GetProperty()->SetLineWidth(2.0);
+    this->Tether->PickableOff();
+    this->Tether->VisibilityOff();
+    const char* const names[2] = { "left hand", "right hand" };
+    for (int h = 0; h < 2; ++h)
+    {
+      this->Sphere[h]->SetThetaResolution(20);
+      this->Sphere[h]->SetPhiResolution(14);
+      this->Mapper[h]->SetInputConnection(this->Sphere[h]->GetOutputPort());
+      this->Ball[h]->SetMapper(this->Mapper[h]);
+      this->Ball[h]->GetProperty()->SetColor(1.0, 0.62, 0.15);
+      this->Ball[h]->GetProperty()->SetOpacity(0.55);
+      this->Ball[h]->PickableOff();
+      this->Ball[h]->VisibilityOff();
+      this->Label[h]->SetInput(names[h]);
+      this->Label[h]->GetTextProperty()->SetFontSize(14);
+      this->Label[h]->GetTextProperty()->SetColor(1.0, 0.75, 0.35);
+      this->Label[h]->GetTextProperty()->ShadowOn();
+      this->Label[h]->GetTextProperty()->SetJustificationToCentered();
+      this->Label[h]->PickableOff();
+      this->Label[h]->VisibilityOff();
+    }
+  }
+  ~HandMarkers()
+  {
+    if (this->Layer)
+    {
+      this->Layer->RemoveActor(this->Tether);
+      for (int h = 0; h < 2; ++h)
+      {
+        this->Layer->RemoveActor(this->Ball[h]);
+        this->Layer->RemoveViewProp(this->Label[h]);
+      }
+    }
+  }
+  void attach(vtkRenderer* layer)
+  {
+    this->Layer = layer;
+    layer->AddActor(this->Tether);
+    for (int h = 0; h < 2; ++h)
+    {
+      layer->AddActor(this->Ball[h]);
+      layer->AddViewProp(this->Label[h]);
+    }
+  }
+  /// `hands`: where the hands map (start: left); `held`: the ribbon whose ends they hold.
+  void show(const bender::RibbonSpec& hands, const std::optional<bender::RibbonSpec>& held)
+  {
+    const bender::RibbonSpec& scaleOf = held ? *held : hands;
+    const double length = bender::Distance(scaleOf.start.position, scaleOf.end.position);
+    const double radius = std::clamp(0.09 * length, 0.3, 25.0);
+    const bender::Vec3 at[2] = { hands.start.position, hands.end.position };
+    vtkPoints* points = this->TetherData->GetPoints();
+    points->Reset();
+    vtkCellArray* lines = this->TetherData->GetLines();
+    lines->Reset();
+    for (int h = 0; h < 2; ++h)
+    {
+      this->Position[h][0] = at[h].x;
+      this->Position[h][1] = at[h].y;
+      this->Position[h][2] = at[h].z;
+      this->Sphere[h]->SetCenter(this->Position[h]);
+      this->Sphere[h]->SetRadius(radius);
+      this->Ball[h]->VisibilityOn();
+      this->Label[h]->SetPosition(at[h].x, at[h].y, at[h].z);
+      this->Label[h]->SetDisplayOffset(0, 18);
+      this->Label[h]->VisibilityOn();
+      if (held)
+      {
+        const bender::Vec3 end = h == 0 ? held->start.position : held->end.position;
+        if (bender::Distance(end, at[h]) > 1e-6 * std::max(1.0, length))
+        {
+          const vtkIdType ids[2] = { points->InsertNextPoint(this->Position[h]),
+            points->InsertNextPoint(end.x, end.y, end.z) };
+          lines->InsertNextCell(2, ids);
+        }
+      }
+    }
+    points->Modified();
+    lines->Modified();
+    this->TetherData->Modified();
+    this->Tether->SetVisibility(lines->GetNumberOfCells() > 0);
+    this->Shown = true;
+  }
+  void hide()
+  {
+    this->Tether->VisibilityOff();
+    for (int h = 0; h < 2; ++h)
+    {
+      this->Ball[h]->VisibilityOff();
+      this->Label[h]->VisibilityOff();
+    }
+    this->Shown = false;
+  }
+
+  bool Shown = false;
+  double Position[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } };
+
+private:
+  // Held: the view may be deleted before the panel (Qt deletes the central widget first).
+  vtkSmartPointer<vtkRenderer> Layer;
+  vtkNew<vtkSphereSource> Sphere[2];
+  vtkNew<vtkPolyDataMapper> Mapper[2];
+  vtkNew<vtkActor> Ball[2];
+  vtkNew<vtkBillboardTextActor3D> Label[2];
+  vtkNew<vtkPolyData> TetherData;
+  vtkNew<vtkPolyDataMapper> TetherMapper;
+  vtkNew<vtkActor> Tether;
+};
+
+namespace
+{
+const char* const AlignTip =
+  "Anchors the hands, as they are now, to the ribbon shown: the left hand holds its start, the "
+  "right hand its end, and the orange hand markers jump onto them; from then on the ribbon "
+  "moves by the hands' displacements while the stylus is pressed. Nothing is bent. (Each "
+  "stylus press anchors them too, so the ribbon never jumps.)";
+const char* const AlignDisabledTip =
+  "Connect a tracker first: Align anchors the connected hands to the ribbon shown";
+}
+
 TrackersPanel::TrackersPanel(QWidget* parent)
   : QWidget(parent)
+  , Markers(std::make_unique<HandMarkers>())
 {
   auto* layout = new QVBoxLayout(this);
   auto* form = new QFormLayout;
@@ -255,10 +406,7 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   layout->addLayout(buttons);
   this->AlignButton = new QPushButton("Align hands to the ribbon", this);
   this->AlignButton->setObjectName("trackerAlign");
-  this->AlignButton->setToolTip(
-    "Anchors the hands, as they are now, to the ribbon shown: the left hand holds its start, the "
-    "right hand its end; from then on the ribbon moves by the hands' displacements (connecting "
-    "and each stylus press anchor them too, so the ribbon never jumps)");
+  this->AlignButton->setToolTip(AlignDisabledTip);
   layout->addWidget(this->AlignButton);
   this->Clutch = new QCheckBox("Clutch (move the hands without moving the ribbon)", this);
   this->Clutch->setObjectName("trackerClutch");
@@ -328,29 +476,7 @@ TrackersPanel::TrackersPanel(QWidget* parent)
     });
   connect(this->ConnectButton, &QPushButton::clicked, this, &TrackersPanel::connectDevice);
   connect(this->DisconnectButton, &QPushButton::clicked, this, &TrackersPanel::disconnectDevice);
-  connect(this->AlignButton,
-    &QPushButton::clicked,
-    this,
-    [this]()
-    {
-      if (!this->Trackers)
-        return;
-      vtkBenderRibbonWidget* widget = this->View->ribbonWidget();
-      if (!widget->GetEnabled())
-      {
-        this->Session->AddMessage(bender::MessageSeverity::Error,
-          "Align: place a ribbon first (P, then click on the vessel)");
-        return;
-      }
-      const bender::RibbonSpec ribbon = widget->GetRibbonRepresentation()->GetRibbon();
-      if (this->Trackers->AlignTo(ribbon))
-      {
-        // Seen at once: the ribbon the hands hold now is the one on screen.
-        widget->GetRibbonRepresentation()->SetRibbon(ribbon);
-        this->setStatus(QString::fromStdString(this->Trackers->StatusText()));
-        this->View->render();
-      }
-    });
+  connect(this->AlignButton, &QPushButton::clicked, this, &TrackersPanel::alignHands);
   connect(this->Scale,
     QOverload<double>::of(&QDoubleSpinBox::valueChanged),
     this,
@@ -420,6 +546,7 @@ void TrackersPanel::setConnected(bool connected)
   this->ConnectButton->setEnabled(idle);
   this->DisconnectButton->setEnabled(connected);
   this->AlignButton->setEnabled(connected);
+  this->AlignButton->setToolTip(connected ? AlignTip : AlignDisabledTip);
   this->Clutch->setEnabled(connected);
   this->Kind->setEnabled(idle);
   this->Device->setEnabled(idle && !igtl);
@@ -430,6 +557,12 @@ void TrackersPanel::setConnected(bool connected)
   if (!connected)
   {
     this->Clutch->setChecked(false);
+    if (this->Markers->Shown)
+    {
+      this->Markers->hide();
+      if (this->View)
+        this->View->render();
+    }
   }
 }
 
@@ -447,6 +580,78 @@ void TrackersPanel::attach(bender::TrackerSession* trackers,
   this->Session = session;
   this->View = view;
   this->Trackers->SetReleaseHandler(std::move(release));
+  this->Markers->attach(view->ribbonRenderer());
+}
+
+bool TrackersPanel::connectWith(std::unique_ptr<bender::TrackerDevice> device)
+{
+  if (!this->Trackers || this->Connecting || this->Trackers->IsConnected())
+    return false;
+  this->Trackers->SetRelativeScale(this->motionScale());
+  const bool connected = this->Trackers->Connect(std::move(device),
+    Hands(this->leftStation(), this->rightStation()),
+    Calibration(this->motionScale()));
+  this->finishConnect(connected);
+  return connected;
+}
+
+bool TrackersPanel::alignHands()
+{
+  if (!this->Trackers || !this->Trackers->IsConnected())
+  {
+    if (this->Session)
+      this->Session->AddMessage(bender::MessageSeverity::Error, "Align: connect a tracker first");
+    return false;
+  }
+  vtkBenderRibbonWidget* widget = this->View->ribbonWidget();
+  if (!widget->GetEnabled())
+  {
+    this->Session->AddMessage(
+      bender::MessageSeverity::Error, "Align: place a ribbon first (P, then click on the vessel)");
+    return false;
+  }
+  const bender::RibbonSpec ribbon = widget->GetRibbonRepresentation()->GetRibbon();
+  if (!this->Trackers->AlignTo(ribbon))
+    return false;
+  // Seen at once: the hand markers sit on the ribbon's ends.
+  widget->GetRibbonRepresentation()->SetRibbon(ribbon);
+  this->setStatus(QString::fromStdString(this->Trackers->StatusText()));
+  this->updateHandMarkers();
+  this->View->render();
+  return true;
+}
+
+void TrackersPanel::updateHandMarkers()
+{
+  if (!this->View)
+    return;
+  const std::optional<bender::RibbonSpec> hands =
+    this->Trackers && this->Trackers->IsConnected() ? this->Trackers->MappedHands() : std::nullopt;
+  if (!hands)
+  {
+    this->Markers->hide();
+    return;
+  }
+  std::optional<bender::RibbonSpec> held;
+  vtkBenderRibbonWidget* widget = this->View->ribbonWidget();
+  if (widget->GetEnabled())
+  {
+    held = widget->GetRibbonRepresentation()->GetRibbon();
+  }
+  this->Markers->show(*hands, held);
+}
+
+bool TrackersPanel::handMarkersShown() const
+{
+  return this->Markers->Shown;
+}
+
+bool TrackersPanel::handMarkerPosition(int hand, double position[3]) const
+{
+  if (!this->Markers->Shown || hand < 0 || hand > 1)
+    return false;
+  std::copy(this->Markers->Position[hand], this->Markers->Position[hand] + 3, position);
+  return true;
 }
 
 bool TrackersPanel::connectDevice()
@@ -579,7 +784,19 @@ void TrackersPanel::poll()
     this->Timer->stop();
     this->setConnected(false);
   }
+  else
+  {
+    this->updateHandMarkers();
+  }
   this->View->render();
+  if (result.grabbed && this->Session->GetState() == bender::GrabState::Grabbed)
+  {
+    emit this->trackerGrabbed();
+  }
+  else if (result.moved && this->Session->GetState() == bender::GrabState::Grabbed)
+  {
+    emit this->trackerMoved();
+  }
 }
 
 void TrackersPanel::showCounters()

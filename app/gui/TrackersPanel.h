@@ -10,6 +10,7 @@
 namespace bender
 {
 class BenderSession;
+class TrackerDevice;
 class TrackerSession;
 }
 class QTimer;
@@ -33,6 +34,13 @@ class QSpinBox;
 /// USB and serial devices, so the GUI thread never waits for a host), poll at the display rate
 /// (the live warp follows the hands, the widget shows their ribbon; a stylus release starts the
 /// window's release job), disconnect, align.
+///
+/// While connected, the 3D view shows where each hand maps now (TrackerSession::MappedHands):
+/// an orange ball labelled "left hand" / "right hand", tied by a line to the ribbon end it
+/// holds. Between grabs the ribbon stays while the hands move, so the balls drift away from
+/// the ends; a stylus press or "Align hands to the ribbon" anchors the hands again and the
+/// balls jump onto the ends (the status bar says how far they moved; nothing is bent). Align
+/// is disabled, with a tooltip saying why, until a tracker is connected.
 ///
 /// "Send to Slicer" sends the surface shown (POLYDATA "BenderVessel") and the ribbon's end
 /// frames (TRANSFORMs "BenderRibbonStart"/"BenderRibbonEnd") to an OpenIGTLink server (3D
@@ -67,10 +75,21 @@ public:
   /// devices are opened on a pool thread: true means the connection started (connectFinished
   /// tells how it ended); replay and sim connect at once (true: connected).
   bool connectDevice();
+  /// Connects a device made by the caller (tests, scripts), as the panel's stations and motion
+  /// scale say, and starts polling; false (with a message) when it fails or one is connected.
+  bool connectWith(std::unique_ptr<bender::TrackerDevice> device);
   bool isConnecting() const { return this->Connecting; }
   void disconnectDevice();
   /// One poll (the timer's; tests may call it).
   void poll();
+  /// The Align button: anchors the hands, as they are now, to the ribbon shown; the hand
+  /// markers jump onto its ends. False (with a message) when not connected, without a ribbon,
+  /// before both hands are seen or while grabbing.
+  bool alignHands();
+  QPushButton* alignButton() const { return this->AlignButton; }
+  /// Whether the hand markers are drawn, and where (0 left, 1 right; model mm).
+  bool handMarkersShown() const;
+  bool handMarkerPosition(int hand, double position[3]) const;
   /// The session's surface, state or history changed (the window's refresh): sends to
   /// Slicer when that is on.
   void sessionChanged();
@@ -80,9 +99,15 @@ public:
 
 signals:
   void connectFinished(bool connected);
+  /// A tracker's stylus press started a grab (in this poll), and the ribbon moved while a
+  /// tracker holds it: the window's live measurements follow them as they follow the mouse.
+  void trackerGrabbed();
+  void trackerMoved();
 
 private:
   class SlicerLink;
+  class HandMarkers;
+  void updateHandMarkers();
   void finishConnect(bool connected);
   void setSendToSlicer(bool on);
   void sendSnapshot(bool final);
@@ -103,6 +128,7 @@ private:
   QTimer* SnapshotTimer = nullptr;
   QTimer* CountersTimer = nullptr;
   std::unique_ptr<SlicerLink> Link;
+  std::unique_ptr<HandMarkers> Markers;
   std::vector<std::unique_ptr<SlicerLink>> Retired; ///< switched off, thread still ending
   unsigned LinkGeneration = 0;                      ///< which sender an error report belongs to
   bool Connecting = false;
