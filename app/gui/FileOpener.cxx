@@ -9,8 +9,12 @@
 #include "MeshIO.h"
 #include "SegmentPanel.h"
 #include "SegmentationSession.h"
+#include "SessionAutosave.h"
+#include "VolumeIO.h"
 #include "WarpPlanIO.h"
 #include "WorkRunner.h"
+#include "vtkBenderRibbonRepresentation.h"
+#include "vtkBenderRibbonWidget.h"
 
 #include <QAction>
 #include <QDir>
@@ -92,6 +96,18 @@ FileOpener::FileOpener(bender::BenderSession& session,
       // A DICOM file stands for its series: the folder is read as one volume.
       this->openFile(IsDicomFile(file) ? QFileInfo(file).absolutePath() : file);
     });
+  connect(actions->OpenDicomFolder,
+    &QAction::triggered,
+    this,
+    [this]()
+    {
+      const QString folder = QFileDialog::getExistingDirectory(
+        this->Window, "Open DICOM folder", FileOpener::lastFolder("dicom"));
+      if (folder.isEmpty())
+        return;
+      FileOpener::rememberFolder("dicom", folder);
+      this->openDicomFolder(folder);
+    });
   connect(actions, &MainActions::recentFileChosen, this, &FileOpener::openFile);
   connect(actions->Demo, &QAction::triggered, this, &FileOpener::startDemo);
   connect(actions->LoadPlan,
@@ -131,13 +147,7 @@ bool FileOpener::openFile(const QString& path)
   switch (kind)
   {
     case bender::FileKind::Session:
-      return this->Worker->runSessionJob(this->Session,
-        this->Session.BeginRecover(file),
-        [this](bender::SessionJob&, bool ok)
-        {
-          if (ok)
-            this->View->resetCamera();
-        });
+      return this->recoverSession(path);
     case bender::FileKind::Plan:
       return this->openPlan(path);
     case bender::FileKind::Mesh:
@@ -296,13 +306,19 @@ bool FileOpener::openVolume(const QString& path)
           emit this->volumeChanged();
           emit this->panelWanted(this->Segment);
           const auto& size = job->volume->geometry.size;
-          this->Session.AddMessage(bender::MessageSeverity::Info,
-            QString("Loaded volume %1: %2x%3x%4; segment it in the Segment panel")
-              .arg(QFileInfo(path).fileName())
-              .arg(size[0])
-              .arg(size[1])
-              .arg(size[2])
-              .toStdString());
+          const QString loaded = QString("Loaded volume %1: %2x%3x%4; segment it in the Segment "
+                                         "panel")
+                                   .arg(QString::fromStdString(this->Segmentation.GetVolumeName()))
+                                   .arg(size[0])
+                                   .arg(size[1])
+                                   .arg(size[2]);
+          // A folder of several series: which one was read is the last word.
+          this->Session.AddMessage(bender::MessageSeverity::Info, loaded.toStdString());
+          if (!job->note.empty())
+          {
+            this->Session.AddMessage(bender::MessageSeverity::Warning, job->note);
+          }
+          this->Session.Autosave(); // the volume is kept with the work (no-op without a surface)
         });
     });
 }
@@ -393,19 +409,318 @@ void FileOpener::startDemo()
 
 void FileOpener::offerRecovery()
 {
-  const auto answer = QMessageBox::question(this->Window,
-    "Recover the last session?",
-    "Bender did not close cleanly last time. Recover the surface and the warps of that session?",
-    QMessageBox::Yes | QMessageBox::No,
-    QMessageBox::Yes);
-  if (answer == QMessageBox::Yes)
+  const QString path = QString::fromStdString(this->Session.GetAutosavePath());
+  // What the autosave holds, in the question; an unreadable one is said and kept for a look.
+  QStringList parts;
+  try
   {
-    this->openFile(QString::fromStdString(this->Session.GetAutosavePath()));
+    const bender::SessionSnapshot snapshot = bender::ReadSessionFile(path.toStdString());
+    const std::string surface = snapshot.surfaceName.empty()
+      ? QFileInfo(QString::fromStdString(snapshot.sourcePath)).fileName().toStdString()
+      : snapshot.surfaceName;
+    parts << QString("the surface \"%1\"").arg(QString::fromStdString(surface));
+    parts << QString("%1 warp%2")
+               .arg(snapshot.plan.warps.size())
+               .arg(snapshot.plan.warps.size() == 1 ? "" : "s");
+    if (snapshot.volume)
+    {
+      parts << QString("the volume \"%1\" (%2)")
+                 .arg(QString::fromStdString(snapshot.volume->name))
+                 .arg(QString::fromStdString(
+                   bender::DescribeVolumeGeometry(snapshot.volume->geometry)));
+    }
+    if (snapshot.segmentation)
+    {
+      parts << QString("the segmentation parameters (threshold %1, smoothing %2)")
+                 .arg(snapshot.segmentation->segmentation.lower, 0, 'g', 6)
+                 .arg(snapshot.segmentation->surface.smoothing, 0, 'g', 3);
+    }
+    if (snapshot.ribbon)
+    {
+      parts << QString("the ribbon (R = %1 mm)").arg(snapshot.ribbon->radius, 0, 'g', 4);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error,
+      std::string("The autosave of the last session cannot be recovered: ") + e.what());
+    return;
+  }
+  QMessageBox box(QMessageBox::Question,
+    "Recover the last session?",
+    "Bender did not close cleanly last time. Recover that session?",
+    QMessageBox::Yes | QMessageBox::No,
+    this->Window);
+  box.setObjectName("recoverSession");
+  box.setInformativeText("It holds:\n\u2022 " + parts.join("\n\u2022 "));
+  box.button(QMessageBox::Yes)->setText("Recover");
+  box.button(QMessageBox::No)->setText("Discard");
+  box.setDefaultButton(QMessageBox::Yes);
+  if (box.exec() == QMessageBox::Yes)
+  {
+    this->recoverSession(path);
   }
   else
   {
-    this->Session.DiscardAutosave();
+    this->discardAutosave();
   }
+}
+
+void FileOpener::discardAutosave()
+{
+  this->Session.DiscardAutosave();
+  bender::RemoveSessionSideFiles(this->Session.GetAutosavePath());
+  this->VolumeCopyOf.reset();
+  this->MaskCopyOf.reset();
+}
+
+bool FileOpener::recoverSession(const QString& path)
+{
+  if (this->Worker->refuseWhenBusy(this->Session))
+  {
+    return false;
+  }
+  const std::string file = path.toStdString();
+  auto snapshot = std::make_shared<bender::SessionSnapshot>();
+  try
+  {
+    *snapshot = bender::ReadSessionFile(file);
+  }
+  catch (const std::exception& e)
+  {
+    this->Session.AddMessage(
+      bender::MessageSeverity::Error, std::string("Recovery failed: ") + e.what());
+    return false;
+  }
+  std::shared_ptr<bender::SegmentationSession::ReadJob> read;
+  if (snapshot->volume)
+  {
+    read = this->Segmentation.BeginRead(snapshot->volume->path, snapshot->volume->dicomSeriesUid);
+    read->maskPath = snapshot->volume->maskPath;
+  }
+  std::shared_ptr<bender::SessionJob> recover = this->Session.BeginRecover(file);
+  if (!recover)
+  {
+    return false;
+  }
+  const bool started = this->Worker->runReporting(this->Session,
+    "Recovering the session",
+    [this, snapshot, read, recover](const bender::ProgressReporter& progress)
+    {
+      // The volume first: it is in place when the recovered session autosaves.
+      auto problem = std::make_shared<std::string>();
+      if (read)
+      {
+        try
+        {
+          read->Run(progress);
+        }
+        catch (const std::exception& e)
+        {
+          // A cancel here cancels the recovery below too (the same flag).
+          *problem = e.what();
+        }
+      }
+      recover->Run(progress); // never throws
+      return WorkRunner::Finisher([this, snapshot, read, recover, problem]()
+        { this->finishRecovery(*snapshot, read.get(), *problem, *recover); });
+    });
+  if (!started)
+  {
+    // Not run: the session must not stay busy with a job that never comes back.
+    this->Session.Finish(*recover);
+  }
+  return started;
+}
+void FileOpener::finishRecovery(const bender::SessionSnapshot& snapshot,
+  const bender::SegmentationSession::ReadJob* read,
+  const std::string& volumeProblem,
+  bender::SessionJob& recover)
+{
+  const bool cancelled = recover.GetOutcome() == bender::SessionJob::Outcome::Cancelled;
+  std::string volumeNote;
+  bool volumeLoaded = false;
+  if (read && !cancelled)
+  {
+    const std::string name = snapshot.volume->name.empty()
+      ? QFileInfo(QString::fromStdString(snapshot.volume->path)).fileName().toStdString()
+      : snapshot.volume->name;
+    if (!read->volume)
+    {
+      volumeNote = "the volume " + name + " could not be read (" + volumeProblem + ")";
+    }
+    else if (!bender::SameVolumeGeometry(read->volume->geometry, snapshot.volume->geometry))
+    {
+      volumeNote = "the volume " + name + " was not loaded: " + snapshot.volume->path +
+        " now holds " + bender::DescribeVolumeGeometry(read->volume->geometry) +
+        ", the session's was " + bender::DescribeVolumeGeometry(snapshot.volume->geometry);
+    }
+    else
+    {
+      this->Segmentation.FinishRead(*read, name);
+      volumeLoaded = true;
+      emit this->volumeChanged();
+      if (!read->maskProblem.empty())
+      {
+        volumeNote = "the segmentation overlay could not be read (" + read->maskProblem + ")";
+      }
+    }
+  }
+  if (snapshot.segmentation && !cancelled)
+  {
+    std::string problem;
+    // The panel shows them; the session takes them when they are valid (always, for a file
+    // that ReadSessionFile accepted).
+    this->Segment->setSettings(*snapshot.segmentation);
+    this->Segmentation.SetSettings(*snapshot.segmentation, problem);
+  }
+  // The surface and the warps (the session says how that went); it autosaves with the above.
+  if (!this->Session.Finish(recover))
+  {
+    this->Worker->markFailed();
+    return;
+  }
+  if (snapshot.ribbon)
+  {
+    bender::WarpParameters parameters = this->Bend->parameters();
+    parameters.radius = snapshot.ribbon->radius;
+    parameters.decay = snapshot.ribbon->decay;
+    this->Bend->setParameters(parameters);
+    this->Gesture->applyParameters();
+    if (snapshot.ribbon->vesselRadius > 0.0)
+    {
+      this->Gesture->showRibbon(snapshot.ribbon->ribbon, snapshot.ribbon->vesselRadius);
+    }
+    else
+    {
+      this->Gesture->setRibbon(snapshot.ribbon->ribbon);
+      this->View->ribbonWidget()->On();
+    }
+  }
+  this->View->resetCamera();
+  emit this->panelWanted(this->Bend);
+  const std::size_t warps = snapshot.plan.warps.size();
+  std::string text = "Recovered the surface " +
+    (this->Session.GetSurfaceName().empty() ? std::string()
+                                            : "\"" + this->Session.GetSurfaceName() + "\"") +
+    ", " + std::to_string(warps) + (warps == 1 ? " warp" : " warps");
+  if (volumeLoaded)
+  {
+    text += ", the volume \"" + this->Segmentation.GetVolumeName() + "\"";
+    if (this->Segmentation.GetMask())
+    {
+      text += " with its segmentation";
+    }
+  }
+  if (snapshot.segmentation)
+  {
+    text += ", the segmentation parameters";
+  }
+  if (snapshot.ribbon)
+  {
+    text += ", the ribbon";
+  }
+  if (volumeNote.empty())
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Info, text);
+  }
+  else
+  {
+    // One message: what is missing, and that the rest is back.
+    this->Session.AddMessage(
+      bender::MessageSeverity::Warning, "Recovery: " + volumeNote + ". " + text);
+  }
+}
+
+void FileOpener::fillSnapshot(bender::SessionSnapshot& snapshot)
+{
+  const auto& volume = this->Segmentation.GetVolume();
+  if (volume)
+  {
+    bender::SessionVolume kept;
+    kept.name = this->Segmentation.GetVolumeName();
+    kept.path = this->Segmentation.GetVolumeSource().path;
+    kept.dicomSeriesUid = this->Segmentation.GetVolumeSource().dicomSeriesUid;
+    kept.geometry = volume->geometry;
+    if (kept.path.empty() && !this->Session.GetAutosavePath().empty())
+    {
+      // Made here (the demo): written once beside the autosave.
+      const std::string copy = bender::SessionVolumeCopyPath(this->Session.GetAutosavePath());
+      if (this->VolumeCopyOf.lock() != volume)
+      {
+        try
+        {
+          bender::WriteVolume(*volume, copy);
+          this->VolumeCopyOf = volume;
+        }
+        catch (const std::exception& e)
+        {
+          this->VolumeCopyOf.reset();
+          this->MaskCopyOf.reset();
+          this->Session.AddMessage(bender::MessageSeverity::Warning,
+            std::string("Autosave: the volume is not kept (") + e.what() + ")");
+        }
+      }
+      if (this->VolumeCopyOf.lock() == volume)
+      {
+        kept.path = copy;
+      }
+    }
+    // The segmentation's mask (the slice views' overlay): written once per mask.
+    const auto& mask = this->Segmentation.GetMask();
+    if (!kept.path.empty() && mask && !this->Session.GetAutosavePath().empty())
+    {
+      const std::string copy = bender::SessionMaskCopyPath(this->Session.GetAutosavePath());
+      if (this->MaskCopyOf.lock() != mask)
+      {
+        try
+        {
+          bender::WriteLabelMap(*mask, copy);
+          this->MaskCopyOf = mask;
+        }
+        catch (const std::exception& e)
+        {
+          this->MaskCopyOf.reset();
+          this->Session.AddMessage(bender::MessageSeverity::Warning,
+            std::string("Autosave: the segmentation's mask is not kept (") + e.what() + ")");
+        }
+      }
+      if (this->MaskCopyOf.lock() == mask)
+      {
+        kept.maskPath = copy;
+      }
+    }
+    if (!kept.path.empty())
+    {
+      snapshot.volume = kept;
+    }
+  }
+  // The parameters the Segment panel shows (those of the last segmentation, or the user's
+  // since): the panel shows them again after a recovery.
+  snapshot.segmentation = this->Segment->settings();
+  const auto& ribbon = this->Session.GetRibbon();
+  if (ribbon)
+  {
+    bender::SessionRibbon placed;
+    placed.ribbon = *ribbon;
+    placed.radius = this->Session.GetParameters().radius;
+    placed.decay = this->Session.GetParameters().decay;
+    // GestureController::showRibbon's handles: 1.2 vessel radii long.
+    placed.vesselRadius =
+      this->View->ribbonWidget()->GetRibbonRepresentation()->GetHandleLength() / 1.2;
+    snapshot.ribbon = placed;
+  }
+}
+
+bool FileOpener::openDicomFolder(const QString& folder)
+{
+  if (!QFileInfo(folder).isDir())
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error,
+      Name(folder) + ": not a folder (Open DICOM folder takes the folder of a series)");
+    return false;
+  }
+  return this->openFile(folder);
 }
 
 bool FileOpener::eventFilter(QObject* watched, QEvent* event)

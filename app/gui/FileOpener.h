@@ -4,10 +4,16 @@
 #include <QObject>
 #include <QString>
 
+#include "SegmentationSession.h"
+
+#include <memory>
+#include <string>
+
 namespace bender
 {
 class BenderSession;
-class SegmentationSession;
+class SessionJob;
+struct SessionSnapshot;
 }
 class BendPanel;
 class BenderView;
@@ -26,7 +32,15 @@ class WorkRunner;
 /// (BenderSession::HasUnsavedChanges); a plan whose warps are already the last ones committed
 /// is not replayed again without asking (refused with a message when not interactive). The
 /// file dialogs start in the folder used last (QSettings "folders/<kind>"); File > Open takes a
-/// DICOM series by any file of its folder.
+/// DICOM series by any file of its folder, File > Open DICOM folder by the folder (several
+/// series: the largest, and the status bar says which).
+///
+/// Recovery of everything: fillSnapshot adds the volume (its path, series and grid; a volume
+/// made here and the segmentation's mask are written beside the autosave), the Segment panel's
+/// parameters and the placed ribbon to every autosave (BenderSession's autosave
+/// decorator); recoverSession reads the volume again (checked against the recorded grid), shows
+/// the parameters in the Segment panel, recovers the surface and the warps and puts the ribbon
+/// back. A volume that is missing or changed gets one message; the rest is recovered.
 class FileOpener : public QObject
 {
   Q_OBJECT
@@ -45,8 +59,23 @@ public:
   bool openFile(const QString& path);
   void startDemo();
   bool segmentVolume();
-  /// Asks whether to recover the autosaved session (Bender did not close cleanly).
+  /// Asks whether to recover the autosaved session (Bender did not close cleanly): the dialog
+  /// ("recoverSession") lists what the autosave holds. No: the autosave is discarded.
   void offerRecovery();
+  /// Recovers a session file (an autosave or a saved session) on the worker: the volume, the
+  /// segmentation parameters, the surface with its name, the warps and the ribbon. False when
+  /// refused at once (busy, an unreadable session file: one message naming it).
+  bool recoverSession(const QString& path);
+  /// Adds the window's part to an autosave: the loaded volume (a volume without a file, the
+  /// demo's, is written once beside the autosave, and so is each new mask), the Segment
+  /// panel's parameters and the session's ribbon with the Bend parameters and the handles'
+  /// size.
+  void fillSnapshot(bender::SessionSnapshot& snapshot);
+  /// Opens the DICOM series of `folder` (File > Open DICOM folder, after its dialog).
+  bool openDicomFolder(const QString& folder);
+  /// Removes the autosave and what the window keeps beside it (the work was saved or
+  /// discarded).
+  void discardAutosave();
   /// Dialogs may be shown (the window's MainWindowOptions::interactive); without, nothing is
   /// asked: unsaved work is replaced as before and a plan applied twice is refused.
   void setInteractive(bool interactive) { this->Interactive = interactive; }
@@ -74,6 +103,12 @@ private:
   bool openMesh(const QString& path);
   bool openVolume(const QString& path);
   bool openPlan(const QString& path);
+  /// Takes a recovery's results in: the volume (when it is still the session's), the
+  /// parameters, the surface and warps, the ribbon; then one message for what was not.
+  void finishRecovery(const bender::SessionSnapshot& snapshot,
+    const bender::SegmentationSession::ReadJob* read,
+    const std::string& volumeProblem,
+    bender::SessionJob& recover);
 
   bender::BenderSession& Session;
   bender::SegmentationSession& Segmentation;
@@ -85,6 +120,9 @@ private:
   SegmentPanel* Segment;
   QWidget* Window;
   bool Interactive = false;
+  // The volume without a file last written beside the autosave (not written twice).
+  std::weak_ptr<const bender::Volume> VolumeCopyOf;
+  std::weak_ptr<const bender::LabelMap> MaskCopyOf;
 };
 
 #endif

@@ -39,6 +39,8 @@ MainActions::MainActions(QWidget* window)
   , Window(window)
 {
   this->Open = Make(window, "&Open mesh, volume or plan...", QKeySequence::Open, "openAction");
+  this->OpenDicomFolder =
+    Make(window, "Open DICOM &folder...", QKeySequence("Ctrl+Shift+D"), "openDicomFolderAction");
   this->Demo = Make(window, "Run the &demo", QKeySequence("Ctrl+D"), "demoAction");
   this->LoadPlan =
     Make(window, "&Load plan and replay...", QKeySequence("Ctrl+L"), "loadPlanAction");
@@ -88,6 +90,9 @@ MainActions::MainActions(QWidget* window)
   // Every command says what it does (menus show it in the status tip, buttons as a tooltip).
   this->Open->setToolTip("Open a surface mesh (STL, OBJ, PLY, VTP, VTK, OFF), a volume (NRRD, "
                          "NIfTI, MHA, VTI, a DICOM folder), a plan or a saved session");
+  this->OpenDicomFolder->setToolTip("Open the DICOM series of a folder as a volume (a folder "
+                                    "with several series: the largest, and the status bar says "
+                                    "which)");
   this->Demo->setToolTip(
     "Segment the built-in MRA-like demo volume and place a ribbon on a branch, ready to bend");
   this->LoadPlan->setToolTip("Load a .bender.json plan and replay its warps onto the surface");
@@ -117,6 +122,7 @@ void MainActions::addMenus(QMenuBar* bar)
 {
   QMenu* file = bar->addMenu("&File");
   file->addAction(this->Open);
+  file->addAction(this->OpenDicomFolder);
   this->Recent = file->addMenu("Open &Recent");
   this->updateRecentMenu();
   file->addAction(this->Demo);

@@ -33,6 +33,7 @@ public:
   void addRecentFile(const QString& path);
 
   QAction* Open;
+  QAction* OpenDicomFolder; ///< a DICOM series chosen by its folder
   QAction* Demo;
   QAction* LoadPlan;
   QAction* SavePlan;

@@ -11,6 +11,7 @@
 #include "MainActions.h"
 #include "MeasurementsPanel.h"
 #include "SegmentPanel.h"
+#include "SessionAutosave.h"
 #include "SliceViews.h"
 #include "TrackersPanel.h"
 #include "VesselController.h"
@@ -87,6 +88,10 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
 
   this->Session.SetMessageCallback([this](const bender::LogicMessage& m) { this->showMessage(m); });
   this->Session.SetChangeCallback([this]() { this->refresh(); });
+  // Every autosave also keeps the volume, the segmentation parameters and the ribbon.
+  FileOpener* files = this->Files;
+  this->Session.SetAutosaveDecorator(
+    [files](bender::SessionSnapshot& snapshot) { files->fillSnapshot(snapshot); });
   QString autosave = this->Options.autosavePath;
   if (autosave.isEmpty())
   {
@@ -107,6 +112,11 @@ MainWindow::~MainWindow()
   this->Worker->cancelAndWait();
   this->Session.SetMessageCallback(nullptr);
   this->Session.SetChangeCallback(nullptr);
+  this->Session.SetAutosaveDecorator(nullptr);
+  // Panels that drew into the 3D view take their actors out while it is still there (Qt would
+  // delete the view, the central widget, before the dock's panels).
+  delete this->TrackersUi;
+  this->TrackersUi = nullptr;
   this->Trackers.reset();
 }
 
@@ -155,6 +165,12 @@ void MainWindow::buildPanels()
   GestureController* gesture = this->Gesture;
   this->TrackersUi->attach(
     this->Trackers.get(), &this->Session, this->View, [gesture]() { return gesture->release(); });
+  // A tracker's bend is measured live as the mouse's is (H5).
+  connect(
+    this->TrackersUi, &TrackersPanel::trackerGrabbed, this->Vessels, &VesselController::grabbed);
+  connect(this->TrackersUi, &TrackersPanel::trackerMoved, this->Vessels, &VesselController::moved);
+  // The slice views' cursor in the 3D view; Shift+click there moves it (H5).
+  this->Slices->linkView(this->View);
 }
 
 void MainWindow::addPanel(QWidget* panel, const QString& title)
@@ -240,8 +256,41 @@ void MainWindow::refresh()
   {
     this->judgeSegmentation();
   }
+  this->autosaveNewRibbon();
   // Inside a widget interaction or a tracker poll the view draws once itself (quietly).
   this->render();
+}
+
+void MainWindow::autosaveNewRibbon()
+{
+  // A ribbon placed (or put back by undo, cancel, redo) changes no warp: the session does not
+  // autosave for it, the window does, so that a crash keeps it too.
+  const auto& ribbon = this->Session.GetRibbon();
+  if (this->Session.IsBusy() || this->Session.GetState() == bender::GrabState::Grabbed ||
+    !this->Session.HasSurface() || !ribbon)
+  {
+    return;
+  }
+  const auto same = [](const bender::RibbonEnd& a, const bender::RibbonEnd& b)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      if (a.position[i] != b.position[i] || a.tangent[i] != b.tangent[i] ||
+        a.normal[i] != b.normal[i])
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  if (this->AutosavedRibbon && same(this->AutosavedRibbon->start, ribbon->start) &&
+    same(this->AutosavedRibbon->end, ribbon->end) &&
+    this->AutosavedRibbon->extraTurns == ribbon->extraTurns)
+  {
+    return;
+  }
+  this->AutosavedRibbon = ribbon;
+  this->Session.Autosave();
 }
 
 void MainWindow::showSlices()
@@ -476,7 +525,7 @@ void MainWindow::closeEvent(QCloseEvent* event)
   // start offers to recover it.
   if (!this->Session.HasUnsavedChanges())
   {
-    this->Session.DiscardAutosave();
+    this->Files->discardAutosave();
   }
   event->accept();
 }

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 
 class BendPanel;
 class BenderView;
@@ -164,6 +165,8 @@ private:
   /// when it kept implausibly little.
   void noteSegmentation();
   void judgeSegmentation();
+  /// Autosaves when the session's ribbon changed without a warp (placed, put back).
+  void autosaveNewRibbon();
 
   MainWindowOptions Options;
   bender::BenderSession Session;
@@ -185,6 +188,8 @@ private:
   std::shared_ptr<const bender::LabelMap> PendingMask;
   vtkSmartPointer<vtkPolyData> SurfaceBeforeMask;
   std::weak_ptr<const bender::LabelMap> JudgedMask;
+  /// The session's ribbon when it was last autosaved (a newly placed one is autosaved).
+  std::optional<bender::RibbonSpec> AutosavedRibbon;
 
   WorkRunner* Worker = nullptr;
   GestureController* Gesture = nullptr;

@@ -73,17 +73,40 @@ SegmentPanel::SegmentPanel(MainActions* actions, QWidget* parent)
     });
   this->Histogram->setThreshold(this->Threshold->value());
   this->showKept();
+  // The panel's own defaults (250, 0.5) are the base until a session's are set.
+  this->Base.segmentation.lower = this->Threshold->value();
+  this->Base.surface.smoothing = this->Smoothing->value();
+  this->ShownThreshold = this->Threshold->value();
+  this->ShownSmoothing = this->Smoothing->value();
 }
 
 bender::SegmentationSettings SegmentPanel::settings() const
 {
-  bender::SegmentationSettings settings;
+  bender::SegmentationSettings settings = this->Base;
   settings.segmentation.method = this->Method->currentIndex() == 1
     ? bender::SegmentationMethod::Vesselness
     : bender::SegmentationMethod::Threshold;
-  settings.segmentation.lower = this->Threshold->value();
-  settings.surface.smoothing = this->Smoothing->value();
+  // The boxes show two decimals: a recovered 187.125 stays 187.125 until the user changes it.
+  if (this->Threshold->value() != this->ShownThreshold)
+  {
+    settings.segmentation.lower = this->Threshold->value();
+  }
+  if (this->Smoothing->value() != this->ShownSmoothing)
+  {
+    settings.surface.smoothing = this->Smoothing->value();
+  }
   return settings;
+}
+
+void SegmentPanel::setSettings(const bender::SegmentationSettings& settings)
+{
+  this->Base = settings;
+  this->Method->setCurrentIndex(
+    settings.segmentation.method == bender::SegmentationMethod::Vesselness ? 1 : 0);
+  this->Threshold->setValue(settings.segmentation.lower);
+  this->Smoothing->setValue(settings.surface.smoothing);
+  this->ShownThreshold = this->Threshold->value();
+  this->ShownSmoothing = this->Smoothing->value();
 }
 
 void SegmentPanel::showVolume(const std::shared_ptr<const bender::Volume>& volume)

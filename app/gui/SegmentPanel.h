@@ -26,7 +26,12 @@ public:
   static constexpr long long MinimumSurfacePoints = 1000;
 
   SegmentPanel(MainActions* actions, QWidget* parent = nullptr);
+  /// The parameters to segment with: the panel's method, threshold and smoothing over the
+  /// parameters last set with setSettings (those the panel does not show are kept).
   bender::SegmentationSettings settings() const;
+  /// Shows `settings` (a recovered session's): method, threshold, smoothing; the rest is kept
+  /// for settings().
+  void setSettings(const bender::SegmentationSettings& settings);
 
   /// Shows the histogram of `volume` (null clears it); computed once per volume.
   void showVolume(const std::shared_ptr<const bender::Volume>& volume);
@@ -52,6 +57,10 @@ private:
   QLabel* Kept;
   QLabel* Warning;
   std::shared_ptr<const bender::Volume> Volume;
+  bender::SegmentationSettings Base;
+  // The spin boxes' (rounded) values when Base was shown: unchanged, Base's exact values stand.
+  double ShownThreshold = 0.0;
+  double ShownSmoothing = 0.0;
   bool EightBit = false;
 };
 

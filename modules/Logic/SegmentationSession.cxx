@@ -6,6 +6,8 @@
 #include "WarpPlanIO.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <sstream>
@@ -49,6 +51,49 @@ void SegmentationSession::ReadJob::Run(const ProgressReporter& progress)
   }
   this->volume = std::make_shared<const Volume>(ReadVolume(this->path, options, progress));
   this->seriesRead = options.dicomSeriesUid;
+  if (this->maskPath.empty())
+  {
+    return;
+  }
+  // The mask: its own problems never cost the volume.
+  try
+  {
+    const Volume labels = ReadVolume(this->maskPath, {}, progress);
+    const ImageGeometry& a = labels.geometry;
+    const ImageGeometry& b = this->volume->geometry;
+    bool same = a.size == b.size;
+    for (std::size_t i = 0; i < 3 && same; ++i)
+    {
+      const double scale = std::max({ 1.0, std::abs(a.spacing[i]), std::abs(a.origin[i]) });
+      same = std::abs(a.spacing[i] - b.spacing[i]) <= 1e-6 * scale &&
+        std::abs(a.origin[i] - b.origin[i]) <= 1e-6 * scale;
+    }
+    if (!same)
+    {
+      this->maskProblem = std::filesystem::path(this->maskPath).filename().string() +
+        ": the mask is not on the volume's grid";
+      return;
+    }
+    auto mask = std::make_shared<LabelMap>();
+    mask->geometry = b;
+    mask->voxels.resize(labels.voxels.size());
+    std::transform(labels.voxels.begin(),
+      labels.voxels.end(),
+      mask->voxels.begin(),
+      [](float v) -> std::uint8_t {
+        return std::isfinite(v) ? static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L))
+                                : 0;
+      });
+    this->mask = std::move(mask);
+  }
+  catch (const Cancelled&)
+  {
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    this->maskProblem = e.what();
+  }
 }
 
 void SegmentationSession::SegmentJob::Run(const ProgressReporter& progress)
@@ -154,7 +199,7 @@ void SegmentationSession::FinishRead(const ReadJob& job, const std::string& name
   VolumeSource source;
   source.path = ec ? file.string() : absolute.string();
   source.dicomSeriesUid = job.seriesRead;
-  this->SetVolume(job.volume, name.empty() ? file.filename().string() : name, nullptr, source);
+  this->SetVolume(job.volume, name.empty() ? file.filename().string() : name, job.mask, source);
 }
 
 std::shared_ptr<SegmentationSession::SegmentJob> SegmentationSession::BeginSegment(

@@ -41,7 +41,13 @@ public:
   {
     std::string path;
     std::string dicomSeriesUid;
+    /// Optional: a mask file on the volume's grid (a recovered segmentation), read after it.
+    std::string maskPath;
     std::shared_ptr<const Volume> volume;
+    /// The mask read from maskPath; null when none was asked or it could not be used.
+    std::shared_ptr<const LabelMap> mask;
+    /// Why the mask asked for was not read (the volume still is); empty otherwise.
+    std::string maskProblem;
     /// The series read from a DICOM folder holding several; empty otherwise.
     std::string seriesRead;
     /// One sentence for the user when a choice was made for them; empty otherwise.
@@ -108,7 +114,8 @@ public:
 
   std::shared_ptr<ReadJob> BeginRead(const std::string& path,
     const std::string& dicomSeriesUid = {}) const;
-  /// Takes the job's volume as the loaded one, named `name` (empty: the file's name).
+  /// Takes the job's volume (and mask, if it read one) as the loaded one, named `name`
+  /// (empty: the file's name).
   void FinishRead(const ReadJob& job, const std::string& name = {});
   /// Null, and `problem` says why, without a loaded volume.
   std::shared_ptr<SegmentJob> BeginSegment(std::string& problem) const;

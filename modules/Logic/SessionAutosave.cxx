@@ -78,6 +78,10 @@ Json VolumeToJson(const SessionVolume& volume)
     direction.push_back(Finite(d, "volume.direction"));
   }
   v["direction"] = direction;
+  if (!volume.maskPath.empty())
+  {
+    v["mask"] = volume.maskPath;
+  }
   return v;
 }
 
@@ -288,6 +292,10 @@ public:
         this->Fail(field + ".direction", "not 9 finite numbers");
       }
       volume.geometry.direction[i] = direction[i].get<double>();
+    }
+    if (v.contains("mask"))
+    {
+      volume.maskPath = this->String(v, "mask", field);
     }
     return volume;
   }
@@ -599,6 +607,11 @@ std::string SessionVolumeCopyPath(const std::string& sessionPath)
   return sessionPath + ".volume.nrrd";
 }
 
+std::string SessionMaskCopyPath(const std::string& sessionPath)
+{
+  return sessionPath + ".mask.nrrd";
+}
+
 void RemoveSessionSideFiles(const std::string& sessionPath)
 {
   if (sessionPath.empty())
@@ -607,6 +620,7 @@ void RemoveSessionSideFiles(const std::string& sessionPath)
   }
   std::error_code ec;
   std::filesystem::remove(SessionVolumeCopyPath(sessionPath), ec);
+  std::filesystem::remove(SessionMaskCopyPath(sessionPath), ec);
 }
 
 } // namespace bender

@@ -31,6 +31,9 @@ struct SessionVolume
   std::string dicomSeriesUid;
   /// Size, spacing, origin and direction: the volume's identity (SameVolumeGeometry).
   ImageGeometry geometry;
+  /// The mask of its segmentation (the slice views' overlay), a file kept beside the autosave;
+  /// empty when there is none.
+  std::string maskPath;
 };
 
 /// The ribbon lying on the surface and the Bend parameters it was placed with.
@@ -50,11 +53,11 @@ struct SessionRibbon
 ///
 /// JSON, version 2: {"format": "bender-session", "version": 2, "source": PATH, "name": NAME,
 /// "frame": "LPS", "plan": {warp-file-format.md object}, "volume": {"path", "name", "series",
-/// "size": [3], "spacing": [3], "origin": [3], "direction": [9]}, "segmentation": {every
-/// SegmentationParameters and SurfaceParameters field by name}, "ribbon": {"start", "end":
-/// {"position", "tangent", "normal"}, "extraTurns", "radius", "decay", "plateau",
-/// "vesselRadius"}}. "name", "volume", "segmentation" and "ribbon" are optional. Version 1
-/// files (source, name, frame, plan) are still read.
+/// "size": [3], "spacing": [3], "origin": [3], "direction": [9], "mask"}, "segmentation":
+/// {every SegmentationParameters and SurfaceParameters field by name}, "ribbon": {"start",
+/// "end": {"position", "tangent", "normal"}, "extraTurns", "radius", "decay", "plateau",
+/// "vesselRadius"}}. "name", "volume" (and its "series" and "mask"), "segmentation" and
+/// "ribbon" are optional. Version 1 files (source, name, frame, plan) are still read.
 struct SessionSnapshot
 {
   std::string sourcePath; ///< absolute path of the surface the plan applies to
@@ -90,7 +93,11 @@ std::string DescribeVolumeGeometry(const ImageGeometry& geometry);
 /// `sessionPath`.
 std::string SessionVolumeCopyPath(const std::string& sessionPath);
 
-/// Removes the files the window keeps beside the autosave `sessionPath` (the volume copy); the
+/// Where the window keeps the mask of the volume's segmentation beside the autosave.
+std::string SessionMaskCopyPath(const std::string& sessionPath);
+
+/// Removes the files the window keeps beside the autosave `sessionPath` (the volume and mask
+/// copies); the
 /// session file itself and the surface copy are BenderSession::DiscardAutosave's.
 void RemoveSessionSideFiles(const std::string& sessionPath);
 

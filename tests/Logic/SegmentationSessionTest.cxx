@@ -2,11 +2,15 @@
 // when set, the segment job run on another thread and finished on the session's, stale jobs.
 #include "SegmentationSession.h"
 
+#include "VolumeIO.h"
+
 #include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <random>
 #include <thread>
 
 using namespace bender;
@@ -85,4 +89,66 @@ TEST(SegmentationSession, SegmentJobRunsOnAnotherThreadAndKeepsTheMask)
   EXPECT_FALSE(session.GetMask());
   session.Clear();
   EXPECT_FALSE(session.HasVolume());
+}
+
+TEST(SegmentationSession, AVolumeIsReadWithItsMaskAndRemembersItsFile)
+{
+  // A recovered session reads the volume and the mask of its segmentation kept beside it.
+  std::random_device random;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+    ("bender-segmentation-session-" + std::to_string(random()));
+  std::filesystem::create_directories(folder);
+  const std::string volumePath = (folder / "tube.nrrd").string();
+  const std::string maskPath = (folder / "tube-mask.nrrd").string();
+  WriteVolume(*TubeVolume(), volumePath);
+
+  SegmentationSession session;
+  session.SetVolume(TubeVolume(), "tube");
+  std::string problem;
+  auto segment = session.BeginSegment(problem);
+  ASSERT_TRUE(segment) << problem;
+  segment->Run({});
+  WriteLabelMap(*segment->mask, maskPath);
+
+  auto read = session.BeginRead(volumePath);
+  read->maskPath = maskPath;
+  read->Run({});
+  ASSERT_TRUE(read->volume);
+  ASSERT_TRUE(read->mask) << read->maskProblem;
+  EXPECT_TRUE(read->maskProblem.empty());
+  EXPECT_EQ(read->mask->voxels, segment->mask->voxels);
+  session.FinishRead(*read, "tube (recovered)");
+  EXPECT_EQ(session.GetVolume(), read->volume);
+  EXPECT_EQ(session.GetMask(), read->mask);
+  EXPECT_EQ(session.GetVolumeName(), "tube (recovered)");
+  EXPECT_EQ(std::filesystem::path(session.GetVolumeSource().path),
+    std::filesystem::absolute(volumePath).lexically_normal());
+
+  // A mask on another grid, or none at all: the volume is read, the mask is not, and why.
+  auto other = std::make_shared<Volume>(*TubeVolume());
+  other->geometry.spacing = { 0.5, 0.5, 0.5 };
+  other->geometry.size = { 16, 16, 16 };
+  other->voxels.assign(other->geometry.VoxelCount(), 0.0f);
+  const std::string wrongMask = (folder / "other-mask.nrrd").string();
+  WriteVolume(*other, wrongMask);
+  auto wrong = session.BeginRead(volumePath);
+  wrong->maskPath = wrongMask;
+  wrong->Run({});
+  EXPECT_TRUE(wrong->volume);
+  EXPECT_FALSE(wrong->mask);
+  EXPECT_NE(wrong->maskProblem.find("other-mask.nrrd: the mask is not on the volume's grid"),
+    std::string::npos)
+    << wrong->maskProblem;
+  auto missing = session.BeginRead(volumePath);
+  missing->maskPath = (folder / "gone.nrrd").string();
+  missing->Run({});
+  EXPECT_TRUE(missing->volume);
+  EXPECT_FALSE(missing->mask);
+  EXPECT_NE(missing->maskProblem.find("gone.nrrd"), std::string::npos) << missing->maskProblem;
+  session.FinishRead(*missing);
+  EXPECT_FALSE(session.GetMask());
+  EXPECT_EQ(session.GetVolumeName(), "tube.nrrd");
+
+  std::error_code ec;
+  std::filesystem::remove_all(folder, ec);
 }

@@ -90,6 +90,7 @@ SessionSnapshot FullSnapshot()
   volume.geometry.spacing = { 0.9375, 0.9375, 1.0 / 3.0 };
   volume.geometry.origin = { -120.3, 98.7, 1e-7 };
   volume.geometry.direction = { 0, 1, 0, -1, 0, 0, 0, 0, 1 };
+  volume.maskPath = "/home/u/.local/share/Bender/autosave.bender-session.json.mask.nrrd";
   s.volume = volume;
 
   SegmentationSettings settings;
@@ -199,6 +200,7 @@ TEST(SessionAutosave, EveryFieldIsReadBackExactly)
   EXPECT_EQ(read.volume->geometry.spacing, written.volume->geometry.spacing);
   EXPECT_EQ(read.volume->geometry.origin, written.volume->geometry.origin);
   EXPECT_EQ(read.volume->geometry.direction, written.volume->geometry.direction);
+  EXPECT_EQ(read.volume->maskPath, written.volume->maskPath);
   EXPECT_TRUE(SameVolumeGeometry(read.volume->geometry, written.volume->geometry));
 
   ASSERT_TRUE(read.segmentation.has_value());

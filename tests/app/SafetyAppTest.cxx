@@ -3,18 +3,27 @@
 // until its stylus press and then bends the branch from where the ribbon is, without flipped or
 // crossing triangles; a crushing bend is held by the commit guard with its triangles drawn and
 // the dialog's buttons cancel or keep it; "Save changes?" before the demo replaces warps; a
-// plan already applied is not replayed again.
+// plan already applied is not replayed again; after a crash, the next window recovers the
+// volume, the segmentation parameters, the surface with its name, the warps and the ribbon
+// (and, the volume file gone, the rest with one message); a DICOM series opened by its folder.
 #include "AppTestUtilities.h"
 
+#include "BendPanel.h"
 #include "BenderMeshCheck.h"
 #include "BenderSession.h"
+#include "DemoPipeline.h"
 #include "FileOpener.h"
 #include "GestureController.h"
 #include "MainActions.h"
 #include "MainWindow.h"
 #include "ProblemOverlay.h"
+#include "SegmentPanel.h"
+#include "SessionAutosave.h"
+#include "SliceViews.h"
 #include "TrackerSession.h"
 #include "TrackersPanel.h"
+#include "VolumeIO.h"
+#include "WarpPlanIO.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
@@ -23,9 +32,12 @@
 #include <QApplication>
 #include <QDialog>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFileInfo>
 #include <QLabel>
+#include <QMenu>
+#include <QMenuBar>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSettings>
@@ -111,12 +123,59 @@ private:
   {
     return this->Window->ribbonWidget()->GetRibbonRepresentation()->GetRibbon();
   }
-  bool hasMessage(const std::string& part)
+  bool hasMessage(const std::string& part) { return HasMessage(*this->Window, part); }
+  static bool HasMessage(MainWindow& window, const std::string& part)
   {
-    for (const auto& m : this->Window->session().GetMessages())
+    for (const auto& m : window.session().GetMessages())
       if (m.text.find(part) != std::string::npos)
         return true;
     return false;
+  }
+  static const bender::LogicMessage* FindMessage(MainWindow& window, const std::string& part)
+  {
+    for (const auto& m : window.session().GetMessages())
+      if (m.text.find(part) != std::string::npos)
+        return &m;
+    return nullptr;
+  }
+  static int CountMessages(MainWindow& window, const std::string& part)
+  {
+    int count = 0;
+    for (const auto& m : window.session().GetMessages())
+      if (m.text.find(part) != std::string::npos)
+        ++count;
+    return count;
+  }
+  // A window that offers recovery at start, as Bender does; the recovery dialog is answered
+  // `which` (its text and a picture of it kept).
+  std::unique_ptr<MainWindow> startWindowAnsweringRecovery(const QString& folder,
+    QMessageBox::StandardButton which,
+    QString* text,
+    const QString& picture)
+  {
+    auto* timer = new QTimer(this);
+    timer->setInterval(50);
+    connect(timer,
+      &QTimer::timeout,
+      this,
+      [timer, which, text, picture]()
+      {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        if (!box || box->objectName() != "recoverSession")
+          return;
+        timer->stop();
+        timer->deleteLater();
+        *text = box->text() + "\n" + box->informativeText();
+        if (!picture.isEmpty())
+          box->grab().save(picture);
+        QTest::mouseClick(box->button(which), Qt::LeftButton);
+      });
+    timer->start();
+    MainWindowOptions options = bendertest::TestWindowOptions(folder);
+    options.offerRecovery = true;
+    auto window = std::make_unique<MainWindow>(options);
+    bendertest::ShowTestWindow(*window, false);
+    return window;
   }
   // Answers the next modal message box with the button `which`; the text it showed lands in
   // `text`.
@@ -410,6 +469,191 @@ private slots:
     QCOMPARE(recovered.GetHistoryPosition(), std::size_t(1));
     QCOMPARE(recovered.GetSurfaceName(), std::string("tube"));
     window.reset();
+  }
+
+  void recoveryAfterACrashRestoresEverything()
+  {
+    QTemporaryDir folder;
+    const QString autosave = folder.filePath("autosave.bender-session.json");
+    // The demo's MRA-like volume as a file the user opens.
+    const auto demoVolume = this->Window->segmentation().GetVolume();
+    QVERIFY(demoVolume);
+    const QString nrrd = folder.filePath("mra.nrrd");
+    bender::WriteVolume(*demoVolume, nrrd.toStdString());
+
+    auto window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(folder.path()));
+    QVERIFY(bendertest::ShowTestWindow(*window, false));
+    QVERIFY(window->openFile(nrrd));
+    QVERIFY(window->waitUntilIdle(60000));
+    QVERIFY(window->segmentation().HasVolume());
+    // The user's parameters, through the Segment panel, then Segment.
+    auto* threshold = window->segmentPanel()->findChild<QDoubleSpinBox*>("lumenThreshold");
+    auto* smoothing = window->segmentPanel()->findChild<QDoubleSpinBox*>("smoothing");
+    QVERIFY(threshold && smoothing);
+    threshold->setValue(240.5);
+    smoothing->setValue(0.35);
+    QVERIFY(window->segmentVolume());
+    QVERIFY(window->waitUntilIdle(180000));
+    bender::BenderSession& session = window->session();
+    QVERIFY(session.HasSurface());
+    QCOMPARE(session.GetSurfaceName(), std::string("segmented vessel"));
+    // Bent by the demo plan, then a ribbon placed for the next bend with R = 7.25.
+    const bender::WarpPlan plan = bender::ReadWarpPlan(bender::DemoPlanPath());
+    QVERIFY(window->openFile(QString::fromStdString(bender::DemoPlanPath())));
+    QVERIFY(window->waitUntilIdle(120000));
+    QCOMPARE(session.GetHistoryPosition(), plan.warps.size());
+    bender::WarpParameters parameters = window->bendPanel()->parameters();
+    parameters.radius = 7.25;
+    window->bendPanel()->setParameters(parameters);
+    window->gesture()->applyParameters();
+    const bender::RibbonSpec placed = plan.warps.front().initial;
+    window->gesture()->showRibbon(placed, 3.0);
+    QVERIFY(session.GetRibbon().has_value());
+    QVERIFY(RibbonDistance(*session.GetRibbon(), placed) < 1e-12);
+    QVERIFY(session.HasUnsavedChanges());
+
+    const bender::ImageGeometry geometry = window->segmentation().GetVolume()->geometry;
+    QVERIFY(window->segmentation().GetMask());
+    const std::vector<std::uint8_t> maskVoxels = window->segmentation().GetMask()->voxels;
+    const bender::SegmentationSettings settings = window->segmentation().GetSettings();
+    QCOMPARE(settings.segmentation.lower, 240.5);
+    QCOMPARE(settings.surface.smoothing, 0.35);
+    const auto bent = Copy(session.GetSurface());
+    const std::string planText = bender::SerializeWarpPlan(session.GetPlan());
+
+    // The crash: the window goes without its close (no question, no clean exit).
+    window.reset();
+    QVERIFY(QFileInfo::exists(autosave));
+
+    // The next start offers the recovery, listing what it holds; the user recovers.
+    QString asked;
+    auto recovered = this->startWindowAnsweringRecovery(
+      folder.path(), QMessageBox::Yes, &asked, this->artefact("safety-recovery-dialog.png"));
+    QTRY_VERIFY_WITH_TIMEOUT(!asked.isEmpty(), 20000);
+    QVERIFY2(asked.contains("segmented vessel") && asked.contains("mra.nrrd") &&
+        asked.contains(
+          QString("%1 warp%2").arg(plan.warps.size()).arg(plan.warps.size() == 1 ? "" : "s")) &&
+        asked.contains("threshold 240.5") && asked.contains("ribbon"),
+      qPrintable(asked));
+    bender::BenderSession& again = recovered->session();
+    QTRY_VERIFY_WITH_TIMEOUT(again.HasSurface(), 60000);
+    QVERIFY(recovered->waitUntilIdle(120000));
+
+    // The volume: read again, the same grid, in the slice views.
+    QVERIFY(recovered->segmentation().HasVolume());
+    const bender::ImageGeometry& back = recovered->segmentation().GetVolume()->geometry;
+    QCOMPARE(back.size, geometry.size);
+    QCOMPARE(back.spacing, geometry.spacing);
+    QVERIFY(bender::SameVolumeGeometry(back, geometry));
+    QCOMPARE(QString::fromStdString(recovered->segmentation().GetVolumeSource().path),
+      QFileInfo(nrrd).absoluteFilePath());
+    QVERIFY(recovered->sliceViews()->hasVolume());
+    // With the segmentation's mask (the slices' overlay), voxel for voxel.
+    QVERIFY(recovered->segmentation().GetMask());
+    QVERIFY(recovered->segmentation().GetMask()->voxels == maskVoxels);
+    QVERIFY(recovered->sliceViews()->isVisible());
+    // The segmentation parameters, in the session and in the Segment panel.
+    const bender::SegmentationSettings& restored = recovered->segmentation().GetSettings();
+    QCOMPARE(restored.segmentation.lower, settings.segmentation.lower);
+    QCOMPARE(restored.surface.smoothing, settings.surface.smoothing);
+    QCOMPARE(int(restored.segmentation.method), int(settings.segmentation.method));
+    QCOMPARE(restored.segmentation.upper, settings.segmentation.upper);
+    QCOMPARE(restored.segmentation.fillHoles, settings.segmentation.fillHoles);
+    SegmentPanel* panel = recovered->segmentPanel();
+    QCOMPARE(panel->findChild<QDoubleSpinBox*>("lumenThreshold")->value(), 240.5);
+    QCOMPARE(panel->findChild<QDoubleSpinBox*>("smoothing")->value(), 0.35);
+    QCOMPARE(panel->settings().segmentation.lower, 240.5);
+    // The surface: its name, the bent points, the plan.
+    QCOMPARE(again.GetSurfaceName(), std::string("segmented vessel"));
+    QCOMPARE(again.GetHistoryPosition(), plan.warps.size());
+    QCOMPARE(bender::SerializeWarpPlan(again.GetPlan()), planText);
+    QCOMPARE(again.GetSurface()->GetNumberOfPoints(), bent->GetNumberOfPoints());
+    QVERIFY2(MaxDifference(again.GetSurface(), bent) < 1e-9,
+      qPrintable(QString::number(MaxDifference(again.GetSurface(), bent))));
+    // The ribbon where it was placed, with its R; recovered work is unsaved work.
+    QVERIFY(again.GetRibbon().has_value());
+    QVERIFY(RibbonDistance(*again.GetRibbon(), placed) < 1e-12);
+    QVERIFY(recovered->ribbonWidget()->GetEnabled());
+    QVERIFY(RibbonDistance(
+              recovered->ribbonWidget()->GetRibbonRepresentation()->GetRibbon(), placed) < 1e-12);
+    QCOMPARE(again.GetParameters().radius, 7.25);
+    QVERIFY(again.HasUnsavedChanges());
+    QVERIFY(HasMessage(*recovered, "Recovered the surface \"segmented vessel\""));
+    QVERIFY(recovered->saveScreenshot(this->artefact("safety-recovered.png")));
+
+    // Another crash, and the volume file is gone: one message, the rest recovered.
+    recovered.reset();
+    QVERIFY(QFile::remove(nrrd));
+    asked.clear();
+    auto partial = this->startWindowAnsweringRecovery(folder.path(), QMessageBox::Yes, &asked, {});
+    QTRY_VERIFY_WITH_TIMEOUT(!asked.isEmpty(), 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(partial->session().HasSurface(), 60000);
+    QVERIFY(partial->waitUntilIdle(120000));
+    QVERIFY(!partial->segmentation().HasVolume());
+    QCOMPARE(partial->session().GetHistoryPosition(), plan.warps.size());
+    QVERIFY(MaxDifference(partial->session().GetSurface(), bent) < 1e-9);
+    QCOMPARE(partial->segmentation().GetSettings().segmentation.lower, 240.5);
+    QCOMPARE(CountMessages(*partial, "mra.nrrd"), 1);
+    const bender::LogicMessage* said = FindMessage(*partial, "could not be read");
+    QVERIFY(said);
+    QCOMPARE(int(said->severity), int(bender::MessageSeverity::Warning));
+    QVERIFY2(said->text.find("mra.nrrd") != std::string::npos &&
+        said->text.find("Recovered the surface \"segmented vessel\"") != std::string::npos,
+      said->text.c_str());
+    QVERIFY(partial->saveScreenshot(this->artefact("safety-recovered-without-volume.png")));
+
+    // Discard at the next start: the autosave and what lies beside it go.
+    partial.reset();
+    asked.clear();
+    auto discarded = this->startWindowAnsweringRecovery(folder.path(), QMessageBox::No, &asked, {});
+    QTRY_VERIFY_WITH_TIMEOUT(!asked.isEmpty(), 20000);
+    QTRY_VERIFY(!QFileInfo::exists(autosave));
+    QVERIFY(!discarded->session().HasSurface());
+    discarded.reset();
+  }
+
+  void aDicomSeriesOpensByItsFolder()
+  {
+    // File > Open DICOM folder is in the menu with its own folder memory.
+    QAction* action = this->Window->actions()->OpenDicomFolder;
+    QVERIFY(action);
+    bool inFileMenu = false;
+    for (QMenu* menu : this->Window->menuBar()->findChildren<QMenu*>())
+      if (menu->title() == "&File" && menu->actions().contains(action))
+        inFileMenu = true;
+    QVERIFY(inFileMenu);
+    // Two series in one folder (the project's two real DICOM slices): one is read, and the
+    // status bar says which and what else is there.
+    const QString external =
+      QFileInfo(QString::fromStdString(bender::DemoVesselPath())).absolutePath();
+    QTemporaryDir folder;
+    const QString study = folder.filePath("study");
+    QVERIFY(QDir().mkpath(study));
+    QVERIFY(QFile::copy(external + "/CT_small.dcm", study + "/ct.dcm"));
+    QVERIFY(QFile::copy(external + "/MR_small.dcm", study + "/mr.dcm"));
+    QVERIFY(this->Window->files()->openDicomFolder(study));
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    QVERIFY(this->Window->segmentation().HasVolume());
+    QCOMPARE(this->Window->segmentation().GetVolumeName(), std::string("study"));
+    QVERIFY(!this->Window->segmentation().GetVolumeSource().dicomSeriesUid.empty());
+    const bender::LogicMessage* said = FindMessage(*this->Window, "study: 2 DICOM series");
+    QVERIFY(said);
+    QVERIFY2(said->text.find("read the largest") != std::string::npos, said->text.c_str());
+    QVERIFY(this->Window->sliceViews()->hasVolume());
+    // A folder without DICOM: one line naming it; the volume loaded stays.
+    const QString empty = folder.filePath("notes");
+    QVERIFY(QDir().mkpath(empty));
+    QFile(empty + "/readme.txt").open(QIODevice::WriteOnly);
+    QVERIFY(this->Window->files()->openDicomFolder(empty));
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    const bender::LogicMessage* refused = FindMessage(*this->Window, "no DICOM series");
+    QVERIFY(refused);
+    QCOMPARE(int(refused->severity), int(bender::MessageSeverity::Error));
+    QVERIFY2(refused->text.find("notes") != std::string::npos, refused->text.c_str());
+    QCOMPARE(this->Window->segmentation().GetVolumeName(), std::string("study"));
+    // Not a folder at all.
+    QVERIFY(!this->Window->files()->openDicomFolder(folder.filePath("missing")));
+    QVERIFY(this->hasMessage("missing: not a folder"));
   }
 
   void dialogsRememberTheLastFolder()
