@@ -208,6 +208,8 @@ private slots:
     recorder->SetInputString(log.str().c_str());
     recorder->Play();
     recorder->Off();
+    // docs/screenshots: grabbing, handles visible (scripts/screenshots picks it up).
+    this->Window->saveScreenshot(this->artefact("bender-grabbing.png"));
 
     const bender::RibbonSpec moved = rep->GetRibbon();
     QVERIFY(bender::Distance(moved.end.position, initial.end.position) > 1.0);
