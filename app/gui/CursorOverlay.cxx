@@ -175,7 +175,7 @@ void CursorOverlay::rebuild()
   const double* p = this->Position;
   const double diagonal = std::sqrt(
     (b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
-  const double arm = std::max(0.04 * diagonal, 1e-3);
+  const double arm = std::max(0.06 * diagonal, 1e-3);
 
   // The crosshair: three segments through the cursor along L, P and S.
   vtkNew<vtkPoints> crossPoints;

@@ -20,7 +20,7 @@ class vtkRenderer;
 /// The slice views' cursor (one point in LPS mm) drawn in a 3D view, and the 3D view's way of
 /// moving it: a Shift+click on a pickable prop (the surface) emits picked() with the point hit.
 ///
-/// Drawn as a small three-axis crosshair through the cursor (white, its arms 4% of the
+/// Drawn as a small three-axis crosshair through the cursor (white, its arms 6% of the
 /// volume's diagonal) and, optionally, the outlines of the three slice planes through it over
 /// the volume's box, in the slice views' colours: axial red, coronal green, sagittal yellow.
 /// The actors go into `layer` (a renderer layer drawn above the surface, sharing its camera,
