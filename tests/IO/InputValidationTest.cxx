@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -510,4 +512,201 @@ TEST(InputValidation, VtpCompressedBlockHeadersAreBounded)
   bytes[data + 8 + 7] = 0x73; // block size word (UInt64, little endian): top byte
   WriteText(dir / "block.vtp", bytes);
   ExpectRefused(dir / "block.vtp", "compressed block header at offset 0");
+}
+
+namespace
+{
+
+// The PLY whitelist (PlyValidation.cxx) on bytes: refused with the expected words, or accepted.
+void ExpectPly(const std::string& bytes, const std::string& expected)
+{
+  SCOPED_TRACE(bytes.substr(0, 300));
+  std::string problem;
+  const bool ok = bender::io_detail::CheckPlyBytes(bytes, problem);
+  if (expected.empty())
+  {
+    EXPECT_TRUE(ok) << problem;
+    return;
+  }
+  EXPECT_FALSE(ok);
+  EXPECT_NE(problem.find(expected), std::string::npos) << problem;
+  EXPECT_EQ(problem.find('\n'), std::string::npos) << problem;
+}
+
+const char* const PlyVertices = "element vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\n";
+const char* const PlyFace = "element face 1\nproperty list uchar int vertex_indices\n";
+const char* const PlyRecords = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+
+std::string AsciiPly(const std::string& header, const std::string& records = PlyRecords)
+{
+  return "ply\nformat ascii 1.0\n" + header + "end_header\n" + records;
+}
+
+// Little-endian bytes of an integer.
+std::string Le(std::uint32_t value, int size)
+{
+  std::string bytes;
+  for (int b = 0; b < size; ++b)
+  {
+    bytes.push_back(static_cast<char>((value >> (8 * b)) & 0xff));
+  }
+  return bytes;
+}
+
+std::string LeFloat(float value)
+{
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &value, 4);
+  return Le(bits, 4);
+}
+
+} // namespace
+
+// The header is a whitelist of vtkPLY's grammar: each line exactly its words (vtkPLY reads
+// missing words from an uninitialised array), known types, version 1.0, nothing twice.
+TEST(InputValidation, PlyHeaderGrammarIsAWhitelist)
+{
+  const std::string v = PlyVertices;
+  const std::string f = PlyFace;
+  ExpectPly(AsciiPly(v + f), "");
+  ExpectPly(AsciiPly(v + "element face 1\nproperty list uchar int vertex_index\n"), "");
+  ExpectPly("ply\nformat ascii 2.0\n" + v + f + "end_header\n" + PlyRecords,
+    "expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+  ExpectPly("ply\nformat ascii\n" + v + f + "end_header\n" + PlyRecords, "1.0");
+  ExpectPly("ply\nformat ascii 1.0\nformat ascii 1.0\n" + v + f + "end_header\n" + PlyRecords,
+    "a second \"format\" line");
+  ExpectPly("ply\n" + v + "format ascii 1.0\n" + f + "end_header\n" + PlyRecords,
+    "element before the \"format\" line");
+  ExpectPly("ply extra\nformat ascii 1.0\n" + v + f + "end_header\n" + PlyRecords,
+    "the first line is not \"ply\"");
+  ExpectPly(AsciiPly("element vertex\nproperty float x\nproperty float y\nproperty float z\n" + f),
+    "expected \"element NAME COUNT\"");
+  ExpectPly(AsciiPly("element vertex 3 4\nproperty float x\nproperty float y\n"
+                     "property float z\n" +
+              f),
+    "expected \"element NAME COUNT\"");
+  ExpectPly(AsciiPly("element vertex -3\nproperty float x\nproperty float y\nproperty float z\n"),
+    "element count \"-3\"");
+  ExpectPly(AsciiPly("element vertex 3000000000\nproperty float x\nproperty float y\n"
+                     "property float z\n"),
+    "element count \"3000000000\"");
+  ExpectPly(AsciiPly(v + "property float\n" + f), "expected \"property TYPE NAME\"");
+  ExpectPly(AsciiPly(v + "property float w extra\n" + f), "expected \"property TYPE NAME\"");
+  ExpectPly(AsciiPly(v + "element face 1\nproperty list uchar vertex_indices\n"),
+    "expected \"property list COUNT_TYPE ITEM_TYPE NAME\"");
+  ExpectPly(AsciiPly(v + "property int64 w\n" + f), "unknown property type \"int64\"");
+  ExpectPly(AsciiPly(v + "element face 1\nproperty list float int vertex_indices\n"),
+    "unsupported list types \"float int\"");
+  ExpectPly(AsciiPly(v + "property float x\n" + f), "a second property \"x\"");
+  ExpectPly(AsciiPly(v + f + v), "a second element \"vertex\"");
+  ExpectPly(AsciiPly(v + f + "weird line\n"), "unexpected \"weird\"");
+  ExpectPly("ply\nformat ascii 1.0\n" + v + f + "end_header now\n" + PlyRecords,
+    "words after \"end_header\"");
+  // vtkPLY rewrites "vertex_index" in place as "vertex_indices" on every header line: as an
+  // element name it swallowed the count.
+  ExpectPly(AsciiPly("element vertex_indexes 3\nproperty float x\n" + v + f),
+    "\"vertex_index\" is reserved for the face's index list");
+  ExpectPly(AsciiPly("comment made from vertex_index data\n" + v + f), "");
+}
+
+// vtkPLYReader reads the vertex element as scalars and then the face element's one index list:
+// anything else in those places would be read as something it is not.
+TEST(InputValidation, PlyElementsAreWhatVtkPlyReaderReads)
+{
+  const std::string v = PlyVertices;
+  const std::string f = PlyFace;
+  ExpectPly(AsciiPly(f + v, "3 0 1 2\n0 0 0\n1 0 0\n0 1 0\n"),
+    "PLY face element before the vertex element");
+  ExpectPly(
+    AsciiPly(v + "element edge 1\nproperty int a\n" + f, "0 0 0\n1 0 0\n0 1 0\n5\n3 0 1 2\n"),
+    "PLY element \"edge\" before the vertex and face elements");
+  ExpectPly(
+    AsciiPly(v + f + "element edge 1\nproperty int a\n", std::string(PlyRecords) + "5\n"), "");
+  ExpectPly(
+    AsciiPly(v + "property list uchar float n\n" + f, "0 0 0 1 0\n1 0 0 1 0\n0 1 0 1 0\n3 0 1 2\n"),
+    "PLY vertex property \"n\" is a list");
+  ExpectPly(AsciiPly(v + f + "property list uchar float texcoord\n",
+              "0 0 0\n1 0 0\n0 1 0\n"
+              "3 0 1 2 6 0 0 1 0 0 1\n"),
+    "PLY face property \"texcoord\" is not supported");
+  ExpectPly(AsciiPly(v + "element face 1\nproperty list uchar float vertex_indices\n"),
+    "PLY face indices of a floating-point type");
+  ExpectPly(AsciiPly(v + f + "property list uchar int vertex_index\n",
+              "0 0 0\n1 0 0\n0 1 0\n"
+              "3 0 1 2 3 0 1 2\n"),
+    "with both \"vertex_indices\" and \"vertex_index\"");
+  ExpectPly(AsciiPly(v + "element face 0\nproperty uchar red\n", "0 0 0\n1 0 0\n0 1 0\n"),
+    "PLY face element without a \"vertex_indices\" list");
+}
+
+// Every ASCII record against its declared types, as vtkPLY splits lines (spaces and tabs only).
+TEST(InputValidation, PlyAsciiRecordsMatchTheirTypes)
+{
+  const std::string v = PlyVertices;
+  const std::string f = PlyFace;
+  ExpectPly(AsciiPly(v + f, "0 0 0\n1 0 0\n0 1 0\n2 0 1\n"), "a face of 2 vertices (3 to 255");
+  std::string zeros;
+  for (int i = 0; i < 256; ++i)
+  {
+    zeros += " 0";
+  }
+  ExpectPly(AsciiPly(v + "element face 1\nproperty list ushort int vertex_indices\n",
+              "0 0 0\n1 0 0\n0 1 0\n256" + zeros + "\n"),
+    "a face of 256 vertices");
+  ExpectPly(AsciiPly(v + f, "0 0 0\n1 0 0\n0 1 0\n3 0 1 2.5\n"), "\"2.5\" is not an integer");
+  ExpectPly(AsciiPly(v + f, "0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n"), "vertex index -1 out of range");
+  ExpectPly(AsciiPly(v + f, "0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n"), "\"x\" is not a number");
+  ExpectPly(AsciiPly(v + "property uchar red\n" + f, "0 0 0 1\n1 0 0 2\n0 1 0 300\n3 0 1 2\n"),
+    "\"300\" is out of range for \"red\"");
+  // vtkPLY splits at spaces and tabs only: a vertical tab or form feed joins two values.
+  ExpectPly(AsciiPly(v + f, "0 0 0\n1\v0 0 0\n0 1 0\n3 0 1 2\n"), "control or non-ASCII byte");
+  ExpectPly(AsciiPly(v + f, "0 0 0\n1 0 0\n0 1 0\n3 0\f1 2\n"), "control or non-ASCII byte");
+  ExpectPly(AsciiPly(v + f, "0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"), "");
+  ExpectPly(AsciiPly(v + f, "0 0 0\n1 0\r0\n0 1 0\n3 0 1 2\n"), "carriage return inside the line");
+  ExpectPly(AsciiPly(v + f, std::string(PlyRecords) + "\n  \n"), "");
+  ExpectPly(AsciiPly(v + f, std::string(PlyRecords) + "3 0 1 2\n"), "data after the last record");
+}
+
+// Binary records: exactly as long as the header says, list counts bounded (an unsigned byte
+// count of 200 is a count, not a negative number), indices in range.
+TEST(InputValidation, PlyBinaryRecordsMatchTheirTypes)
+{
+  const std::string header = "ply\nformat binary_little_endian 1.0\n" + std::string(PlyVertices) +
+    "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+  std::string vertices;
+  for (int i = 0; i < 3; ++i)
+  {
+    vertices += LeFloat(i == 1 ? 1.f : 0.f) + LeFloat(i == 2 ? 1.f : 0.f) + LeFloat(0.f);
+  }
+  const std::string face = Le(3, 1) + Le(0, 4) + Le(1, 4) + Le(2, 4);
+  ExpectPly(header + vertices + face, "");
+  ExpectPly(header + vertices + face + "x", "binary PLY with 1 bytes after the last record");
+  ExpectPly(header + vertices + face.substr(0, 9), "truncated binary PLY");
+  ExpectPly(header + vertices + Le(3, 1) + Le(0, 4) + Le(1, 4) + Le(0xffffffffu, 4),
+    "vertex index 4294967295 out of range");
+  ExpectPly(header + vertices + Le(2, 1) + Le(0, 4) + Le(1, 4), "a face of 2 vertices");
+  std::string big;
+  for (int i = 0; i < 200; ++i)
+  {
+    big += Le(static_cast<std::uint32_t>(i % 3), 4);
+  }
+  ExpectPly(header + vertices + Le(200, 1) + big, "");
+  const std::string signedCount = "ply\nformat binary_little_endian 1.0\n" +
+    std::string(PlyVertices) +
+    "element face 1\nproperty list char int vertex_indices\nend_header\n";
+  ExpectPly(signedCount + vertices + Le(0xff, 1), "negative list length");
+}
+
+// Files that pass the whitelist read with VTK ("vertex_index"); a refused one names the file.
+TEST(InputValidation, PlyWhitelistedShapesRead)
+{
+  TempDir dir;
+  WriteText(dir / "index.ply",
+    AsciiPly(std::string(PlyVertices) + "element face 1\nproperty list uchar int vertex_index\n"));
+  EXPECT_EQ(ReadMesh(dir / "index.ply")->GetNumberOfPolys(), 1);
+  WriteText(dir / "texcoord.ply",
+    AsciiPly(std::string(PlyVertices) + PlyFace + "property list uchar float texcoord\n",
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 6 0 0 1 0 0 1\n"));
+  ExpectRefused(dir / "texcoord.ply", "PLY face property \"texcoord\" is not supported");
 }
