@@ -5,7 +5,8 @@
 // Shift+drag sets the window/level and leaves the cursor; a Shift+click on the surface in the
 // 3D view puts the cursor on the surface point under the mouse (and a Shift+drag still pans);
 // held trackers' markers drift off the ribbon's ends when a hand moves, and Align puts them
-// back on the ends to 1e-6 mm without bending anything.
+// back on the ends to 1e-6 mm without bending anything; a tracker's bend is measured live in
+// the Measure panel.
 
 #include "AppTestUtilities.h"
 #include "BenderSession.h"
@@ -16,6 +17,7 @@
 #include "SliceViews.h"
 #include "TrackerSession.h"
 #include "TrackersPanel.h"
+#include "VesselController.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
@@ -24,6 +26,7 @@
 #include <QLabel>
 #include <QMouseEvent>
 #include <QPushButton>
+#include <QSignalSpy>
 #include <QTabWidget>
 #include <QTemporaryDir>
 #include <QVTKOpenGLNativeWidget.h>
@@ -477,6 +480,35 @@ private slots:
     QVERIFY(!panel->handMarkersShown());
     QVERIFY(!align->isEnabled());
     QVERIFY(align->toolTip().startsWith("Connect a tracker first"));
+  }
+
+  void aTrackerBendIsMeasuredLive()
+  {
+    // The simulator grabs at 1 s and arches the ribbon until 4 s; its stream ends at 4.5 s,
+    // mid-grab (the bend is cancelled, nothing committed). Meanwhile the Measure panel's live
+    // column follows the tracker as it follows the mouse.
+    QVERIFY(this->Window->waitForCenterlines(120000));
+    bender::BenderSession& session = this->Window->session();
+    const std::size_t history = session.GetHistoryPosition();
+    TrackersPanel* panel = this->Window->trackersPanel();
+    QSignalSpy grabbed(panel, &TrackersPanel::trackerGrabbed);
+    QSignalSpy moved(panel, &TrackersPanel::trackerMoved);
+    bender::SimulatedDevice::Options options;
+    options.rateHz = 60;
+    options.realtime = true;
+    options.duration = 4.5;
+    QVERIFY(panel->connectWith(std::make_unique<bender::SimulatedDevice>(options)));
+    QTRY_VERIFY_WITH_TIMEOUT(grabbed.count() == 1, 15000);
+    VesselController* vessels = this->Window->vessels();
+    QVERIFY(vessels->heldBefore().Valid);
+    const double angle = vessels->heldBefore().BendAngle;
+    QTRY_VERIFY_WITH_TIMEOUT(moved.count() > 5 && vessels->heldNow().Valid &&
+        std::abs(vessels->heldNow().BendAngle - angle) > 5.0,
+      15000);
+    QTRY_VERIFY_WITH_TIMEOUT(!this->Window->trackers().IsConnected(), 15000);
+    QCOMPARE(grabbed.count(), 1);
+    QTRY_VERIFY(session.GetState() != bender::GrabState::Grabbed);
+    QCOMPARE(session.GetHistoryPosition(), history);
   }
 };
 
