@@ -431,7 +431,7 @@ void FileOpener::offerRecovery()
     }
     if (snapshot.segmentation)
     {
-      parts << QString("the segmentation parameters (threshold %1, smoothing %2)")
+      parts << QString("the Segment panel's parameters (threshold %1, smoothing %2)")
                  .arg(snapshot.segmentation->segmentation.lower, 0, 'g', 6)
                  .arg(snapshot.segmentation->surface.smoothing, 0, 'g', 3);
     }
@@ -614,7 +614,7 @@ void FileOpener::finishRecovery(const bender::SessionSnapshot& snapshot,
   }
   if (snapshot.segmentation)
   {
-    text += ", the segmentation parameters";
+    text += ", the Segment panel's parameters";
   }
   if (snapshot.ribbon)
   {

@@ -16,38 +16,54 @@
 namespace bender
 {
 
+std::string ChooseLargestDicomSeries(const std::string& folder, std::string& note)
+{
+  note.clear();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec))
+  {
+    return {};
+  }
+  const std::vector<DicomSeriesInfo> series = ListDicomSeries(folder);
+  if (series.size() < 2)
+  {
+    return {};
+  }
+  // The most slices; the first by UID among equals (ListDicomSeries sorts by UID).
+  const auto largest = std::max_element(series.begin(),
+    series.end(),
+    [](const DicomSeriesInfo& a, const DicomSeriesInfo& b) { return a.sliceCount < b.sliceCount; });
+  std::filesystem::path name = std::filesystem::path(folder).lexically_normal();
+  if (name.filename().empty() && name.has_parent_path())
+  {
+    name = name.parent_path();
+  }
+  std::ostringstream text;
+  text << name.filename().string() << ": " << series.size()
+       << " DICOM series in this folder; read the largest, "
+       << (largest->description.empty() ? std::string("(no description)")
+                                        : "\"" + largest->description + "\"")
+       << " (" << largest->sliceCount << " slices, UID " << largest->uid << "); the others:";
+  for (const DicomSeriesInfo& other : series)
+  {
+    if (other.uid != largest->uid)
+    {
+      text << " " << (other.description.empty() ? other.uid : other.description) << " ("
+           << other.sliceCount << " slices)";
+    }
+  }
+  note = text.str();
+  return largest->uid;
+}
+
 void SegmentationSession::ReadJob::Run(const ProgressReporter& progress)
 {
   VolumeReadOptions options;
   options.dicomSeriesUid = this->dicomSeriesUid;
-  std::error_code ec;
-  if (options.dicomSeriesUid.empty() && std::filesystem::is_directory(this->path, ec))
+  if (options.dicomSeriesUid.empty())
   {
     // A folder with several series: the largest, and the user is told which.
-    const std::vector<DicomSeriesInfo> series = ListDicomSeries(this->path);
-    if (series.size() > 1)
-    {
-      const auto largest = std::max_element(series.begin(),
-        series.end(),
-        [](const DicomSeriesInfo& a, const DicomSeriesInfo& b)
-        { return a.sliceCount < b.sliceCount; });
-      options.dicomSeriesUid = largest->uid;
-      std::ostringstream text;
-      text << std::filesystem::path(this->path).filename().string() << ": " << series.size()
-           << " DICOM series in this folder; read the largest, "
-           << (largest->description.empty() ? std::string("(no description)")
-                                            : "\"" + largest->description + "\"")
-           << " (" << largest->sliceCount << " slices, UID " << largest->uid << "); the others:";
-      for (const DicomSeriesInfo& other : series)
-      {
-        if (other.uid != largest->uid)
-        {
-          text << " " << (other.description.empty() ? other.uid : other.description) << " ("
-               << other.sliceCount << " slices)";
-        }
-      }
-      this->note = text.str();
-    }
+    options.dicomSeriesUid = ChooseLargestDicomSeries(this->path, this->note);
   }
   this->volume = std::make_shared<const Volume>(ReadVolume(this->path, options, progress));
   this->seriesRead = options.dicomSeriesUid;

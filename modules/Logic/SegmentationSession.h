@@ -16,6 +16,12 @@
 namespace bender
 {
 
+/// For a DICOM folder holding several series: the UID of the largest (most slices; the first
+/// by UID among equals) and, in `note`, one sentence saying which was chosen and what else the
+/// folder holds. Empty (and no note) for a file, a folder of one series or of none (ReadVolume
+/// then reads it or says it holds no DICOM). Throws VolumeReadError for an unreadable folder.
+std::string ChooseLargestDicomSeries(const std::string& folder, std::string& note);
+
 /// The parameters of the Segment panel: the segmentation stage and the surface stage.
 struct SegmentationSettings
 {

@@ -78,7 +78,7 @@ TEST(DicomFolder, SeveralSeriesTheLargestIsReadAndTheUserIsTold)
   bender_test::WriteDicomTestSeries(path, CtSlice(), Large, "angio", 6);
   bender_test::WriteDicomTestSeries(path, CtSlice(), Medium, "late", 3);
   SegmentationSession session;
-  auto job = session.BeginRead(path);
+  auto job = session.BeginRead(path + "/");
   job->Run({});
   ASSERT_TRUE(job->volume);
   EXPECT_EQ(job->volume->geometry.size[2], 6u);
@@ -92,6 +92,14 @@ TEST(DicomFolder, SeveralSeriesTheLargestIsReadAndTheUserIsTold)
   EXPECT_EQ(job->note.find('\n'), std::string::npos);
   session.FinishRead(*job);
   EXPECT_EQ(session.GetVolumeSource().dicomSeriesUid, Large);
+
+  // The choice alone (for other readers of folders): the same series and sentence; nothing
+  // to choose for a file.
+  std::string note;
+  EXPECT_EQ(ChooseLargestDicomSeries(path, note), Large);
+  EXPECT_EQ(note, job->note);
+  EXPECT_EQ(ChooseLargestDicomSeries(path + "/angio_0.dcm", note), "");
+  EXPECT_TRUE(note.empty());
 
   // A series asked for by UID (a recovered session's): that one, nothing to say.
   auto chosen = session.BeginRead(path, Medium);

@@ -155,12 +155,20 @@ private:
   {
     auto* timer = new QTimer(this);
     timer->setInterval(50);
+    auto deadline = std::make_shared<QElapsedTimer>();
+    deadline->start();
     connect(timer,
       &QTimer::timeout,
       this,
-      [timer, which, text, picture]()
+      [timer, which, text, picture, deadline]()
       {
         auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        if (deadline->elapsed() > 30000)
+        {
+          timer->stop();
+          timer->deleteLater();
+          return;
+        }
         if (!box || box->objectName() != "recoverSession")
           return;
         timer->stop();
@@ -181,14 +189,23 @@ private:
   // `text`.
   void answerNextMessageBox(QMessageBox::StandardButton which, QString* text)
   {
+    // Gives up after 30 s: a box that never came is the test's failure, not the next test's.
     auto* timer = new QTimer(this);
     timer->setInterval(50);
+    auto deadline = std::make_shared<QElapsedTimer>();
+    deadline->start();
     connect(timer,
       &QTimer::timeout,
       this,
-      [timer, which, text]()
+      [timer, which, text, deadline]()
       {
         auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        if (!box && deadline->elapsed() > 30000)
+        {
+          timer->stop();
+          timer->deleteLater();
+          return;
+        }
         if (!box)
           return;
         timer->stop();
@@ -418,8 +435,13 @@ private slots:
     QVERIFY(!session.CanRedo());
     QVERIFY(!session.HasUnsavedChanges());
     // Nothing unsaved: no question at all.
+    // (A box would block confirmDiscard in its event loop, where this watcher answers it; the
+    // watcher lives no longer than this function, so it never answers a later test's box.)
     bool askedAgain = false;
-    QTimer::singleShot(2000,
+    QTimer watcher;
+    watcher.setInterval(50);
+    connect(&watcher,
+      &QTimer::timeout,
       this,
       [&askedAgain]()
       {
@@ -429,7 +451,9 @@ private slots:
           QTest::mouseClick(box->button(QMessageBox::Cancel), Qt::LeftButton);
         }
       });
+    watcher.start();
     QVERIFY(files->confirmDiscard("Quit"));
+    watcher.stop();
     QVERIFY(!askedAgain);
     files->setInteractive(false);
   }
