@@ -1,5 +1,7 @@
 #include "BenderView.h"
 
+#include "BenderSession.h"
+
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
@@ -22,7 +24,6 @@
 #include <vtkPolyDataMapper2D.h>
 #include <vtkProperty.h>
 #include <vtkProperty2D.h>
-#include <vtkQuadricClustering.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
@@ -102,8 +103,12 @@ BenderView::BenderView(vtkAlgorithmOutput* surface, QWidget* parent)
   this->GhostActor->GetProperty()->BackfaceCullingOn();
   this->GhostActor->PickableOff();
   this->GhostActor->VisibilityOff();
+  // Blended in the opaque pass, after the surface (added after it): a translucent prop would
+  // make every frame go through the order-independent translucency passes, full-screen work
+  // that costs software OpenGL more than drawing the demo vessel itself.
+  this->GhostActor->ForceOpaqueOn();
   this->Renderer->AddActor(this->GhostActor);
-  // The decimated copy drawn while the camera moves (same look as the surface).
+  // The decimated copy drawn while the camera moves or a big surface is dragged (same look).
   this->ProxyMapper->ScalarVisibilityOff();
   this->ProxyActor->SetMapper(this->ProxyMapper);
   this->ProxyActor->SetProperty(this->SurfaceActor->GetProperty());
@@ -220,6 +225,8 @@ void BenderView::setCenterlinesVisible(bool visible)
   this->CenterlineActor->SetVisibility(shown);
   // Translucent enough to see the line inside, opaque enough to keep the shape readable.
   this->SurfaceActor->GetProperty()->SetOpacity(shown ? 0.45 : 1.0);
+  // Behind a translucent surface the ghost must be sorted with it (translucent pass).
+  this->GhostActor->SetForceOpaque(!shown);
   this->render();
 }
 
@@ -230,27 +237,50 @@ bool BenderView::centerlinesShown() const
 
 void BenderView::setOriginalSurface(vtkPolyData* original, bool differs)
 {
-  if (original != this->GhostMapper->GetInput())
+  if (original != this->GhostOriginal ||
+    (original && original->GetMTime() != this->GhostOriginalTime))
   {
-    if (original)
-    {
-      this->GhostMapper->SetInputData(original);
-    }
-    else
+    this->GhostOriginal = original;
+    this->GhostOriginalTime = original ? original->GetMTime() : 0;
+    this->GhostCopy = nullptr;
+    if (!original)
     {
       this->GhostMapper->RemoveAllInputs();
     }
   }
   this->GhostDiffers = differs;
-  this->GhostActor->SetVisibility(original && differs && this->GhostWanted);
+  this->updateGhostInput();
 }
 
 void BenderView::setOriginalVisible(bool visible)
 {
   this->GhostWanted = visible;
-  this->GhostActor->SetVisibility(
-    this->GhostMapper->GetInput() != nullptr && this->GhostDiffers && visible);
+  this->updateGhostInput();
   this->render();
+}
+
+void BenderView::updateGhostInput()
+{
+  const bool shown = this->GhostOriginal && this->GhostDiffers && this->GhostWanted;
+  if (shown)
+  {
+    vtkPolyData* drawn = this->GhostOriginal;
+    if (this->GhostOriginal->GetNumberOfPolys() > this->LodThreshold)
+    {
+      // A faint ghost needs no detail: a big original is drawn as its decimated copy, made
+      // once, when it is first shown.
+      if (!this->GhostCopy)
+      {
+        this->GhostCopy = bender::MakeLevelOfDetail(this->GhostOriginal);
+      }
+      drawn = this->GhostCopy;
+    }
+    if (this->GhostMapper->GetInput() != drawn)
+    {
+      this->GhostMapper->SetInputData(drawn);
+    }
+  }
+  this->GhostActor->SetVisibility(shown);
 }
 
 bool BenderView::originalShown() const
@@ -377,6 +407,8 @@ void BenderView::StartRenderCallback(vtkObject*, unsigned long, void* clientData
 
 void BenderView::beforeFrame()
 {
+  // First which surface is drawn (the bounds below are the drawn props').
+  this->chooseLevelOfDetail();
   // The style resets the clipping range to the surface's renderer only: widen it to the
   // ribbon's layer, which shares the camera.
   double bounds[6], ribbon[6];
@@ -454,42 +486,47 @@ void BenderView::CameraInteractionCallback(vtkObject*, unsigned long event, void
   }
 }
 
+void BenderView::setLevelOfDetail(vtkAlgorithmOutput* proxy, std::function<bool()> dragging)
+{
+  if (proxy)
+  {
+    this->ProxyMapper->SetInputConnection(proxy);
+  }
+  else
+  {
+    this->ProxyMapper->RemoveAllInputConnections(0);
+  }
+  this->HasProxy = proxy != nullptr;
+  this->DraggingProxy = std::move(dragging);
+  this->chooseLevelOfDetail();
+}
+
 void BenderView::startCameraInteraction()
 {
+  // The surface as committed (the live output's input has the same number of triangles).
   vtkPolyData* surface = vtkPolyData::SafeDownCast(this->SurfaceMapper->GetInput());
-  if (!surface || surface->GetNumberOfPolys() <= this->LodThreshold ||
-    !this->SurfaceActor->GetVisibility())
-  {
-    return;
-  }
-  // The decimated copy, made once per surface (a new one after every change).
-  if (!this->Proxy || this->ProxySource != surface || this->ProxySourceTime != surface->GetMTime())
-  {
-    vtkNew<vtkQuadricClustering> decimate;
-    decimate->SetInputData(surface);
-    // About 100k triangles for a tubular surface of a million.
-    decimate->SetNumberOfDivisions(160, 160, 160);
-    decimate->AutoAdjustNumberOfDivisionsOn();
-    decimate->UseInputPointsOff();
-    decimate->Update();
-    this->Proxy = decimate->GetOutput();
-    this->ProxySource = surface;
-    this->ProxySourceTime = surface->GetMTime();
-    this->ProxyMapper->SetInputData(this->Proxy);
-  }
-  this->ProxyActor->VisibilityOn();
-  this->SurfaceActor->VisibilityOff();
+  this->Rotating = this->HasProxy && surface && surface->GetNumberOfPolys() > this->LodThreshold;
+  this->chooseLevelOfDetail();
 }
 
 void BenderView::endCameraInteraction()
 {
-  if (!this->ProxyActor->GetVisibility())
+  if (!this->Rotating)
   {
     return;
   }
-  this->ProxyActor->VisibilityOff();
-  this->SurfaceActor->VisibilityOn();
+  this->Rotating = false;
+  this->chooseLevelOfDetail();
   this->render();
+}
+
+void BenderView::chooseLevelOfDetail()
+{
+  const bool dragging = this->HasProxy && this->DraggingProxy && this->DraggingProxy();
+  const bool proxy = this->HasProxy && (this->Rotating || dragging);
+  // Hidden, the surface's mapper does not pull the session's full-resolution warp.
+  this->ProxyActor->SetVisibility(proxy);
+  this->SurfaceActor->SetVisibility(!proxy);
 }
 
 bool BenderView::isShowingProxy() const
@@ -499,7 +536,12 @@ bool BenderView::isShowingProxy() const
 
 vtkPolyData* BenderView::levelOfDetailProxy() const
 {
-  return this->Proxy;
+  if (!this->HasProxy || !this->ProxyActor->GetVisibility())
+  {
+    return nullptr;
+  }
+  this->ProxyMapper->Update();
+  return vtkPolyData::SafeDownCast(this->ProxyMapper->GetInput());
 }
 
 void BenderView::RibbonCallback(vtkObject*, unsigned long, void* clientData, void*)

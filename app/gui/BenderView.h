@@ -33,9 +33,14 @@ class vtkTextActor;
 /// cube with the patient directions of the LPS frame: L, R, P, A, S, I) follows the camera;
 /// a scale bar gives millimetres at the focal point; standard views (anterior, posterior, left,
 /// right, superior, inferior) frame the surface; the original shape can be shown as a faint
-/// ghost behind a bent surface. While the camera is rotated, a surface of more than
-/// levelOfDetailThreshold() triangles is drawn as a decimated copy (vtkQuadricClustering,
-/// made once per surface), the full surface again when the mouse is released.
+/// ghost behind a bent surface (a decimated copy of it above levelOfDetailThreshold()
+/// triangles).
+///
+/// Level of detail (setLevelOfDetail): while the camera is rotated, a surface of more than
+/// levelOfDetailThreshold() triangles is drawn as its decimated copy (the session's proxy
+/// port, made once per surface), the full surface again when the mouse is released; while the
+/// session drags a big surface's copy (its own threshold), the warped copy is drawn, and the
+/// full surface once the session stops (release). The choice is made before every frame.
 class BenderView : public QVTKOpenGLNativeWidget
 {
   Q_OBJECT
@@ -100,11 +105,17 @@ public:
   vtkTextActor* scaleBarText() const { return this->ScaleText; }
   ///@}
 
-  ///@{ Level of detail while the camera moves.
+  ///@{ Level of detail
+  /// `proxy`: the decimated copy of the surface (BenderSession::GetProxyOutputPort), drawn
+  /// instead of the surface while rotating a big one and while `dragging()` (the session drags
+  /// the copy: BenderSession::IsDraggingProxy). Without it the surface is always drawn whole.
+  void setLevelOfDetail(vtkAlgorithmOutput* proxy, std::function<bool()> dragging);
+  /// Triangles above which rotating draws the copy, and the ghost is a decimated copy.
   void setLevelOfDetailThreshold(long long triangles) { this->LodThreshold = triangles; }
   long long levelOfDetailThreshold() const { return this->LodThreshold; }
+  /// Whether the last frame drew the copy instead of the surface.
   bool isShowingProxy() const;
-  /// The decimated copy drawn while rotating (null before the first rotation of a big surface).
+  /// The copy drawn while rotating or dragging (null before it was first drawn).
   vtkPolyData* levelOfDetailProxy() const;
   ///@}
 
@@ -130,6 +141,10 @@ private:
   void updateScaleBar();
   void startCameraInteraction();
   void endCameraInteraction();
+  /// Shows the copy or the surface, as rotating and dragging ask.
+  void chooseLevelOfDetail();
+  /// The ghost's data: the original, or its decimated copy when it is big.
+  void updateGhostInput();
   /// The bounds to frame: the surface's (and the ghost's); false when there is nothing.
   bool sceneBounds(double bounds[6]);
 
@@ -144,9 +159,12 @@ private:
   bool GhostDiffers = false;
   vtkNew<vtkPolyDataMapper> ProxyMapper;
   vtkNew<vtkActor> ProxyActor;
-  vtkSmartPointer<vtkPolyData> Proxy;
-  vtkMTimeType ProxySourceTime = 0;
-  vtkPolyData* ProxySource = nullptr;
+  bool HasProxy = false;
+  bool Rotating = false; // the camera is moved with the copy shown
+  std::function<bool()> DraggingProxy;
+  vtkPolyData* GhostOriginal = nullptr; // identity only
+  vtkMTimeType GhostOriginalTime = 0;
+  vtkSmartPointer<vtkPolyData> GhostCopy;
   long long LodThreshold = 500000;
   vtkNew<vtkPolyDataMapper> CenterlineMapper;
   vtkNew<vtkActor> CenterlineActor;

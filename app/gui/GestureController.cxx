@@ -122,6 +122,11 @@ GestureController::GestureController(bender::BenderSession& session,
     });
   connect(this->Bend, &BendPanel::parametersChanged, this, &GestureController::applyParameters);
   qApp->installEventFilter(this);
+  // Big surfaces: the view draws the session's decimated copy while it is dragged (and while
+  // the camera rotates), with the session's threshold.
+  this->View->setLevelOfDetailThreshold(this->Session.GetLevelOfDetailThreshold());
+  this->View->setLevelOfDetail(
+    this->Session.GetProxyOutputPort(), [this]() { return this->Session.IsDraggingProxy(); });
 
   this->Overlay = std::make_unique<ProblemOverlay>(this->View->renderer());
   this->GuardDialog = new QDialog(window);

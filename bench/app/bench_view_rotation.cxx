@@ -99,6 +99,9 @@ int main(int argc, char** argv)
     bender::BenderSession session;
     session.SetSurface(surface, "bench");
     BenderView view(session.GetOutputPort());
+    // As the window's gesture controller connects it: the session's decimated copy.
+    view.setLevelOfDetail(
+      session.GetProxyOutputPort(), [&session]() { return session.IsDraggingProxy(); });
     view.resize(width, height);
     view.show();
     for (int i = 0; i < 20; ++i)
@@ -119,8 +122,7 @@ int main(int argc, char** argv)
     std::printf("rotate, level of detail:      %6.2f frames/s (copy of %lld triangles; the "
                 "first rotation, copy made, took %.2f s)\n",
       lod,
-      static_cast<long long>(
-        view.levelOfDetailProxy() ? view.levelOfDetailProxy()->GetNumberOfPolys() : 0),
+      static_cast<long long>(session.GetProxySurface()->GetNumberOfPolys()),
       build);
     const double again = Rotate(view, frames);
     std::printf("rotate, level of detail again: %6.2f frames/s\n", again);
