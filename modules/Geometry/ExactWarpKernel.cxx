@@ -1,114 +1,25 @@
 #include "ExactWarpKernel.h"
 
 #include "FastWarpKernel.h"
+#include "SimdMath.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-#if defined(__GNUC__)
-#define BENDER_EXACT_INLINE inline __attribute__((always_inline))
-#else
-#define BENDER_EXACT_INLINE inline
-#endif
-
 namespace bender
 {
 namespace
 {
+using simd::Atan2;
+using simd::SinCos;
 constexpr int Lanes = ExactWarpKernel::Lanes;
 using Block = ExactWarpKernel::Block;
 using Path = ExactWarpKernel::Path;
 
-// sin and cos of x (|x| below 2^30), branch-free: x = k pi/2 + r by Cody and Waite's
-// three-part pi/2 (fdlibm's constants), Taylor polynomials on |r| <= pi/4 (truncation below
-// 1e-17), the quadrant k mod 4 read from the rounding sum's low bits.
-BENDER_EXACT_INLINE void SinCos(double x, double& s, double& c)
-{
-  constexpr double twoOverPi = 0.63661977236758134308;
-  constexpr double magic = 6755399441055744.0; // 1.5 * 2^52: adding it rounds to an integer
-  const double t = x * twoOverPi + magic;
-  const double k = t - magic;
-  const double r = ((x - k * 1.57079632673412561417e+00) - k * 6.07710050630396597660e-11) -
-    k * 2.02226624871116645580e-21;
-  const double r2 = r * r;
-  const double sr = r +
-    r * r2 *
-      (-1.0 / 6.0 +
-        r2 *
-          (1.0 / 120.0 +
-            r2 *
-              (-1.0 / 5040.0 +
-                r2 *
-                  (1.0 / 362880.0 +
-                    r2 *
-                      (-1.0 / 39916800.0 +
-                        r2 *
-                          (1.0 / 6227020800.0 +
-                            r2 * (-1.0 / 1307674368000.0 + r2 * (1.0 / 355687428096000.0))))))));
-  const double cr = 1.0 +
-    r2 *
-      (-0.5 +
-        r2 *
-          (1.0 / 24.0 +
-            r2 *
-              (-1.0 / 720.0 +
-                r2 *
-                  (1.0 / 40320.0 +
-                    r2 *
-                      (-1.0 / 3628800.0 +
-                        r2 *
-                          (1.0 / 479001600.0 +
-                            r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
-  std::int64_t bits;
-  std::memcpy(&bits, &t, sizeof bits);
-  const std::int64_t q = bits & 3;
-  const bool swap = (q & 1) != 0;
-  const bool negateSin = (q & 2) != 0;
-  const bool negateCos = ((q + 1) & 2) != 0;
-  const double s0 = swap ? cr : sr;
-  const double c0 = swap ? sr : cr;
-  s = negateSin ? -s0 : s0;
-  c = negateCos ? -c0 : c0;
-}
-
-// atan2(y, x) for y >= 0, branch-free: t = min / max in [0, 1], reduced to [-0.2, 0.66] by
-// atan(t) = pi/4 + atan((t - 1) / (t + 1)) above 0.66, and Cephes' rational approximation.
-BENDER_EXACT_INLINE double Atan2(double y, double x)
-{
-  constexpr double pio4 = 7.85398163397448278999E-1;
-  constexpr double pio2 = 1.57079632679489661923;
-  constexpr double pi = 3.14159265358979323846;
-  constexpr double moreBits = 6.123233995736765886130E-17; // pi/2 - pio2 rounded
-  const double ax = std::fabs(x);
-  const bool xBigger = ax > y;
-  const double mx = xBigger ? ax : y;
-  const double mn = xBigger ? y : ax;
-  const bool big = mn > 0.66 * mx;
-  const double den = big ? mn + mx : mx;
-  const double t = (big ? mn - mx : mn) / (den > 0.0 ? den : 1.0);
-  const double z = t * t;
-  const double p = (((-8.750608600031904122785E-1 * z - 1.615753718733365076637E1) * z -
-                      7.500855792314704667340E1) *
-                       z -
-                     1.228866684490136173410E2) *
-      z -
-    6.485021904942025371773E1;
-  const double q = ((((z + 2.485846490142306297962E1) * z + 1.650270098316988542046E2) * z +
-                      4.328810604912902668951E2) *
-                       z +
-                     4.853903996359136964868E2) *
-      z +
-    1.945506571482613964425E2;
-  const double at = t + t * z * p / q;
-  const double a = big ? pio4 + (at + 0.5 * moreBits) : at;
-  const double b = xBigger ? a : (pio2 - a) + moreBits;
-  return x < 0.0 ? (pi - b) + 2.0 * moreBits : b;
-}
-
 // Orientation q (w x y z) and origin o of the frame of `P` at s (RibbonWarp::FramePath::At).
 // Scalars only (no local arrays), so that the lanes of a simd loop stay in registers.
-BENDER_EXACT_INLINE void FrameOf(const Path& P,
+BENDER_SIMD_INLINE void FrameOf(const Path& P,
   double s,
   double& qw,
   double& qx,
@@ -163,7 +74,7 @@ BENDER_EXACT_INLINE void FrameOf(const Path& P,
 
 // The warp of one lane's point with the lifted motion at s (sign reference ref): the screw's
 // fraction f applied to p (Screw.cxx's ApplyScrewFraction, branch-free).
-BENDER_EXACT_INLINE void WarpAt(const Path& pi,
+BENDER_SIMD_INLINE void WarpAt(const Path& pi,
   const Path& pf,
   double s,
   double refw,
@@ -245,7 +156,7 @@ BENDER_EXACT_INLINE void WarpAt(const Path& pi,
   outz = still ? z : (translation ? z + hz * f : mz);
 }
 
-BENDER_EXACT_INLINE void RunBody(const Path* paths, Block& b, bool pairs)
+BENDER_SIMD_INLINE void RunBody(const Path* paths, Block& b, bool pairs)
 {
   // Local copies: the stores into b cannot alias them, so their loads leave the loop and the
   // selects between the two pieces are between registers.
@@ -311,17 +222,13 @@ void RunBaseline(const Path* paths, Block& b, bool pairs)
   RunBody(paths, b, pairs);
 }
 
-#if defined(__GNUC__) && defined(__x86_64__)
-#define BENDER_EXACT_DISPATCH 1
-__attribute__((target("avx2,fma"))) void RunAvx2(const Path* paths, Block& b, bool pairs)
+#ifdef BENDER_SIMD_DISPATCH
+BENDER_TARGET_AVX2 void RunAvx2(const Path* paths, Block& b, bool pairs)
 {
   RunBody(paths, b, pairs);
 }
 
-__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma"))) void RunAvx512(
-  const Path* paths,
-  Block& b,
-  bool pairs)
+BENDER_TARGET_AVX512 void RunAvx512(const Path* paths, Block& b, bool pairs)
 {
   RunBody(paths, b, pairs);
 }
@@ -329,7 +236,7 @@ __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma"))) void RunA
 
 RunFunction BestRun()
 {
-#ifdef BENDER_EXACT_DISPATCH
+#ifdef BENDER_SIMD_DISPATCH
   switch (FastWarpKernel::BestLevel())
   {
     case FastWarpKernel::SimdLevel::Avx512:

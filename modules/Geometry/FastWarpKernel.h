@@ -2,6 +2,7 @@
 #define bender_FastWarpKernel_h
 
 #include "MotionTable.h"
+#include "SimdLevel.h"
 #include "WarpBinding.h"
 
 #include <cstddef>
@@ -21,14 +22,9 @@ namespace bender
 class FastWarpKernel
 {
 public:
-  /// The instruction sets the kernel is compiled for; the best one the CPU supports is chosen
-  /// at run time (the build itself targets the portable baseline).
-  enum class SimdLevel
-  {
-    Baseline, ///< the build's own flags (SSE2 on x86-64)
-    Avx2,     ///< AVX2 with FMA
-    Avx512    ///< AVX-512 F/VL/DQ/BW
-  };
+  /// The instruction sets the kernel is compiled for (SimdLevel.h); the best one the CPU
+  /// supports is chosen at run time (the build itself targets the portable baseline).
+  using SimdLevel = bender::SimdLevel;
   /// True when this build has a kernel for `level` and the CPU can run it.
   static bool Supports(SimdLevel level);
   /// The best supported level: what a new kernel uses.

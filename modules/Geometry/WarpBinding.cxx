@@ -2,7 +2,9 @@
 
 #include "Decay.h"
 #include "ExactWarpKernel.h"
+#include "FastWarpKernel.h"
 #include "GeometryErrors.h"
+#include "WireProjectionLane.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,68 @@ bool SameEnd(const RibbonEnd& a, const RibbonEnd& b)
 {
   auto eq = [](const Vec3& u, const Vec3& v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
   return eq(a.position, b.position) && eq(a.tangent, b.tangent) && eq(a.normal, b.normal);
+}
+
+using lane::FlatWire;
+
+using lane::Block;
+using lane::BlockSize;
+using lane::WeightParameters;
+
+template<bool Line1, bool Line2>
+BENDER_SIMD_INLINE void BindBlockBody(const FlatWire& wire,
+  const WeightParameters& parameters,
+  Block& b,
+  int n)
+{
+  // Local copies: the stores into b cannot alias them.
+  const FlatWire w = wire;
+  const WeightParameters q = parameters;
+  lane::ProjectBlock<Line1, Line2, false>(w, q.radius, b, n);
+  lane::WeightBlock(q, b, n);
+}
+
+using BindBlockFunction = void (*)(const FlatWire&, const WeightParameters&, Block&, int);
+
+#define BENDER_BIND_VARIANT(Attributes, Name)                                                      \
+  template<bool Line1, bool Line2>                                                                 \
+  Attributes void Name(const FlatWire& wire, const WeightParameters& q, Block& b, int n)           \
+  {                                                                                                \
+    BindBlockBody<Line1, Line2>(wire, q, b, n);                                                    \
+  }
+BENDER_BIND_VARIANT(, BindBaseline)
+#ifdef BENDER_SIMD_DISPATCH
+BENDER_BIND_VARIANT(BENDER_TARGET_AVX2, BindAvx2)
+BENDER_BIND_VARIANT(BENDER_TARGET_AVX512, BindAvx512)
+#endif
+#undef BENDER_BIND_VARIANT
+
+template<bool Line1, bool Line2>
+BindBlockFunction BindFunctionOf(SimdLevel level)
+{
+#ifdef BENDER_SIMD_DISPATCH
+  switch (level)
+  {
+    case SimdLevel::Avx512:
+      return BindAvx512<Line1, Line2>;
+    case SimdLevel::Avx2:
+      return BindAvx2<Line1, Line2>;
+    case SimdLevel::Baseline:
+      break;
+  }
+#else
+  (void)level;
+#endif
+  return BindBaseline<Line1, Line2>;
+}
+
+BindBlockFunction BindFunctionOf(SimdLevel level, bool line1, bool line2)
+{
+  if (line1)
+  {
+    return line2 ? BindFunctionOf<true, true>(level) : BindFunctionOf<true, false>(level);
+  }
+  return line2 ? BindFunctionOf<false, true>(level) : BindFunctionOf<false, false>(level);
 }
 } // namespace
 
@@ -75,6 +139,17 @@ WarpBinding::WarpBinding(const WarpSpec& spec, BlendMode blend)
       (this->R + deviation + arc.length / n) * (1.0 + 1e-9) + 1e-9 * std::max(1.0, Norm(hi - lo));
     c.radiusSquared = r * r;
   }
+  auto flat = std::make_shared<FlatWire>();
+  lane::FlattenWire(w, *flat, true);
+  this->Flat = std::move(flat);
+  auto weighting = std::make_shared<WeightParameters>();
+  weighting->radius = this->R;
+  weighting->invRadius = 1.0 / this->R;
+  weighting->plateau = this->Decay.plateau;
+  weighting->invWidth = 1.0 / (1.0 - this->Decay.plateau);
+  weighting->bell = this->Decay.shape == DecayShape::Bell;
+  weighting->singleProjection = this->Blend == BlendMode::SingleProjection;
+  this->Weighting = std::move(weighting);
 }
 
 bool WarpBinding::InCapsules(const Vec3& p) const
@@ -114,28 +189,15 @@ bool WarpBinding::Bind(const Vec3& p, BoundPoint& out) const
 
 bool WarpBinding::BindProjected(const Vec3& p, BoundPoint& out) const
 {
-  const WireProjections pr = ProjectOntoWire(this->Initial.Wire(), p, this->R);
-  if (pr.count == 0)
+  lane::Kept k;
+  lane::ProjectOne(*this->Flat, p.x, p.y, p.z, this->R, k);
+  BoundPoint rec;
+  if (lane::Weights(k.d0, k.d1, k.s0, k.s1, *this->Weighting, rec.s0, rec.s1, rec.f, rec.lambda0) ==
+    0.0)
   {
     return false;
   }
-  const double f0 = EvaluateDecay(this->Decay, pr.items[0].distance / this->R);
-  out.s0 = pr.items[0].s;
-  out.s1 = pr.items[0].s;
-  if (pr.count == 1 || this->Blend == BlendMode::SingleProjection)
-  {
-    out.f = f0;
-    out.lambda0 = 1.0;
-    return f0 > 0.0;
-  }
-  const double f1 = EvaluateDecay(this->Decay, pr.items[1].distance / this->R);
-  if (!(f0 + f1 > 0.0))
-  {
-    return false;
-  }
-  out.s1 = pr.items[1].s;
-  out.f = 1.0 - (1.0 - f0) * (1.0 - f1);
-  out.lambda0 = f0 / (f0 + f1);
+  out = rec;
   return true;
 }
 
@@ -146,25 +208,31 @@ void WarpBinding::BindRange(const T* xyz,
   BoundPoint* records,
   std::uint8_t* bound) const
 {
+  const FlatWire& wire = *this->Flat;
+  const WeightParameters& q = *this->Weighting;
+  const BindBlockFunction bind =
+    BindFunctionOf(FastWarpKernel::BestLevel(), wire.arcs[0].line, wire.arcs[1].line);
+  Block b;
+  std::size_t ids[BlockSize];
   // The capsule test pays where points fall in the box but outside the capsules (a curved
   // wire, a mesh filling the box) and only costs where every point is inside them (a tube
   // around a straight wire). It is conservative, so skipping it changes no record: blocks of
   // points use it while the last probed block had at least 1/8 of its in-box points rejected
   // by it, and every 16th block probes again.
-  constexpr std::size_t blockSize = 256;
   bool useCapsules = true;
   std::size_t blockIndex = 0;
-  for (std::size_t first = begin; first < end; first += blockSize, ++blockIndex)
+  for (std::size_t first = begin; first < end; first += BlockSize, ++blockIndex)
   {
-    const std::size_t last = std::min(end, first + blockSize);
+    const std::size_t last = std::min(end, first + BlockSize);
     const bool probe = useCapsules || blockIndex % 16 == 0;
     std::size_t inBox = 0;
     std::size_t rejected = 0;
+    int n = 0;
     for (std::size_t i = first; i < last; ++i)
     {
-      const T* q = xyz + 3 * i;
+      const T* c = xyz + 3 * i;
       const Vec3 p{
-        static_cast<double>(q[0]), static_cast<double>(q[1]), static_cast<double>(q[2])
+        static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])
       };
       bound[i] = 0;
       if (!this->InBox(p))
@@ -177,11 +245,29 @@ void WarpBinding::BindRange(const T* xyz,
         ++rejected;
         continue;
       }
-      bound[i] = this->BindProjected(p, records[i]) ? 1 : 0;
+      b.x[n] = p.x;
+      b.y[n] = p.y;
+      b.z[n] = p.z;
+      ids[n++] = i;
     }
     if (probe)
     {
       useCapsules = inBox > 0 && 8 * rejected >= inBox;
+    }
+    if (n == 0)
+    {
+      continue;
+    }
+    bind(wire, q, b, n);
+    for (int k = 0; k < n; ++k)
+    {
+      if (b.flag[k] == 0.0)
+      {
+        continue;
+      }
+      const std::size_t i = ids[k];
+      records[i] = { b.s0[k], b.s1[k], b.f[k], b.lambda0[k] };
+      bound[i] = b.flag[k] == 2.0 ? 2 : 1;
     }
   }
 }

@@ -11,6 +11,11 @@
 namespace bender
 {
 class ExactWarpKernel;
+namespace lane
+{
+struct FlatWire;
+struct WeightParameters;
+}
 
 /// What a point needs from the initial ribbon to be warped (spec 6, 9): the parameters of its
 /// (at most two) projections and its weights. lambda0 == 1 means one projection counts.
@@ -39,8 +44,13 @@ public:
   /// The record of one point; false when it is outside the region of influence (P' = P).
   bool Bind(const Vec3& p, BoundPoint& out) const;
 
-  /// Binds points [begin, end) of the xyz array (3 values each); bound[i] = 1 when point i
-  /// is inside the region of influence. Safe to call concurrently on disjoint ranges.
+  /// Binds points [begin, end) of the xyz array (3 values each): bound[i] = 0 when point i is
+  /// outside the region of influence (records[i] is then left as it was), 1 when it is bound
+  /// with one projection counting (lambda0 == 1), 2 with two (lambda0 < 1). The records are bit
+  /// for bit those of Bind(): the same arithmetic, batched (box and capsule tests, then the
+  /// projection and the weights of the points left, vectorised with the instruction set chosen
+  /// at run time). Safe to call concurrently on disjoint ranges; how a range is split does not
+  /// change any record.
   template<typename T>
   void BindRange(const T* xyz,
     std::size_t begin,
@@ -68,6 +78,8 @@ private:
     double radiusSquared = 0.0;
   };
   Capsule Capsules[2];
+  std::shared_ptr<const lane::FlatWire> Flat; // the initial wire as the projection reads it
+  std::shared_ptr<const lane::WeightParameters> Weighting; // R and the decay, for the weights
   bool InBox(const Vec3& p) const;
   bool InCapsules(const Vec3& p) const;
   /// Bind() for a point that passed the box (and optionally the capsule) test.

@@ -1,106 +1,199 @@
 #include "WireProjection.h"
 
+#include "FastWarpKernel.h"
+#include "WireProjectionLane.h"
+
 #include <algorithm>
-#include <cmath>
 
 namespace bender
 {
+namespace lane
+{
+void FlattenWire(const Biarc& wire, FlatWire& out, bool clampedFeet)
+{
+  const auto copy = [](const Vec3& v, double* to)
+  {
+    to[0] = v.x;
+    to[1] = v.y;
+    to[2] = v.z;
+  };
+  for (int i = 0; i < 2; ++i)
+  {
+    const Arc& arc = wire.GetArc(i);
+    FlatArc& a = out.arcs[i];
+    copy(arc.start, a.start);
+    copy(arc.tangent, a.tangent);
+    copy(arc.toCentre, a.toCentre);
+    a.radius = arc.radius;
+    a.angle = arc.angle;
+    a.length = arc.length;
+    a.axisTolerance = 1e-12 * arc.radius;
+    a.invLength = arc.length > 0.0 ? 1.0 / arc.length : 0.0;
+    a.invAngle = !arc.line && arc.angle > 0.0 ? 1.0 / arc.angle : 0.0;
+    a.line = arc.line;
+    if (clampedFeet && !arc.line)
+    {
+      copy(arc.PointAt(0.0), a.first);
+      copy(arc.PointAt(1.0), a.last);
+    }
+  }
+  copy(wire.Start(), out.start);
+  copy(wire.StartTangent(), out.startTangent);
+  copy(wire.Junction(), out.junction);
+  copy(wire.JunctionTangent(), out.junctionTangent);
+  copy(wire.End(), out.end);
+  copy(wire.EndTangent(), out.endTangent);
+  out.sJ = wire.JunctionParameter();
+  out.clampedFeet = clampedFeet;
+}
+} // namespace lane
+
 namespace
 {
-// Nearest point of an arc's circle (or segment) to p, the angle clamped to the arc.
-// Returns false when p is on the circle's axis (every point equidistant).
-bool NearestOnArc(const Arc& arc, const Vec3& p, double& u, Vec3& q)
+using lane::FlatWire;
+using lane::Kept;
+
+void ProjectPoint(const FlatWire& w, const Vec3& p, double radius, Kept& k)
 {
-  const Vec3 rel = p - arc.start;
-  if (arc.line)
+  lane::ProjectOne(w, p.x, p.y, p.z, radius, k);
+}
+
+WireProjections ToProjections(const Kept& k)
+{
+  WireProjections out;
+  if (k.d0 < std::numeric_limits<double>::infinity())
   {
-    const double t = std::clamp(Dot(rel, arc.tangent), 0.0, arc.length);
-    u = arc.length > 0.0 ? t / arc.length : 0.0;
-    q = arc.start + arc.tangent * t;
-    return true;
+    out.items[out.count++] = { k.s0, k.d0, { k.q0x, k.q0y, k.q0z } };
   }
-  // phi = atan2(kappa (P - Ps).Ts, 1 - kappa (P - Ps).Np): the centre is never formed.
-  const double aT = Dot(rel, arc.tangent);
-  const double aN = Dot(rel, arc.toCentre);
-  const double y = aT;
-  const double x = arc.radius - aN;
-  // |(x, y)|: the coordinates are within the wire's scale, so the plain square root is exact
-  // enough and far cheaper than hypot.
-  const double rho = std::sqrt(x * x + y * y);
-  if (rho <= 1e-12 * arc.radius)
+  if (k.d1 < std::numeric_limits<double>::infinity())
   {
-    return false;
+    out.items[out.count++] = { k.s1, k.d1, { k.q1x, k.q1y, k.q1z } };
   }
-  const double raw = std::atan2(y, x);
-  const double phi = std::clamp(raw, 0.0, arc.angle);
-  u = arc.angle > 0.0 ? phi / arc.angle : 0.0;
-  if (phi != raw)
+  return out;
+}
+
+using lane::Block;
+using lane::BlockSize;
+
+template<bool Line1, bool Line2>
+BENDER_SIMD_INLINE void ProjectBlockBody(const FlatWire& wire, double radius, Block& b, int n)
+{
+  const FlatWire w = wire; // a local copy: the stores into b cannot alias it
+  lane::ProjectBlock<Line1, Line2, true>(w, radius, b, n);
+}
+
+using ProjectBlockFunction = void (*)(const FlatWire&, double, Block&, int);
+
+#define BENDER_PROJECT_VARIANT(Attributes, Name)                                                   \
+  template<bool Line1, bool Line2>                                                                 \
+  Attributes void Name(const FlatWire& wire, double radius, Block& b, int n)                       \
+  {                                                                                                \
+    ProjectBlockBody<Line1, Line2>(wire, radius, b, n);                                            \
+  }
+BENDER_PROJECT_VARIANT(, ProjectBaseline)
+#ifdef BENDER_SIMD_DISPATCH
+BENDER_PROJECT_VARIANT(BENDER_TARGET_AVX2, ProjectAvx2)
+BENDER_PROJECT_VARIANT(BENDER_TARGET_AVX512, ProjectAvx512)
+#endif
+#undef BENDER_PROJECT_VARIANT
+
+template<bool Line1, bool Line2>
+ProjectBlockFunction ProjectFunctionOf(SimdLevel level)
+{
+#ifdef BENDER_SIMD_DISPATCH
+  switch (level)
   {
-    q = arc.PointAt(u); // clamped by rounding at an end of the arc
-    return true;
+    case SimdLevel::Avx512:
+      return ProjectAvx512<Line1, Line2>;
+    case SimdLevel::Avx2:
+      return ProjectAvx2<Line1, Line2>;
+    case SimdLevel::Baseline:
+      break;
   }
-  // Q = Ps + r sin(phi) Ts + r (1 - cos(phi)) Np with cos and sin read off (x, y): no
-  // trigonometry, and r (1 - cos) = r sin^2 / (1 + cos) keeps nearly straight arcs exact.
-  const double c = x / rho;
-  const double sn = y / rho;
-  const double r = arc.radius;
-  const double lift = c > 0.0 ? r * sn * sn / (1.0 + c) : r * (1.0 - c);
-  q = arc.start + arc.tangent * (r * sn) + arc.toCentre * lift;
-  return true;
+#else
+  (void)level;
+#endif
+  return ProjectBaseline<Line1, Line2>;
+}
+
+ProjectBlockFunction ProjectFunctionOf(SimdLevel level, bool line1, bool line2)
+{
+  if (line1)
+  {
+    return line2 ? ProjectFunctionOf<true, true>(level) : ProjectFunctionOf<true, false>(level);
+  }
+  return line2 ? ProjectFunctionOf<false, true>(level) : ProjectFunctionOf<false, false>(level);
 }
 } // namespace
 
 WireProjections ProjectOntoWire(const Biarc& wire, const Vec3& p, double radius)
 {
-  // Candidates in the order arc 1, arc 2, start, end; the two nearest with distance < radius
-  // kept in place, nearest first, ties by smaller s (a stable insertion: same result as
-  // sorting all candidates), without candidate arrays to initialise and copy.
-  WireProjections out;
-  const auto offer = [&out, radius](double s, double distance, const Vec3& foot)
+  // The arcs' end points (sin and cos) are needed only when a foot's angle rounds outside its
+  // arc: computed then, and the point projected again.
+  FlatWire w;
+  lane::FlattenWire(wire, w, false);
+  Kept k;
+  ProjectPoint(w, p, radius, k);
+  if (k.clamped)
   {
-    if (!(distance < radius))
+    lane::FlattenWire(wire, w, true);
+    ProjectPoint(w, p, radius, k);
+  }
+  return ToProjections(k);
+}
+
+void ProjectOntoWire(const Biarc& wire,
+  const double* xyz,
+  std::size_t n,
+  double radius,
+  WireProjections* out)
+{
+  ProjectOntoWire(wire, xyz, n, radius, out, FastWarpKernel::BestLevel());
+}
+
+bool ProjectOntoWire(const Biarc& wire,
+  const double* xyz,
+  std::size_t n,
+  double radius,
+  WireProjections* out,
+  SimdLevel level)
+{
+  if (!FastWarpKernel::Supports(level))
+  {
+    return false;
+  }
+  FlatWire w;
+  lane::FlattenWire(wire, w, true);
+  const ProjectBlockFunction project = ProjectFunctionOf(level, w.arcs[0].line, w.arcs[1].line);
+  Block b;
+  for (std::size_t first = 0; first < n; first += BlockSize)
+  {
+    const int count = static_cast<int>(std::min<std::size_t>(BlockSize, n - first));
+    for (int i = 0; i < count; ++i)
     {
-      return;
+      const double* p = xyz + 3 * (first + static_cast<std::size_t>(i));
+      b.x[i] = p[0];
+      b.y[i] = p[1];
+      b.z[i] = p[2];
     }
-    int i = out.count < 2 ? out.count++ : 2;
-    while (i > 0 &&
-      (distance < out.items[i - 1].distance ||
-        (distance == out.items[i - 1].distance && s < out.items[i - 1].s)))
+    project(w, radius, b, count);
+    for (int i = 0; i < count; ++i)
     {
-      if (i < 2)
-      {
-        out.items[i] = out.items[i - 1];
-      }
-      --i;
+      Kept k;
+      k.s0 = b.s0[i];
+      k.d0 = b.d0[i];
+      k.q0x = b.q0x[i];
+      k.q0y = b.q0y[i];
+      k.q0z = b.q0z[i];
+      k.s1 = b.s1[i];
+      k.d1 = b.d1[i];
+      k.q1x = b.q1x[i];
+      k.q1y = b.q1y[i];
+      k.q1z = b.q1z[i];
+      out[first + static_cast<std::size_t>(i)] = ToProjections(k);
     }
-    if (i < 2)
-    {
-      out.items[i] = { s, distance, foot };
-    }
-  };
-  const double sJ = wire.JunctionParameter();
-  const double h0 = Dot(p - wire.Start(), wire.StartTangent());
-  const double hJ = Dot(p - wire.Junction(), wire.JunctionTangent());
-  const double h1 = Dot(p - wire.End(), wire.EndTangent());
-  double u = 0.0;
-  Vec3 q;
-  if (h0 >= 0.0 && hJ < 0.0 && NearestOnArc(wire.FirstArc(), p, u, q))
-  {
-    offer(sJ * u, Distance(p, q), q);
   }
-  if (hJ >= 0.0 && h1 <= 0.0 && NearestOnArc(wire.SecondArc(), p, u, q))
-  {
-    offer(sJ + (1.0 - sJ) * u, Distance(p, q), q);
-  }
-  if (h0 < 0.0)
-  {
-    offer(0.0, Distance(p, wire.Start()), wire.Start());
-  }
-  if (h1 > 0.0)
-  {
-    offer(1.0, Distance(p, wire.End()), wire.End());
-  }
-  return out;
+  return true;
 }
 
 } // namespace bender

@@ -2,7 +2,10 @@
 #define bender_WireProjection_h
 
 #include "Biarc.h"
+#include "SimdLevel.h"
 #include "Vec3.h"
+
+#include <cstddef>
 
 namespace bender
 {
@@ -26,7 +29,29 @@ struct WireProjections
 /// partition of spec 3.3 (arc 1, arc 2, free ends: no gaps, no duplicates), keeping those
 /// with distance < radius; when more than two remain, the two nearest (ties by smaller s).
 /// Pass radius = infinity to get all (still at most two kept).
+///
+/// The arithmetic is branch-free and shared with the batched overload below and with
+/// WarpBinding, so that all of them give bit for bit the same result; the angle on an arc is a
+/// polynomial atan2 within a few units in the last place of std::atan2.
 WireProjections ProjectOntoWire(const Biarc& wire, const Vec3& p, double radius);
+
+/// ProjectOntoWire for each of the n points of `xyz` (x y z interleaved) into out[0, n),
+/// computed in vectorised blocks with the best instruction set the CPU has: bit for bit the
+/// single-point result.
+void ProjectOntoWire(const Biarc& wire,
+  const double* xyz,
+  std::size_t n,
+  double radius,
+  WireProjections* out);
+
+/// Same with the instruction set `level` (for comparisons); false, and nothing written, when
+/// this build or this CPU cannot run it.
+bool ProjectOntoWire(const Biarc& wire,
+  const double* xyz,
+  std::size_t n,
+  double radius,
+  WireProjections* out,
+  SimdLevel level);
 
 } // namespace bender
 
