@@ -1256,6 +1256,7 @@ struct XmlTag
   std::string Name;
   std::vector<std::pair<std::string, std::string>> Attributes;
   bool Closing = false;
+  bool SelfClosing = false;
 
   const std::string* Get(const char* key) const
   {
@@ -1289,6 +1290,7 @@ bool ReadTag(std::string_view data, std::size_t& pos, XmlTag& tag, std::string& 
   }
   if (!body.empty() && body.back() == '/')
   {
+    tag.SelfClosing = true;
     body.remove_suffix(1);
   }
   std::size_t i = 0;
@@ -1405,6 +1407,89 @@ int XmlTypeSize(const std::string& type)
     }
   }
   return 0;
+}
+
+// The first `bytes` bytes of base64 text (blanks before it skipped), as vtkBase64InputStream
+// decodes them; false when the text holds fewer or another character comes first.
+bool DecodeBase64Prefix(std::string_view text, std::size_t bytes, std::string& out)
+{
+  out.clear();
+  std::size_t i = 0;
+  while (i < text.size() && IsBlank(text[i]))
+  {
+    ++i;
+  }
+  std::uint32_t buffer = 0;
+  int bits = 0;
+  for (; i < text.size() && out.size() < bytes; ++i)
+  {
+    const char c = text[i];
+    std::uint32_t v = 0;
+    if (c >= 'A' && c <= 'Z')
+    {
+      v = static_cast<std::uint32_t>(c - 'A');
+    }
+    else if (c >= 'a' && c <= 'z')
+    {
+      v = static_cast<std::uint32_t>(c - 'a' + 26);
+    }
+    else if (c >= '0' && c <= '9')
+    {
+      v = static_cast<std::uint32_t>(c - '0' + 52);
+    }
+    else if (c == '+' || c == '/')
+    {
+      v = c == '+' ? 62 : 63;
+    }
+    else
+    {
+      return false;
+    }
+    buffer = (buffer << 6) | v;
+    bits += 6;
+    if (bits >= 8)
+    {
+      bits -= 8;
+      out.push_back(static_cast<char>((buffer >> bits) & 0xff));
+    }
+  }
+  return out.size() == bytes;
+}
+
+// Word `index` of a decoded block header.
+std::uint64_t DecodeWord(const std::string& header,
+  std::uint64_t index,
+  std::uint64_t word,
+  bool bigEndian)
+{
+  std::uint64_t value = 0;
+  for (std::uint64_t b = 0; b < word; ++b)
+  {
+    const auto byte = static_cast<unsigned char>(header[index * word + b]);
+    value |= static_cast<std::uint64_t>(byte) << (8 * (bigEndian ? word - 1 - b : b));
+  }
+  return value;
+}
+
+// A compressed array's header ("blocks, block size, last block size, compressed sizes..."):
+// vtkXMLDataParser allocates the block tables and the blocks it announces, so they must fit the
+// memory budget and the bytes that follow (availableWords: header words the data could hold).
+bool CheckCompressionHeader(std::uint64_t blocks,
+  std::uint64_t blockSize,
+  std::uint64_t lastSize,
+  std::uint64_t availableWords,
+  std::uint64_t budgetBytes,
+  const std::string& where,
+  std::string& problem)
+{
+  if (blocks > availableWords || blockSize > budgetBytes || lastSize > blockSize ||
+    static_cast<long double>(blocks) * blockSize > static_cast<long double>(budgetBytes))
+  {
+    problem = "VTK XML compressed block header " + where + " announces " + std::to_string(blocks) +
+      " blocks of " + std::to_string(blockSize) + " bytes (beyond the file or the memory budget)";
+    return false;
+  }
+  return true;
 }
 
 } // namespace
@@ -1621,6 +1706,35 @@ bool CheckVtkXml(std::string_view data,
         }
         offsets.push_back(o);
       }
+      // Inline binary data (base64) of a compressed file starts with the same block header as
+      // an appended block: a forged one made vtkXMLDataParser allocate 8 TB (found by hand after
+      // the fuzzers' seeds had no inline arrays).
+      if (format && *format == "binary" && !offset && compressed && !tag.SelfClosing)
+      {
+        const std::size_t textEnd = std::min(markup.find('<', pos), markup.size());
+        const std::string_view text = markup.substr(pos, textEnd - pos);
+        const std::uint64_t word = headerType == "UInt64" ? 8 : 4;
+        std::string header;
+        if (!DecodeBase64Prefix(text, 3 * word, header))
+        {
+          problem = "VTK XML binary DataArray without a valid compressed block header";
+          return false;
+        }
+        auto headerWord = [&](std::uint64_t index)
+        { return DecodeWord(header, index, word, byteOrder == "BigEndian"); };
+        // Every 4 characters of base64 hold 3 bytes.
+        const std::uint64_t availableWords = text.size() / 4 * 3 / word;
+        if (!CheckCompressionHeader(headerWord(0),
+              headerWord(1),
+              headerWord(2),
+              availableWords,
+              budgetBytes,
+              "of an inline binary DataArray",
+              problem))
+        {
+          return false;
+        }
+      }
       totalBytes += static_cast<long double>(tuples) * components * size;
       if (totalBytes > static_cast<long double>(budgetBytes))
       {
@@ -1720,6 +1834,36 @@ bool CheckVtkXml(std::string_view data,
         {
           problem = "truncated VTK XML file (compressed blocks at offset " + std::to_string(o) +
             " end past the data)";
+          return false;
+        }
+      }
+    }
+    else if (compressed)
+    {
+      // Any other encoding is read as base64 (offsets count its characters): each compressed
+      // block's header is decoded and checked as the raw ones are.
+      const std::uint64_t word = headerType == "UInt64" ? 8 : 4;
+      for (const std::uint64_t o : offsets)
+      {
+        const std::string where = "at offset " + std::to_string(o);
+        std::string header;
+        if (o > end - start ||
+          !DecodeBase64Prefix(data.substr(start + o, end - start - o), 3 * word, header))
+        {
+          problem = "truncated VTK XML file (no base64 compressed block header " + where + ")";
+          return false;
+        }
+        auto headerWord = [&](std::uint64_t index)
+        { return DecodeWord(header, index, word, byteOrder == "BigEndian"); };
+        const std::uint64_t availableWords = (end - start - o) / 4 * 3 / word;
+        if (!CheckCompressionHeader(headerWord(0),
+              headerWord(1),
+              headerWord(2),
+              availableWords,
+              budgetBytes,
+              where,
+              problem))
+        {
           return false;
         }
       }

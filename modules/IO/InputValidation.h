@@ -54,7 +54,8 @@ bool CheckObj(std::string_view data, std::string& problem);
 /// byte_order, header_type (UInt32/UInt64) and compressor; every DataArray has a known type,
 /// 1 to 64 components and a size (NumberOfPoints, NumberOfCells, extent) whose data fits the
 /// memory budget; appended data is present (the file ends with </VTKFile>), and the appended
-/// blocks' headers lie inside the file.
+/// blocks' headers lie inside the file; compressed block headers (raw or base64 appended,
+/// inline binary) announce blocks within the file and the budget.
 bool CheckVtkXml(std::string_view data,
   std::string_view expectedType,
   std::uint64_t budgetBytes,

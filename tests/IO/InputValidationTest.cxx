@@ -710,3 +710,60 @@ TEST(InputValidation, PlyWhitelistedShapesRead)
       "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 6 0 0 1 0 0 1\n"));
   ExpectRefused(dir / "texcoord.ply", "PLY face property \"texcoord\" is not supported");
 }
+
+namespace
+{
+
+// A compressed (zlib, UInt64 headers) VTP of one triangle whose points' inline binary data is
+// `points` (base64 of the block header, then of the compressed block).
+std::string InlineBinaryVtp(const std::string& points)
+{
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+         "byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+         "compressor=\"vtkZLibDataCompressor\">\n<PolyData>\n<Piece NumberOfPoints=\"4\" "
+         "NumberOfPolys=\"4\">\n<Points>\n<DataArray type=\"Float64\" "
+         "NumberOfComponents=\"3\" format=\"binary\">" +
+    points +
+    "</DataArray>\n</Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+    "format=\"binary\">AQAAAAAAAABgAAAAAAAAAGAAAAAAAAAAHQAAAAAAAAA=eJxjYIAAJijNyIAKYHxmNHEYH10fE5o8"
+    "AANQABM=</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" "
+    "format=\"binary\">AQAAAAAAAAAgAAAAAAAAACAAAAAAAAAAEwAAAAAAAAA=eJxjZoAANijNCaV5oDQAAgAAHw=="
+    "</DataArray>\n</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+}
+
+} // namespace
+
+// Found by hand (the fuzzers' seeds had no inline binary arrays): the block header of a
+// compressed inline binary array (base64) was not checked, and a forged block count made
+// vtkXMLDataParser allocate 8 TB (std::bad_alloc, abort). Appended base64 blocks the same.
+TEST(InputValidation, VtpInlineAndBase64CompressedHeadersAreChecked)
+{
+  TempDir dir;
+  const std::string points = "AQAAAAAAAABgAAAAAAAAAGAAAAAAAAAAEgAAAAAAAAA=eJxjYMAHPtjjlSZCHgB4XQOO";
+  WriteText(dir / "inline.vtp", InlineBinaryVtp(points));
+  EXPECT_EQ(ReadMesh(dir / "inline.vtp")->GetNumberOfPolys(), 4);
+  // 2^40 blocks of 64 KiB.
+  WriteText(dir / "blocks.vtp",
+    InlineBinaryVtp("AAAAAAABAAAAAAEAAAAAAAAAAQAAAAAACgAAAAAAAAA=eHh4eHh4eHh4eA=="));
+  ExpectRefused(dir / "blocks.vtp",
+    "compressed block header of an inline binary DataArray announces 1099511627776 blocks");
+  WriteText(dir / "garbage.vtp", InlineBinaryVtp("AQAA*AAA"));
+  ExpectRefused(dir / "garbage.vtp", "without a valid compressed block header");
+
+  // The same blocks appended as base64: offsets count base64 characters.
+  const std::size_t at = points.find('=') + 1;
+  const std::string appended = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" "
+                               "version=\"1.0\" byte_order=\"LittleEndian\" "
+                               "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
+                               "<PolyData>\n<Piece NumberOfPoints=\"4\" NumberOfPolys=\"0\">\n"
+                               "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                               "format=\"appended\" offset=\"0\"/>\n</Points>\n</Piece>\n"
+                               "</PolyData>\n<AppendedData encoding=\"base64\">\n_";
+  WriteText(dir / "appended.vtp",
+    appended + "AAAAAAABAAAAAAEAAAAAAAAAAQAAAAAACgAAAAAAAAA=eHh4eHh4eHh4eA==" +
+      "\n</AppendedData>\n</VTKFile>\n");
+  ExpectRefused(dir / "appended.vtp", "at offset 0 announces 1099511627776 blocks");
+  WriteText(dir / "appended-ok.vtp",
+    appended + points.substr(0, at) + points.substr(at) + "\n</AppendedData>\n</VTKFile>\n");
+  EXPECT_EQ(ReadMesh(dir / "appended-ok.vtp")->GetNumberOfPoints(), 4);
+}
