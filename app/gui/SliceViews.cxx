@@ -259,6 +259,12 @@ void OnInput(vtkObject* caller, unsigned long event, void* clientData, void*)
     {
       view->inputObserver->SetAbortFlag(1);
     }
+    else if (c == 'r' || c == 'R')
+    {
+      // Its r (reset camera) would centre the slice on the props, off the cursor.
+      view->inputObserver->SetAbortFlag(1);
+      view->owner->resetView(view->index);
+    }
     return;
   }
   if (steps != 0 && view->owner->hasVolume())
@@ -324,7 +330,7 @@ SliceViews::SliceViews(QWidget* parent)
     view->widget->setToolTip(
       QString("%1 slice: a left click or drag moves the cursor (the other slices follow it); "
               "the mouse wheel or Up/Down moves the slice; Shift+left drag sets the "
-              "window/level, right drag zooms, middle drag pans")
+              "window/level, right drag zooms, middle drag pans, R frames the slice again")
         .arg(names[i]));
     view->widget->setRenderWindow(view->window);
     view->window->AddRenderer(view->renderer);
@@ -603,6 +609,30 @@ void SliceViews::moveSlice(int view, int steps)
   double position[3] = { this->Cursor[0], this->Cursor[1], this->Cursor[2] };
   position[axis] += step * v->viewDirection[axis];
   this->setCursor(position);
+}
+
+void SliceViews::resetView(int view)
+{
+  if (!this->Volume)
+  {
+    return;
+  }
+  View* v = this->Views[std::max(0, std::min(2, view))];
+  const int axis = AxisOf(v->index);
+  double centre[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    centre[a] = a == axis ? this->Cursor[a] : 0.5 * (this->Bounds[2 * a] + this->Bounds[2 * a + 1]);
+  }
+  vtkCamera* camera = v->renderer->GetActiveCamera();
+  const double distance = camera->GetDistance();
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0] - distance * v->viewDirection[0],
+    centre[1] - distance * v->viewDirection[1],
+    centre[2] - distance * v->viewDirection[2]);
+  camera->SetViewUp(v->viewUp);
+  v->fit();
+  v->window->Render();
 }
 
 void SliceViews::setCursor(const double position[3])

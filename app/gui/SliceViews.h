@@ -31,9 +31,10 @@ class vtkRenderer;
 /// (axial red, coronal green, sagittal yellow, as the pane titles). A left click or drag in a
 /// view moves the cursor within that view's slice (the other two slices follow); the mouse
 /// wheel, Up/Down and Page Up/Down move a view's slice one voxel at a time, and the cursor with
-/// it. Shift+left drag sets the window/level; right drag zooms, middle drag pans. The line
-/// under the views gives the cursor's position in mm (patient letters: "R 12.3, A 4.5,
-/// S 6.0 mm"), the intensity of the voxel under it and whether it is segmented.
+/// it. Shift+left drag sets the window/level; right drag zooms, middle drag pans, R frames the
+/// view again. The line under the views gives the cursor's position in mm (patient letters:
+/// "R 12.3, A 4.5, S 6.0 mm"), the intensity of the voxel under it and whether it is
+/// segmented.
 ///
 /// linkView() shows the cursor in the 3D view (CursorOverlay: a crosshair, optionally the
 /// three slice planes' outlines; the combo box under the views chooses) and lets a Shift+click
@@ -96,6 +97,9 @@ public:
   /// Moves a view's slice, and the cursor, by `steps` voxels along its axis (clamped to the
   /// volume).
   void moveSlice(int view, int steps);
+  /// Frames a view on the volume again (its pan and zoom, as R does), the slice staying at
+  /// the cursor.
+  void resetView(int view);
   /// The slice position as shown ("S 12.5 mm").
   QString positionText(int view) const;
   /// The patient directions at the edges: top, bottom, left, right ("A", "P", "R", "L").

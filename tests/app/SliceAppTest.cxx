@@ -293,6 +293,24 @@ private slots:
     slices->cursor(after);
     QCOMPARE(Distance(after, dragged), 0.0);
     QVERIFY(slices->slice(SliceViews::Axial)->GetProperty()->GetColorWindow() != window);
+
+    // Panned and zoomed away, R frames the axial view again, its slice still at the cursor.
+    vtkCamera* camera = slices->renderer(SliceViews::Axial)->GetActiveCamera();
+    const double scale = camera->GetParallelScale();
+    camera->SetParallelScale(0.3 * scale);
+    double focal[3], eye[3];
+    camera->GetFocalPoint(focal);
+    camera->GetPosition(eye);
+    camera->SetFocalPoint(focal[0] + 7, focal[1] - 5, focal[2]);
+    camera->SetPosition(eye[0] + 7, eye[1] - 5, eye[2]);
+    axial->setFocus();
+    QTest::keyClick(axial, Qt::Key_R);
+    QCoreApplication::processEvents();
+    camera->GetFocalPoint(focal);
+    QVERIFY(std::abs(focal[0] - 0.5 * (bounds[0] + bounds[1])) < 1e-9);
+    QVERIFY(std::abs(focal[1] - 0.5 * (bounds[2] + bounds[3])) < 1e-9);
+    QVERIFY(std::abs(slices->slicePosition(SliceViews::Axial) - after[2]) < 1e-9);
+    QVERIFY(std::abs(camera->GetParallelScale() - scale) < 1e-9 * scale);
   }
 
   void aShiftClickOnTheSurfaceMovesTheCursorThere()
