@@ -15,6 +15,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDir>
@@ -191,17 +192,11 @@ void ExportFlow::attachView(BenderView* view, VesselController* vessels)
   this->Vessels = vessels;
   delete this->Overlay;
   this->Overlay = new CfdEndsOverlay(view->renderer(), view->ribbonRenderer(), this);
-  this->Overlay->setVisible(this->Panel->isVisible());
   connect(vessels, &VesselController::centerlinesChanged, this, &ExportFlow::listEnds);
   connect(this->Worker, &WorkRunner::finished, this, &ExportFlow::followSurface);
-  connect(this->Panel,
-    &ExportPanel::shownChanged,
-    this,
-    [this](bool shown)
-    {
-      this->Overlay->setVisible(shown);
-      this->renderView();
-    });
+  // Shown with the Export panel; the discs only while the ends are to be clipped.
+  connect(this->Panel, &ExportPanel::shownChanged, this, &ExportFlow::showOverlay);
+  connect(this->Panel->Clip, &QCheckBox::toggled, this, &ExportFlow::showOverlay);
   // The disc dragged in the view and the cut typed in the table: one distance per end.
   connect(this->Overlay,
     &CfdEndsOverlay::distanceChanged,
@@ -240,6 +235,21 @@ void ExportFlow::attachView(BenderView* view, VesselController* vessels)
       this->renderView();
     });
   this->listEnds();
+}
+
+void ExportFlow::showOverlay()
+{
+  if (!this->Overlay)
+  {
+    return;
+  }
+  const bool shown =
+    this->Panel->isVisible() && (this->Overlay->showsPatches() || this->Panel->Clip->isChecked());
+  if (shown != this->Overlay->isVisible())
+  {
+    this->Overlay->setVisible(shown);
+    this->renderView();
+  }
 }
 
 void ExportFlow::renderView()
@@ -297,6 +307,7 @@ void ExportFlow::listEnds()
   {
     this->Overlay->setLabel(k, this->Panel->endName(k), this->Panel->endIsInlet(k));
   }
+  this->showOverlay();
   this->renderView();
 }
 
@@ -432,6 +443,7 @@ void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult
   if (this->Overlay)
   {
     this->Overlay->setPatches(this->Prepared, result->Ends);
+    this->showOverlay();
     this->renderView();
   }
   QString report = QString("Prepared for CFD: %1 ends, capped and labelled (wall 1, ends 2..)\n")
@@ -455,9 +467,15 @@ void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult
     report += "  warning: " + QString::fromStdString(warning) + "\n";
   }
   this->Panel->showReport(report);
+  bool extended = false;
+  for (const bender::CfdEnd& end : result->Ends)
+  {
+    extended = extended || end.ExtensionLength > 0;
+  }
   this->Session.AddMessage(bender::MessageSeverity::Info,
-    "Prepared for CFD: " + std::to_string(result->Ends.size()) +
-      " ends clipped, extended, capped and labelled (Export panel)");
+    "Prepared for CFD: " + std::to_string(result->Ends.size()) + " ends" +
+      (result->Ends.front().ClipDistance >= 0 ? " clipped," : "") + (extended ? " extended," : "") +
+      " capped and labelled (Export panel)");
 }
 
 bool ExportFlow::exportSurface(const QString& path, bool proceedOnProblems)

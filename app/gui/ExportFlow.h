@@ -102,6 +102,9 @@ private:
     const vtkSmartPointer<vtkPolyData>& centerlines,
     vtkPolyData* from,
     vtkMTimeType fromTime);
+  /// The overlay drawn while the Export panel is shown: the caps after Prepare, the discs
+  /// while the ends are to be clipped.
+  void showOverlay();
   void renderView();
 
   bender::BenderSession& Session;

@@ -401,6 +401,7 @@ private slots:
     QVERIFY(this->Window->waitForCenterlines(180000));
     panels->setCurrentWidget(panel);
     QApplication::processEvents();
+    panel->showReport(QString());
     panel->Clip->setChecked(true);
     CfdEndsOverlay* overlay = this->Window->exports()->endsOverlay();
     QVERIFY(overlay);
@@ -408,6 +409,8 @@ private slots:
     QVERIFY(!overlay->showsPatches());
 
     // One disc per vessel end of the centerlines, on its plane, 1.5 inscribed radii wide.
+    QVERIFY2(this->Window->vessels()->vessels().HasCenterlines(),
+      qPrintable(this->Window->statusLabel()->text()));
     const std::vector<bender::CenterlineEnd> ends =
       bender::FindCenterlineEnds(this->Window->vessels()->vessels().GetPaths());
     QCOMPARE(ends.size(), std::size_t(3)); // the demo: an inlet and two outlets
@@ -444,6 +447,11 @@ private slots:
     QCOMPARE(overlay->numberOfDiscsShown(), 0);
     panels->setCurrentWidget(panel);
     QApplication::processEvents();
+    QCOMPARE(overlay->numberOfDiscsShown(), 3);
+    // Not clipping (the surface's open ends as they are): no disc.
+    panel->Clip->setChecked(false);
+    QCOMPARE(overlay->numberOfDiscsShown(), 0);
+    panel->Clip->setChecked(true);
     QCOMPARE(overlay->numberOfDiscsShown(), 3);
 
     // Drag the end whose move shows best on the screen, by about two radii inwards.
@@ -525,6 +533,17 @@ private slots:
     QApplication::processEvents();
     const QString shots = QString(BENDER_ARTIFACT_DIR);
     QDir().mkpath(shots);
+    const auto obliqueView = [this, camera]()
+    {
+      // From the right, a little from above: the outlets' ends face the camera.
+      this->Window->benderView()->resetCamera();
+      camera->Azimuth(-60);
+      camera->Elevation(20);
+      camera->OrthogonalizeViewUp();
+      this->Window->renderer()->ResetCameraClippingRange();
+      this->Window->render();
+    };
+    obliqueView();
     QVERIFY(this->Window->grabWindowImage().save(shots + "/cfd-ends.png"));
 
     // Prepare for CFD, no flow extension (the caps are the cuts), on the worker: the window
@@ -621,7 +640,7 @@ private slots:
     QApplication::processEvents();
     QVERIFY(overlay->showsPatches());
     QCOMPARE(overlay->numberOfPatchLabelsShown(), 3);
-    this->Window->render();
+    obliqueView();
     QVERIFY(this->Window->grabWindowImage().save(shots + "/cfd-prepared.png"));
     this->PreparedTime = surface->GetMTime();
   }
