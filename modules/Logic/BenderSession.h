@@ -34,8 +34,8 @@ namespace bender
 struct SessionSnapshot;
 
 /// The decimated copy drawn (and warped while dragging) instead of a surface of many
-/// triangles: vtkQuadricClustering with bins of about 1/120 of the surface's size, points
-/// placed by the bins' quadrics (about 40k triangles for the 1.3 M-triangle benchmark vessel).
+/// triangles: vtkQuadricClustering with bins of about 1/100 of the surface's size, points
+/// placed by the bins' quadrics (42k triangles for the 1.3 M-triangle benchmark vessel).
 /// An empty surface for none or an empty one.
 vtkSmartPointer<vtkPolyData> MakeLevelOfDetail(vtkPolyData* surface);
 
