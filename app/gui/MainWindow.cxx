@@ -88,6 +88,23 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
 
   this->Session.SetMessageCallback([this](const bender::LogicMessage& m) { this->showMessage(m); });
   this->Session.SetChangeCallback([this]() { this->refresh(); });
+  this->RibbonAutosave = new QTimer(this);
+  this->RibbonAutosave->setSingleShot(true);
+  this->RibbonAutosave->setInterval(500);
+  connect(this->RibbonAutosave,
+    &QTimer::timeout,
+    this,
+    [this]()
+    {
+      const auto& ribbon = this->Session.GetRibbon();
+      if (this->Session.IsBusy() || this->Session.GetState() == bender::GrabState::Grabbed ||
+        !this->Session.HasSurface() || !ribbon)
+      {
+        return; // the next autosave (release, busy job's end) keeps it
+      }
+      this->AutosavedRibbon = ribbon;
+      this->Session.Autosave();
+    });
   // Every autosave also keeps the volume, the segmentation parameters and the ribbon.
   FileOpener* files = this->Files;
   this->Session.SetAutosaveDecorator(
@@ -264,10 +281,12 @@ void MainWindow::refresh()
 void MainWindow::autosaveNewRibbon()
 {
   // A ribbon placed (or put back by undo, cancel, redo) changes no warp: the session does not
-  // autosave for it, the window does, so that a crash keeps it too.
+  // autosave for it, the window does, so that a crash keeps it too (each autosave is flushed to
+  // disk: not on every mouse move of a handle, once the ribbon rests for half a second).
   const auto& ribbon = this->Session.GetRibbon();
-  if (this->Session.IsBusy() || this->Session.GetState() == bender::GrabState::Grabbed ||
-    !this->Session.HasSurface() || !ribbon)
+  if (!this->RibbonAutosave || this->Session.IsBusy() ||
+    this->Session.GetState() == bender::GrabState::Grabbed || !this->Session.HasSurface() ||
+    !ribbon)
   {
     return;
   }
@@ -289,8 +308,8 @@ void MainWindow::autosaveNewRibbon()
   {
     return;
   }
-  this->AutosavedRibbon = ribbon;
-  this->Session.Autosave();
+  // Not on every move of a handle: once the ribbon rests for half a second.
+  this->RibbonAutosave->start();
 }
 
 void MainWindow::showSlices()

@@ -190,6 +190,7 @@ private:
   std::weak_ptr<const bender::LabelMap> JudgedMask;
   /// The session's ribbon when it was last autosaved (a newly placed one is autosaved).
   std::optional<bender::RibbonSpec> AutosavedRibbon;
+  QTimer* RibbonAutosave = nullptr;
 
   WorkRunner* Worker = nullptr;
   GestureController* Gesture = nullptr;

@@ -307,6 +307,13 @@ private slots:
     // ribbon below says the same whatever the timing.)
     Q_UNUSED(checked);
     QVERIFY(this->Window->saveScreenshot(this->artefact("safety-trackers-connected.png")));
+    // Mid-arch, for the documentation's screenshot (taken only when the grab is seen: the
+    // checks below do not depend on it).
+    if (QTest::qWaitFor([&]() { return session.GetState() == bender::GrabState::Grabbed; }, 5000))
+    {
+      QTest::qWait(1500);
+      QVERIFY(this->Window->saveScreenshot(this->artefact("safety-trackers-bending.png")));
+    }
     // One press (1 s), the arch (1-4 s), the release (5 s): one commit, started where the
     // ribbon was.
     QTRY_VERIFY_WITH_TIMEOUT(session.GetHistoryPosition() == 1 || session.IsCommitHeld(), 20000);
@@ -376,6 +383,8 @@ private slots:
     // The status bar says the same as the dialog, with the same r_min.
     QVERIFY(this->Window->statusLabel()->toolTip().contains("Commit held"));
     QVERIFY(this->Window->grabWindowImage().save(this->artefact("safety-commit-guard.png")));
+    // The dialog alone too (grabWindowImage() grabs the main window only).
+    QVERIFY(dialog->grab().save(this->artefact("safety-commit-guard-dialog.png")));
     // Cancel: nothing committed, the ribbon back where it was grabbed.
     QTest::mouseClick(dialog->findChild<QPushButton*>("guardCancel"), Qt::LeftButton);
     QVERIFY(!dialog->isVisible());
@@ -535,6 +544,14 @@ private slots:
     QVERIFY(session.GetRibbon().has_value());
     QVERIFY(RibbonDistance(*session.GetRibbon(), placed) < 1e-12);
     QVERIFY(session.HasUnsavedChanges());
+    // The placed ribbon changes no warp: the window autosaves it once it rests.
+    const auto autosavedRibbon = [&]()
+    {
+      const bender::SessionSnapshot s = bender::ReadSessionFile(autosave.toStdString());
+      return s.ribbon && RibbonDistance(s.ribbon->ribbon, placed) < 1e-12 &&
+        s.ribbon->radius == 7.25;
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(autosavedRibbon(), 10000);
 
     const bender::ImageGeometry geometry = window->segmentation().GetVolume()->geometry;
     QVERIFY(window->segmentation().GetMask());
