@@ -507,10 +507,13 @@ void FastWarpLayout::Build(const T* xyz,
       for (std::size_t c = c0; c < c1; ++c)
       {
         std::size_t nb = 0, np = 0;
-        for (std::size_t i = c * chunkSize; i < std::min(n, (c + 1) * chunkSize); ++i)
+        // The flags alone (2: two projections, see WarpBinding::BindRange): the records are
+        // read once, in the second pass.
+        const std::size_t last = std::min(n, (c + 1) * chunkSize);
+        for (std::size_t i = c * chunkSize; i < last; ++i)
         {
-          nb += bound[i] ? 1 : 0;
-          np += bound[i] && records[i].lambda0 < 1.0 ? 1 : 0;
+          nb += bound[i] != 0 ? 1 : 0;
+          np += bound[i] == 2 ? 1 : 0;
         }
         boundCounts[c + 1] = nb;
         pairCounts[c + 1] = np;
@@ -553,12 +556,12 @@ void FastWarpLayout::Build(const T* xyz,
           }
           const auto id = static_cast<std::int64_t>(i);
           ids[k++] = id;
-          const BoundPoint& rec = records[i];
-          if (rec.lambda0 < 1.0)
+          if (bound[i] == 2)
           {
             pairs[p++] = id;
             continue;
           }
+          const BoundPoint& rec = records[i];
           const T* q = xyz + 3 * i;
           singles[m] = id;
           px[m] = static_cast<float>(static_cast<double>(q[0]) - origin.x);

@@ -83,7 +83,8 @@ class FastWarpLayout
 {
 public:
   /// Lays out the points of `xyz` (n points, x y z interleaved) whose `bound` flag is set, with
-  /// their `records`, relative to `origin` (a point near the wire).
+  /// their `records`, relative to `origin` (a point near the wire). The flags are those of
+  /// WarpBinding::BindRange: 0 outside, 1 one projection, 2 two (lambda0 < 1).
   template<typename T>
   void Build(const T* xyz,
     std::size_t n,

@@ -4,6 +4,7 @@
 #include "ExactWarpKernel.h"
 #include "FastWarpKernel.h"
 #include "GeometryErrors.h"
+#define BENDER_LANE_BLOCKS
 #include "WireProjectionLane.h"
 
 #include <algorithm>
@@ -152,19 +153,18 @@ WarpBinding::WarpBinding(const WarpSpec& spec, BlendMode blend)
   this->Weighting = std::move(weighting);
 }
 
+BENDER_SIMD_INLINE bool WarpBinding::InCapsule(const Capsule& c, const Vec3& p)
+{
+  const Vec3 rel = p - c.start;
+  const double along = Dot(rel, c.axis);
+  const double t = along < 0.0 ? 0.0 : (c.length < along ? c.length : along); // std::clamp
+  const Vec3 off = rel - c.axis * t;
+  return Dot(off, off) <= c.radiusSquared;
+}
+
 bool WarpBinding::InCapsules(const Vec3& p) const
 {
-  for (const Capsule& c : this->Capsules)
-  {
-    const Vec3 rel = p - c.start;
-    const double t = std::clamp(Dot(rel, c.axis), 0.0, c.length);
-    const Vec3 off = rel - c.axis * t;
-    if (Dot(off, off) <= c.radiusSquared)
-    {
-      return true;
-    }
-  }
-  return false;
+  return InCapsule(this->Capsules[0], p) || InCapsule(this->Capsules[1], p);
 }
 
 bool WarpBinding::Matches(const WarpSpec& spec, BlendMode blend) const
@@ -225,31 +225,65 @@ void WarpBinding::BindRange(const T* xyz,
   {
     const std::size_t last = std::min(end, first + BlockSize);
     const bool probe = useCapsules || blockIndex % 16 == 0;
+    // The box and capsule tests of the whole block, vectorised (the operations of InBox and
+    // InCapsules, so that Bind decides alike), then the points left packed for the kernel.
+    const int count = static_cast<int>(last - first);
+    const T* c = xyz + 3 * first;
+    for (int i = 0; i < count; ++i)
+    {
+      b.x[i] = static_cast<double>(c[3 * i]);
+      b.y[i] = static_cast<double>(c[3 * i + 1]);
+      b.z[i] = static_cast<double>(c[3 * i + 2]);
+    }
+    const Vec3 lo = this->BoxMin;
+    const Vec3 hi = this->BoxMax;
+    const Capsule c0 = this->Capsules[0];
+    const Capsule c1 = this->Capsules[1];
+    if (probe)
+    {
+#pragma omp simd
+      for (int i = 0; i < count; ++i)
+      {
+        const Vec3 p{ b.x[i], b.y[i], b.z[i] };
+        const bool box = (p.x >= lo.x) & (p.x <= hi.x) & (p.y >= lo.y) & (p.y <= hi.y) &
+          (p.z >= lo.z) & (p.z <= hi.z);
+        const bool capsules = InCapsule(c0, p) | InCapsule(c1, p);
+        b.flag[i] = box ? (capsules ? 2.0 : 1.0) : 0.0;
+      }
+    }
+    else
+    {
+#pragma omp simd
+      for (int i = 0; i < count; ++i)
+      {
+        const double x = b.x[i], y = b.y[i], z = b.z[i];
+        const bool box =
+          (x >= lo.x) & (x <= hi.x) & (y >= lo.y) & (y <= hi.y) & (z >= lo.z) & (z <= hi.z);
+        b.flag[i] = box ? 2.0 : 0.0;
+      }
+    }
     std::size_t inBox = 0;
     std::size_t rejected = 0;
     int n = 0;
-    for (std::size_t i = first; i < last; ++i)
+    for (int i = 0; i < count; ++i)
     {
-      const T* c = xyz + 3 * i;
-      const Vec3 p{
-        static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])
-      };
-      bound[i] = 0;
-      if (!this->InBox(p))
+      const double flag = b.flag[i];
+      if (flag == 0.0)
       {
         continue;
       }
       ++inBox;
-      if (probe && !this->InCapsules(p))
+      if (flag == 1.0)
       {
         ++rejected;
         continue;
       }
-      b.x[n] = p.x;
-      b.y[n] = p.y;
-      b.z[n] = p.z;
-      ids[n++] = i;
+      b.x[n] = b.x[i];
+      b.y[n] = b.y[i];
+      b.z[n] = b.z[i];
+      ids[n++] = first + static_cast<std::size_t>(i);
     }
+    std::fill(bound + first, bound + last, std::uint8_t{ 0 });
     if (probe)
     {
       useCapsules = inBox > 0 && 8 * rejected >= inBox;

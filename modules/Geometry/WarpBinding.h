@@ -81,6 +81,7 @@ private:
   std::shared_ptr<const lane::FlatWire> Flat; // the initial wire as the projection reads it
   std::shared_ptr<const lane::WeightParameters> Weighting; // R and the decay, for the weights
   bool InBox(const Vec3& p) const;
+  static bool InCapsule(const Capsule& c, const Vec3& p);
   bool InCapsules(const Vec3& p) const;
   /// Bind() for a point that passed the box (and optionally the capsule) test.
   bool BindProjected(const Vec3& p, BoundPoint& out) const;

@@ -1,9 +1,11 @@
 #include "WireProjection.h"
 
 #include "FastWarpKernel.h"
+#define BENDER_LANE_BLOCKS
 #include "WireProjectionLane.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace bender
 {
@@ -29,9 +31,12 @@ void FlattenWire(const Biarc& wire, FlatWire& out, bool clampedFeet)
     a.length = arc.length;
     a.axisTolerance = 1e-12 * arc.radius;
     a.invLength = arc.length > 0.0 ? 1.0 / arc.length : 0.0;
-    a.invAngle = !arc.line && arc.angle > 0.0 ? 1.0 / arc.angle : 0.0;
-    a.line = arc.line;
-    if (clampedFeet && !arc.line)
+    // An arc that turns by exactly 0 without being flagged a line (its tangents equal to
+    // rounding, radius infinite) is projected on as the segment it is: the circle's formulas
+    // would put every point on its axis and find no foot.
+    a.line = arc.line || !(arc.angle > 0.0) || !std::isfinite(arc.radius);
+    a.invAngle = a.line ? 0.0 : 1.0 / arc.angle;
+    if (clampedFeet && !a.line)
     {
       copy(arc.PointAt(0.0), a.first);
       copy(arc.PointAt(1.0), a.last);

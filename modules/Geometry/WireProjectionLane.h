@@ -316,6 +316,7 @@ BENDER_SIMD_INLINE double Weights(double d0,
   return bound ? (lambda0 < 1.0 ? 2.0 : 1.0) : 0.0;
 }
 
+#ifdef BENDER_LANE_BLOCKS // the files compiled with -fopenmp-simd (WireProjection, WarpBinding)
 // --- Blocks: the same arithmetic on many points, one candidate kind per pass -----------------
 //
 // Each pass is a vectorised loop over the block; a pass whose candidate no point of the block
@@ -506,6 +507,8 @@ BENDER_SIMD_INLINE void WeightBlock(const WeightParameters& q, Block& b, int n)
     b.flag[i] = f0 > 0.0 ? 1.0 : 0.0;
   }
 }
+
+#endif // BENDER_LANE_BLOCKS
 
 } // namespace lane
 } // namespace bender
