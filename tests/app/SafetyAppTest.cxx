@@ -622,8 +622,31 @@ private slots:
     QVERIFY(HasMessage(*recovered, "Recovered the surface \"segmented vessel\""));
     QVERIFY(recovered->saveScreenshot(this->artefact("safety-recovered.png")));
 
-    // Another crash, and the volume file is gone: one message, the rest recovered.
+    // Another crash, and the volume file now holds another volume (another grid): not loaded,
+    // one message saying both grids, the rest recovered.
     recovered.reset();
+    const QString kept = folder.filePath("kept.bender-session.json");
+    QVERIFY(QFile::copy(autosave, kept));
+    bender::WriteVolume(bender::ResampleVolume(*demoVolume, { 40, 40, 40 }), nrrd.toStdString());
+    asked.clear();
+    auto changed = this->startWindowAnsweringRecovery(folder.path(), QMessageBox::Yes, &asked, {});
+    QTRY_VERIFY_WITH_TIMEOUT(!asked.isEmpty(), 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(changed->session().HasSurface(), 60000);
+    QVERIFY(changed->waitUntilIdle(120000));
+    QVERIFY(!changed->segmentation().HasVolume());
+    QCOMPARE(changed->session().GetHistoryPosition(), plan.warps.size());
+    const bender::LogicMessage* refused = FindMessage(*changed, "was not loaded");
+    QVERIFY(refused);
+    QVERIFY2(refused->text.find("now holds 40x40x40 voxels") != std::string::npos &&
+        refused->text.find(bender::DescribeVolumeGeometry(geometry)) != std::string::npos &&
+        refused->text.find("Recovered the surface") != std::string::npos,
+      refused->text.c_str());
+
+    // Another crash (the autosave as it was before), and the volume file is gone: one message,
+    // the rest recovered.
+    changed.reset();
+    QVERIFY(QFile::remove(autosave));
+    QVERIFY(QFile::copy(kept, autosave));
     QVERIFY(QFile::remove(nrrd));
     asked.clear();
     auto partial = this->startWindowAnsweringRecovery(folder.path(), QMessageBox::Yes, &asked, {});
