@@ -93,6 +93,13 @@ BenderView::BenderView(vtkAlgorithmOutput* surface, QWidget* parent)
   this->SurfaceActor->GetProperty()->SetSpecular(0.3);
   this->SurfaceActor->GetProperty()->SetSpecularPower(20);
   this->Renderer->AddActor(this->SurfaceActor);
+  // The decimated copy drawn while the camera moves or a big surface is dragged (same look).
+  this->ProxyMapper->ScalarVisibilityOff();
+  this->ProxyActor->SetMapper(this->ProxyMapper);
+  this->ProxyActor->SetProperty(this->SurfaceActor->GetProperty());
+  this->ProxyActor->PickableOff();
+  this->ProxyActor->VisibilityOff();
+  this->Renderer->AddActor(this->ProxyActor);
   // The original shape: pale, faint, pushed behind where it coincides with the surface.
   this->GhostMapper->ScalarVisibilityOff();
   this->GhostMapper->SetResolveCoincidentTopologyToPolygonOffset();
@@ -103,18 +110,12 @@ BenderView::BenderView(vtkAlgorithmOutput* surface, QWidget* parent)
   this->GhostActor->GetProperty()->BackfaceCullingOn();
   this->GhostActor->PickableOff();
   this->GhostActor->VisibilityOff();
-  // Blended in the opaque pass, after the surface (added after it): a translucent prop would
+  // Blended in the opaque pass, after the surface and its copy (added after them, so that what
+  // lies behind the ghost is drawn before it is blended): a translucent prop would
   // make every frame go through the order-independent translucency passes, full-screen work
   // that costs software OpenGL more than drawing the demo vessel itself.
   this->GhostActor->ForceOpaqueOn();
   this->Renderer->AddActor(this->GhostActor);
-  // The decimated copy drawn while the camera moves or a big surface is dragged (same look).
-  this->ProxyMapper->ScalarVisibilityOff();
-  this->ProxyActor->SetMapper(this->ProxyMapper);
-  this->ProxyActor->SetProperty(this->SurfaceActor->GetProperty());
-  this->ProxyActor->PickableOff();
-  this->ProxyActor->VisibilityOff();
-  this->Renderer->AddActor(this->ProxyActor);
   // The centerlines: thick lines drawn as tubes, light so that they read through the wall.
   this->CenterlineMapper->ScalarVisibilityOff();
   this->CenterlineActor->SetMapper(this->CenterlineMapper);

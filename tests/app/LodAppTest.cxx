@@ -182,6 +182,7 @@ private slots:
       farthest = std::max(farthest, std::abs(std::hypot(p[1], p[2]) - 5.0));
     }
     QVERIFY2(farthest > 2.0, qPrintable(QString("farthest %1").arg(farthest)));
+    this->Window->saveScreenshot(QString(BENDER_ARTIFACT_DIR) + "/lod-during-drag.png");
     // The whole surface was neither drawn nor warped during the drag.
     QCOMPARE(session.GetLiveFilter()->GetBindingCount(), bindingsBefore);
     QCOMPARE(MaxDifference(session.GetSurface(), before), 0.0);
