@@ -81,6 +81,19 @@ vtkSmartPointer<vtkPolyData> MakeLevelOfDetail(vtkPolyData* surface)
   {
     return vtkSmartPointer<vtkPolyData>::New();
   }
+  // Clustering bins a NaN or infinite coordinate nowhere sensible: such a surface is not
+  // decimated (the warp then refuses it with its own message, as without a copy).
+  for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    surface->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      auto same = vtkSmartPointer<vtkPolyData>::New();
+      same->ShallowCopy(surface);
+      return same;
+    }
+  }
   vtkNew<vtkQuadricClustering> decimate;
   decimate->SetInputData(surface);
   decimate->SetNumberOfDivisions(100, 100, 100);

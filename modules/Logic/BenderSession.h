@@ -36,7 +36,8 @@ struct SessionSnapshot;
 /// The decimated copy drawn (and warped while dragging) instead of a surface of many
 /// triangles: vtkQuadricClustering with bins of about 1/100 of the surface's size, points
 /// placed by the bins' quadrics (42k triangles for the 1.3 M-triangle benchmark vessel).
-/// An empty surface for none or an empty one.
+/// An empty surface for none or an empty one; the surface itself (shallow copy) when a point
+/// is not finite.
 vtkSmartPointer<vtkPolyData> MakeLevelOfDetail(vtkPolyData* surface);
 
 /// Where the session is in the bend gesture.

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace
 {
@@ -187,6 +188,24 @@ TEST_F(LevelOfDetailTest, CopyIsRemadeWhenTheSurfaceChanges)
   ASSERT_TRUE(session.Grab(lifted));
   EXPECT_EQ(session.GetProxyBuildCount(), 4);
   EXPECT_LT(boundsMatch(session.GetProxySurface(), moved), 1.0);
+}
+
+TEST_F(LevelOfDetailTest, NonFiniteBigSurfaceIsRefusedAsWithoutACopy)
+{
+  vtkNew<vtkPolyData> broken;
+  broken->DeepCopy(this->Big);
+  broken->GetPoints()->SetPoint(7, std::nan(""), 0.0, 0.0);
+  bender::BenderSession session;
+  this->Prepare(session, broken, this->Threshold());
+  session.ClearMessages();
+  EXPECT_FALSE(session.Grab(this->Warp().initial));
+  EXPECT_EQ(session.GetState(), bender::GrabState::Idle);
+  ASSERT_FALSE(session.GetMessages().empty());
+  EXPECT_NE(session.GetMessages().back().text.find("non-finite"), std::string::npos)
+    << session.GetMessages().back().text;
+  EXPECT_FALSE(session.IsDraggingProxy());
+  // The copy of such a surface is the surface itself, never a clustering of NaN.
+  EXPECT_EQ(bender::MakeLevelOfDetail(broken)->GetNumberOfPoints(), broken->GetNumberOfPoints());
 }
 
 TEST_F(LevelOfDetailTest, SmallSurfacesNeverUseACopy)
