@@ -331,6 +331,162 @@ bool Tetrahedralise(const std::vector<Point3>& points, std::vector<Tetra>& tets,
 #endif
 }
 
+// ---- thinning the wall's points before the Delaunay -----------------------------------------
+// The Voronoi diagram only has to find the paths through the lumen (the centerline is then
+// re-centred on the wall itself, see SectionCentre), so it needs a fraction of the local radius
+// between samples, not the mesh's resolution: a 55 k-triangle segmentation has ten times more
+// points than that. Local radius from the surface's largest curvature (1 / r on a tube):
+// per point, the largest angle between its normal and a neighbour's over their distance,
+// averaged over its neighbours, and the spacing `factor` / curvature limited to grow by at most
+// a quarter of the distance from where it is smaller (so that flat caps and ends keep samples).
+// Points are then clustered on grids of cell sizes growing by 1.5 from the mean edge length, each
+// point on the grid of its spacing, and the point nearest each cell's centre is kept. Returns
+// the ids of the wall points to keep (all of them when factor is 0); boundary loop points are
+// always kept.
+// Spacing of the wall's points given to the Delaunay, as a fraction of the local radius (0: every
+// point). The Voronoi diagram only has to find the paths and the ends: the centerline itself is
+// placed on the centroids of the wall's cross-sections.
+constexpr double DelaunaySpacing = 0.0;
+
+std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
+{
+  const std::size_t n = wall.Points.size();
+  std::vector<vtkIdType> kept;
+  std::vector<std::vector<vtkIdType>> neighbours(n);
+  for (const auto& t : wall.Triangles)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      neighbours[t[e]].push_back(t[(e + 1) % 3]);
+      neighbours[t[(e + 1) % 3]].push_back(t[e]);
+    }
+  }
+  std::vector<bool> onBoundary(n, false);
+  for (const auto& loop : wall.Loops)
+  {
+    for (vtkIdType id : loop.Ids)
+    {
+      onBoundary[id] = true;
+    }
+  }
+  if (!(factor > 0))
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (!neighbours[i].empty())
+      {
+        kept.push_back(static_cast<vtkIdType>(i));
+      }
+    }
+    return kept;
+  }
+  std::vector<double> curvature(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (vtkIdType j : neighbours[i])
+    {
+      const double l = Distance(wall.Points[i], wall.Points[j]);
+      const double c = std::clamp(Dot(wall.Normals[i], wall.Normals[j]), -1.0, 1.0);
+      if (l > 0)
+      {
+        curvature[i] = std::max(curvature[i], std::acos(c) / l);
+      }
+    }
+  }
+  std::vector<double> spacing(n, std::numeric_limits<double>::infinity());
+  const double largest = 0.05 * wall.Diagonal;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (neighbours[i].empty())
+    {
+      continue;
+    }
+    double sum = curvature[i];
+    for (vtkIdType j : neighbours[i])
+    {
+      sum += curvature[j];
+    }
+    const double k = sum / static_cast<double>(neighbours[i].size() + 1);
+    spacing[i] = k > 0 ? std::min(largest, factor / k) : largest;
+    spacing[i] = std::max(spacing[i], wall.MeanEdge);
+  }
+  // Gradation: spacing[i] <= spacing[j] + 0.25 |ij| (Dijkstra from every point).
+  {
+    using Item = std::pair<double, vtkIdType>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (std::isfinite(spacing[i]))
+      {
+        queue.emplace(spacing[i], static_cast<vtkIdType>(i));
+      }
+    }
+    while (!queue.empty())
+    {
+      const auto [h, i] = queue.top();
+      queue.pop();
+      if (h > spacing[i])
+      {
+        continue;
+      }
+      for (vtkIdType j : neighbours[i])
+      {
+        const double g = h + 0.25 * Distance(wall.Points[i], wall.Points[j]);
+        if (g < spacing[j])
+        {
+          spacing[j] = g;
+          queue.emplace(g, j);
+        }
+      }
+    }
+  }
+  // Clustering, one grid per level of spacing.
+  std::unordered_map<std::uint64_t, std::pair<vtkIdType, double>> cells;
+  cells.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (neighbours[i].empty())
+    {
+      continue;
+    }
+    if (onBoundary[i] || spacing[i] < 1.5 * wall.MeanEdge)
+    {
+      kept.push_back(static_cast<vtkIdType>(i));
+      continue;
+    }
+    const int level = std::min(
+      40, static_cast<int>(std::floor(std::log(spacing[i] / wall.MeanEdge) / std::log(1.5))));
+    const double size = wall.MeanEdge * std::pow(1.5, level);
+    std::uint64_t key = static_cast<std::uint64_t>(level);
+    double offset = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double x = wall.Points[i][c] / size;
+      const double cell = std::floor(x);
+      offset += (x - cell - 0.5) * (x - cell - 0.5);
+      // 19 bits per axis (the wall's diagonal over the smallest cell is far below 2^18).
+      key = (key << 19) |
+        (static_cast<std::uint64_t>(static_cast<std::int64_t>(cell) + (1 << 18)) &
+          ((1u << 19) - 1));
+    }
+    auto it = cells.find(key);
+    if (it == cells.end())
+    {
+      cells.emplace(key, std::make_pair(static_cast<vtkIdType>(i), offset));
+    }
+    else if (offset < it->second.second)
+    {
+      it->second = std::make_pair(static_cast<vtkIdType>(i), offset);
+    }
+  }
+  for (const auto& cell : cells)
+  {
+    kept.push_back(cell.second.first);
+  }
+  std::sort(kept.begin(), kept.end());
+  return kept;
+}
+
 // ---- Dijkstra on the Voronoi graph ----------------------------------------------------------
 struct Graph
 {
@@ -355,18 +511,24 @@ enum class Weight
   LengthOverRadius
 };
 
-ShortestPaths Dijkstra(const Graph& g, const std::vector<int>& sources, Weight weight)
+// Makes `sources` sources of sp (cost 0) and relaxes from them: on an empty sp, Dijkstra from
+// the sources; on the result of an earlier call, the same as Dijkstra from the old and the new
+// sources together (costs only decrease), for the cost of the nodes that change only.
+void AddSources(const Graph& g, ShortestPaths& sp, const std::vector<int>& sources, Weight weight)
 {
   const int n = g.Size();
-  ShortestPaths sp;
-  sp.Cost.assign(n, std::numeric_limits<double>::infinity());
-  sp.Previous.assign(n, -1);
-  sp.Origin.assign(n, -1);
+  if (sp.Cost.empty())
+  {
+    sp.Cost.assign(n, std::numeric_limits<double>::infinity());
+    sp.Previous.assign(n, -1);
+    sp.Origin.assign(n, -1);
+  }
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
   for (int s : sources)
   {
     sp.Cost[s] = 0.0;
+    sp.Previous[s] = -1;
     sp.Origin[s] = s;
     queue.emplace(0.0, s);
   }
@@ -395,6 +557,12 @@ ShortestPaths Dijkstra(const Graph& g, const std::vector<int>& sources, Weight w
       }
     }
   }
+}
+
+ShortestPaths Dijkstra(const Graph& g, const std::vector<int>& sources, Weight weight)
+{
+  ShortestPaths sp;
+  AddSources(g, sp, sources, weight);
   return sp;
 }
 
@@ -517,13 +685,13 @@ public:
   }
 
   /// First wall hit from p along the unit direction u within length; false when none.
-  bool Ray(const Point3& p, const Point3& u, double length, Point3& hit)
+  bool Ray(const Point3& p, const Point3& u, double length, Point3& hit, vtkIdType& cellId)
   {
     const double a[3] = { p[0], p[1], p[2] };
     const double b[3] = { p[0] + length * u[0], p[1] + length * u[1], p[2] + length * u[2] };
     double t = 0.0, x[3], pcoords[3];
     int subId = 0;
-    vtkIdType cellId = -1;
+    cellId = -1;
     if (!this->Locator->IntersectWithLine(a, b, 0.0, t, x, pcoords, subId, cellId, this->Cell))
     {
       return false;
@@ -531,6 +699,8 @@ public:
     hit = { { x[0], x[1], x[2] } };
     return true;
   }
+
+  vtkPolyData* GetWall() const { return this->Wall; }
 
 private:
   static void vtkTriangle_Normal(const double a[3],
@@ -548,81 +718,369 @@ private:
   vtkNew<vtkGenericCell> Cell;
 };
 
-enum class Centring
+// The triangles on either side of every edge of the wall (-1: none; an edge of three or more
+// triangles keeps its first two and is marked by a third entry of -2).
+using EdgeTriangles = std::unordered_map<std::uint64_t, std::array<vtkIdType, 3>>;
+
+inline std::uint64_t EdgeKey(vtkIdType a, vtkIdType b)
 {
-  Centred,  ///< moved to (or already at) the centre of a round cross-section
-  Escaped,  ///< a ray left through an open end: the cross-section is not closed
-  NotRound, ///< the cross-section is not round (a bifurcation, an aneurysm's neck)
-  Outside
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (hi << 32) | lo;
+}
+
+EdgeTriangles BuildEdgeTriangles(vtkPolyData* wall)
+{
+  EdgeTriangles edges;
+  edges.reserve(static_cast<std::size_t>(wall->GetNumberOfCells()) * 2);
+  for (vtkIdType c = 0; c < wall->GetNumberOfCells(); ++c)
+  {
+    const vtkIdType* ids = nullptr;
+    vtkIdType npts = 0;
+    wall->GetCellPoints(c, npts, ids);
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      auto& entry = edges
+                      .try_emplace(EdgeKey(ids[k], ids[(k + 1) % npts]),
+                        std::array<vtkIdType, 3>{ { -1, -1, -1 } })
+                      .first->second;
+      if (entry[0] < 0)
+      {
+        entry[0] = c;
+      }
+      else if (entry[1] < 0)
+      {
+        entry[1] = c;
+      }
+      else
+      {
+        entry[2] = -2;
+      }
+    }
+  }
+  return edges;
+}
+
+enum class SectionKind
+{
+  Closed,  ///< the section closes around the point
+  Escaped, ///< it runs out through an open end of the wall
+  Failed   ///< too long, not around the point, a non-manifold edge, a degenerate cut
 };
 
-// Moves p in the plane normal to t towards the centre of the largest inscribed circle: the
-// line from the closest wall point through p crosses a round lumen through its centre, so the
-// midpoint of that line's chord is the centre; iterated while the distance to the wall grows
-// (never outside the lumen, never to a smaller inscribed sphere). The result is kept only where
-// the cross-section is round (rays in 8 directions within a factor 1.25 of each other) and the
-// move is at most half the inscribed radius: elsewhere (a bifurcation, an aneurysm's neck: 2 to
-// 5; the gmsh aneurysm's elliptic vessels: up to 1.4) the largest circle of the plane may lie
-// in another vessel or in an aneurysm's sac, and the smoothed Voronoi path is kept, shifted by
-// the shifts of the re-centred samples on either side.
-Centring Recenter(WallDistance& distance, const Point3& p, const Point3& t, Point3& centred)
+struct Section
 {
-  bool inside = true;
-  Point3 closest;
-  double d = distance.Query(p, inside, closest);
-  const double startDistance = d;
-  centred = p;
-  if (!inside || d <= 0)
-  {
-    return Centring::Outside;
-  }
-  for (int it = 0; it < 4; ++it)
-  {
-    Point3 u = Normalized(Sub(centred, closest));
-    u = Normalized(Sub(u, Scale(t, Dot(u, t))));
-    if (Norm(u) < 0.5)
-    {
-      break;
-    }
-    Point3 far, near;
-    if (!distance.Ray(centred, u, 20.0 * d, far) ||
-      !distance.Ray(centred, Scale(u, -1.0), 4.0 * d, near))
-    {
-      return Centring::Escaped;
-    }
-    const Point3 trial = Scale(Add(far, near), 0.5);
-    bool trialInside = true;
-    Point3 trialClosest;
-    const double td = distance.Query(trial, trialInside, trialClosest);
-    if (!trialInside || td <= d * (1.0 + 1e-6))
-    {
-      break;
-    }
-    centred = trial;
-    d = td;
-    closest = trialClosest;
-  }
-  // Roundness of the cross-section around the result.
+  SectionKind Kind = SectionKind::Failed;
+  Point3 Centroid{ { 0, 0, 0 } };
+  double Roundness = 0;  ///< largest over smallest distance from the centroid to the loop
+  double MeanRadius = 0; ///< sqrt(area / pi)
+};
+
+// The cross-section of the lumen through p in the plane normal to t: the loop of the wall's
+// intersection with that plane around p, traced triangle by triangle from the wall point hit by
+// a ray from p in the plane. The plane is cut exactly, edge by edge, so the loop is the same
+// polygon whatever the tessellation of a flat stretch of wall, and its area centroid is an
+// integral over the whole wall around the lumen: unlike the Voronoi vertices it does not depend
+// on where the wall's points happen to be. The centroid of any oblique section of a straight
+// tube (circular or elliptic) lies on its axis, so errors of the plane's direction do not move
+// it either.
+Section CutSection(WallDistance& distance,
+  const EdgeTriangles& edges,
+  const Point3& p,
+  const Point3& t,
+  double reach,
+  double maxLength)
+{
+  Section section;
+  vtkPolyData* wall = distance.GetWall();
   const Point3 axis = std::abs(t[0]) < 0.9 ? Point3{ { 1, 0, 0 } } : Point3{ { 0, 1, 0 } };
   const Point3 e1 = Normalized(Cross(t, axis));
   const Point3 e2 = Cross(t, e1);
-  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
-  for (int k = 0; k < 8; ++k)
+  Point3 hit;
+  vtkIdType start = -1;
+  if (!distance.Ray(p, e1, reach, hit, start) || start < 0)
   {
-    const double a = k * 3.14159265358979323846 / 4.0;
-    const Point3 u = Add(Scale(e1, std::cos(a)), Scale(e2, std::sin(a)));
-    Point3 hit;
-    if (!distance.Ray(centred, u, 20.0 * d, hit))
-    {
-      return Centring::Escaped;
-    }
-    const double l = Distance(hit, centred);
-    shortest = std::min(shortest, l);
-    longest = std::max(longest, l);
+    section.Kind = SectionKind::Escaped;
+    return section;
   }
-  return longest <= 1.25 * shortest && Distance(centred, p) <= 0.5 * startDistance
-    ? Centring::Centred
-    : Centring::NotRound;
+  auto height = [&](vtkIdType id)
+  {
+    Point3 x;
+    wall->GetPoint(id, x.data());
+    return Dot(Sub(x, p), t);
+  };
+  // Crossing of the plane on edge (a, b), in plane coordinates.
+  auto cross = [&](vtkIdType a, vtkIdType b)
+  {
+    Point3 xa, xb;
+    wall->GetPoint(a, xa.data());
+    wall->GetPoint(b, xb.data());
+    const double ha = Dot(Sub(xa, p), t), hb = Dot(Sub(xb, p), t);
+    const double w = ha / (ha - hb);
+    const Point3 x = Sub(Add(xa, Scale(Sub(xb, xa), w)), p);
+    return std::array<double, 2>{ { Dot(x, e1), Dot(x, e2) } };
+  };
+  // The two edges of triangle c that cross the plane (heights >= 0 count as above).
+  auto crossingEdges = [&](vtkIdType c, std::array<std::array<vtkIdType, 2>, 2>& out)
+  {
+    const vtkIdType* ids = nullptr;
+    vtkIdType npts = 0;
+    wall->GetCellPoints(c, npts, ids);
+    if (npts != 3)
+    {
+      return false;
+    }
+    const double h[3] = { height(ids[0]), height(ids[1]), height(ids[2]) };
+    int found = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int j = (k + 1) % 3;
+      if ((h[k] >= 0) != (h[j] >= 0))
+      {
+        if (found < 2)
+        {
+          out[found] = { { ids[k], ids[j] } };
+        }
+        ++found;
+      }
+    }
+    return found == 2;
+  };
+  std::array<std::array<vtkIdType, 2>, 2> pair;
+  if (!crossingEdges(start, pair))
+  {
+    return section;
+  }
+  std::vector<std::array<double, 2>> loop;
+  std::array<vtkIdType, 2> edge = pair[1];
+  const std::uint64_t firstEdge = EdgeKey(pair[0][0], pair[0][1]);
+  vtkIdType current = start;
+  double length = 0.0;
+  loop.push_back(cross(pair[0][0], pair[0][1]));
+  while (true)
+  {
+    const std::uint64_t key = EdgeKey(edge[0], edge[1]);
+    if (key == firstEdge)
+    {
+      break; // closed
+    }
+    loop.push_back(cross(edge[0], edge[1]));
+    const auto& a = loop[loop.size() - 2];
+    const auto& b = loop.back();
+    length += std::hypot(b[0] - a[0], b[1] - a[1]);
+    if (length > maxLength)
+    {
+      return section;
+    }
+    auto found = edges.find(key);
+    if (found == edges.end() || found->second[2] == -2)
+    {
+      return section;
+    }
+    const vtkIdType next = found->second[0] == current ? found->second[1] : found->second[0];
+    if (next < 0)
+    {
+      section.Kind = SectionKind::Escaped;
+      return section;
+    }
+    if (!crossingEdges(next, pair))
+    {
+      return section;
+    }
+    edge = EdgeKey(pair[0][0], pair[0][1]) == key ? pair[1] : pair[0];
+    current = next;
+  }
+  const std::size_t n = loop.size();
+  if (n < 3)
+  {
+    return section;
+  }
+  bool inside = false;
+  double area = 0.0, cx = 0.0, cy = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto& a = loop[i];
+    const auto& b = loop[(i + 1) % n];
+    if ((a[1] > 0) != (b[1] > 0) && a[0] - a[1] * (b[0] - a[0]) / (b[1] - a[1]) > 0)
+    {
+      inside = !inside;
+    }
+    const double w = a[0] * b[1] - a[1] * b[0];
+    area += w;
+    cx += (a[0] + b[0]) * w;
+    cy += (a[1] + b[1]) * w;
+  }
+  if (!inside || !(std::abs(area) > 0))
+  {
+    return section;
+  }
+  cx /= 3.0 * area;
+  cy /= 3.0 * area;
+  double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto& a = loop[i];
+    const auto& b = loop[(i + 1) % n];
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    const double l2 = dx * dx + dy * dy;
+    const double u =
+      std::clamp(l2 > 0 ? ((cx - a[0]) * dx + (cy - a[1]) * dy) / l2 : 0.0, 0.0, 1.0);
+    nearest = std::min(nearest, std::hypot(a[0] + u * dx - cx, a[1] + u * dy - cy));
+    farthest = std::max(farthest, std::hypot(a[0] - cx, a[1] - cy));
+  }
+  section.Kind = SectionKind::Closed;
+  section.Centroid = Add(p, Add(Scale(e1, cx), Scale(e2, cy)));
+  section.Roundness = nearest > 0 ? farthest / nearest : std::numeric_limits<double>::infinity();
+  section.MeanRadius = std::sqrt(0.5 * std::abs(area) / 3.14159265358979323846);
+  return section;
+}
+
+// Sections are trusted fully up to this roundness (the elliptic stretches of the gmsh
+// aneurysm's vessels measure up to about 1.5), not at all from the next value on (a
+// bifurcation, an aneurysm's neck: 2 to 5), linearly in between, so that the centerline does
+// not jump where a section crosses a threshold.
+constexpr double RoundSection = 1.5;
+constexpr double NotRoundSection = 1.9;
+
+// Smoothing length of the spline through the section centroids, in median inscribed radii.
+constexpr double SplineLength = 0.25;
+// Smoothing length of the spline that bridges the sections not trusted, in median radii.
+constexpr double BridgeLength = 0.5;
+
+// Weight of a section's centroid for the point p it was cut through: its roundness, how far the
+// centroid is from p (more than 0.6 of the section's mean radius: the plane is not across the
+// vessel p is in) and how its mean radius compares with the inscribed radius at the centroid
+// (more than 1.35 times: the plane cuts a bifurcation's or an aneurysm's wide region, where the
+// section of one vessel's tube is not defined; an elliptic section of ratio 1.5 measures 1.22),
+// all tapered.
+double SectionWeight(const Section& s, const Point3& p, double inscribed)
+{
+  if (s.Kind != SectionKind::Closed || !(s.MeanRadius > 0) || !(inscribed > 0))
+  {
+    return 0.0;
+  }
+  const double round =
+    std::clamp((NotRoundSection - s.Roundness) / (NotRoundSection - RoundSection), 0.0, 1.0);
+  const double move = Distance(s.Centroid, p) / s.MeanRadius;
+  const double near = std::clamp((0.65 - move) / 0.2, 0.0, 1.0);
+  const double wide = std::clamp((1.6 - s.MeanRadius / inscribed) / 0.25, 0.0, 1.0);
+  return round * near * wide;
+}
+
+// Smoothing spline through weighted targets: minimises
+//   sum_i w_i |x_i - c_i|^2 + lambda sum_i |order-th difference of x at i|^2   (order 2 or 3)
+// with x_0 and x_{n-1} fixed where fixFirst / fixLast (to their current values), else free.
+// Runs of zero weight are bridged by cubic (order 2) or quintic (order 3) curves. The ends of a
+// second-difference spline straighten (its natural end condition is zero curvature), those of a
+// third-difference spline keep their curvature. The system is symmetric positive definite and
+// banded; solved by banded Gaussian elimination without pivoting.
+void SmoothingSpline(std::vector<Point3>& x,
+  const std::vector<Point3>& targets,
+  const std::vector<double>& weights,
+  int order,
+  double lambda,
+  bool fixFirst,
+  bool fixLast)
+{
+  constexpr int MaxBand = 3;
+  constexpr int Width = 2 * MaxBand + 1;
+  constexpr int Band = MaxBand; // storage offset; the matrix has `order` diagonals each side
+  const std::size_t n = x.size();
+  if (n < 4 || order < 2 || order > 3)
+  {
+    return;
+  }
+  // Band storage: A[i][k] for column i + k - Band.
+  std::vector<std::array<double, Width>> A(n);
+  for (auto& row : A)
+  {
+    row.fill(0.0);
+  }
+  std::vector<Point3> b(n, Point3{ { 0, 0, 0 } });
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    A[i][Band] += weights[i];
+    b[i] = Scale(targets[i], weights[i]);
+  }
+  const double second[3] = { 1.0, -2.0, 1.0 };
+  const double third[4] = { -1.0, 3.0, -3.0, 1.0 };
+  const double* stencil = order == 2 ? second : third;
+  const std::size_t taps = static_cast<std::size_t>(order) + 1;
+  for (std::size_t j = 0; j + taps <= n; ++j)
+  {
+    for (std::size_t r = 0; r < taps; ++r)
+    {
+      for (std::size_t c = 0; c < taps; ++c)
+      {
+        A[j + r][Band + c - r] += lambda * stencil[r] * stencil[c];
+      }
+    }
+  }
+  auto fix = [&](std::size_t k)
+  {
+    const std::size_t lo = k >= Band ? k - Band : 0;
+    const std::size_t hi = std::min(n - 1, k + Band);
+    for (std::size_t i = lo; i <= hi; ++i)
+    {
+      if (i != k)
+      {
+        const double a = A[i][Band + k - i];
+        b[i] = Sub(b[i], Scale(x[k], a));
+        A[i][Band + k - i] = 0.0;
+        A[k][Band + i - k] = 0.0;
+      }
+    }
+    A[k][Band] = 1.0;
+    b[k] = x[k];
+  };
+  if (fixFirst)
+  {
+    fix(0);
+  }
+  if (fixLast)
+  {
+    fix(n - 1);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double pivot = A[i][Band];
+    if (!(std::abs(pivot) > 0))
+    {
+      return; // singular (no weight at all): leave x as it is
+    }
+    const std::size_t last = std::min(n - 1, i + Band);
+    for (std::size_t r = i + 1; r <= last; ++r)
+    {
+      const double f = A[r][Band + i - r] / pivot;
+      if (f == 0.0)
+      {
+        continue;
+      }
+      for (std::size_t c = i; c <= last; ++c)
+      {
+        A[r][Band + c - r] -= f * A[i][Band + c - i];
+      }
+      b[r] = Sub(b[r], Scale(b[i], f));
+    }
+  }
+  std::vector<Point3> out(n);
+  for (std::size_t i = n; i-- > 0;)
+  {
+    Point3 sum = b[i];
+    for (std::size_t c = i + 1; c <= std::min(n - 1, i + Band); ++c)
+    {
+      sum = Sub(sum, Scale(out[c], A[i][Band + c - i]));
+    }
+    out[i] = Scale(sum, 1.0 / A[i][Band]);
+  }
+  for (const auto& p : out)
+  {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      return;
+    }
+  }
+  x = std::move(out);
 }
 
 // Least-squares cubic fit of the samples around i, parameter = abscissa - s_i; returns the
@@ -1079,8 +1537,13 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
 
   // Delaunay points: the wall's points, then points on flat caps over every loop (so that no
   // empty sphere bulges out of an open end), each with its outward normal.
-  std::vector<Point3> samples(wall.Points);
-  std::vector<Point3> sampleNormals(wall.Normals);
+  std::vector<Point3> samples;
+  std::vector<Point3> sampleNormals;
+  for (vtkIdType id : ThinWall(wall, DelaunaySpacing))
+  {
+    samples.push_back(wall.Points[id]);
+    sampleNormals.push_back(wall.Normals[id]);
+  }
   for (auto& loop : wall.Loops)
   {
     loop.CentreSampleId = static_cast<vtkIdType>(samples.size());
@@ -1432,9 +1895,10 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
       std::sort(trunkRadii.begin(), trunkRadii.end());
       const double stopRadius = trunkRadii[trunkRadii.size() / 10];
       int rejected = 0;
+      // Distances to the vessels found so far, updated as each branch is added.
+      ShortestPaths sp = Dijkstra(graph, sources, Weight::Length);
       for (int iteration = 0; iteration < 64; ++iteration)
       {
-        const ShortestPaths sp = Dijkstra(graph, sources, Weight::Length);
         const int tip = farthest(sp);
         if (tip < 0 || !(sp.Cost[tip] >= k * stopRadius))
         {
@@ -1462,7 +1926,7 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
         {
           ++rejected;
         }
-        sources.insert(sources.end(), branch.begin(), branch.end());
+        AddSources(graph, sp, branch, Weight::Length);
       }
       if (rejected > 0)
       {
@@ -1573,6 +2037,7 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
   const double step = options.Step > 0 ? options.Step : 0.05 * medianRadius;
   result.Step = step;
   WallDistance distance(wall.Surface);
+  const EdgeTriangles edgeTriangles = BuildEdgeTriangles(wall.Surface);
   std::vector<PathSamples> paths;
   for (std::size_t p = 0; p < rawPaths.size(); ++p)
   {
@@ -1580,103 +2045,87 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     Smooth(points, 0.5 * medianRadius / step);
     if (options.Recenter && points.size() > 2)
     {
+      // Centroids of the lumen's cross-sections every quarter radius, weighted by their
+      // roundness, and a smoothing spline through them (fixed at open ends, free at the tips
+      // of a closed surface, whose position comes from the Voronoi graph). Twice: the second
+      // time the planes are normal to the re-centred line.
       const std::size_t half =
         std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.5 * medianRadius / step)));
-      // Re-centre every `every`-th sample (a quarter radius apart) and interpolate the
-      // displacement in between: the displacement varies on the scale of the radius.
-      const std::size_t every =
+      const std::size_t erosion =
         std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.25 * medianRadius / step)));
-      std::vector<std::size_t> anchors;
-      for (std::size_t i = 0; i < points.size(); i += every)
+      const bool fixFirst = ends[0].PrependPosition;
+      const bool fixLast = ends[static_cast<std::size_t>(rawOutlets[p])].PrependPosition;
+      // Two smoothing splines (continuous functionals: integral of w |x - c|^2 + ell^(2k)
+      // |x^(k)|^2 over the arc length, the sums scaled by the step so that the result does not
+      // depend on it): a stiff one of second order (half a radius), which bridges the runs of
+      // sections that are not trusted with a cubic that depends on the trusted sections on
+      // either side only, and a light one of third order (a quarter radius) through the
+      // centroids where they are trusted and the bridge elsewhere, which keeps curvature and
+      // torsion up to the ends.
+      const double lambdaBridge = std::pow(BridgeLength * medianRadius / step, 4.0);
+      const double lambdaLine = std::pow(SplineLength * medianRadius / step, 6.0);
+      std::vector<double> eroding(points.size(), 1.0);
+      for (int pass = 0; pass < 2; ++pass)
       {
-        anchors.push_back(i);
+        std::vector<Point3> targets(points.size(), Point3{ { 0, 0, 0 } });
+        std::vector<double> weights(points.size(), 0.0);
+        for (std::size_t i = 1; i + 1 < points.size(); ++i)
+        {
+          const std::size_t lo = i > half ? i - half : 0;
+          const std::size_t hi = std::min(points.size() - 1, i + half);
+          const Point3 t = Normalized(Sub(points[hi], points[lo]));
+          bool inside = true;
+          Point3 closest;
+          const double d = distance.Query(points[i], inside, closest);
+          if (!inside || !(d > 0) || Norm(t) < 0.5)
+          {
+            eroding[i] = 0.0;
+            continue;
+          }
+          const double reach = 4.0 * std::max(d, medianRadius);
+          const Section s = CutSection(
+            distance, edgeTriangles, points[i], t, reach, 2.0 * 3.14159265358979323846 * reach);
+          double inscribed = 0.0;
+          if (s.Kind == SectionKind::Closed)
+          {
+            bool centroidInside = true;
+            inscribed = distance.Query(s.Centroid, centroidInside, closest);
+            inscribed = centroidInside ? inscribed : 0.0;
+          }
+          weights[i] = SectionWeight(s, points[i], inscribed);
+          targets[i] = s.Centroid;
+          // Sections running out through an open end are not trusted but do not make their
+          // neighbours suspect.
+          eroding[i] = s.Kind == SectionKind::Escaped ? 1.0 : weights[i];
+        }
+        // A section within a quarter radius of one that is not trusted is not trusted more
+        // than it (a soft erosion): an isolated round-looking section in a bifurcation region,
+        // or the first ones past it, already deformed, would pull the line towards the other
+        // vessel.
+        for (std::size_t i = 1; i + 1 < points.size(); ++i)
+        {
+          const std::size_t lo = std::max<std::size_t>(1, i > erosion ? i - erosion : 0);
+          const std::size_t hi = std::min(points.size() - 2, i + erosion);
+          for (std::size_t j = lo; j <= hi; ++j)
+          {
+            weights[i] = std::min(weights[i], eroding[j]);
+          }
+        }
+        if (!(std::accumulate(weights.begin(), weights.end(), 0.0) > 0))
+        {
+          break;
+        }
+        std::vector<Point3> bridge(points);
+        SmoothingSpline(bridge, targets, weights, 2, lambdaBridge, fixFirst, fixLast);
+        for (std::size_t i = 0; i < points.size(); ++i)
+        {
+          targets[i] = Add(Scale(targets[i], weights[i]), Scale(bridge[i], 1.0 - weights[i]));
+        }
+        std::vector<double> ones(points.size(), 1.0);
+        points = bridge;
+        SmoothingSpline(points, targets, ones, 3, lambdaLine, fixFirst, fixLast);
       }
-      if (anchors.back() != points.size() - 1)
-      {
-        anchors.push_back(points.size() - 1);
-      }
-      std::vector<Point3> shift(anchors.size(), Point3{ { 0, 0, 0 } });
-      std::vector<bool> failed(anchors.size(), false);
-      std::vector<bool> escaped(anchors.size(), false);
-      for (std::size_t a = 1; a + 1 < anchors.size(); ++a)
-      {
-        const std::size_t i = anchors[a];
-        const std::size_t lo = i > half ? i - half : 0;
-        const std::size_t hi = std::min(points.size() - 1, i + half);
-        const Point3 t = Normalized(Sub(points[hi], points[lo]));
-        Point3 centred;
-        const Centring c = Recenter(distance, points[i], t, centred);
-        if (c == Centring::Centred)
-        {
-          shift[a] = Sub(centred, points[i]);
-        }
-        else
-        {
-          failed[a] = true;
-          escaped[a] = (c == Centring::Escaped);
-        }
-      }
-      // Shifts of the samples that could not be re-centred: interpolated from the re-centred
-      // samples (or the fixed ends) on either side.
-      for (std::size_t a = 1; a + 1 < anchors.size(); ++a)
-      {
-        if (!failed[a])
-        {
-          continue;
-        }
-        const std::size_t lo = a - 1;
-        std::size_t hi = a + 1;
-        while (hi + 1 < anchors.size() && failed[hi])
-        {
-          ++hi;
-        }
-        for (std::size_t k = a; k < hi; ++k)
-        {
-          const double w = static_cast<double>(anchors[k] - anchors[lo]) /
-            static_cast<double>(anchors[hi] - anchors[lo]);
-          shift[k] = Add(Scale(shift[lo], 1.0 - w), Scale(shift[hi], w));
-        }
-        a = hi;
-      }
-      std::vector<Point3> moved(points);
-      for (std::size_t a = 0; a + 1 < anchors.size(); ++a)
-      {
-        for (std::size_t i = anchors[a]; i <= anchors[a + 1]; ++i)
-        {
-          const double w =
-            static_cast<double>(i - anchors[a]) / static_cast<double>(anchors[a + 1] - anchors[a]);
-          moved[i] = Add(points[i], Add(Scale(shift[a], 1.0 - w), Scale(shift[a + 1], w)));
-        }
-      }
-      // Where the rays escape through an open end (an oblique cut) the line goes straight from
-      // the last re-centred sample to the next one (or to the fixed end).
-      for (std::size_t a = 1; a + 1 < anchors.size(); ++a)
-      {
-        if (!escaped[a])
-        {
-          continue;
-        }
-        std::size_t lo = a - 1;
-        while (lo > 0 && failed[lo])
-        {
-          --lo;
-        }
-        std::size_t hi = a + 1;
-        while (hi + 1 < anchors.size() && failed[hi])
-        {
-          ++hi;
-        }
-        const Point3 from = Add(points[anchors[lo]], shift[lo]);
-        const Point3 to = Add(points[anchors[hi]], shift[hi]);
-        for (std::size_t i = anchors[lo]; i <= anchors[hi]; ++i)
-        {
-          const double w =
-            static_cast<double>(i - anchors[lo]) / static_cast<double>(anchors[hi] - anchors[lo]);
-          moved[i] = Add(Scale(from, 1.0 - w), Scale(to, w));
-        }
-        a = hi;
-      }
-      points = Resample(moved, step);
+      points = Resample(points, step);
     }
     PathSamples samplesOut;
     samplesOut.Points = points;

@@ -16,10 +16,17 @@
 //     CenterlineOptions::BranchLengthToRadius), or the user's seeds.
 //  3. From the inlet, Dijkstra on the Voronoi graph with the cost integral of 1/R along the
 //     path gives the minimal path to every outlet, backtraced.
-//  4. Each path is resampled at a fixed step, smoothed, re-centred in its normal planes (each
-//     point moves in the plane normal to the centerline to the centre of the largest
-//     inscribed circle, which puts it on the axis of a tube and never outside the lumen) and
-//     resampled again. The radius is the distance to the input surface.
+//  4. Each path is resampled at a fixed step and smoothed; then, twice, the lumen's
+//     cross-section in the plane normal to the line is cut at every sample (the exact polygon
+//     of the wall's intersection with that plane) and the line is fitted to the sections' area
+//     centroids with a smoothing spline (third differences, a quarter radius). Sections that
+//     are not a tube's (not round, much wider than the inscribed sphere at their centroid, or
+//     whose centroid is far from the line: a bifurcation, an aneurysm's neck) weigh less, down
+//     to nothing, and the line is bridged across them by a stiffer spline (second differences,
+//     half a radius) through the trusted sections on either side. The centroids depend on the
+//     wall only, not on where its points are, so the centerline moves with the surface and
+//     hardly with its meshing. Open ends stay at their loop centres. The radius is the
+//     distance to the input surface.
 //  5. Tangent, normal, curvature and torsion come from local cubic fits over a window of one
 //     local radius; the abscissa is the arc length from the inlet.
 //  6. Branches: centerlines from different outlets share their path up to where they separate
@@ -60,7 +67,8 @@ struct CenterlineOptions
   /// enlarged by this factor, still contains the Voronoi tip (a flat end's corner or a
   /// rounded end's centre), i.e. about one radius before the end. [1, 3], default 1.5.
   double EndTrimFactor = 1.5;
-  /// Re-centre the smoothed paths in their normal planes (default on).
+  /// Place the smoothed paths on the centroids of the cross-sections (default on; off: the
+  /// smoothed Voronoi paths).
   bool Recenter = true;
 };
 

@@ -1,6 +1,6 @@
 // The gmsh aneurysm (data/external/aneurysm_data.stl: a parent artery with a side branch and a
 // saccular aneurysm, three open ends): endpoints, branch graph, the dome not taken for a
-// vessel (open and capped), rigid-motion and remeshing invariance.
+// vessel (open and capped), rigid-motion and remeshing (finer, coarser) invariance.
 
 #include "MeshIO.h"
 #include "VesselArrayNames.h"
@@ -14,6 +14,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkQuadricDecimation.h>
 #include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
 
@@ -177,13 +178,12 @@ TEST_F(AneurysmCenterlines, RigidMotionMovesTheCenterlineWithTheSurface)
     smallest = std::min(smallest, end.Radius);
     largest = std::max(largest, end.Radius);
   }
-  // Where the cross-sections are not round (the bifurcation region, and the elliptic stretches
-  // of these vessels) the path follows the smoothed Voronoi diagram, which depends on the
-  // sampling: measured 4.9 % of the smallest end radius away from the bifurcation region (the
-  // issue's target of 2 % is met on the analytic tubes only), 12 % overall.
+  // Issue 10: the centerline moves with the surface, within 2 % of the radius away from the
+  // bifurcation region (the centerline is placed on the centroids of the wall's cross-sections,
+  // which do not depend on the Delaunay's tie-breaking): measured 0.006 mm, 0.2 %.
   EXPECT_LT(
     MaxDistanceOutside(moved.Paths, moveLines->GetOutput(), moved.Bifurcations, 2 * largest),
-    0.06 * smallest);
+    0.02 * smallest);
   EXPECT_LT(MaxDistanceToLines(moved.Paths, moveLines->GetOutput()), 0.15 * smallest);
 }
 
@@ -203,9 +203,32 @@ TEST_F(AneurysmCenterlines, FinerRemeshingChangesTheCenterlineLittle)
     smallest = std::min(smallest, end.Radius);
     largest = std::max(largest, end.Radius);
   }
-  // Measured: 6.4 % of the smallest end radius away from the bifurcation region, 19 % within
-  // it (see the rigid-motion test; the analytic torus meets 2 %).
+  // Issue 10: a uniform remeshing changes the centerline by less than 2 % of the radius away
+  // from the bifurcation region: measured 0.042 mm, 1.4 % of the smallest end radius.
   EXPECT_LT(
-    MaxDistanceOutside(fine.Paths, Result->Paths, fine.Bifurcations, 2 * largest), 0.08 * smallest);
+    MaxDistanceOutside(fine.Paths, Result->Paths, fine.Bifurcations, 2 * largest), 0.02 * smallest);
   EXPECT_LT(MaxDistanceToLines(fine.Paths, Result->Paths), 0.25 * smallest);
+}
+
+TEST_F(AneurysmCenterlines, CoarserRemeshingChangesTheCenterlineLittle)
+{
+  ASSERT_TRUE(Result->Ok) << Result->Message;
+  vtkNew<vtkQuadricDecimation> coarser;
+  coarser->SetInputData(Surface);
+  coarser->SetTargetReduction(0.5);
+  coarser->Update();
+  const CenterlineResult coarse = ComputeCenterlines(coarser->GetOutput());
+  ASSERT_TRUE(coarse.Ok) << coarse.Message;
+  ASSERT_EQ(coarse.Endpoints.size(), 3u);
+  double smallest = 1e300, largest = 0.0;
+  for (const auto& end : Result->Endpoints)
+  {
+    smallest = std::min(smallest, end.Radius);
+    largest = std::max(largest, end.Radius);
+  }
+  // Half the triangles (quadric decimation): measured 0.05 mm, 1.7 % of the smallest end radius
+  // away from the bifurcation region.
+  EXPECT_LT(MaxDistanceOutside(coarse.Paths, Result->Paths, coarse.Bifurcations, 2 * largest),
+    0.02 * smallest);
+  EXPECT_LT(MaxDistanceToLines(coarse.Paths, Result->Paths), 0.25 * smallest);
 }
