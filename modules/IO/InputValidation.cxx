@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -1732,6 +1733,84 @@ bool CheckVtkXml(std::string_view data,
               "of an inline binary DataArray",
               problem))
         {
+          return false;
+        }
+      }
+      // vtkXMLUnstructuredDataReader sizes the connectivity by the cells' last offset before
+      // reading it: an offset of 5e10 made it allocate 400 GB (found by fuzz_mesh_vtp). Where
+      // the values are in the markup (ASCII, or uncompressed inline binary), no offset may exceed
+      // the values the file could hold (one per byte).
+      const std::string* name = tag.Get("Name");
+      const bool cellOffsets =
+        (section == "Verts" || section == "Lines" || section == "Strips" || section == "Polys") &&
+        name && *name == "offsets" && !tag.SelfClosing && !offset;
+      if (cellOffsets && (!format || *format == "ascii" || !compressed))
+      {
+        const std::size_t textEnd = std::min(markup.find('<', pos), markup.size());
+        const std::string_view text = markup.substr(pos, textEnd - pos);
+        long double largest = 0;
+        if (!format || *format == "ascii")
+        {
+          std::size_t at = 0;
+          while (at < text.size())
+          {
+            while (at < text.size() && IsBlank(text[at]))
+            {
+              ++at;
+            }
+            const std::size_t start = at;
+            while (at < text.size() && !IsBlank(text[at]))
+            {
+              ++at;
+            }
+            if (at > start)
+            {
+              largest = std::max(largest,
+                std::strtold(std::string(text.substr(start, at - start)).c_str(), nullptr));
+            }
+          }
+        }
+        else
+        {
+          // Base64 of a header word (the byte count) and the values.
+          const std::uint64_t word = headerType == "UInt64" ? 8 : 4;
+          std::string bytes;
+          std::size_t chars = 0;
+          while (chars < text.size() &&
+            (IsBlank(text[chars]) || std::isalnum(static_cast<unsigned char>(text[chars])) ||
+              text[chars] == '+' || text[chars] == '/'))
+          {
+            ++chars;
+          }
+          if (DecodeBase64Prefix(text, (chars / 4) * 3, bytes) || bytes.size() > word)
+          {
+            const bool bigEndian = byteOrder == "BigEndian";
+            const bool isSigned = type->rfind("Int", 0) == 0;
+            for (std::size_t at = word; at + static_cast<std::size_t>(size) <= bytes.size();
+                 at += static_cast<std::size_t>(size))
+            {
+              std::uint64_t value = DecodeWord(bytes.substr(at, static_cast<std::size_t>(size)),
+                0,
+                static_cast<std::uint64_t>(size),
+                bigEndian);
+              long double v = static_cast<long double>(value);
+              if (isSigned && size < 8 && (value >> (8 * size - 1)) != 0)
+              {
+                v = 0; // negative: VTK refuses it
+              }
+              else if (isSigned && size == 8)
+              {
+                v = static_cast<long double>(static_cast<std::int64_t>(value));
+              }
+              largest = std::max(largest, v);
+            }
+          }
+        }
+        if (largest > static_cast<long double>(data.size()))
+        {
+          problem = "VTK XML cell offsets up to " +
+            std::to_string(static_cast<std::uint64_t>(std::min(largest, 1e19L))) +
+            ", more connectivity than the file can hold";
           return false;
         }
       }

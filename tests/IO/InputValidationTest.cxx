@@ -767,3 +767,28 @@ TEST(InputValidation, VtpInlineAndBase64CompressedHeadersAreChecked)
     appended + points.substr(0, at) + points.substr(at) + "\n</AppendedData>\n</VTKFile>\n");
   EXPECT_EQ(ReadMesh(dir / "appended-ok.vtp")->GetNumberOfPoints(), 4);
 }
+
+// Found by fuzz_mesh_vtp: vtkXMLUnstructuredDataReader sizes the connectivity by the last cell
+// offset before reading it; an offset of 5e10 (ASCII, or binary read with the wrong header
+// size) made it allocate hundreds of GB.
+TEST(InputValidation, VtpCellOffsetsBeyondTheFileAreRefused)
+{
+  TempDir dir;
+  const std::string head =
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+    "byte_order=\"LittleEndian\">\n<PolyData>\n<Piece NumberOfPoints=\"3\" "
+    "NumberOfPolys=\"1\">\n<Points>\n<DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+    "format=\"ascii\">0 0 0 1 0 0 0 1 0</DataArray>\n</Points>\n<Polys>\n<DataArray "
+    "type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>\n<DataArray "
+    "type=\"Int64\" Name=\"offsets\" format=\"ascii\">";
+  const std::string tail = "</DataArray>\n</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  WriteText(dir / "ok.vtp", head + "3" + tail);
+  EXPECT_EQ(ReadMesh(dir / "ok.vtp")->GetNumberOfPolys(), 1);
+  WriteText(dir / "huge.vtp", head + "50000000000" + tail);
+  ExpectRefused(dir / "huge.vtp", "cell offsets up to 50000000000");
+  // Binary (base64, UInt32 header 8, then the Int64 value 5e10).
+  std::string binary = head;
+  binary.replace(binary.rfind("format=\"ascii\""), 14, "format=\"binary\"");
+  WriteText(dir / "binary.vtp", binary + "CAAAAAB0O6QLAAAA" + tail);
+  ExpectRefused(dir / "binary.vtp", "cell offsets up to 50000000000");
+}
