@@ -947,15 +947,15 @@ constexpr double SplineLength = 0.25;
 // Smoothing length of the spline that bridges the sections not trusted, in median radii.
 constexpr double BridgeLength = 0.5;
 
-// Weight of a section's centroid for the point p it was cut through: its roundness, how far the
-// centroid is from p (more than 0.6 of the section's mean radius: the plane is not across the
-// vessel p is in) and how its mean radius compares with the inscribed radius at the centroid
-// (more than 1.35 times: the plane cuts a bifurcation's or an aneurysm's wide region, where the
-// section of one vessel's tube is not defined; an elliptic section of ratio 1.5 measures 1.22),
-// all tapered.
-double SectionWeight(const Section& s, const Point3& p, double inscribed)
+// Weight of a section's centroid for the point p it was cut through: its roundness and how far
+// the centroid is from p (more than half the section's mean radius: the plane is not across the
+// vessel p is in), tapered; WidthWeight: how its mean radius compares with the inscribed radius
+// at the centroid (more than 1.35 times: the plane cuts a bifurcation's or an aneurysm's wide
+// region, where the section of one vessel's tube is not defined; an elliptic section of ratio
+// 1.5 measures 1.22), tapered.
+double SectionWeight(const Section& s, const Point3& p)
 {
-  if (s.Kind != SectionKind::Closed || !(s.MeanRadius > 0) || !(inscribed > 0))
+  if (s.Kind != SectionKind::Closed || !(s.MeanRadius > 0))
   {
     return 0.0;
   }
@@ -963,8 +963,12 @@ double SectionWeight(const Section& s, const Point3& p, double inscribed)
     std::clamp((NotRoundSection - s.Roundness) / (NotRoundSection - RoundSection), 0.0, 1.0);
   const double move = Distance(s.Centroid, p) / s.MeanRadius;
   const double near = std::clamp((0.65 - move) / 0.2, 0.0, 1.0);
-  const double wide = std::clamp((1.6 - s.MeanRadius / inscribed) / 0.25, 0.0, 1.0);
-  return round * near * wide;
+  return round * near;
+}
+
+double WidthWeight(const Section& s, double inscribed)
+{
+  return inscribed > 0 ? std::clamp((1.6 - s.MeanRadius / inscribed) / 0.25, 0.0, 1.0) : 0.0;
 }
 
 // Smoothing spline through weighted targets: minimises
@@ -2062,37 +2066,40 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
       // either side only, and a light one of third order (a quarter radius) through the
       // centroids where they are trusted and the bridge elsewhere, which keeps curvature and
       // torsion up to the ends.
-      const double lambdaBridge = std::pow(BridgeLength * medianRadius / step, 4.0);
-      const double lambdaLine = std::pow(SplineLength * medianRadius / step, 6.0);
+      // Sections every tenth of a radius (or every sample).
+      const std::size_t stride =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(0.1 * medianRadius / step)));
+      const double lambdaBridge =
+        std::pow(BridgeLength * medianRadius / step, 4.0) / static_cast<double>(stride);
+      const double lambdaLine =
+        std::pow(SplineLength * medianRadius / step, 6.0) / static_cast<double>(stride);
       std::vector<double> eroding(points.size(), 1.0);
       for (int pass = 0; pass < 2; ++pass)
       {
         std::vector<Point3> targets(points.size(), Point3{ { 0, 0, 0 } });
         std::vector<double> weights(points.size(), 0.0);
-        for (std::size_t i = 1; i + 1 < points.size(); ++i)
+        for (std::size_t i = stride; i + 1 < points.size(); i += stride)
         {
           const std::size_t lo = i > half ? i - half : 0;
           const std::size_t hi = std::min(points.size() - 1, i + half);
           const Point3 t = Normalized(Sub(points[hi], points[lo]));
-          bool inside = true;
-          Point3 closest;
-          const double d = distance.Query(points[i], inside, closest);
-          if (!inside || !(d > 0) || Norm(t) < 0.5)
+          if (Norm(t) < 0.5)
           {
             eroding[i] = 0.0;
             continue;
           }
-          const double reach = 4.0 * std::max(d, medianRadius);
+          const double reach = 6.0 * medianRadius;
           const Section s = CutSection(
             distance, edgeTriangles, points[i], t, reach, 2.0 * 3.14159265358979323846 * reach);
-          double inscribed = 0.0;
-          if (s.Kind == SectionKind::Closed)
+          weights[i] = SectionWeight(s, points[i]);
+          if (weights[i] > 0)
           {
+            // The section's width against the inscribed sphere at its centroid.
             bool centroidInside = true;
-            inscribed = distance.Query(s.Centroid, centroidInside, closest);
-            inscribed = centroidInside ? inscribed : 0.0;
+            Point3 closest;
+            const double inscribed = distance.Query(s.Centroid, centroidInside, closest);
+            weights[i] *= WidthWeight(s, centroidInside ? inscribed : 0.0);
           }
-          weights[i] = SectionWeight(s, points[i], inscribed);
           targets[i] = s.Centroid;
           // Sections running out through an open end are not trusted but do not make their
           // neighbours suspect.
@@ -2121,9 +2128,15 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
         {
           targets[i] = Add(Scale(targets[i], weights[i]), Scale(bridge[i], 1.0 - weights[i]));
         }
-        std::vector<double> ones(points.size(), 1.0);
+        // The light spline sees the samples that were cut only (the others would pull it
+        // towards the stiff bridge, which straightens at the ends).
+        std::vector<double> cut(points.size(), 0.0);
+        for (std::size_t i = stride; i + 1 < points.size(); i += stride)
+        {
+          cut[i] = 1.0;
+        }
         points = bridge;
-        SmoothingSpline(points, targets, ones, 3, lambdaLine, fixFirst, fixLast);
+        SmoothingSpline(points, targets, cut, 3, lambdaLine, fixFirst, fixLast);
       }
       points = Resample(points, step);
     }
