@@ -748,7 +748,7 @@ TEST(InputValidation, VtpInlineAndBase64CompressedHeadersAreChecked)
   ExpectRefused(dir / "blocks.vtp",
     "compressed block header of an inline binary DataArray announces 1099511627776 blocks");
   WriteText(dir / "garbage.vtp", InlineBinaryVtp("AQAA*AAA"));
-  ExpectRefused(dir / "garbage.vtp", "without a valid compressed block header");
+  ExpectRefused(dir / "garbage.vtp", "without a valid base64 compressed block header");
 
   // The same blocks appended as base64: offsets count base64 characters.
   const std::size_t at = points.find('=') + 1;
