@@ -227,9 +227,8 @@ TEST_F(VesselClipTest, EndPathsGiveThePlanesTheClipCutsBy)
   const ClipPlane before = ClipPlaneAt(paths[0], -5.0);
   EXPECT_EQ(before.Centre, paths[0].Position);
   // The far end of the path is beyond the range: the nearest allowed point is its limit.
-  EXPECT_NEAR(NearestDistanceOnPath(paths[0], paths[0].Points.back()),
-    paths[0].MaximumDistance,
-    1e-9);
+  EXPECT_NEAR(
+    NearestDistanceOnPath(paths[0], paths[0].Points.back()), paths[0].MaximumDistance, 1e-9);
 }
 
 TEST_F(VesselClipTest, ClosedYIsOpenedAtItsThreeEnds)
