@@ -2,14 +2,10 @@
 // real MRIs load, a DICOM series is sorted by position, and bad inputs get a clear message.
 #include "SegmentationTestUtilities.h"
 
+#include "DicomTestSeries.h"
+
 #include "SegmentationErrors.h"
 #include "VolumeIO.h"
-
-#include <itkGDCMImageIO.h>
-#include <itkImage.h>
-#include <itkImageFileReader.h>
-#include <itkImageFileWriter.h>
-#include <itkMetaDataObject.h>
 
 #include <csignal>
 #include <cstdint>
@@ -175,54 +171,19 @@ TEST(VolumeIO, SformQformMismatchLoadsWithAnOrthonormalDirection)
   }
 }
 
-using DicomSlice = itk::Image<short, 2>;
-
-/// Writes `count` copies of CT_small.dcm as one series: slice k at z = 2.5 k mm, its pixels
-/// offset by 100 k, file names in shuffled order.
+/// `count` copies of CT_small.dcm as one series (slice k at z = 2.5 k mm, pixels offset by
+/// 100 k), file names in shuffled order.
 void WriteDicomSeries(const std::string& folder,
   const std::string& seriesUid,
   const std::string& description,
   int count)
 {
-  auto reader = itk::ImageFileReader<DicomSlice>::New();
-  auto io = itk::GDCMImageIO::New();
-  reader->SetImageIO(io);
-  reader->SetFileName(bender_test::ExternalData("CT_small.dcm"));
-  reader->Update();
-  const int order[] = { 3, 0, 4, 1, 2, 5, 6, 7 };
-  for (int k = 0; k < count; ++k)
-  {
-    DicomSlice::Pointer slice = DicomSlice::New();
-    slice->Graft(reader->GetOutput());
-    DicomSlice::Pointer copy = DicomSlice::New();
-    copy->SetRegions(slice->GetLargestPossibleRegion());
-    copy->CopyInformation(slice);
-    copy->Allocate();
-    const std::size_t n = slice->GetLargestPossibleRegion().GetNumberOfPixels();
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      copy->GetBufferPointer()[i] = short(slice->GetBufferPointer()[i] + 100 * k);
-    }
-    itk::MetaDataDictionary dict = reader->GetMetaDataDictionary();
-    itk::EncapsulateMetaData<std::string>(dict, "0020|000e", seriesUid);
-    itk::EncapsulateMetaData<std::string>(dict, "0008|103e", description);
-    itk::EncapsulateMetaData<std::string>(
-      dict, "0008|0018", seriesUid + "." + std::to_string(k + 1));
-    itk::EncapsulateMetaData<std::string>(dict, "0020|0013", std::to_string(k + 1));
-    itk::EncapsulateMetaData<std::string>(
-      dict, "0020|0032", "-10\\-20\\" + std::to_string(2.5 * k));
-    itk::EncapsulateMetaData<std::string>(dict, "0020|0037", "1\\0\\0\\0\\1\\0");
-    itk::EncapsulateMetaData<std::string>(dict, "0028|1052", "0");
-    itk::EncapsulateMetaData<std::string>(dict, "0028|1053", "1");
-    copy->SetMetaDataDictionary(dict);
-    auto writerIO = itk::GDCMImageIO::New();
-    writerIO->KeepOriginalUIDOn();
-    auto writer = itk::ImageFileWriter<DicomSlice>::New();
-    writer->SetImageIO(writerIO);
-    writer->SetInput(copy);
-    writer->SetFileName(folder + "/" + description + "_" + std::to_string(order[k]) + ".dcm");
-    writer->Update();
-  }
+  bender_test::WriteDicomTestSeries(folder,
+    bender_test::ExternalData("CT_small.dcm"),
+    seriesUid,
+    description,
+    count,
+    { 3, 0, 4, 1, 2, 5, 6, 7 });
 }
 
 TEST(VolumeIO, DicomSeriesIsSortedByPosition)

@@ -11,18 +11,21 @@
 #include <itkMetaDataObject.h>
 
 #include <string>
+#include <vector>
 
 namespace bender_test
 {
 
 /// Writes `count` slices as one series `seriesUid` ("description" in (0008,103E)) into
 /// `folder`: slice k is the slice of `sourceDicom` at z = 2.5 k mm with its pixels offset by
-/// 100 k, in files "<description>_<k>.dcm".
+/// 100 k, in files "<description>_<number>.dcm", number = fileOrder[k] (k when fileOrder is empty:
+/// a shuffled order checks that readers sort by position, not by name).
 inline void WriteDicomTestSeries(const std::string& folder,
   const std::string& sourceDicom,
   const std::string& seriesUid,
   const std::string& description,
-  int count)
+  int count,
+  const std::vector<int>& fileOrder = {})
 {
   using Slice = itk::Image<short, 2>;
   auto reader = itk::ImageFileReader<Slice>::New();
@@ -58,7 +61,8 @@ inline void WriteDicomTestSeries(const std::string& folder,
     auto writer = itk::ImageFileWriter<Slice>::New();
     writer->SetImageIO(io);
     writer->SetInput(copy);
-    writer->SetFileName(folder + "/" + description + "_" + std::to_string(k) + ".dcm");
+    const int number = fileOrder.empty() ? k : fileOrder.at(static_cast<std::size_t>(k));
+    writer->SetFileName(folder + "/" + description + "_" + std::to_string(number) + ".dcm");
     writer->Update();
   }
 }
