@@ -253,6 +253,18 @@ void MainWindow::showMessage(const bender::LogicMessage& message)
 
 void MainWindow::refresh()
 {
+  // The status bar's space-inversion warning quotes the session's r_min as it is now (the Bend
+  // panel's), not as it was when the warning was first given in this grab.
+  const QString inversionPrefix = "space inversion possible";
+  if (this->StatusText->text().startsWith(inversionPrefix) && this->Session.GetSpaceInversionRisk())
+  {
+    const QString now = QString::fromStdString(this->Session.GetSpaceInversionWarning());
+    if (now != this->StatusText->text())
+    {
+      this->StatusText->setText(now);
+      this->StatusText->setToolTip(now);
+    }
+  }
   this->Bend->showState(this->Session, this->Gesture->isPlacingRibbon());
   this->Data->showState(this->Session, this->Segmentation);
   this->Actions->Undo->setEnabled(this->Session.CanUndo() && !this->Session.IsBusy());

@@ -259,6 +259,19 @@ private slots:
     {
       QVERIFY(label->text().contains(QString::fromStdString(session.GetSpaceInversionWarning())));
     }
+    // Swung further while grabbed, the wire's r_min changes: the status bar's warning, given
+    // once in the grab, follows it (it kept the first value before).
+    this->Window->setRibbon(Swung(this->Placed, 60));
+    QTRY_VERIFY(session.GetSpaceInversionRisk());
+    const double firstMinimum = session.GetMinimumRadius();
+    this->Window->setRibbon(Swung(this->Placed, 80));
+    QTRY_VERIFY(session.GetSpaceInversionRisk());
+    QVERIFY(std::abs(session.GetMinimumRadius() - firstMinimum) > 0.01);
+    const QString warning = QString::fromStdString(session.GetSpaceInversionWarning());
+    QVERIFY2(
+      warning.contains(QString::number(session.GetMinimumRadius(), 'g', 3)), qPrintable(warning));
+    QTRY_COMPARE(this->Window->statusLabel()->text(), warning);
+    QVERIFY(label->text().contains(warning));
     this->Window->gesture()->cancelHeld();
     QVERIFY(this->Window->waitUntilIdle(60000));
     QTRY_VERIFY2(label->text().contains(expected()), qPrintable(label->text()));
