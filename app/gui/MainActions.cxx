@@ -210,7 +210,17 @@ QList<QStringList> MainActions::shortcutRows() const
     }
   }
   rows.append({ "Space (held)", "Grab while held", "Release (commit) on letting go" });
-  rows.append({ "Mouse wheel, Up/Down", "Move the slice", "In a slice view, one voxel a step" });
+  rows.append({ "Mouse wheel, Up/Down",
+    "Move the slice",
+    "In a slice view, one voxel a step; the cursor moves with it" });
+  rows.append({ "Left click or drag (slice view)",
+    "Move the cursor",
+    "The other slices and the 3D crosshair follow" });
+  rows.append({ "Shift+left drag (slice view)", "Window/level", "Of the volume's slice" });
+  rows.append({ "R (slice view)", "Frame the view", "The slice stays at the cursor" });
+  rows.append({ "Shift+click (3D view)",
+    "Move the cursor to the surface",
+    "The slices follow; a Shift+drag pans the camera" });
   rows.append({ "Left drag",
     "Rotate the 3D view, or drag a ribbon handle",
     "Blue sphere: move an end; green cone: bend (tangent); magenta cube: twist" });
