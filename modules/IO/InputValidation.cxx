@@ -1209,17 +1209,51 @@ bool CheckObj(std::string_view data, std::string& problem)
       {
         return true;
       }
+      int form = -1; // v, v/vt, v//vn, v/vt/vn: one form for the whole element
       for (std::size_t k = 1; k < w.size(); ++k)
       {
-        std::string_view ref = w[k];
+        // Split "v[/vt[/vn]]" into at most three parts; a trailing or extra '/' is malformed
+        // (vtkOBJReader reads "1/" as a texture index into a file that may have none).
+        std::string_view parts[3];
+        std::size_t count = 0;
+        std::string_view rest = w[k];
+        bool malformed = false;
+        while (true)
+        {
+          const std::size_t slash = rest.find('/');
+          if (count == 3)
+          {
+            malformed = true;
+            break;
+          }
+          parts[count++] = rest.substr(0, slash);
+          if (slash == std::string_view::npos)
+          {
+            break;
+          }
+          rest = rest.substr(slash + 1);
+        }
+        malformed = malformed || parts[0].empty() || parts[count - 1].empty();
+        if (malformed)
+        {
+          problem =
+            "line " + std::to_string(number) + ": malformed element \"" + QuoteBytes(w[k]) + "\"";
+          return false;
+        }
+        const int thisForm = static_cast<int>(count) * 2 + (parts[1].empty() ? 0 : 1);
+        if (form >= 0 && thisForm != form)
+        {
+          problem = "line " + std::to_string(number) +
+            ": element mixes index forms (v, v/vt, v//vn, v/vt/vn) at \"" + QuoteBytes(w[k]) + "\"";
+          return false;
+        }
+        form = thisForm;
         const std::uint64_t counts[3] = { v, vt, vn };
         const char* names[3] = { "vertex", "texture coordinate", "normal" };
-        for (int part = 0; part < 3 && !ref.empty(); ++part)
+        for (std::size_t part = 0; part < count; ++part)
         {
-          const std::size_t slash = ref.find('/');
-          const std::string_view index = ref.substr(0, slash);
-          ref = slash == std::string_view::npos ? std::string_view() : ref.substr(slash + 1);
-          if (index.empty() && part > 0)
+          const std::string_view index = parts[part];
+          if (index.empty())
           {
             continue; // "1//3": no texture coordinate
           }
@@ -1233,12 +1267,6 @@ bool CheckObj(std::string_view data, std::string& problem)
               ")";
             return false;
           }
-        }
-        if (!ref.empty())
-        {
-          problem =
-            "line " + std::to_string(number) + ": malformed element \"" + QuoteBytes(w[k]) + "\"";
-          return false;
         }
       }
       return true;

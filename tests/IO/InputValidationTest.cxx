@@ -408,6 +408,36 @@ TEST(InputValidation, ObjIndicesOutOfRangeAreRefused)
   EXPECT_EQ(ReadMesh(dir / "good.obj")->GetNumberOfPolys(), 1);
 }
 
+// Found by fuzz_mesh_obj on CI: "f 1/ 2" (an empty texture index after '/') in a file without
+// texture coordinates made vtkOBJReader index an empty array (SEGV).
+TEST(InputValidation, ObjMalformedOrMixedIndexFormsAreRefused)
+{
+  TempDir dir;
+  const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n";
+  for (const char* face : { "f 1/ 1",
+         "f 1/ 2/ 3/",
+         "f 1 2 3/",
+         "f 1// 2// 3//",
+         "f 1/1/ 2 3",
+         "f 1/1/1/1 2 3",
+         "f /1 2 3",
+         "l 1/ 2" })
+  {
+    WriteText(dir / "bad.obj", head + face + "\n");
+    ExpectRefused(dir / "bad.obj", "malformed element");
+  }
+  for (const char* face : { "f 1/1 2 3", "f 1 2//1 3", "f 1/1/1 2/1 3/1" })
+  {
+    WriteText(dir / "mixed.obj", head + face + "\n");
+    ExpectRefused(dir / "mixed.obj", "mixes index forms");
+  }
+  for (const char* face : { "f 1 2 3", "f 1/1 2/2 3/3", "f 1//1 2//1 3//1", "f 1/1/1 2/2/1 3/3/1" })
+  {
+    WriteText(dir / "good.obj", head + face + "\n");
+    EXPECT_EQ(ReadMesh(dir / "good.obj")->GetNumberOfPolys(), 1) << face;
+  }
+}
+
 // Found by fuzz_mesh_stl: a malformed ASCII facet made vtkSTLReader ask for 19 GB.
 TEST(InputValidation, MalformedAsciiStlIsRefused)
 {
