@@ -6,6 +6,7 @@
 #include "MainWindow.h"
 
 #include <QString>
+#include <QTabWidget>
 #include <QtTest>
 
 #include <vtkCellArray.h>
@@ -75,6 +76,19 @@ inline bool ShowTestWindow(MainWindow& window, bool active)
   }
   window.activateWindow();
   return QTest::qWaitForWindowActive(&window);
+}
+
+/// Brings `panel` to the front of the window's panel dock (as a click on its tab would). False
+/// when the window has no panel dock or `panel` is not one of its tabs.
+inline bool ShowPanel(MainWindow& window, QWidget* panel)
+{
+  auto* panels = window.findChild<QTabWidget*>("panels");
+  if (!panels || panels->indexOf(panel) < 0)
+  {
+    return false;
+  }
+  panels->setCurrentWidget(panel);
+  return true;
 }
 
 } // namespace bendertest

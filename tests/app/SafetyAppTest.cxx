@@ -322,9 +322,11 @@ private slots:
     QVERIFY(this->Window->saveScreenshot(this->artefact("safety-trackers-connected.png")));
     // Mid-arch, for the documentation's screenshot (taken only when the grab is seen: the
     // checks below do not depend on it).
+    // The Trackers panel in front: the picture shows the devices driving the ribbon.
+    QVERIFY(bendertest::ShowPanel(*this->Window, panel));
     if (QTest::qWaitFor([&]() { return session.GetState() == bender::GrabState::Grabbed; }, 5000))
     {
-      QTest::qWait(1500);
+      QTest::qWait(2500);
       QVERIFY(this->Window->saveScreenshot(this->artefact("safety-trackers-bending.png")));
     }
     // One press (1 s), the arch (1-4 s), the release (5 s): one commit, started where the
