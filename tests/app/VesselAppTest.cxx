@@ -194,7 +194,7 @@ private slots:
   void twoClicksPlaceTheRibbonOnTheCenterline()
   {
     QVERIFY(!this->PathIds.empty());
-    const std::size_t i1 = 40, i2 = 160;
+    const std::size_t i1 = 150, i2 = 3;
     const bender::Vec3 a = this->pathPoint(i1), b = this->pathPoint(i2);
     vtkDataArray* normals =
       this->paths()->GetPointData()->GetArray(bender::VesselArrays::FrenetNormal);
@@ -231,7 +231,9 @@ private slots:
     const bender::RibbonSpec ribbon =
       this->Window->ribbonWidget()->GetRibbonRepresentation()->GetRibbon();
     // The ends lie on a centerline (the two paths share the stretch up to the bifurcation)
-    // near the clicked samples, with the centerline's tangents there.
+    // near the clicked samples, with the centerline's tangents there, oriented from the first
+    // click to the second (here against the path's direction: from the bifurcation towards
+    // the open inlet end, so that the ribbon's end frame carries the branch's free end).
     const double step = bender::Distance(this->pathPoint(100), this->pathPoint(101));
     auto nearestSample = [this](const bender::Vec3& p, double& distance)
     {
@@ -254,8 +256,9 @@ private slots:
     double startOff = 0, endOff = 0;
     const vtkIdType iStart = nearestSample(ribbon.start.position, startOff);
     const vtkIdType iEnd = nearestSample(ribbon.end.position, endOff);
-    const double startDot = bender::Dot(ribbon.start.tangent, At(tangents, iStart));
-    const double endDot = bender::Dot(ribbon.end.tangent, At(tangents, iEnd));
+    const double along = i2 > i1 ? 1.0 : -1.0;
+    const double startDot = along * bender::Dot(ribbon.start.tangent, At(tangents, iStart));
+    const double endDot = along * bender::Dot(ribbon.end.tangent, At(tangents, iEnd));
     const QString where = QString("start %1 mm off (dot %2, %3 mm from the click), end %4 mm off "
                                   "(dot %5, %6 mm from the click), step %7")
                             .arg(startOff)
@@ -346,9 +349,8 @@ private slots:
     QVERIFY(std::isfinite(before));
     bender::RibbonSpec bent = this->Placed;
     const bender::Vec3 axis = bender::Normalized(this->Placed.start.normal);
-    // Away from the neighbouring vessel: with the plateau the whole branch follows the ribbon,
-    // and turned the other way it would run into the trunk (the bent surface then has no
-    // centerlines to compare).
+    // The ribbon runs from near the bifurcation to the open inlet end: the trunk's free end
+    // swings with the ribbon's end frame.
     const double angle = -30.0 / Degrees;
     bent.end.position =
       bent.start.position + bender::Rotate(axis, angle, bent.end.position - bent.start.position);
@@ -361,7 +363,8 @@ private slots:
       TangentAngle(this->Window->session().GetFinalRibbon()) - TangentAngle(this->Placed);
     QVERIFY(std::abs(plan) > 10.0);
     const double change = Cell(held, 1, 2);
-    QVERIFY2(std::abs(change - plan) < 4.0,
+    qInfo("held branch: bend change %.2f, the ribbon's tangent turn %.2f", change, plan);
+    QVERIFY2(std::abs(change - plan) < 2.0,
       qPrintable(QString("panel change %1, plan %2").arg(change).arg(plan)));
     QVERIFY(std::abs(Cell(held, 1, 1) - (before + change)) < 0.11);
 
@@ -377,22 +380,10 @@ private slots:
     // The release commits; the committed surface's centerlines come with the comparison.
     QVERIFY(this->Window->release());
     QVERIFY(this->Window->waitUntilIdle(60000));
-    if (this->Window->session().IsCommitHeld())
-    {
-      // The commit guard may hold this bend: with the plateau the whole branch turns, and where
-      // it meets the trunk triangles fold (2 flipped with the earlier centerline's placement;
-      // with the section-centred one, measured 4 flipped and 34 crossing pairs at the
-      // junction). The guard holds it for what it measured; the user keeps it through the
-      // dialog, as here (a smaller R does not help this swing: measured down to R 3.5).
-      const bender::CommitCheck& check = this->Window->session().GetHeldCheck();
-      QVERIFY2(check.newSelfIntersections + check.flippedTriangles > 0, check.Summary().c_str());
-      qInfo("commit guard: %s", check.Summary().c_str());
-      QDialog* dialog = this->Window->gesture()->commitGuardDialog();
-      QTRY_VERIFY(dialog->isVisible());
-      QTest::mouseClick(dialog->findChild<QPushButton*>("guardKeep"), Qt::LeftButton);
-      QVERIFY(this->Window->waitUntilIdle(60000));
-    }
-    QVERIFY(!this->Window->session().IsCommitHeld());
+    // A first bend of a branch placed in two clicks commits cleanly: the commit guard (flips,
+    // new self-intersections, space inversion) finds nothing to hold.
+    QVERIFY2(!this->Window->session().IsCommitHeld(),
+      this->Window->session().GetHeldCheck().Summary().c_str());
     QCOMPARE(this->Window->session().GetHistoryPosition(), std::size_t(1));
     QVERIFY(this->Window->waitForCenterlines(120000));
     auto& vessels = this->Window->vessels()->vessels();
