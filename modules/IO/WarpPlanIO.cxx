@@ -30,6 +30,14 @@ constexpr int MaxDepth = 64;
 // A plan of thousands of warps is a few MiB; anything near this is not a plan.
 constexpr std::uintmax_t MaxFileSize = 256u << 20;
 
+// A JSON string as quoted in a message: ASCII only (DEL and non-ASCII escaped as \uXXXX, so the
+// message stays one printable line) and at most 40 characters.
+std::string Quoted(const json& value)
+{
+  const std::string text = value.dump(-1, ' ', true, json::error_handler_t::replace);
+  return text.size() > 40 ? text.substr(0, 37) + "...\"" : text;
+}
+
 std::string Describe(const json& value)
 {
   switch (value.type())
@@ -39,10 +47,7 @@ std::string Describe(const json& value)
     case json::value_t::boolean:
       return value.get<bool>() ? "true" : "false";
     case json::value_t::string:
-    {
-      std::string text = value.dump();
-      return "a string " + (text.size() > 40 ? text.substr(0, 37) + "...\"" : text);
-    }
+      return "a string " + Quoted(value);
     case json::value_t::array:
       return "an array";
     case json::value_t::object:
@@ -83,7 +88,7 @@ public:
     }
     if (format.get<std::string>() != FormatName)
     {
-      this->Fail("format", "expected \"bender-warps\", found " + format.dump());
+      this->Fail("format", "expected \"bender-warps\", found " + Quoted(format));
     }
     const json& version = this->Required(document, "version", "");
     if (!version.is_number())
@@ -277,7 +282,7 @@ private:
         const std::string shapePath = Join(decayPath, "shape");
         if (!shape->is_string())
         {
-          this->Fail(shapePath, "expected \"bell\" or \"plateau\", found " + Describe(*shape));
+          this->Fail(shapePath, "expected \"bell\" or \"plateau\", found " + Quoted(*shape));
         }
         const std::string name = shape->get<std::string>();
         if (name == "bell")
@@ -290,7 +295,7 @@ private:
         }
         else
         {
-          this->Fail(shapePath, "expected \"bell\" or \"plateau\", found " + shape->dump());
+          this->Fail(shapePath, "expected \"bell\" or \"plateau\", found " + Quoted(*shape));
         }
       }
       if (const json* plateau = Optional(*decay, "plateau"))

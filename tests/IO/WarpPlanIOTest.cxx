@@ -602,3 +602,38 @@ TEST(WarpPlanIO, MalformedJsonErrorsQuoteNoRawBytes)
     EXPECT_TRUE(u >= 0x20 && u < 0x7f) << "byte " << int(u) << " in: " << message;
   }
 }
+
+TEST(WarpPlanIO, QuotedStringsInErrorsArePrintableAscii)
+{
+  // A DEL byte or a non-ASCII character in a string the message quotes (found by fuzz_plan:
+  // a top-level string holding 0x7f) is escaped, and the quote stays short.
+  const auto expectPrintable = [](const std::string& message)
+  {
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_LT(message.size(), 300u) << message;
+    for (const char c : message)
+    {
+      const unsigned char u = static_cast<unsigned char>(c);
+      EXPECT_TRUE(u >= 0x20 && u < 0x7f) << "byte " << int(u) << " in: " << message;
+    }
+  };
+  const std::string del = std::string("\"www\x7fwww") + std::string(60, 'w') + "\"";
+  std::string message = ErrorOf([&] { ParseWarpPlan(del, Source); });
+  EXPECT_NE(message.find("found a string \"www\\u007fwww"), std::string::npos) << message;
+  expectPrintable(message);
+  message = ErrorOf([&] { ParseWarpPlan("{\"format\": \"b\xc3\xa9nder\x7f\"}", Source); });
+  EXPECT_NE(
+    message.find("format: expected \"bender-warps\", found \"b\\u00e9nder"), std::string::npos)
+    << message;
+  expectPrintable(message);
+  message = ErrorOf(
+    [&]
+    {
+      ParseWarpPlan(
+        "{\"format\": \"bender-warps\", \"version\": 1, \"warps\": [{\"decay\": {\"shape\": "
+        "\"b\x7f" +
+          std::string(100, 'x') + "\"}}]}",
+        Source);
+    });
+  expectPrintable(message);
+}
