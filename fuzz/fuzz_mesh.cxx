@@ -6,7 +6,10 @@
 #include "FuzzSupport.h"
 #include "MeshIO.h"
 
+#include <vtkAbstractArray.h>
+#include <vtkCellData.h>
 #include <vtkOutputWindow.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 
 #include <cmath>
@@ -24,7 +27,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try
   {
     vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(path);
-    // ReadMesh promises finite points and cell ids in range.
+    // ReadMesh promises finite points, cell ids in range and attribute arrays as long as the
+    // points and cells.
+    for (int a = 0; a < mesh->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      if (mesh->GetPointData()->GetAbstractArray(a)->GetNumberOfTuples() !=
+        mesh->GetNumberOfPoints())
+      {
+        std::abort();
+      }
+    }
+    for (int a = 0; a < mesh->GetCellData()->GetNumberOfArrays(); ++a)
+    {
+      if (mesh->GetCellData()->GetAbstractArray(a)->GetNumberOfTuples() != mesh->GetNumberOfCells())
+      {
+        std::abort();
+      }
+    }
     for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
     {
       double p[3];

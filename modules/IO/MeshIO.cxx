@@ -9,6 +9,7 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkErrorCode.h>
@@ -21,6 +22,7 @@
 #include <vtkOutputWindow.h>
 #include <vtkPLYReader.h>
 #include <vtkPLYWriter.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
@@ -43,6 +45,7 @@
 #include <limits>
 #include <mutex>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 namespace bender
@@ -301,6 +304,51 @@ void CheckMesh(const std::string& path, vtkPolyData* mesh)
       Fail(path, msg.str());
     }
   }
+  // Every point (cell) attribute array as long as the points (cells): filters copy attribute
+  // tuples by point and cell id and would read past the end of a shorter one.
+  const std::array<std::tuple<vtkFieldData*, vtkIdType, const char*>, 2> attributes{ {
+    { mesh->GetPointData(), n, "point" },
+    { mesh->GetCellData(), mesh->GetNumberOfCells(), "cell" },
+  } };
+  for (const auto& [data, expected, what] : attributes)
+  {
+    for (int a = 0; data && a < data->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* array = data->GetAbstractArray(a);
+      if (array && array->GetNumberOfTuples() != expected)
+      {
+        const char* name = array->GetName();
+        std::ostringstream msg;
+        msg << what << " data array \"" << io_detail::QuoteBytes(name ? name : "") << "\" has "
+            << array->GetNumberOfTuples() << " values, but the file has " << expected << " " << what
+            << "s";
+        Fail(path, msg.str());
+      }
+    }
+  }
+}
+
+// vtkOBJReader (VTK 9.1) passes the file's "vt" and "vn" lists on as point data whenever the
+// faces index them like the vertices, also when the file lists fewer of them than vertices,
+// and gives "GroupIds" one value per face although its output also holds the "l" and "p"
+// elements as cells. The geometry is sound: such arrays are dropped (CheckMesh would refuse
+// them).
+void DropMismatchedObjArrays(vtkPolyData* mesh)
+{
+  const std::array<std::pair<vtkFieldData*, vtkIdType>, 2> attributes{ {
+    { mesh->GetPointData(), mesh->GetNumberOfPoints() },
+    { mesh->GetCellData(), mesh->GetNumberOfCells() },
+  } };
+  for (const auto& [data, expected] : attributes)
+  {
+    for (int a = data->GetNumberOfArrays() - 1; a >= 0; --a)
+    {
+      if (data->GetAbstractArray(a)->GetNumberOfTuples() != expected)
+      {
+        data->RemoveArray(a);
+      }
+    }
+  }
 }
 
 // Runs a configured VTK reader and returns its output, or throws with its first error.
@@ -508,7 +556,9 @@ vtkSmartPointer<vtkPolyData> ReadObj(const std::string& path)
   vtkNew<vtkOBJReader> reader;
   guard.Watch(reader);
   reader->SetFileName(path.c_str());
-  return RunReader(path, reader.Get(), guard);
+  vtkSmartPointer<vtkPolyData> mesh = RunReader(path, reader.Get(), guard);
+  DropMismatchedObjArrays(mesh);
+  return mesh;
 }
 
 vtkSmartPointer<vtkPolyData> ReadPly(const std::string& path)

@@ -607,6 +607,49 @@ TEST(MeshIOBadInput, ObjWithIndicesOutOfRange)
   ExpectReadError(dir / "range.obj", "");
 }
 
+// vtkOBJReader passes "vt" / "vn" lists shorter than the vertex list on as point data, and
+// "GroupIds" with one value per face also when there are "l" and "p" cells: filters that copy
+// attributes by point or cell id would read past the arrays' ends. ReadMesh returns only arrays
+// as long as the points and cells (the geometry itself is read).
+TEST(MeshIO, ObjAttributesAlwaysMatchThePointsAndCells)
+{
+  TempDir dir;
+  const std::string header = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  const std::vector<std::string> bodies = {
+    "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n",
+    "vn 0 0 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n",
+    "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nf 1/1/1 2/2/2 3/3/3\n",
+    "f 1 2 3\nl 1 4\np 2\ng a\nf 1 2 4\n",
+  };
+  int index = 0;
+  for (const std::string& body : bodies)
+  {
+    SCOPED_TRACE(body);
+    const std::string path = dir / ("attributes" + std::to_string(index++) + ".obj");
+    WriteText(path, header + body);
+    vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(path);
+    ASSERT_EQ(mesh->GetNumberOfPoints(), 4);
+    EXPECT_GE(mesh->GetNumberOfPolys(), 1);
+    for (int a = 0; a < mesh->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      EXPECT_EQ(mesh->GetPointData()->GetAbstractArray(a)->GetNumberOfTuples(), 4)
+        << mesh->GetPointData()->GetArrayName(a);
+    }
+    for (int a = 0; a < mesh->GetCellData()->GetNumberOfArrays(); ++a)
+    {
+      EXPECT_EQ(
+        mesh->GetCellData()->GetAbstractArray(a)->GetNumberOfTuples(), mesh->GetNumberOfCells())
+        << mesh->GetCellData()->GetArrayName(a);
+    }
+  }
+  // Texture coordinates for every vertex are kept.
+  const std::string full = dir / "full.obj";
+  WriteText(full, header + "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+  vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(full);
+  ASSERT_NE(mesh->GetPointData()->GetTCoords(), nullptr);
+  EXPECT_EQ(mesh->GetPointData()->GetTCoords()->GetNumberOfTuples(), 4);
+}
+
 TEST(MeshIOBadInput, PlyThatVtkWouldCrashOn)
 {
   TempDir dir;
