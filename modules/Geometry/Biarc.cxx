@@ -45,9 +45,12 @@ Arc MakeArc(const Vec3& ps, const Vec3& ts, const Vec3& te, double a)
   arc.angle = std::atan2(sinT, cosT);
   const Vec3 w = te - ts * cosT;
   const double wn = Norm(w);
-  if (wn == 0.0 && cosT > 0.0)
+  const double radius = arc.angle > 0.0 ? a / std::tan(0.5 * arc.angle) : 0.0;
+  if (cosT > 0.0 && (wn == 0.0 || arc.angle == 0.0 || !std::isfinite(radius)))
   {
-    // Exactly straight: decided on exact zero, never on a threshold.
+    // Exactly straight: decided on exact zero, never on a threshold. Te may equal Ts to the
+    // last bit while w is not zero (|Ts|^2 is 1 only to rounding, so w is a multiple of Ts):
+    // the turn is then exactly 0 and the radius infinite, a line all the same.
     arc.line = true;
     arc.angle = 0.0;
     arc.length = 2.0 * a;
@@ -55,7 +58,7 @@ Arc MakeArc(const Vec3& ps, const Vec3& ts, const Vec3& te, double a)
   }
   arc.toCentre = wn > 0.0 ? w / wn : Vec3{};
   arc.axis = Cross(ts, arc.toCentre);
-  arc.radius = a / std::tan(0.5 * arc.angle);
+  arc.radius = radius;
   arc.centre = ps + arc.toCentre * arc.radius;
   arc.length = a * ThetaOverTanHalf(arc.angle);
   return arc;

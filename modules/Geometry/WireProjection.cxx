@@ -31,10 +31,10 @@ void FlattenWire(const Biarc& wire, FlatWire& out, bool clampedFeet)
     a.length = arc.length;
     a.axisTolerance = 1e-12 * arc.radius;
     a.invLength = arc.length > 0.0 ? 1.0 / arc.length : 0.0;
-    // An arc that turns by exactly 0 without being flagged a line (its tangents equal to
-    // rounding, radius infinite) is projected on as the segment it is: the circle's formulas
-    // would put every point on its axis and find no foot.
-    a.line = arc.line || !(arc.angle > 0.0) || !std::isfinite(arc.radius);
+    // Biarc flags every arc that turns by exactly 0 (or whose radius overflows) a line, so
+    // the circle's formulas, which would put every point on the axis of such an arc and find
+    // no foot, only ever see a positive turn and a finite radius.
+    a.line = arc.line;
     a.invAngle = a.line ? 0.0 : 1.0 / arc.angle;
     if (clampedFeet && !a.line)
     {

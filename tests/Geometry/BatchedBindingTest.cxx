@@ -30,7 +30,7 @@ using bendertest::Uniform;
 bool ReferenceNearestOnArc(const bender::Arc& arc, const Vec3& p, double& u, Vec3& q)
 {
   const Vec3 rel = p - arc.start;
-  if (arc.line || !(arc.angle > 0.0)) // an arc turning by 0 is the segment it is
+  if (arc.line)
   {
     const double t = std::clamp(Dot(rel, arc.tangent), 0.0, arc.length);
     u = arc.length > 0.0 ? t / arc.length : 0.0;

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -230,6 +231,54 @@ TEST(Biarc, StraightSegment)
       EXPECT_LT(Distance(w.TangentAt(s), t), 1e-12);
     }
   }
+}
+
+// An arc whose end tangent equals its start tangent to the last bit (a wire along a random
+// direction, the tangent repeated: its squared norm is 1 only up to rounding) turns by
+// exactly 0: it must be flagged a line with its tangent and length, never a circle of
+// infinite radius whose "normal" is the tangent itself.
+TEST(Biarc, ArcsThatTurnByZeroAreLines)
+{
+  std::mt19937_64 rng(20261124);
+  int zeroTurns = 0;
+  for (int i = 0; i < 2000; ++i)
+  {
+    const Vec3 p0 = bendertest::RandomUnit(rng) * bendertest::Uniform(rng, 0.0, 50.0);
+    const Vec3 t = bendertest::RandomUnit(rng);
+    const double len = bendertest::Uniform(rng, 0.1, 20.0);
+    const Vec3 p1 = p0 + t * len;
+    const Biarc w = Biarc::FromEnds(p0, t, p1, t);
+    const double h = std::max({ 1.0, Norm(p0), Norm(p1) });
+    for (int k = 0; k < 2; ++k)
+    {
+      const bender::Arc& arc = w.GetArc(k);
+      if (arc.angle == 0.0)
+      {
+        ++zeroTurns;
+        EXPECT_TRUE(arc.line) << "wire " << i << " arc " << k;
+      }
+      if (arc.line)
+      {
+        EXPECT_EQ(arc.angle, 0.0);
+        EXPECT_TRUE(std::isinf(arc.radius));
+        EXPECT_NEAR(Norm(arc.tangent), 1.0, 1e-15);
+        EXPECT_NEAR(arc.length, 2.0 * w.TangentLength(), 1e-12 * h);
+        EXPECT_LT(Distance(arc.PointAt(1.0), k == 0 ? w.Junction() : w.End()), 1e-12 * h);
+      }
+      else
+      {
+        // An arc: a positive turn, a finite radius and a unit normal (for a turn of the order
+        // of 1e-16 its direction is rounding noise, which the points never see: spec 1.2).
+        EXPECT_GT(arc.angle, 0.0);
+        EXPECT_TRUE(std::isfinite(arc.radius));
+        EXPECT_NEAR(Norm(arc.toCentre), 1.0, 1e-12);
+        EXPECT_LT(Distance(arc.PointAt(1.0), k == 0 ? w.Junction() : w.End()), 1e-12 * h);
+      }
+    }
+    EXPECT_NEAR(w.Length(), len, 1e-12 * h);
+  }
+  // The scan must reach the case it is about (about a third of random directions do).
+  EXPECT_GT(zeroTurns, 0);
 }
 
 TEST(Biarc, TwoSemicircles)
