@@ -16,14 +16,20 @@
 namespace bender_fuzz
 {
 
-/// A scratch folder for this process (removed at exit), e.g. /tmp/bender-fuzz-1234/.
+/// A scratch folder for this process (removed at exit): $BENDER_FUZZ_SCRATCH when set (scripts/fuzz
+/// gives each harness its own, so that the paths in messages, and with them the coverage, do not
+/// depend on the process id and a fixed -seed replays the same run), else e.g.
+/// /tmp/bender-fuzz-1234/.
 inline const std::filesystem::path& ScratchFolder()
 {
   static const std::filesystem::path folder = []
   {
+    const char* fixed = std::getenv("BENDER_FUZZ_SCRATCH");
     const char* base = std::getenv("TMPDIR");
-    std::filesystem::path p = std::filesystem::path(base && *base ? base : "/tmp") /
-      ("bender-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::path p = fixed && *fixed
+      ? std::filesystem::path(fixed)
+      : std::filesystem::path(base && *base ? base : "/tmp") /
+        ("bender-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(p);
     std::atexit(
       []
