@@ -198,6 +198,7 @@ std::string SegmentUsage()
        "  --extractor vtk|itk        marching cubes: VTK flying edges (default) or ITK\n"
        "                             BinaryMask3DMeshSource\n"
        "  --series UID               DICOM folder with several series: the one to read\n"
+       "                             (default: the one with the most slices, named on stderr)\n"
        "  -q, --quiet                no progress output\n"
        "  -h, --help                 this help\n";
   return u.str();
@@ -429,9 +430,12 @@ PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args)
   return r;
 }
 
-SurfaceResult RunSegmentPipeline(const SegmentRequest& request, const ProgressReporter& progress)
+SurfaceResult RunSegmentPipeline(const SegmentRequest& request,
+  const ProgressReporter& progress,
+  const std::function<void(const std::string&)>& inform)
 {
   SegmentVolumeOptions options;
+  options.inform = inform;
   options.input = request.input;
   options.read = request.read;
   options.segmentation = request.segmentation;
@@ -464,7 +468,11 @@ int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::
     {
       throw ParameterError(request.output + ": output would overwrite the input");
     }
-    const SurfaceResult result = RunSegmentPipeline(request, terminal.Reporter());
+    // A DICOM folder with several series and no --series: the largest is read and named in
+    // one line (before any progress is drawn), as the window does.
+    const SurfaceResult result = RunSegmentPipeline(request,
+      terminal.Reporter(),
+      [&err](const std::string& note) { err << "bender-cli segment: " << note << "\n"; });
     MeshWriteOptions options;
     options.header = "bender segment: LPS mm";
     WriteMesh(result.surface, request.output, options);

@@ -9,6 +9,7 @@
 #include "VesselSegmentation.h"
 #include "VolumeIO.h"
 
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -44,9 +45,12 @@ SegmentRequest ParseSegmentArguments(const std::vector<std::string>& args);
 PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args);
 
 /// Reads, segments and extracts; the surface is in LPS mm. Timings of every stage (read,
-/// segmentation, then the surface stages) are appended to the result's timings.
+/// segmentation, then the surface stages) are appended to the result's timings. `inform` is
+/// told which series was read from a DICOM folder holding several when none was asked for
+/// (SegmentVolumeOptions::inform).
 SurfaceResult RunSegmentPipeline(const SegmentRequest& request,
-  const ProgressReporter& progress = {});
+  const ProgressReporter& progress = {},
+  const std::function<void(const std::string&)>& inform = {});
 
 /// The whole commands: usage on `out` for --help (exit 0); progress and errors on `err`; exit
 /// status 0 on success, 1 on a processing error (bad input, seed outside the volume or in

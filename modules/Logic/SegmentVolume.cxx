@@ -2,6 +2,7 @@
 
 #include "BenderErrors.h"
 #include "MeshIO.h"
+#include "SegmentationSession.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -17,7 +18,14 @@ SurfaceResult SegmentVolume(const SegmentVolumeOptions& options)
 {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point t0 = Clock::now();
-  const Volume volume = ReadVolume(options.input, options.read, options.progress);
+  VolumeReadOptions read = options.read;
+  std::string note;
+  read.dicomSeriesUid = ChooseDicomSeries(options.input, options.read.dicomSeriesUid, note);
+  if (!note.empty() && options.inform)
+  {
+    options.inform(note);
+  }
+  const Volume volume = ReadVolume(options.input, read, options.progress);
   const Clock::time_point t1 = Clock::now();
   const LabelMap mask = SegmentVessels(volume, options.segmentation, options.progress);
   const Clock::time_point t2 = Clock::now();

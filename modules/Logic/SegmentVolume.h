@@ -7,6 +7,7 @@
 #include "VesselSegmentation.h"
 #include "VolumeIO.h"
 
+#include <functional>
 #include <string>
 
 namespace bender
@@ -20,12 +21,17 @@ struct SegmentVolumeOptions
   SegmentationParameters segmentation;
   SurfaceParameters surface;
   ProgressReporter progress;
+  /// Told one sentence when a choice was made for the user before reading (a DICOM folder
+  /// holding several series and no UID in `read`: which series is read; ChooseDicomSeries).
+  std::function<void(const std::string&)> inform;
 };
 
 /// The segment workflow of bender-cli and the GUI: reads the volume, segments the vessels and
-/// extracts their surface (LPS mm). The result's timings start with "read" and "segmentation",
-/// then the surface stages. Throws the segmentation module's errors (VolumeReadError,
-/// ParameterError, SeedError, SegmentationError; all bender::Error) and bender::Cancelled.
+/// extracts their surface (LPS mm). The series of a DICOM folder is the one of ChooseDicomSeries
+/// (read.dicomSeriesUid, else the largest). The result's timings start with "read" and
+/// "segmentation", then the surface stages. Throws the segmentation module's errors
+/// (VolumeReadError, ParameterError, SeedError, SegmentationError; all bender::Error) and
+/// bender::Cancelled.
 SurfaceResult SegmentVolume(const SegmentVolumeOptions& options);
 
 /// Options of MakePhantomVolume: the vessel surface, the phantom's parameters, the output.

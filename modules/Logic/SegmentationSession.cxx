@@ -56,15 +56,50 @@ std::string ChooseLargestDicomSeries(const std::string& folder, std::string& not
   return largest->uid;
 }
 
+std::string ChooseDicomSeries(const std::string& path,
+  const std::string& requestedUid,
+  std::string& note)
+{
+  note.clear();
+  if (requestedUid.empty())
+  {
+    return ChooseLargestDicomSeries(path, note);
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_directory(path, ec))
+  {
+    return requestedUid;
+  }
+  const std::vector<DicomSeriesInfo> series = ListDicomSeries(path);
+  if (std::any_of(series.begin(),
+        series.end(),
+        [&](const DicomSeriesInfo& s) { return s.uid == requestedUid; }))
+  {
+    return requestedUid;
+  }
+  std::ostringstream text;
+  text << path << ": no DICOM series with UID " << requestedUid;
+  if (series.empty())
+  {
+    text << " (the folder holds no DICOM series)";
+  }
+  else
+  {
+    text << "; the folder holds " << series.size() << ":";
+    for (const DicomSeriesInfo& s : series)
+    {
+      text << " [" << s.uid << " \"" << s.description << "\" " << s.sliceCount << " slices]";
+    }
+  }
+  throw VolumeReadError(text.str());
+}
+
 void SegmentationSession::ReadJob::Run(const ProgressReporter& progress)
 {
   VolumeReadOptions options;
-  options.dicomSeriesUid = this->dicomSeriesUid;
-  if (options.dicomSeriesUid.empty())
-  {
-    // A folder with several series: the largest, and the user is told which.
-    options.dicomSeriesUid = ChooseLargestDicomSeries(this->path, this->note);
-  }
+  // The series asked for (a recovered session's), else a folder with several series: the
+  // largest, and the user is told which.
+  options.dicomSeriesUid = ChooseDicomSeries(this->path, this->dicomSeriesUid, this->note);
   this->volume = std::make_shared<const Volume>(ReadVolume(this->path, options, progress));
   this->seriesRead = options.dicomSeriesUid;
   if (this->maskPath.empty())

@@ -22,6 +22,16 @@ namespace bender
 /// then reads it or says it holds no DICOM). Throws VolumeReadError for an unreadable folder.
 std::string ChooseLargestDicomSeries(const std::string& folder, std::string& note);
 
+/// The DICOM series to read from `path` (what VolumeReadOptions::dicomSeriesUid takes), the one
+/// choice of the window's read job and of bender-cli segment. For a folder: `requestedUid` when
+/// set, else ChooseLargestDicomSeries (`note` says which, when there was a choice). Throws
+/// VolumeReadError, one line naming the folder and listing its series (UID, description,
+/// slices), when `requestedUid` names none of them, and for an unreadable folder. For a file
+/// (or a missing path) `requestedUid` is returned unchecked: ReadVolume says what is wrong.
+std::string ChooseDicomSeries(const std::string& path,
+  const std::string& requestedUid,
+  std::string& note);
+
 /// The parameters of the Segment panel: the segmentation stage and the surface stage.
 struct SegmentationSettings
 {

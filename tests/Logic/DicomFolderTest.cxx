@@ -130,3 +130,48 @@ TEST(DicomFolder, AFolderWithoutDicomGetsOneClearLine)
   EXPECT_FALSE(job->volume);
   EXPECT_FALSE(session.HasVolume());
 }
+
+// The one choice of the window and of bender-cli segment: a UID asked for is checked against
+// the folder, and one it does not hold gets one line listing what it does hold.
+TEST(DicomFolder, ChooseDicomSeriesChecksTheUidAskedFor)
+{
+  TempFolder folder("study");
+  const std::string path = folder.Path.string();
+  bender_test::WriteDicomTestSeries(path, CtSlice(), Small, "scout", 2);
+  bender_test::WriteDicomTestSeries(path, CtSlice(), Large, "angio", 5);
+  std::string note = "stale";
+  EXPECT_EQ(ChooseDicomSeries(path, Small, note), Small);
+  EXPECT_TRUE(note.empty()) << note;
+  EXPECT_EQ(ChooseDicomSeries(path, "", note), Large);
+  EXPECT_NE(note.find("read the largest, \"angio\" (5 slices"), std::string::npos) << note;
+  // A file: nothing to check here (ReadVolume says what is wrong with it).
+  EXPECT_EQ(ChooseDicomSeries(path + "/scout_0.dcm", Medium, note), Medium);
+  EXPECT_TRUE(note.empty()) << note;
+
+  const std::string unknown = "1.2.3.999";
+  for (const std::string& asked : { unknown, Medium })
+  {
+    try
+    {
+      ChooseDicomSeries(path, asked, note);
+      FAIL() << "a UID the folder does not hold was accepted: " << asked;
+    }
+    catch (const bender::Error& e)
+    {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(path + ": no DICOM series with UID " + asked), std::string::npos)
+        << message;
+      EXPECT_NE(message.find("the folder holds 2: [" + Small + " \"scout\" 2 slices] [" + Large +
+                  " \"angio\" 5 slices]"),
+        std::string::npos)
+        << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+
+  // The window's read job asks the same question: a recovered session whose series is gone.
+  SegmentationSession session;
+  auto job = session.BeginRead(path, unknown);
+  EXPECT_THROW(job->Run({}), bender::Error);
+  EXPECT_FALSE(job->volume);
+}
