@@ -79,6 +79,24 @@ FileOpener::FileOpener(bender::BenderSession& session,
   , Segment(segment)
   , Window(window)
 {
+  // A copy beside the autosave ends on its own thread: the autosave that references it (or
+  // says why it could not be written) is made on the GUI thread.
+  // Not after the autosave was discarded meanwhile (the work saved): that would bring it back.
+  this->Copies = std::make_unique<bender::AutosaveCopies>(
+    [this]()
+    {
+      const int generation = this->CopiesGeneration.load();
+      QMetaObject::invokeMethod(
+        this,
+        [this, generation]()
+        {
+          if (generation == this->CopiesGeneration.load())
+          {
+            this->Session.Autosave();
+          }
+        },
+        Qt::QueuedConnection);
+    });
   connect(actions->Open,
     &QAction::triggered,
     this,
@@ -466,12 +484,23 @@ void FileOpener::offerRecovery()
   }
 }
 
+FileOpener::~FileOpener()
+{
+  this->Copies->Wait();
+}
+
+void FileOpener::waitForAutosaveCopies()
+{
+  this->Copies->Wait();
+}
+
 void FileOpener::discardAutosave()
 {
+  // A copy being written would land after its removal: it ends first.
+  this->Copies->Forget();
+  ++this->CopiesGeneration;
   this->Session.DiscardAutosave();
   bender::RemoveSessionSideFiles(this->Session.GetAutosavePath());
-  this->VolumeCopyOf.reset();
-  this->MaskCopyOf.reset();
 }
 
 bool FileOpener::recoverSession(const QString& path)
@@ -644,50 +673,49 @@ void FileOpener::fillSnapshot(bender::SessionSnapshot& snapshot)
     kept.geometry = volume->geometry;
     if (kept.path.empty() && !this->Session.GetAutosavePath().empty())
     {
-      // Made here (the demo): written once beside the autosave.
-      const std::string copy = bender::SessionVolumeCopyPath(this->Session.GetAutosavePath());
-      if (this->VolumeCopyOf.lock() != volume)
-      {
-        try
+      // Made here (the demo): written once beside the autosave, off the GUI thread; until
+      // the copy is complete this autosave leaves the volume out (the next one, when it is,
+      // keeps it).
+      std::string problem;
+      kept.path = this->Copies->CopyOf(
+        volume,
+        bender::SessionVolumeCopyPath(this->Session.GetAutosavePath()),
+        [volume, hook = this->CopyHook](const std::string& path)
         {
-          bender::WriteVolume(*volume, copy);
-          this->VolumeCopyOf = volume;
-        }
-        catch (const std::exception& e)
-        {
-          this->VolumeCopyOf.reset();
-          this->MaskCopyOf.reset();
-          this->Session.AddMessage(bender::MessageSeverity::Warning,
-            std::string("Autosave: the volume is not kept (") + e.what() + ")");
-        }
-      }
-      if (this->VolumeCopyOf.lock() == volume)
+          if (hook)
+          {
+            hook();
+          }
+          bender::WriteVolume(*volume, path);
+        },
+        problem);
+      if (!problem.empty())
       {
-        kept.path = copy;
+        this->Session.AddMessage(
+          bender::MessageSeverity::Warning, "Autosave: the volume is not kept (" + problem + ")");
       }
     }
     // The segmentation's mask (the slice views' overlay): written once per mask.
     const auto& mask = this->Segmentation.GetMask();
     if (!kept.path.empty() && mask && !this->Session.GetAutosavePath().empty())
     {
-      const std::string copy = bender::SessionMaskCopyPath(this->Session.GetAutosavePath());
-      if (this->MaskCopyOf.lock() != mask)
-      {
-        try
+      std::string problem;
+      kept.maskPath = this->Copies->CopyOf(
+        mask,
+        bender::SessionMaskCopyPath(this->Session.GetAutosavePath()),
+        [mask, hook = this->CopyHook](const std::string& path)
         {
-          bender::WriteLabelMap(*mask, copy);
-          this->MaskCopyOf = mask;
-        }
-        catch (const std::exception& e)
-        {
-          this->MaskCopyOf.reset();
-          this->Session.AddMessage(bender::MessageSeverity::Warning,
-            std::string("Autosave: the segmentation's mask is not kept (") + e.what() + ")");
-        }
-      }
-      if (this->MaskCopyOf.lock() == mask)
+          if (hook)
+          {
+            hook();
+          }
+          bender::WriteLabelMap(*mask, path);
+        },
+        problem);
+      if (!problem.empty())
       {
-        kept.maskPath = copy;
+        this->Session.AddMessage(bender::MessageSeverity::Warning,
+          "Autosave: the segmentation's mask is not kept (" + problem + ")");
       }
     }
     if (!kept.path.empty())

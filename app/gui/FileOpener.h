@@ -6,11 +6,15 @@
 
 #include "SegmentationSession.h"
 
+#include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace bender
 {
+class AutosaveCopies;
 class BenderSession;
 class SessionJob;
 struct SessionSnapshot;
@@ -36,7 +40,9 @@ class WorkRunner;
 /// series: the largest, and the status bar says which).
 ///
 /// Recovery of everything: fillSnapshot adds the volume (its path, series and grid; a volume
-/// made here and the segmentation's mask are written beside the autosave), the Segment panel's
+/// made here and the segmentation's mask are written beside the autosave, on a thread of their
+/// own: bender::AutosaveCopies, the autosave referencing each only once it is complete and
+/// autosaving again when it is), the Segment panel's
 /// parameters and the placed ribbon to every autosave (BenderSession's autosave
 /// decorator); recoverSession reads the volume again (checked against the recorded grid), shows
 /// the parameters in the Segment panel, recovers the surface and the warps and puts the ribbon
@@ -54,6 +60,8 @@ public:
     BendPanel* bend,
     SegmentPanel* segment,
     QWidget* window);
+  /// Waits for the copies beside the autosave that are being written.
+  ~FileOpener() override;
 
   /// Opens a file by its kind (see MainWindow::openFile); false when refused at once.
   bool openFile(const QString& path);
@@ -67,10 +75,13 @@ public:
   /// refused at once (busy, an unreadable session file: one message naming it).
   bool recoverSession(const QString& path);
   /// Adds the window's part to an autosave: the loaded volume (a volume without a file, the
-  /// demo's, is written once beside the autosave, and so is each new mask), the Segment
-  /// panel's parameters and the session's ribbon with the Bend parameters and the handles'
-  /// size.
+  /// demo's, is written once beside the autosave, and so is each new mask: off the GUI thread,
+  /// left out of the autosave until complete, then autosaved again), the Segment panel's
+  /// parameters and the session's ribbon with the Bend parameters and the handles' size.
   void fillSnapshot(bender::SessionSnapshot& snapshot);
+  /// Waits for the copies beside the autosave being written (closing the window, tests); then
+  /// the autosave they end with is posted to the GUI thread.
+  void waitForAutosaveCopies();
   /// Opens the DICOM series of `folder` (File > Open DICOM folder, after its dialog).
   bool openDicomFolder(const QString& folder);
   /// Removes the autosave and what the window keeps beside it (the work was saved or
@@ -79,6 +90,8 @@ public:
   /// Dialogs may be shown (the window's MainWindowOptions::interactive); without, nothing is
   /// asked: unsaved work is replaced as before and a plan applied twice is refused.
   void setInteractive(bool interactive) { this->Interactive = interactive; }
+  /// Called on the copies' thread before each copy beside the autosave is written (tests).
+  void setAutosaveCopyHook(std::function<void()> hook) { this->CopyHook = std::move(hook); }
   bool isInteractive() const { return this->Interactive; }
   /// Before `what` (Open, Demo, Quit, ...) replaces the work: true to go on. With unsaved
   /// warps and interactive, asks Save plan (then goes on when saved) / Discard (the work counts
@@ -120,9 +133,11 @@ private:
   SegmentPanel* Segment;
   QWidget* Window;
   bool Interactive = false;
-  // The volume without a file last written beside the autosave (not written twice).
-  std::weak_ptr<const bender::Volume> VolumeCopyOf;
-  std::weak_ptr<const bender::LabelMap> MaskCopyOf;
+  // The volume without a file and the mask, written beside the autosave (once each).
+  std::unique_ptr<bender::AutosaveCopies> Copies;
+  // Counts discarded autosaves: a copy finished before the last discard autosaves no more.
+  std::atomic<int> CopiesGeneration{ 0 };
+  std::function<void()> CopyHook;
 };
 
 #endif

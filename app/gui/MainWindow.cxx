@@ -127,6 +127,8 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
 MainWindow::~MainWindow()
 {
   this->Worker->cancelAndWait();
+  // The copies beside the autosave end before the sessions they autosave go.
+  this->Files->waitForAutosaveCopies();
   this->Session.SetMessageCallback(nullptr);
   this->Session.SetChangeCallback(nullptr);
   this->Session.SetAutosaveDecorator(nullptr);
@@ -175,6 +177,7 @@ void MainWindow::buildPanels()
     this->Segment,
     this);
   this->Files->setInteractive(this->Options.interactive);
+  this->Files->setAutosaveCopyHook(this->Options.autosaveCopyHook);
   this->Gesture->setInteractive(this->Options.interactive);
   this->Exports = new ExportFlow(
     this->Session, this->Worker, this->Actions, this->Export, this->Options.interactive, this);

@@ -49,6 +49,9 @@ struct MainWindowOptions
   /// Called on the worker thread at the start of every background job (tests slow jobs down
   /// with it to see the window keep working).
   std::function<void(const bender::ProgressReporter&)> workHook;
+  /// Called on the thread that writes a copy beside the autosave (the demo's volume, a mask)
+  /// before it writes (tests hold the write to see the window keep working meanwhile).
+  std::function<void()> autosaveCopyHook;
 };
 
 /// The Bender main window. It composes and holds no state of its own: the surface, the gesture,

@@ -13,6 +13,8 @@
 #include <limits>
 #include <sstream>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 namespace bender
 {
@@ -600,6 +602,129 @@ std::string DescribeVolumeGeometry(const ImageGeometry& g)
        << g.spacing[1] << "x" << g.spacing[2] << " mm at (" << g.origin[0] << ", " << g.origin[1]
        << ", " << g.origin[2] << ")";
   return text.str();
+}
+
+AutosaveCopies::AutosaveCopies(std::function<void()> finished)
+  : Finished(std::move(finished))
+{
+}
+
+AutosaveCopies::~AutosaveCopies()
+{
+  this->Wait();
+}
+
+std::string AutosaveCopies::CopyOf(const std::shared_ptr<const void>& object,
+  const std::string& path,
+  const WriteFunction& write,
+  std::string& problem)
+{
+  problem.clear();
+  if (!object || path.empty())
+  {
+    return {};
+  }
+  std::lock_guard<std::mutex> lock(this->Mutex);
+  Slot& slot = this->Slots[path];
+  if (slot.written.lock() == object)
+  {
+    return path;
+  }
+  if (slot.writing)
+  {
+    return {}; // its end calls Finished, and the next autosave asks again
+  }
+  if (slot.failed.lock() == object)
+  {
+    problem = std::move(slot.problem);
+    slot.problem.clear();
+    return {};
+  }
+  if (slot.thread.joinable())
+  {
+    // The last write has ended (writing is reset last thing under the lock): this only reaps
+    // the thread, which may still be in Finished, which never takes the lock.
+    slot.thread.join();
+  }
+  // The file at `path` is about to hold another object.
+  slot.written.reset();
+  slot.failed.reset();
+  slot.problem.clear();
+  slot.writing = object;
+  slot.thread = std::thread(&AutosaveCopies::Run, this, &slot, path, object, write);
+  return {};
+}
+
+void AutosaveCopies::Run(Slot* slot,
+  std::string path,
+  std::shared_ptr<const void> object,
+  WriteFunction write)
+{
+  std::string error;
+  try
+  {
+    write(path);
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  catch (...)
+  {
+    error = path + ": unknown error";
+  }
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    if (error.empty())
+    {
+      slot->written = object;
+    }
+    else
+    {
+      slot->failed = object;
+      slot->problem = error;
+    }
+    slot->writing.reset();
+  }
+  object.reset();
+  if (this->Finished)
+  {
+    this->Finished();
+  }
+}
+
+bool AutosaveCopies::IsWriting() const
+{
+  std::lock_guard<std::mutex> lock(this->Mutex);
+  return std::any_of(this->Slots.begin(),
+    this->Slots.end(),
+    [](const auto& entry) { return static_cast<bool>(entry.second.writing); });
+}
+
+void AutosaveCopies::Wait()
+{
+  std::vector<std::thread> threads;
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    for (auto& entry : this->Slots)
+    {
+      if (entry.second.thread.joinable())
+      {
+        threads.push_back(std::move(entry.second.thread));
+      }
+    }
+  }
+  for (std::thread& thread : threads)
+  {
+    thread.join();
+  }
+}
+
+void AutosaveCopies::Forget()
+{
+  this->Wait();
+  std::lock_guard<std::mutex> lock(this->Mutex);
+  this->Slots.clear();
 }
 
 std::string SessionVolumeCopyPath(const std::string& sessionPath)

@@ -5,9 +5,14 @@
 #include "Volume.h"
 #include "WarpPlan.h"
 
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace bender
 {
@@ -95,6 +100,66 @@ std::string SessionVolumeCopyPath(const std::string& sessionPath);
 
 /// Where the window keeps the mask of the volume's segmentation beside the autosave.
 std::string SessionMaskCopyPath(const std::string& sessionPath);
+
+/// The files an autosave keeps beside itself for data that has no file of its own (the demo's
+/// volume, a segmentation's mask), written on a thread of their own so that the caller (the
+/// window's GUI thread, inside an autosave) never waits for a volume to be written. A copy is
+/// referenced only once it is complete: CopyOf returns its path only when the file there was
+/// written in full from that very object (the writers write all-or-nothing, a staging file
+/// renamed into place, so the file at the path is always a complete copy of some object);
+/// meanwhile the caller's autosave leaves it out and `finished`, called when the write ends,
+/// tells the owner to autosave again.
+///
+/// One write at a time per path: asked for another object while one is written, CopyOf starts
+/// nothing, and the next call after `finished` starts it. A failed write is reported once (in
+/// `problem`) and not retried for the same object.
+class AutosaveCopies
+{
+public:
+  /// Writes `object` to the path given (throws on failure); runs on the copies' thread.
+  using WriteFunction = std::function<void(const std::string& path)>;
+
+  /// `finished` runs on the writing thread after each write, complete or failed; it must not
+  /// call back into this object (the window posts an autosave to its own thread).
+  explicit AutosaveCopies(std::function<void()> finished = {});
+  /// Waits for the writes under way.
+  ~AutosaveCopies();
+  AutosaveCopies(const AutosaveCopies&) = delete;
+  AutosaveCopies& operator=(const AutosaveCopies&) = delete;
+
+  /// `path` when the file there is a complete copy of `object`; empty otherwise, after starting
+  /// to write it with `write` when no write to `path` is under way (and it has not failed for
+  /// this object). `problem`: why the last write of `object` failed, said once; else empty.
+  std::string CopyOf(const std::shared_ptr<const void>& object,
+    const std::string& path,
+    const WriteFunction& write,
+    std::string& problem);
+
+  /// True while a write is under way.
+  bool IsWriting() const;
+
+  /// Waits for the writes under way (closing the window; tests): their files are complete or
+  /// absent afterwards, and `finished` has run.
+  void Wait();
+
+  /// Waits, then forgets what was written (the autosave and its copies are discarded).
+  void Forget();
+
+private:
+  struct Slot
+  {
+    std::weak_ptr<const void> written;
+    std::weak_ptr<const void> failed;
+    std::shared_ptr<const void> writing;
+    std::string problem;
+    std::thread thread;
+  };
+  void Run(Slot* slot, std::string path, std::shared_ptr<const void> object, WriteFunction write);
+
+  std::function<void()> Finished;
+  mutable std::mutex Mutex;
+  std::map<std::string, Slot> Slots;
+};
 
 /// Removes the files the window keeps beside the autosave `sessionPath` (the volume and mask
 /// copies); the

@@ -4,17 +4,23 @@
 // with one line naming the file and the field, nothing written for a snapshot that cannot be.
 #include "SessionAutosave.h"
 
+#include "VolumeIO.h"
 #include "WarpPlanIO.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
+#include <memory>
 #include <random>
 #include <sstream>
+#include <thread>
 
 using namespace bender;
 
@@ -381,4 +387,115 @@ TEST(SessionAutosave, VolumeIdentity)
   b.direction = { 0, 1, 0, 1, 0, 0, 0, 0, 1 };
   EXPECT_FALSE(SameVolumeGeometry(a, b));
   EXPECT_EQ(DescribeVolumeGeometry(a), "64x64x40 voxels of 0.5x0.5x1.2 mm at (-16, -16, 10)");
+}
+
+namespace
+{
+std::shared_ptr<const Volume> SmallVolume(std::size_t n, float offset)
+{
+  auto volume = std::make_shared<Volume>();
+  volume->geometry.size = { n, n + 1, n + 2 };
+  volume->geometry.spacing = { 0.5, 0.75, 1.25 };
+  volume->voxels.resize(volume->geometry.VoxelCount());
+  for (std::size_t i = 0; i < volume->voxels.size(); ++i)
+  {
+    volume->voxels[i] = offset + static_cast<float>(i % 97);
+  }
+  return volume;
+}
+} // namespace
+
+// The window's copy of the demo volume beside the autosave (issue: it was written on the GUI
+// thread, inside the autosave): written on a thread of its own, referenced only once complete.
+// The write is held at a gate the test opens, so what the caller sees during the write is
+// checked without any timing.
+TEST(AutosaveCopies, WrittenOffTheCallersThreadAndReferencedOnlyWhenComplete)
+{
+  TempFolder folder;
+  const std::string path = SessionVolumeCopyPath((folder.Path / "autosave.json").string());
+  const std::shared_ptr<const Volume> a = SmallVolume(6, 0.0f);
+  const std::shared_ptr<const Volume> b = SmallVolume(9, 1000.0f);
+
+  std::atomic<int> finished{ 0 };
+  std::atomic<int> writes{ 0 };
+  std::promise<void> gate;
+  std::shared_future<void> opened = gate.get_future().share();
+  std::thread::id writer;
+  AutosaveCopies copies([&]() { ++finished; });
+  const auto gatedWrite = [&](const std::shared_ptr<const Volume>& volume)
+  {
+    return [&, volume](const std::string& to)
+    {
+      ++writes;
+      writer = std::this_thread::get_id();
+      // Bounded, so that a regression (the write on the caller's thread) fails instead of
+      // hanging: the caller's thread id is then checked below.
+      opened.wait_for(std::chrono::seconds(30));
+      WriteVolume(*volume, to);
+    };
+  };
+
+  std::string problem;
+  EXPECT_EQ(copies.CopyOf(a, path, gatedWrite(a), problem), ""); // started, not complete
+  EXPECT_TRUE(problem.empty());
+  // The caller is back while the write waits at the gate: nothing references the copy yet,
+  // and asking again (the next autosave) or for another volume starts no second write.
+  EXPECT_TRUE(copies.IsWriting());
+  EXPECT_EQ(copies.CopyOf(a, path, gatedWrite(a), problem), "");
+  EXPECT_EQ(copies.CopyOf(b, path, gatedWrite(b), problem), "");
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_EQ(finished.load(), 0);
+  gate.set_value();
+  copies.Wait();
+  EXPECT_NE(writer, std::this_thread::get_id());
+  EXPECT_EQ(writes.load(), 1);
+  EXPECT_EQ(finished.load(), 1);
+  EXPECT_FALSE(copies.IsWriting());
+
+  // Complete: referenced, and the file is the volume, voxel for voxel.
+  EXPECT_EQ(copies.CopyOf(a, path, gatedWrite(a), problem), path);
+  EXPECT_EQ(ReadVolume(path).voxels, a->voxels);
+  // No staging file left beside it.
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder.Path))
+  {
+    (void)entry;
+    ++files;
+  }
+  EXPECT_EQ(files, 1);
+
+  // Another volume replaces it: from the moment its write starts the old one is no longer
+  // referenced (the file will hold the new one), and the new one only once written.
+  EXPECT_EQ(copies.CopyOf(b, path, gatedWrite(b), problem), "");
+  EXPECT_EQ(copies.CopyOf(a, path, gatedWrite(a), problem), "");
+  copies.Wait();
+  EXPECT_EQ(finished.load(), 2);
+  EXPECT_EQ(copies.CopyOf(b, path, gatedWrite(b), problem), path);
+  EXPECT_EQ(ReadVolume(path).voxels, b->voxels);
+}
+
+TEST(AutosaveCopies, AFailedWriteIsSaidOnceAndNotRetriedForTheSameObject)
+{
+  TempFolder folder;
+  const std::string path = (folder.Path / "missing-folder" / "copy.nrrd").string();
+  const std::shared_ptr<const Volume> a = SmallVolume(4, 0.0f);
+  std::atomic<int> finished{ 0 };
+  std::atomic<int> writes{ 0 };
+  AutosaveCopies copies([&]() { ++finished; });
+  const auto write = [&](const std::string& to)
+  {
+    ++writes;
+    WriteVolume(*a, to);
+  };
+  std::string problem;
+  EXPECT_EQ(copies.CopyOf(a, path, write, problem), "");
+  copies.Wait();
+  EXPECT_EQ(finished.load(), 1); // the owner autosaves again, and hears of the problem
+  EXPECT_EQ(copies.CopyOf(a, path, write, problem), "");
+  EXPECT_NE(problem.find("missing-folder"), std::string::npos) << problem;
+  EXPECT_EQ(copies.CopyOf(a, path, write, problem), "");
+  EXPECT_TRUE(problem.empty()) << problem;
+  copies.Wait();
+  EXPECT_EQ(writes.load(), 1);
+  EXPECT_FALSE(std::filesystem::exists(path));
 }

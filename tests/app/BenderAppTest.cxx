@@ -8,6 +8,7 @@
 #include "MainWindow.h"
 #include "MeshIO.h"
 #include "Ribbon.h"
+#include "SessionAutosave.h"
 #include "SliceViews.h"
 #include "TrackersPanel.h"
 #include "VesselController.h"
@@ -94,6 +95,11 @@ private:
   std::atomic<int> Ticks{ 0 };
   std::atomic<int> Stalls{ 0 };
   std::atomic<int> SlowJobsRun{ 0 };
+  // The copies beside the autosave, held the same way while HoldCopies: a copy written on the
+  // GUI thread would never see the ticks and count a stall.
+  std::atomic<bool> HoldCopies{ false };
+  std::atomic<int> HeldCopies{ 0 };
+  std::atomic<int> CopyStalls{ 0 };
 
   void showPanel(QWidget* panel)
   {
@@ -132,6 +138,22 @@ private slots:
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
       }
     };
+    options.autosaveCopyHook = [this]()
+    {
+      if (!this->HoldCopies)
+        return;
+      ++this->HeldCopies;
+      const int start = this->Ticks;
+      for (int wait = 0; this->Ticks < start + 5; ++wait)
+      {
+        if (wait > 60000)
+        {
+          ++this->CopyStalls; // a minute without 5 ticks: the GUI thread is blocked
+          return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    };
     this->Window = std::make_unique<MainWindow>(options);
     QVERIFY(bendertest::ShowTestWindow(*this->Window, true));
   }
@@ -159,6 +181,10 @@ private slots:
 
   void demoSegmentsAndPlacesTheRibbon()
   {
+    QTimer timer;
+    connect(&timer, &QTimer::timeout, [this]() { ++this->Ticks; });
+    timer.start(5);
+    this->HoldCopies = true;
     QSignalSpy finished(this->Window.get(), &MainWindow::workFinished);
     this->Window->startDemo();
     QVERIFY(this->Window->isBusy());
@@ -177,6 +203,32 @@ private slots:
     QVERIFY2(this->Window->statusLabel()->text().contains("press G"),
       qPrintable(this->Window->statusLabel()->text()));
     this->Segmented = Copy(session.GetSurface());
+
+    // The demo's volume has no file: the autosave keeps a copy beside itself, written off the
+    // GUI thread (the copy waits for the GUI thread's ticks), and names it only once the copy
+    // is complete: whenever the autosave names a volume, the file is the whole volume.
+    const QString autosave = this->Folder.filePath("autosave.bender-session.json");
+    const auto volume = this->Window->segmentation().GetVolume();
+    QVERIFY(volume);
+    const bool hasMask = static_cast<bool>(this->Window->segmentation().GetMask());
+    const std::string copy = bender::SessionVolumeCopyPath(autosave.toStdString());
+    int incomplete = 0;
+    const auto keptWhole = [&]()
+    {
+      if (!QFileInfo::exists(autosave))
+        return false;
+      const bender::SessionSnapshot kept = bender::ReadSessionFile(autosave.toStdString());
+      if (!kept.volume)
+        return false;
+      if (bender::ReadVolume(kept.volume->path).voxels != volume->voxels)
+        ++incomplete;
+      return kept.volume->path == copy && (!hasMask || !kept.volume->maskPath.empty());
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(keptWhole(), 120000);
+    QCOMPARE(incomplete, 0);
+    QVERIFY(this->HeldCopies >= 1);
+    QCOMPARE(this->CopyStalls.load(), 0);
+    this->HoldCopies = false;
   }
 
   void grabDragReleaseMovesOnlyInsideR()
