@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace
 {
@@ -253,6 +254,12 @@ void BenderView::setOriginalSurface(vtkPolyData* original, bool differs)
   this->updateGhostInput();
 }
 
+void BenderView::setOriginalInPlay(std::function<vtkPolyData*()> inPlay)
+{
+  this->GhostInPlay = std::move(inPlay);
+  this->updateGhostInput();
+}
+
 void BenderView::setOriginalVisible(bool visible)
 {
   this->GhostWanted = visible;
@@ -275,6 +282,13 @@ void BenderView::updateGhostInput()
         this->GhostCopy = bender::MakeLevelOfDetail(this->GhostOriginal);
       }
       drawn = this->GhostCopy;
+    }
+    else if (this->GhostInPlay)
+    {
+      if (vtkPolyData* inPlay = this->GhostInPlay())
+      {
+        drawn = inPlay;
+      }
     }
     if (this->GhostMapper->GetInput() != drawn)
     {

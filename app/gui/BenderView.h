@@ -91,6 +91,11 @@ public:
   /// The surface before any warp, drawn as a faint ghost while `differs` (after a warp, while
   /// grabbed) and the toggle is on.
   void setOriginalSurface(vtkPolyData* original, bool differs);
+  /// Where the ghost needs drawing: `inPlay()` returns the part of the original that the
+  /// surface may differ from (BenderSession::GetOriginalInPlay), null for all of it. Elsewhere
+  /// the ghost lies under the surface and is hidden: drawing only that part is the same picture
+  /// for a fraction of the triangles. Without it the whole original is drawn.
+  void setOriginalInPlay(std::function<vtkPolyData*()> inPlay);
   void setOriginalVisible(bool visible);
   bool originalShown() const;
   vtkActor* originalActor() const { return this->GhostActor; }
@@ -165,6 +170,7 @@ private:
   vtkPolyData* GhostOriginal = nullptr; // identity only
   vtkMTimeType GhostOriginalTime = 0;
   vtkSmartPointer<vtkPolyData> GhostCopy;
+  std::function<vtkPolyData*()> GhostInPlay;
   long long LodThreshold = 500000;
   vtkNew<vtkPolyDataMapper> CenterlineMapper;
   vtkNew<vtkActor> CenterlineActor;

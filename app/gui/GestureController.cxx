@@ -127,6 +127,8 @@ GestureController::GestureController(bender::BenderSession& session,
   this->View->setLevelOfDetailThreshold(this->Session.GetLevelOfDetailThreshold());
   this->View->setLevelOfDetail(
     this->Session.GetProxyOutputPort(), [this]() { return this->Session.IsDraggingProxy(); });
+  // The ghost of the original: only where the surface may differ from it.
+  this->View->setOriginalInPlay([this]() { return this->Session.GetOriginalInPlay(); });
 
   this->Overlay = std::make_unique<ProblemOverlay>(this->View->renderer());
   this->GuardDialog = new QDialog(window);

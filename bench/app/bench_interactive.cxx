@@ -184,6 +184,7 @@ struct AppView
     view->setLevelOfDetailThreshold(session.GetLevelOfDetailThreshold());
     view->setLevelOfDetail(
       session.GetProxyOutputPort(), [this]() { return this->session.IsDraggingProxy(); });
+    view->setOriginalInPlay([this]() { return this->session.GetOriginalInPlay(); });
     view->resize(width, height);
     view->show();
     Pump();

@@ -249,6 +249,11 @@ vtkIdType vtkBenderWarpFilter::GetNumberOfBoundPoints() const
   return static_cast<vtkIdType>(this->Cache->Layout.BoundIds().size());
 }
 
+const std::vector<std::int64_t>& vtkBenderWarpFilter::GetBoundPointIds() const
+{
+  return this->Cache->Layout.BoundIds();
+}
+
 int vtkBenderWarpFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)

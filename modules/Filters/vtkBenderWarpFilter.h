@@ -52,8 +52,10 @@
 
 class vtkPoints;
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 class VTKBENDERFILTERS_EXPORT vtkBenderWarpFilter : public vtkPolyDataAlgorithm
 {
@@ -157,6 +159,9 @@ public:
   double GetInitialMinimumRadius() const { return this->InitialMinimumRadius; }
   /** Number of points inside the region of influence in the current binding. */
   vtkIdType GetNumberOfBoundPoints() const;
+  /** The input's point ids inside the region of influence in the current binding (the points
+   * a move can change); sorted, empty before the first update. */
+  const std::vector<std::int64_t>& GetBoundPointIds() const;
   /** How many times the binding was (re)computed: for tests and benchmarks. */
   vtkIdType GetBindingCount() const { return this->BindingCount; }
   /** How many times the filter built a RibbonWarp itself (not counting prepared ones). */

@@ -8,15 +8,18 @@
 #include "SessionAutosave.h"
 #include "WarpPlanIO.h"
 #include <vtkAlgorithmOutput.h>
+#include <vtkCellArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataAlgorithm.h>
 #include <vtkQuadricClustering.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <limits>
@@ -531,6 +534,74 @@ void BenderSession::UpdateLiveInformation()
     this->WarnedInversion = true;
     this->Report(MessageSeverity::Warning, this->InversionWarning);
   }
+}
+
+vtkPolyData* BenderSession::GetOriginalInPlay()
+{
+  vtkPolyData* original = this->History.Original();
+  vtkPolyData* current = this->History.Current();
+  const bool grabbed = this->State == GrabState::Grabbed;
+  if (!original || !current || (grabbed && this->ProxyDrag) ||
+    original->GetNumberOfPoints() != current->GetNumberOfPoints() ||
+    original->GetNumberOfPolys() != current->GetNumberOfPolys() ||
+    original->GetNumberOfCells() != original->GetNumberOfPolys())
+  {
+    this->InPlay = nullptr;
+    this->InPlayMadeFrom = InPlayKey{};
+    return nullptr;
+  }
+  InPlayKey key;
+  key.original = original;
+  key.current = current;
+  key.originalTime = original->GetMTime();
+  key.currentTime = current->GetMTime();
+  key.binding = grabbed ? this->LiveFilter->GetBindingCount() : -1;
+  if (this->InPlay && key == this->InPlayMadeFrom)
+  {
+    return this->InPlay;
+  }
+  // Points in play: moved by the committed warps, or bound by the grab.
+  const vtkIdType n = original->GetNumberOfPoints();
+  std::vector<std::uint8_t> inPlay(static_cast<std::size_t>(n), 0);
+  vtkPoints* a = original->GetPoints();
+  vtkPoints* b = current->GetPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    inPlay[static_cast<std::size_t>(i)] = p[0] != q[0] || p[1] != q[1] || p[2] != q[2];
+  }
+  if (grabbed)
+  {
+    for (const std::int64_t id : this->LiveFilter->GetBoundPointIds())
+    {
+      if (id >= 0 && id < n)
+      {
+        inPlay[static_cast<std::size_t>(id)] = 1;
+      }
+    }
+  }
+  vtkNew<vtkCellArray> cells;
+  vtkIdType count = 0;
+  const vtkIdType* ids = nullptr;
+  vtkCellArray* polys = original->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+  {
+    for (vtkIdType k = 0; k < count; ++k)
+    {
+      if (inPlay[static_cast<std::size_t>(ids[k])])
+      {
+        cells->InsertNextCell(count, ids);
+        break;
+      }
+    }
+  }
+  this->InPlay = vtkSmartPointer<vtkPolyData>::New();
+  this->InPlay->SetPoints(original->GetPoints());
+  this->InPlay->SetPolys(cells);
+  this->InPlayMadeFrom = key;
+  return this->InPlay;
 }
 
 long long BenderSession::GetNumberOfBoundPoints() const

@@ -171,6 +171,13 @@ public:
   vtkPolyData* GetSurface() const { return this->History.Current(); }
   /// The surface before any warp.
   vtkPolyData* GetOriginalSurface() const { return this->History.Original(); }
+  /// The part of the original surface that the surface shown may differ from (what a ghost of
+  /// the original needs to draw: elsewhere the two coincide): the original's triangles with a
+  /// point that the committed surface moved, or that the current grab binds (a drag can move
+  /// it). Shares the original's points; the same object while neither changes (no re-upload
+  /// per frame). Null when the whole original is needed: no surface, a committed surface of
+  /// other points or cells (subdivided), or a drag of the decimated copy.
+  vtkPolyData* GetOriginalInPlay();
   /// The live pipeline's output for rendering, connected once: the committed surface
   /// (History.Current(), passed through without a copy) through vtkBenderWarpFilter, which
   /// warps it live while grabbed. Connect a mapper to it; no Modified() is needed.
@@ -405,6 +412,22 @@ private:
   unsigned long long SavedChangeCount = 0;
 
   vtkNew<vtkBenderWarpFilter> LiveFilter;
+  // GetOriginalInPlay's result and what it was made from.
+  struct InPlayKey
+  {
+    vtkPolyData* original = nullptr;
+    vtkPolyData* current = nullptr;
+    vtkMTimeType originalTime = 0;
+    vtkMTimeType currentTime = 0;
+    vtkIdType binding = -1; // LiveFilter's binding count while grabbed, -1 otherwise
+    bool operator==(const InPlayKey& o) const
+    {
+      return original == o.original && current == o.current && originalTime == o.originalTime &&
+        currentTime == o.currentTime && binding == o.binding;
+    }
+  };
+  InPlayKey InPlayMadeFrom;
+  vtkSmartPointer<vtkPolyData> InPlay;
   std::shared_ptr<const RibbonWarp> LiveWarp;
   // The level of detail: committed surface -> decimated copy (made once per version) -> warp.
   vtkSmartPointer<vtkPolyDataAlgorithm> ProxySource;

@@ -557,3 +557,93 @@ TEST_F(BenderSessionTest, JobsRunOffTheSessionThreadWithTheSameResult)
   ASSERT_EQ(exportJob->GetWrittenFiles().size(), 1u);
   EXPECT_EQ(MaxDifference(ReadMesh(folder + "/bent.vtp"), this->Session.GetSurface()), 0.0);
 }
+
+// The ghost of the original needs only the part of it the surface may differ from: the
+// triangles with a point the grab binds (while grabbed) or the committed warps moved.
+TEST_F(BenderSessionTest, OriginalInPlayIsWhereTheSurfaceMayDiffer)
+{
+  const auto touches = [](vtkPolyData* mesh, vtkIdType cell, const std::vector<bool>& marked)
+  {
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    mesh->GetCellPoints(cell, n, ids);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      if (marked[static_cast<std::size_t>(ids[k])])
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  vtkPolyData* original = this->Session.GetOriginalSurface();
+  const vtkIdType cells = original->GetNumberOfPolys();
+  // Nothing grabbed or moved: nothing in play.
+  vtkPolyData* idle = this->Session.GetOriginalInPlay();
+  ASSERT_NE(idle, nullptr);
+  EXPECT_EQ(idle->GetNumberOfPolys(), 0);
+
+  // Grabbed: exactly the triangles with a bound point, on the original's own points.
+  const RibbonSpec initial = StraightRibbon(20, 40);
+  ASSERT_TRUE(this->Session.Grab(initial));
+  std::vector<bool> bound(static_cast<std::size_t>(original->GetNumberOfPoints()), false);
+  for (const std::int64_t id : this->Session.GetLiveFilter()->GetBoundPointIds())
+  {
+    bound[static_cast<std::size_t>(id)] = true;
+  }
+  vtkIdType expected = 0;
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    expected += touches(original, c, bound) ? 1 : 0;
+  }
+  vtkPolyData* grabbed = this->Session.GetOriginalInPlay();
+  ASSERT_NE(grabbed, nullptr);
+  EXPECT_EQ(grabbed->GetPoints(), original->GetPoints());
+  EXPECT_EQ(grabbed->GetNumberOfPolys(), expected);
+  EXPECT_GT(expected, 0);
+  EXPECT_LT(expected, cells * 3 / 4); // the ribbon holds 20..40 of the 60 mm tube, R 6
+  for (vtkIdType c = 0; c < grabbed->GetNumberOfPolys(); ++c)
+  {
+    EXPECT_TRUE(touches(grabbed, c, bound)) << c;
+  }
+  // Moves keep the same object (the view uploads it once per grab).
+  ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 30)));
+  EXPECT_EQ(this->Session.GetOriginalInPlay(), grabbed);
+  ASSERT_TRUE(this->Session.MoveFinal(Bent(initial, 60)));
+  EXPECT_EQ(this->Session.GetOriginalInPlay(), grabbed);
+  ASSERT_TRUE(this->Session.Release());
+
+  // Committed: every triangle the warp moved is in play, and only those.
+  vtkPolyData* surface = this->Session.GetSurface();
+  std::vector<bool> moved(static_cast<std::size_t>(original->GetNumberOfPoints()), false);
+  for (vtkIdType i = 0; i < original->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    original->GetPoint(i, p);
+    surface->GetPoint(i, q);
+    moved[static_cast<std::size_t>(i)] = p[0] != q[0] || p[1] != q[1] || p[2] != q[2];
+  }
+  expected = 0;
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    expected += touches(original, c, moved) ? 1 : 0;
+  }
+  vtkPolyData* committed = this->Session.GetOriginalInPlay();
+  ASSERT_NE(committed, nullptr);
+  EXPECT_GT(expected, 0);
+  EXPECT_EQ(committed->GetNumberOfPolys(), expected);
+  // Undo: the surface is the original again, nothing in play.
+  ASSERT_TRUE(this->Session.Undo());
+  EXPECT_EQ(this->Session.GetOriginalInPlay()->GetNumberOfPolys(), 0);
+}
+
+TEST_F(BenderSessionTest, OriginalInPlayIsAllOfItAfterASubdividedCommit)
+{
+  WarpParameters parameters = this->Session.GetParameters();
+  parameters.subdivide = true;
+  parameters.subdivisionTolerance = 0.01;
+  ASSERT_TRUE(this->Session.SetParameters(parameters));
+  this->Bend(60);
+  ASSERT_GT(this->Session.GetSurface()->GetNumberOfPolys(), this->Tube->GetNumberOfPolys());
+  EXPECT_EQ(this->Session.GetOriginalInPlay(), nullptr);
+}

@@ -87,6 +87,8 @@ TEST_F(LevelOfDetailTest, BigSurfaceDragsItsCopyAndReleaseCommitsTheWholeSurface
 
   ASSERT_TRUE(withCopy.Grab(this->Warp().initial));
   EXPECT_TRUE(withCopy.IsDraggingProxy());
+  // The ghost is then the view's decimated copy of the whole original.
+  EXPECT_EQ(withCopy.GetOriginalInPlay(), nullptr);
   EXPECT_EQ(withCopy.GetProxyBuildCount(), 1);
   vtkNew<vtkPolyData> copyAtGrab;
   copyAtGrab->DeepCopy(withCopy.GetProxySurface());
