@@ -33,6 +33,7 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 #include <vtk_loguru.h>
+#include <vtksys/SystemTools.hxx>
 
 #include <array>
 #include <cctype>
@@ -467,7 +468,14 @@ vtkSmartPointer<vtkPolyData> ReadStl(const std::string& path, std::uintmax_t siz
     Fail(path, msg.str());
   }
 
-  if (!binary)
+  // vtkSTLReader decides by itself how to read the file (vtksys DetectFileType: binary when
+  // 5 % or more of the first 256 bytes are neither printable ASCII nor tab, CR or LF). An ASCII
+  // file it would read as binary (a solid name of bytes >= 128) would have the text after the
+  // header read as a triangle count (19 GB asked for); a binary file it would read as text is
+  // checked as the ASCII STL that VTK will parse.
+  const bool vtkReadsText =
+    vtksys::SystemTools::DetectFileType(path.c_str()) == vtksys::SystemTools::FileTypeText;
+  if (!binary || vtkReadsText)
   {
     // VTK 9.1's ASCII STL parser asks for gigabytes or misreads a malformed facet.
     std::string problem;
@@ -476,6 +484,13 @@ vtkSmartPointer<vtkPolyData> ReadStl(const std::string& path, std::uintmax_t siz
       Fail(path, problem);
     }
   }
+  if (!binary && !vtkReadsText)
+  {
+    Fail(path,
+      "ASCII STL with too many bytes that are not printable ASCII in its first 256 bytes (the "
+      "STL reader would take it for binary)");
+  }
+  binary = binary && !vtkReadsText;
   VtkMessageGuard guard;
   vtkNew<vtkSTLReader> reader;
   guard.Watch(reader);

@@ -534,6 +534,31 @@ TEST(MeshIOBadInput, SmallOrGarbledStl)
   }
 }
 
+// vtkSTLReader chooses ASCII or binary from the share of non-text bytes in the first 256 bytes,
+// whatever the file starts with: ReadMesh must check the file the way VTK will read it.
+TEST(MeshIOBadInput, StlReadTheWayVtkWillReadIt)
+{
+  TempDir dir;
+  const std::string facet = "  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n"
+                            "      vertex 1 0 0\n      vertex 0 1 0\n    endloop\n  endfacet\n";
+  // An ASCII STL whose solid name is 40 bytes of 0xff: VTK reads it as binary, with the text
+  // after the 80-byte header as the triangle count (fuzz_mesh_stl: a 19 GB allocation).
+  const std::string name(40, '\xff');
+  WriteText(dir / "name.stl", "solid " + name + "\n" + facet + "endsolid " + name + "\n");
+  ExpectReadError(dir / "name.stl", "would take it for binary");
+  // The same with a plain name is read.
+  WriteText(dir / "plain.stl", "solid plain\n" + facet + "endsolid plain\n");
+  EXPECT_EQ(ReadMesh(dir / "plain.stl")->GetNumberOfPolys(), 1);
+  // Exactly as long as a binary STL with the count in bytes 80..83 says (10 triangles), but
+  // text that VTK parses as ASCII: checked as ASCII STL (its NUL bytes refused).
+  std::string text = "solid x";
+  text.resize(80, ' ');
+  text += std::string("\n\0\0\0", 4) + facet + "endsolid x\n";
+  text.resize(84 + 50 * 10, ' ');
+  WriteText(dir / "sized.stl", text);
+  ExpectReadError(dir / "sized.stl", "NUL byte");
+}
+
 TEST(MeshIOBadInput, NonFiniteCoordinatesAreRejected)
 {
   TempDir dir;
