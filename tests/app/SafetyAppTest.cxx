@@ -366,6 +366,8 @@ private slots:
     this->Window->actions()->Undo->trigger(); // Edit > Undo (Ctrl+Z)
     QTRY_VERIFY(session.GetHistoryPosition() == 0);
     QTRY_VERIFY(RibbonDistance(this->widgetRibbon(), this->Placed) < 1e-9);
+    // The Bend panel in front again for the functions (and pictures) that follow.
+    QVERIFY(bendertest::ShowPanel(*this->Window, this->Window->bendPanel()));
   }
 
   void commitGuardHoldsACrushingBend()
