@@ -18,6 +18,7 @@
 // usage: bench_centerlines [--invariance] [REPEATS] [SURFACE ...]   (default 5 repeats, the
 // two surfaces)
 
+#include "DelaunayTetrahedra.h"
 #include "DemoPipeline.h"
 #include "MeshIO.h"
 #include "VesselArrayNames.h"
@@ -37,12 +38,15 @@
 #include <vtkTransformPolyDataFilter.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -99,6 +103,59 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
     std::printf(" %s %s", names[k], spread.c_str());
   }
   std::printf("\n");
+}
+
+// The Delaunay stage against a reference in the same run: the surface's points (jittered by
+// 1e-7 of the diagonal, as the centerlines jitter theirs) tetrahedralised by the centerlines'
+// incremental Delaunay and by Qhull (the library the centerlines used before).
+void DelaunayReference(vtkPolyData* surface, int repeats)
+{
+  std::vector<std::array<double, 3>> points(static_cast<std::size_t>(surface->GetNumberOfPoints()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    surface->GetPoint(static_cast<vtkIdType>(i), points[i].data());
+  }
+  const double diagonal = surface->GetLength();
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> jitter(-1e-7 * diagonal, 1e-7 * diagonal);
+  for (auto& p : points)
+  {
+    for (double& c : p)
+    {
+      c += jitter(random);
+    }
+  }
+  std::vector<std::array<vtkIdType, 4>> tets;
+  std::string error;
+  std::size_t ours = 0, qhull = 0;
+  const auto oursMs = bender_bench::TimeRunsMs(repeats,
+    [&]
+    {
+      auto copy = points;
+      if (!bender::DelaunayTetrahedra(copy, tets, error))
+      {
+        throw std::runtime_error("Delaunay: " + error);
+      }
+      ours = tets.size();
+    });
+  const auto qhullMs = bender_bench::TimeRunsMs(repeats,
+    [&]
+    {
+      if (!bender::QhullTetrahedra(points, tets, error))
+      {
+        throw std::runtime_error("Qhull: " + error);
+      }
+      qhull = tets.size();
+    });
+  const auto a = bender_bench::Summarise(oursMs), b = bender_bench::Summarise(qhullMs);
+  std::printf("  Delaunay of the %zu surface points, ms: incremental %s (%zu tetrahedra), Qhull %s "
+              "(%zu): Qhull / incremental %.1fx\n",
+    points.size(),
+    bender_bench::Format(a).c_str(),
+    ours,
+    bender_bench::Format(b).c_str(),
+    qhull,
+    b.median / a.median);
 }
 
 double SegmentDistance(const Point3& p, const Point3& a, const Point3& b)
@@ -282,6 +339,7 @@ int main(int argc, char* argv[])
       {
         auto surface = bender::ReadMesh(argv[i]);
         Run(argv[i], surface, repeats);
+        DelaunayReference(surface, repeats);
         if (invariance)
         {
           Invariance(argv[i], surface);
@@ -292,8 +350,10 @@ int main(int argc, char* argv[])
     const std::string aneurysm = std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl";
     auto source = bender::ReadMesh(aneurysm);
     Run("gmsh aneurysm (open)", source, repeats);
+    DelaunayReference(source, repeats);
     const bender::DemoVessel demo = bender::SegmentDemoVessel(bender::DemoVesselPath());
     Run("demo segmentation (closed)", demo.surface, repeats);
+    DelaunayReference(demo.surface, repeats);
     if (invariance)
     {
       Invariance("gmsh aneurysm (open)", source);
