@@ -214,9 +214,9 @@ std::vector<BoundaryLoop> FindLoops(const Wall& wall, int& openChains)
 // ---- 3D Delaunay ----------------------------------------------------------------------------
 using Tetra = std::array<vtkIdType, 4>;
 
-// Our incremental Delaunay (DelaunayTetrahedra.h: exact predicates, about ten times faster
-// than Qhull on vessel surfaces); Qhull, where the system has it, only should the incremental
-// one report an internal inconsistency. The points are snapped to the triangulation's grid.
+// Our incremental Delaunay (DelaunayTetrahedra.h: exact predicates, three to five times faster
+// than Qhull on vessel surfaces, see bench_centerlines); Qhull, where the system has it, only
+// should the incremental one report an internal inconsistency. The points are snapped to the triangulation's grid.
 bool Tetrahedralise(std::vector<Point3>& points, std::vector<Tetra>& tets, std::string& error)
 {
   tets.clear();
