@@ -6,8 +6,9 @@
 // Method (the one described by Antiga et al., IEEE TMI 2004, and VMTK's documentation; this
 // is an independent implementation):
 //  1. The surface's points (plus points sampled on temporary flat caps over its open ends)
-//     are tetrahedralised (3D Delaunay). The circumcentre of a tetrahedron is a vertex of the
-//     Voronoi diagram of the points; its circumradius is the radius of an empty sphere.
+//     are tetrahedralised (3D Delaunay, DelaunayTetrahedra.h). The circumcentre of a
+//     tetrahedron is a vertex of the Voronoi diagram of the points; its circumradius is the
+//     radius of an empty sphere.
 //     Tetrahedra whose circumcentre lies inside the lumen (on the inner side of the surface
 //     normals at all four of its vertices) form the internal Voronoi graph, two of them being
 //     connected when they share a face.
