@@ -3,8 +3,8 @@
 // triangles, closed), with the time of each stage. Prints the machine, every run and the
 // median, min and max of each stage, then the Delaunay stage against a reference measured in the
 // same run: the surface's points tetrahedralised by the centerlines' own Delaunay and by Qhull.
-// Target (issue 10): at most 1 s for the 55 k-triangle surface on a 2-core machine. Figures taken on a loaded machine are not final: say so when
-// quoting them.
+// Target (issue 10): at most 1 s for the 55 k-triangle surface on a 2-core machine. Figures taken
+// on a loaded machine are not final: say so when quoting them.
 //
 // With --invariance it also prints how far the centerline moves under a rigid motion, a finer
 // (linear subdivision, 4 x the triangles) and a coarser (quadric decimation to half) remeshing of

@@ -60,8 +60,8 @@ public:
     const double m2 = cz * dx - cx * dz;
     const double m3 = cx * dy - cy * dx;
     const double det = bx * m1 + by * m2 + bz * m3;
-    const double permanent = std::abs(bx) * std::abs(m1) + std::abs(by) * std::abs(m2) +
-      std::abs(bz) * std::abs(m3);
+    const double permanent =
+      std::abs(bx) * std::abs(m1) + std::abs(by) * std::abs(m2) + std::abs(bz) * std::abs(m3);
     if (det > FilterBound * permanent)
     {
       return 1;
@@ -150,14 +150,14 @@ public:
     const double wd = D[0] * D[0] + D[1] * D[1] + D[2] * D[2];
     // -det[[A, wa], [B, wb], [C, wc], [D, wd]] expanded along the lifts: positive inside.
     const double det = wa * bcd - wb * acd + wc * abd - wd * abc;
-    const double pbcd = std::abs(B[2]) * std::abs(cd) + std::abs(C[2]) * std::abs(bd) +
-      std::abs(D[2]) * std::abs(bc);
-    const double pacd = std::abs(A[2]) * std::abs(cd) + std::abs(C[2]) * std::abs(ad) +
-      std::abs(D[2]) * std::abs(ac);
-    const double pabd = std::abs(A[2]) * std::abs(bd) + std::abs(B[2]) * std::abs(ad) +
-      std::abs(D[2]) * std::abs(ab);
-    const double pabc = std::abs(A[2]) * std::abs(bc) + std::abs(B[2]) * std::abs(ac) +
-      std::abs(C[2]) * std::abs(ab);
+    const double pbcd =
+      std::abs(B[2]) * std::abs(cd) + std::abs(C[2]) * std::abs(bd) + std::abs(D[2]) * std::abs(bc);
+    const double pacd =
+      std::abs(A[2]) * std::abs(cd) + std::abs(C[2]) * std::abs(ad) + std::abs(D[2]) * std::abs(ac);
+    const double pabd =
+      std::abs(A[2]) * std::abs(bd) + std::abs(B[2]) * std::abs(ad) + std::abs(D[2]) * std::abs(ab);
+    const double pabc =
+      std::abs(A[2]) * std::abs(bc) + std::abs(B[2]) * std::abs(ac) + std::abs(C[2]) * std::abs(ab);
     const double permanent = wa * pbcd + wb * pacd + wc * pabd + wd * pabc;
     if (det > FilterBound * permanent)
     {
@@ -214,7 +214,9 @@ std::uint64_t Morton(const std::array<double, 3>& g)
 } // namespace
 
 bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
-  std::vector<std::array<vtkIdType, 4>>& tetras, std::string& error, DelaunayStatistics* statistics)
+  std::vector<std::array<vtkIdType, 4>>& tetras,
+  std::string& error,
+  DelaunayStatistics* statistics)
 {
   tetras.clear();
   DelaunayStatistics localStats;
@@ -246,8 +248,7 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
       hi[c] = std::max(hi[c], p[c]);
     }
   }
-  const double centre[3] = { 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]),
-    0.5 * (lo[2] + hi[2]) };
+  const double centre[3] = { 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]) };
   const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
     (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
   if (!(diagonal > 0) || !std::isfinite(diagonal))
@@ -576,7 +577,8 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
 // Qhull's Delaunay: the lower hull of the points lifted to a paraboloid, triangulated output
 // ('Qt'), with a point at infinity for co-spherical input ('Qz').
 bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
-  std::vector<std::array<vtkIdType, 4>>& tetras, std::string& error)
+  std::vector<std::array<vtkIdType, 4>>& tetras,
+  std::string& error)
 {
   tetras.clear();
   std::vector<coordT> coords(points.size() * 3);
@@ -642,7 +644,8 @@ bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
 }
 #else
 bool QhullTetrahedra(const std::vector<std::array<double, 3>>&,
-  std::vector<std::array<vtkIdType, 4>>& tetras, std::string& error)
+  std::vector<std::array<vtkIdType, 4>>& tetras,
+  std::string& error)
 {
   tetras.clear();
   error = "this build has no Qhull";

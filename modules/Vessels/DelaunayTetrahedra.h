@@ -36,10 +36,10 @@ namespace bender
 
 struct DelaunayStatistics
 {
-  vtkIdType Duplicates = 0;   ///< points equal (on the grid) to an earlier one, left out
-  vtkIdType ExactTests = 0;   ///< predicates the double-precision filter could not decide
+  vtkIdType Duplicates = 0;    ///< points equal (on the grid) to an earlier one, left out
+  vtkIdType ExactTests = 0;    ///< predicates the double-precision filter could not decide
   vtkIdType Perturbations = 0; ///< exact ties broken by the symbolic perturbation
-  double GridStep = 0.0;      ///< the snapping step, in the points' unit
+  double GridStep = 0.0;       ///< the snapping step, in the points' unit
 };
 
 /// Delaunay tetrahedra of `points` (indices into it), each positively oriented (its fourth
@@ -50,7 +50,8 @@ struct DelaunayStatistics
 /// a one-line reason when there are fewer than four distinct points, non-finite coordinates,
 /// or the points are all co-planar.
 bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
-  std::vector<std::array<vtkIdType, 4>>& tetras, std::string& error,
+  std::vector<std::array<vtkIdType, 4>>& tetras,
+  std::string& error,
   DelaunayStatistics* statistics = nullptr);
 
 /// Qhull's Delaunay of the same points (not moved), kept as the fallback should the incremental
@@ -58,7 +59,8 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
 /// tests. Tetrahedra as Qhull orders them (not oriented). Returns false with Qhull's first
 /// message line, or when the build has no Qhull.
 bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
-  std::vector<std::array<vtkIdType, 4>>& tetras, std::string& error);
+  std::vector<std::array<vtkIdType, 4>>& tetras,
+  std::string& error);
 
 } // namespace bender
 

@@ -216,7 +216,8 @@ using Tetra = std::array<vtkIdType, 4>;
 
 // Our incremental Delaunay (DelaunayTetrahedra.h: exact predicates, three to five times faster
 // than Qhull on vessel surfaces, see bench_centerlines); Qhull, where the system has it, only
-// should the incremental one report an internal inconsistency. The points are snapped to the triangulation's grid.
+// should the incremental one report an internal inconsistency. The points are snapped to the
+// triangulation's grid.
 bool Tetrahedralise(std::vector<Point3>& points, std::vector<Tetra>& tets, std::string& error)
 {
   tets.clear();

@@ -29,8 +29,12 @@ long double Orient(const Point& a, const Point& b, const Point& c, const Point& 
 }
 
 // Circumcentre and squared radius in long double; false for a flat quadruple.
-bool Circumsphere(const Point& a, const Point& b, const Point& c, const Point& d,
-  std::array<long double, 3>& centre, long double& radius2)
+bool Circumsphere(const Point& a,
+  const Point& b,
+  const Point& c,
+  const Point& d,
+  std::array<long double, 3>& centre,
+  long double& radius2)
 {
   long double m[3][3], r[3];
   const Point* q[3] = { &b, &c, &d };
@@ -156,10 +160,12 @@ void ExpectDelaunay(std::vector<Point> points)
           if (empty)
           {
             ++expected;
-            const Tet t{ { static_cast<vtkIdType>(a), static_cast<vtkIdType>(b),
-              static_cast<vtkIdType>(c), static_cast<vtkIdType>(d) } };
-            EXPECT_TRUE(found.count(t)) << "a Delaunay tetrahedron is missing: " << a << " "
-                                        << b << " " << c << " " << d;
+            const Tet t{ { static_cast<vtkIdType>(a),
+              static_cast<vtkIdType>(b),
+              static_cast<vtkIdType>(c),
+              static_cast<vtkIdType>(d) } };
+            EXPECT_TRUE(found.count(t))
+              << "a Delaunay tetrahedron is missing: " << a << " " << b << " " << c << " " << d;
           }
         }
       }
@@ -197,9 +203,9 @@ TEST(DelaunayTetrahedra, TubeWallMatchesTheEmptySphereDefinition)
     for (int k = 0; k < 9; ++k)
     {
       const double a = 2 * pi * (k + 0.5 * (ring % 2)) / 9;
-      points.push_back(
-        { { 3 * std::cos(a) + jitter(random), 3 * std::sin(a) + jitter(random),
-          1.2 * ring + jitter(random) } });
+      points.push_back({ { 3 * std::cos(a) + jitter(random),
+        3 * std::sin(a) + jitter(random),
+        1.2 * ring + jitter(random) } });
     }
   }
   ExpectDelaunay(points);
@@ -298,8 +304,12 @@ TEST(DelaunayTetrahedra, CoSphericalLatticeIsTriangulatedWithoutFlatTetrahedra)
 
 TEST(DelaunayTetrahedra, DuplicatesAreLeftOut)
 {
-  std::vector<Point> points = { { { 0, 0, 0 } }, { { 1, 0, 0 } }, { { 0, 1, 0 } },
-    { { 0, 0, 1 } }, { { 1, 0, 0 } }, { { 0.2, 0.2, 0.2 } } };
+  std::vector<Point> points = { { { 0, 0, 0 } },
+    { { 1, 0, 0 } },
+    { { 0, 1, 0 } },
+    { { 0, 0, 1 } },
+    { { 1, 0, 0 } },
+    { { 0.2, 0.2, 0.2 } } };
   std::vector<Tet> tets;
   std::string error;
   bender::DelaunayStatistics stats;
