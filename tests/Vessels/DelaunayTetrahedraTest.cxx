@@ -310,6 +310,59 @@ TEST(DelaunayTetrahedra, CoSphericalLatticeIsTriangulatedWithoutFlatTetrahedra)
     << "the tetrahedra tile the lattice's cube";
 }
 
+TEST(DelaunayTetrahedra, ExactGridLatticeWithManyTiesTilesItsCube)
+{
+  // A 5 x 5 x 5 lattice placed exactly on the triangulation's grid (inside eight frame points
+  // that fix the grid): 64 cubes of eight exactly co-spherical corners and many more ties
+  // between them, all decided by the perturbation, which must be consistent for the cavities
+  // to stay star-shaped.
+  const double l = 40.0;
+  std::vector<Point> frame;
+  for (int c = 0; c < 8; ++c)
+  {
+    frame.push_back({ { c & 1 ? l : -l, c & 2 ? l : -l, c & 4 ? l : -l } });
+  }
+  std::vector<Point> probe = frame;
+  std::vector<Tet> tets;
+  std::string error;
+  bender::DelaunayStatistics stats;
+  ASSERT_TRUE(bender::DelaunayTetrahedra(probe, tets, error, &stats)) << error;
+  const double spacing = 60000.0 * stats.GridStep;
+  ASSERT_LT(2 * spacing, l);
+  std::vector<Point> points = frame;
+  for (int i = -2; i <= 2; ++i)
+  {
+    for (int j = -2; j <= 2; ++j)
+    {
+      for (int k = -2; k <= 2; ++k)
+      {
+        points.push_back({ { i * spacing, j * spacing, k * spacing } });
+      }
+    }
+  }
+  const std::vector<Point> original = points;
+  ASSERT_TRUE(bender::DelaunayTetrahedra(points, tets, error, &stats)) << error;
+  EXPECT_TRUE(std::equal(points.begin() + 8, points.end(), original.begin() + 8))
+    << "the lattice lies on the grid already (the frame's corners need not)";
+  EXPECT_GT(stats.Perturbations, 100);
+  EXPECT_EQ(stats.Duplicates, 0);
+  long double volume = 0;
+  for (const Tet& t : tets)
+  {
+    const long double v = Orient(points[t[0]], points[t[1]], points[t[2]], points[t[3]]) / 6;
+    EXPECT_GT(v, 0) << "a flat or inverted tetrahedron";
+    volume += v;
+    EXPECT_GE(EmptinessMargin(points, t), -1e-9L * l * l);
+  }
+  // The frame's cube (as snapped) is the convex hull; every tetrahedron inside has a small
+  // circumsphere.
+  const long double side = points[7][0] - points[0][0];
+  EXPECT_NEAR(static_cast<double>(volume),
+    static_cast<double>(side * side * side),
+    1e-9 * static_cast<double>(side * side * side))
+    << "the tetrahedra tile the frame's cube";
+}
+
 TEST(DelaunayTetrahedra, DuplicatesAreLeftOut)
 {
   std::vector<Point> points = { { { 0, 0, 0 } },
