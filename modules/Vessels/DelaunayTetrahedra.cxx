@@ -211,14 +211,65 @@ std::uint64_t Morton(const std::array<double, 3>& g)
   return spread(key(g[0])) | spread(key(g[1])) << 1 | spread(key(g[2])) << 2;
 }
 
+#ifdef BENDER_HAVE_QHULL
+// Neighbours of tetrahedra given without them (Qhull's): faces matched by sorting.
+std::vector<std::array<vtkIdType, 4>> FaceNeighbours(
+  const std::vector<std::array<vtkIdType, 4>>& tetras)
+{
+  struct Face
+  {
+    std::array<vtkIdType, 3> Ids;
+    vtkIdType Tet;
+    int Opposite;
+  };
+  std::vector<Face> faces;
+  faces.reserve(4 * tetras.size());
+  for (std::size_t t = 0; t < tetras.size(); ++t)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      Face f{ {}, static_cast<vtkIdType>(t), k };
+      int m = 0;
+      for (int j = 0; j < 4; ++j)
+      {
+        if (j != k)
+        {
+          f.Ids[m++] = tetras[t][j];
+        }
+      }
+      std::sort(f.Ids.begin(), f.Ids.end());
+      faces.push_back(f);
+    }
+  }
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.Ids < b.Ids; });
+  std::vector<std::array<vtkIdType, 4>> neighbours(
+    tetras.size(), std::array<vtkIdType, 4>{ { -1, -1, -1, -1 } });
+  for (std::size_t i = 0; i + 1 < faces.size(); ++i)
+  {
+    if (faces[i].Ids == faces[i + 1].Ids)
+    {
+      neighbours[faces[i].Tet][faces[i].Opposite] = faces[i + 1].Tet;
+      neighbours[faces[i + 1].Tet][faces[i + 1].Opposite] = faces[i].Tet;
+      ++i;
+    }
+  }
+  return neighbours;
+}
+#endif
+
 } // namespace
 
 bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   std::vector<std::array<vtkIdType, 4>>& tetras,
   std::string& error,
-  DelaunayStatistics* statistics)
+  DelaunayStatistics* statistics,
+  std::vector<std::array<vtkIdType, 4>>* neighbours)
 {
   tetras.clear();
+  if (neighbours)
+  {
+    neighbours->clear();
+  }
   DelaunayStatistics localStats;
   DelaunayStatistics& stats = statistics ? *statistics : localStats;
   stats = DelaunayStatistics();
@@ -558,11 +609,30 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   }
 
   const int limit = static_cast<int>(n);
-  for (const Tetra& T : tets)
+  std::vector<vtkIdType> index(tets.size(), -1);
+  for (std::size_t i = 0; i < tets.size(); ++i)
   {
+    const Tetra& T = tets[i];
     if (T.V[0] >= 0 && T.V[0] < limit && T.V[1] < limit && T.V[2] < limit && T.V[3] < limit)
     {
+      index[i] = static_cast<vtkIdType>(tetras.size());
       tetras.push_back({ { T.V[0], T.V[1], T.V[2], T.V[3] } });
+    }
+  }
+  if (neighbours)
+  {
+    neighbours->reserve(tetras.size());
+    for (std::size_t i = 0; i < tets.size(); ++i)
+    {
+      if (index[i] >= 0)
+      {
+        std::array<vtkIdType, 4> across;
+        for (int k = 0; k < 4; ++k)
+        {
+          across[k] = tets[i].N[k] >= 0 ? index[tets[i].N[k]] : -1;
+        }
+        neighbours->push_back(across);
+      }
     }
   }
   if (tetras.empty())
@@ -578,9 +648,14 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
 // ('Qt'), with a point at infinity for co-spherical input ('Qz').
 bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
   std::vector<std::array<vtkIdType, 4>>& tetras,
-  std::string& error)
+  std::string& error,
+  std::vector<std::array<vtkIdType, 4>>* neighbours)
 {
   tetras.clear();
+  if (neighbours)
+  {
+    neighbours->clear();
+  }
   std::vector<coordT> coords(points.size() * 3);
   for (std::size_t i = 0; i < points.size(); ++i)
   {
@@ -640,14 +715,23 @@ bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
     error = "Delaunay failed: " + message.substr(0, std::min<std::size_t>(newline, 200));
   }
   std::free(buffer);
+  if (exitCode == 0 && neighbours)
+  {
+    *neighbours = FaceNeighbours(tetras);
+  }
   return exitCode == 0;
 }
 #else
 bool QhullTetrahedra(const std::vector<std::array<double, 3>>&,
   std::vector<std::array<vtkIdType, 4>>& tetras,
-  std::string& error)
+  std::string& error,
+  std::vector<std::array<vtkIdType, 4>>* neighbours)
 {
   tetras.clear();
+  if (neighbours)
+  {
+    neighbours->clear();
+  }
   error = "this build has no Qhull";
   return false;
 }

@@ -49,18 +49,23 @@ struct DelaunayStatistics
 /// circumcentres computed afterwards belong to the triangulated positions. Returns false with
 /// a one-line reason when there are fewer than four distinct points, non-finite coordinates,
 /// or the points are all co-planar.
+/// `neighbours`, when given, receives for each tetrahedron the index of the one across the face
+/// opposite each of its vertices (-1 where there is none among those returned).
 bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   std::vector<std::array<vtkIdType, 4>>& tetras,
   std::string& error,
-  DelaunayStatistics* statistics = nullptr);
+  DelaunayStatistics* statistics = nullptr,
+  std::vector<std::array<vtkIdType, 4>>* neighbours = nullptr);
 
 /// Qhull's Delaunay of the same points (not moved), kept as the fallback should the incremental
 /// one ever report an internal inconsistency, and as the reference of bench_centerlines and the
 /// tests. Tetrahedra as Qhull orders them (not oriented). Returns false with Qhull's first
 /// message line, or when the build has no Qhull.
+/// `neighbours` as for DelaunayTetrahedra (found by matching shared faces).
 bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
   std::vector<std::array<vtkIdType, 4>>& tetras,
-  std::string& error);
+  std::string& error,
+  std::vector<std::array<vtkIdType, 4>>* neighbours = nullptr);
 
 } // namespace bender
 

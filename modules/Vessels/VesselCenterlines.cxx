@@ -217,19 +217,21 @@ using Tetra = std::array<vtkIdType, 4>;
 // Our incremental Delaunay (DelaunayTetrahedra.h: exact predicates, three to five times faster
 // than Qhull on vessel surfaces, see bench_centerlines); Qhull, where the system has it, only
 // should the incremental one report an internal inconsistency. The points are snapped to the
-// triangulation's grid.
-bool Tetrahedralise(std::vector<Point3>& points, std::vector<Tetra>& tets, std::string& error)
+// triangulation's grid. `neighbours`: the tetrahedron across the face opposite each vertex.
+bool Tetrahedralise(std::vector<Point3>& points,
+  std::vector<Tetra>& tets,
+  std::vector<Tetra>& neighbours,
+  std::string& error)
 {
   tets.clear();
-  if (DelaunayTetrahedra(points, tets, error))
+  if (DelaunayTetrahedra(points, tets, error, nullptr, &neighbours))
   {
     return true;
   }
   if (error.rfind("internal error", 0) == 0)
   {
     std::string qhullError;
-    tets.clear();
-    if (QhullTetrahedra(points, tets, qhullError))
+    if (QhullTetrahedra(points, tets, qhullError, &neighbours))
     {
       return true;
     }
@@ -567,13 +569,27 @@ public:
   }
 
   /// Unsigned distance to the wall and whether p is on the inner side of the closest triangle.
-  double Query(const Point3& p, bool& inside, Point3& closest)
+  /// `bound`, when finite, is a distance the wall is known to lie within (a wall point that
+  /// close): the locator then searches that ball only, for the same answer, much faster.
+  double Query(const Point3& p,
+    bool& inside,
+    Point3& closest,
+    double bound = std::numeric_limits<double>::infinity())
   {
     double x[3] = { p[0], p[1], p[2] }, c[3];
     vtkIdType cellId = -1;
-    int subId = 0;
+    int subId = 0, within = 0;
     double d2 = 0.0;
-    this->Locator->FindClosestPoint(x, c, this->Cell, cellId, subId, d2);
+    if (std::isfinite(bound))
+    {
+      int onCell = 0;
+      within = this->Locator->FindClosestPointWithinRadius(
+                 x, bound, c, this->Cell, cellId, subId, d2, onCell) != 0;
+    }
+    if (!within)
+    {
+      this->Locator->FindClosestPoint(x, c, this->Cell, cellId, subId, d2);
+    }
     closest = { { c[0], c[1], c[2] } };
     inside = true;
     if (cellId >= 0)
@@ -679,8 +695,9 @@ struct Section
 {
   SectionKind Kind = SectionKind::Failed;
   Point3 Centroid{ { 0, 0, 0 } };
-  double Roundness = 0;  ///< largest over smallest distance from the centroid to the loop
-  double MeanRadius = 0; ///< sqrt(area / pi)
+  double Roundness = 0; ///< largest over smallest distance from the centroid to the loop
+  double Nearest = std::numeric_limits<double>::infinity(); ///< centroid to the loop (on the wall)
+  double MeanRadius = 0;                                    ///< sqrt(area / pi)
 };
 
 // The cross-section of the lumen through p in the plane normal to t: the loop of the wall's
@@ -838,6 +855,7 @@ Section CutSection(WallDistance& distance,
   section.Kind = SectionKind::Closed;
   section.Centroid = Add(p, Add(Scale(e1, cx), Scale(e2, cy)));
   section.Roundness = nearest > 0 ? farthest / nearest : std::numeric_limits<double>::infinity();
+  section.Nearest = nearest;
   section.MeanRadius = std::sqrt(0.5 * std::abs(area) / 3.14159265358979323846);
   return section;
 }
@@ -1492,9 +1510,9 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     }
   }
   result.NumberOfDelaunayPoints = static_cast<int>(samples.size());
-  std::vector<Tetra> tetras;
+  std::vector<Tetra> tetras, across;
   std::string delaunayError;
-  if (!Tetrahedralise(samples, tetras, delaunayError))
+  if (!Tetrahedralise(samples, tetras, across, delaunayError))
   {
     result.Times.Delaunay = Seconds(clock);
     return Fail(result, "surface points cannot be tetrahedralised (" + delaunayError + ")");
@@ -1511,17 +1529,12 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
   {
     centreToLoop[wall.Loops[l].CentreSampleId] = static_cast<int>(l);
   }
-  struct Face
+  // The graph's node of each tetrahedron (-1: its circumcentre is not an internal vertex).
+  std::vector<int> nodeOf(tetras.size(), -1);
   {
-    vtkIdType A, B, C;
-    int Node;
-    bool operator<(const Face& o) const { return std::tie(A, B, C) < std::tie(o.A, o.B, o.C); }
-  };
-  std::vector<Face> faces;
-  {
-    faces.reserve(tetras.size() * 2);
-    for (const Tetra& tetra : tetras)
+    for (std::size_t t = 0; t < tetras.size(); ++t)
     {
+      const Tetra& tetra = tetras[t];
       vtkIdType v[4] = { tetra[0], tetra[1], tetra[2], tetra[3] };
       if (std::min({ v[0], v[1], v[2], v[3] }) < 0 ||
         std::max({ v[0], v[1], v[2], v[3] }) >= static_cast<vtkIdType>(samples.size()))
@@ -1561,11 +1574,7 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
       const int node = graph.Size();
       graph.Centres.push_back(centre);
       graph.Radii.push_back(radius);
-      std::sort(v, v + 4);
-      faces.push_back({ v[0], v[1], v[2], node });
-      faces.push_back({ v[0], v[1], v[3], node });
-      faces.push_back({ v[0], v[2], v[3], node });
-      faces.push_back({ v[1], v[2], v[3], node });
+      nodeOf[t] = node;
       for (int k = 0; k < 4; ++k)
       {
         auto found = centreToLoop.find(v[k]);
@@ -1586,14 +1595,17 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
       "open tube of triangles?)");
   }
   {
-    std::sort(faces.begin(), faces.end());
+    // Two internal vertices are joined when their tetrahedra share a face.
     std::vector<std::pair<int, int>> edges;
-    for (std::size_t i = 0; i + 1 < faces.size(); ++i)
+    for (std::size_t t = 0; t < tetras.size(); ++t)
     {
-      if (faces[i].A == faces[i + 1].A && faces[i].B == faces[i + 1].B &&
-        faces[i].C == faces[i + 1].C)
+      for (int k = 0; nodeOf[t] >= 0 && k < 4; ++k)
       {
-        edges.emplace_back(faces[i].Node, faces[i + 1].Node);
+        const vtkIdType u = across[t][k];
+        if (u > static_cast<vtkIdType>(t) && nodeOf[u] >= 0)
+        {
+          edges.emplace_back(nodeOf[t], nodeOf[u]);
+        }
       }
     }
     graph.Offsets.assign(graph.Size() + 1, 0);
@@ -2004,7 +2016,11 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
             // The section's width against the inscribed sphere at its centroid.
             bool centroidInside = true;
             Point3 closest;
-            const double inscribed = distance.Query(s.Centroid, centroidInside, closest);
+            // The loop lies on the wall: the wall is at most s.Nearest from the centroid.
+            const double inscribed = distance.Query(s.Centroid,
+              centroidInside,
+              closest,
+              s.Nearest * (1.0 + 1e-9) + 1e-12 * wall.Diagonal);
             weights[i] *= WidthWeight(s, centroidInside ? inscribed : 0.0);
           }
           targets[i] = s.Centroid;
@@ -2053,9 +2069,15 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     samplesOut.Radius.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i)
     {
+      // The distance to the wall changes by at most the step between samples: the previous
+      // sample's bounds the search (with a margin for rounding).
+      const double bound = i == 0
+        ? std::numeric_limits<double>::infinity()
+        : (samplesOut.Radius[i - 1] + Distance(points[i], points[i - 1])) * (1.0 + 1e-9) +
+          1e-12 * wall.Diagonal;
       bool inside = true;
       Point3 closest;
-      samplesOut.Radius[i] = distance.Query(points[i], inside, closest);
+      samplesOut.Radius[i] = distance.Query(points[i], inside, closest, bound);
     }
     samplesOut.Frames = ComputeCurveFrames(points, medianRadius);
     paths.push_back(std::move(samplesOut));

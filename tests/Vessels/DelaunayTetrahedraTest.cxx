@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <set>
 #include <vector>
@@ -272,6 +273,75 @@ TEST(DelaunayTetrahedra, ThousandsOfPointsMatchQhull)
     missing += a.count(t) ? 0 : 1;
   }
   EXPECT_EQ(missing, 0u) << "Qhull's tetrahedra missing from ours";
+}
+
+// Neighbours: across the face opposite vertex k of t lies u, which holds that face and points
+// back; a face shared by two tetrahedra is always linked, a face of one only never.
+void ExpectConsistentNeighbours(const std::vector<Tet>& tets,
+  const std::vector<std::array<vtkIdType, 4>>& neighbours)
+{
+  ASSERT_EQ(neighbours.size(), tets.size());
+  std::map<std::array<vtkIdType, 3>, int> uses;
+  auto face = [&tets](std::size_t t, int k)
+  {
+    std::array<vtkIdType, 3> f{};
+    int m = 0;
+    for (int j = 0; j < 4; ++j)
+    {
+      if (j != k)
+      {
+        f[m++] = tets[t][j];
+      }
+    }
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      ++uses[face(t, k)];
+    }
+  }
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      const vtkIdType u = neighbours[t][k];
+      if (u < 0)
+      {
+        EXPECT_EQ(uses[face(t, k)], 1) << "a shared face is not linked";
+        continue;
+      }
+      ASSERT_LT(u, static_cast<vtkIdType>(tets.size()));
+      int back = -1;
+      for (int j = 0; j < 4; ++j)
+      {
+        back = neighbours[u][j] == static_cast<vtkIdType>(t) ? j : back;
+      }
+      ASSERT_GE(back, 0) << "the neighbour does not point back";
+      EXPECT_EQ(face(static_cast<std::size_t>(u), back), face(t, k));
+    }
+  }
+}
+
+TEST(DelaunayTetrahedra, NeighboursAreTheTetrahedraAcrossEachFace)
+{
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> u(0.0, 10.0);
+  std::vector<Point> points(800);
+  for (auto& p : points)
+  {
+    p = { { u(random), u(random), u(random) } };
+  }
+  std::vector<Tet> tets, qhull;
+  std::vector<std::array<vtkIdType, 4>> neighbours, qhullNeighbours;
+  std::string error;
+  ASSERT_TRUE(bender::DelaunayTetrahedra(points, tets, error, nullptr, &neighbours)) << error;
+  ExpectConsistentNeighbours(tets, neighbours);
+  // Qhull's neighbours (the fallback's) come from matching faces.
+  ASSERT_TRUE(bender::QhullTetrahedra(points, qhull, error, &qhullNeighbours)) << error;
+  ExpectConsistentNeighbours(qhull, qhullNeighbours);
 }
 
 TEST(DelaunayTetrahedra, CoSphericalLatticeIsTriangulatedWithoutFlatTetrahedra)
