@@ -403,6 +403,7 @@ struct Graph
   std::vector<double> Radii;
   std::vector<int> Offsets; // CSR
   std::vector<int> Neighbours;
+  std::vector<double> Lengths; // of the edges, as Neighbours
 
   int Size() const { return static_cast<int>(this->Centres.size()); }
 };
@@ -452,7 +453,7 @@ void AddSources(const Graph& g, ShortestPaths& sp, const std::vector<int>& sourc
     for (int k = g.Offsets[u]; k < g.Offsets[u + 1]; ++k)
     {
       const int v = g.Neighbours[k];
-      double w = Distance(g.Centres[u], g.Centres[v]);
+      double w = g.Lengths[k];
       if (weight == Weight::LengthOverRadius)
       {
         w *= 0.5 * (1.0 / g.Radii[u] + 1.0 / g.Radii[v]);
@@ -1624,6 +1625,14 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     {
       graph.Neighbours[fill[e.first]++] = e.second;
       graph.Neighbours[fill[e.second]++] = e.first;
+    }
+    graph.Lengths.resize(graph.Neighbours.size());
+    for (int u = 0; u < graph.Size(); ++u)
+    {
+      for (int k = graph.Offsets[u]; k < graph.Offsets[u + 1]; ++k)
+      {
+        graph.Lengths[k] = Distance(graph.Centres[u], graph.Centres[graph.Neighbours[k]]);
+      }
     }
   }
   result.Times.Voronoi = Seconds(clock);
