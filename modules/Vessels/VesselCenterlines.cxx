@@ -570,27 +570,13 @@ public:
   }
 
   /// Unsigned distance to the wall and whether p is on the inner side of the closest triangle.
-  /// `bound`, when finite, is a distance the wall is known to lie within (a wall point that
-  /// close): the locator then searches that ball only, for the same answer, much faster.
-  double Query(const Point3& p,
-    bool& inside,
-    Point3& closest,
-    double bound = std::numeric_limits<double>::infinity())
+  double Query(const Point3& p, bool& inside, Point3& closest)
   {
     double x[3] = { p[0], p[1], p[2] }, c[3];
     vtkIdType cellId = -1;
-    int subId = 0, within = 0;
+    int subId = 0;
     double d2 = 0.0;
-    if (std::isfinite(bound))
-    {
-      int onCell = 0;
-      within = this->Locator->FindClosestPointWithinRadius(
-                 x, bound, c, this->Cell, cellId, subId, d2, onCell) != 0;
-    }
-    if (!within)
-    {
-      this->Locator->FindClosestPoint(x, c, this->Cell, cellId, subId, d2);
-    }
+    this->Locator->FindClosestPoint(x, c, this->Cell, cellId, subId, d2);
     closest = { { c[0], c[1], c[2] } };
     inside = true;
     if (cellId >= 0)
@@ -696,9 +682,8 @@ struct Section
 {
   SectionKind Kind = SectionKind::Failed;
   Point3 Centroid{ { 0, 0, 0 } };
-  double Roundness = 0; ///< largest over smallest distance from the centroid to the loop
-  double Nearest = std::numeric_limits<double>::infinity(); ///< centroid to the loop (on the wall)
-  double MeanRadius = 0;                                    ///< sqrt(area / pi)
+  double Roundness = 0;  ///< largest over smallest distance from the centroid to the loop
+  double MeanRadius = 0; ///< sqrt(area / pi)
 };
 
 // The cross-section of the lumen through p in the plane normal to t: the loop of the wall's
@@ -856,7 +841,6 @@ Section CutSection(WallDistance& distance,
   section.Kind = SectionKind::Closed;
   section.Centroid = Add(p, Add(Scale(e1, cx), Scale(e2, cy)));
   section.Roundness = nearest > 0 ? farthest / nearest : std::numeric_limits<double>::infinity();
-  section.Nearest = nearest;
   section.MeanRadius = std::sqrt(0.5 * std::abs(area) / 3.14159265358979323846);
   return section;
 }
@@ -2025,11 +2009,7 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
             // The section's width against the inscribed sphere at its centroid.
             bool centroidInside = true;
             Point3 closest;
-            // The loop lies on the wall: the wall is at most s.Nearest from the centroid.
-            const double inscribed = distance.Query(s.Centroid,
-              centroidInside,
-              closest,
-              s.Nearest * (1.0 + 1e-9) + 1e-12 * wall.Diagonal);
+            const double inscribed = distance.Query(s.Centroid, centroidInside, closest);
             weights[i] *= WidthWeight(s, centroidInside ? inscribed : 0.0);
           }
           targets[i] = s.Centroid;
@@ -2078,15 +2058,9 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     samplesOut.Radius.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i)
     {
-      // The distance to the wall changes by at most the step between samples: the previous
-      // sample's bounds the search (with a margin for rounding).
-      const double bound = i == 0
-        ? std::numeric_limits<double>::infinity()
-        : (samplesOut.Radius[i - 1] + Distance(points[i], points[i - 1])) * (1.0 + 1e-9) +
-          1e-12 * wall.Diagonal;
       bool inside = true;
       Point3 closest;
-      samplesOut.Radius[i] = distance.Query(points[i], inside, closest, bound);
+      samplesOut.Radius[i] = distance.Query(points[i], inside, closest);
     }
     samplesOut.Frames = ComputeCurveFrames(points, medianRadius);
     paths.push_back(std::move(samplesOut));
