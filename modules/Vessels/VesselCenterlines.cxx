@@ -214,7 +214,7 @@ std::vector<BoundaryLoop> FindLoops(const Wall& wall, int& openChains)
 // ---- 3D Delaunay ----------------------------------------------------------------------------
 using Tetra = std::array<vtkIdType, 4>;
 
-// Our incremental Delaunay (DelaunayTetrahedra.h: exact predicates, three to five times faster
+// Our incremental Delaunay (DelaunayTetrahedra.h: exact predicates, three to six times faster
 // than Qhull on vessel surfaces, see bench_centerlines); Qhull, where the system has it, only
 // should the incremental one report an internal inconsistency. The points are snapped to the
 // triangulation's grid. `neighbours`: the tetrahedron across the face opposite each vertex.
