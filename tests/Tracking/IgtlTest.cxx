@@ -213,13 +213,16 @@ Collected Collect(bender::TrackerDevice& device, const std::function<bool(const 
   for (int i = 0; i < 400 && !done(c); ++i)
   {
     device.WaitForActivity(std::chrono::milliseconds(50));
-    for (const auto& p : device.TakePoses())
-    {
-      c.poses.push_back(p);
-    }
+    // Events first: the poses the device queued before an event (a disconnection after the
+    // last message) are then in the queue when the poses are taken. The other order lost the
+    // last poses when the device queued them and the event between the two calls.
     for (const auto& e : device.TakeEvents())
     {
       c.events.push_back(e);
+    }
+    for (const auto& p : device.TakePoses())
+    {
+      c.poses.push_back(p);
     }
   }
   return c;
