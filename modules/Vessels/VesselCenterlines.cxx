@@ -218,10 +218,12 @@ using Tetra = std::array<vtkIdType, 4>;
 // than Qhull on vessel surfaces, see bench_centerlines); Qhull, where the system has it, only
 // should the incremental one report an internal inconsistency. The points are snapped to the
 // triangulation's grid. `neighbours`: the tetrahedron across the face opposite each vertex.
+// `warning`: set when Qhull had to step in.
 bool Tetrahedralise(std::vector<Point3>& points,
   std::vector<Tetra>& tets,
   std::vector<Tetra>& neighbours,
-  std::string& error)
+  std::string& error,
+  std::string& warning)
 {
   tets.clear();
   if (DelaunayTetrahedra(points, tets, error, nullptr, &neighbours))
@@ -233,6 +235,7 @@ bool Tetrahedralise(std::vector<Point3>& points,
     std::string qhullError;
     if (QhullTetrahedra(points, tets, qhullError, &neighbours))
     {
+      warning = "the Delaunay reported an " + error + "; Qhull's was used instead";
       return true;
     }
     error += "; " + qhullError;
@@ -1497,10 +1500,15 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
   result.NumberOfDelaunayPoints = static_cast<int>(samples.size());
   std::vector<Tetra> tetras, across;
   std::string delaunayError;
-  if (!Tetrahedralise(samples, tetras, across, delaunayError))
+  std::string delaunayWarning;
+  if (!Tetrahedralise(samples, tetras, across, delaunayError, delaunayWarning))
   {
     result.Times.Delaunay = Seconds(clock);
     return Fail(result, "surface points cannot be tetrahedralised (" + delaunayError + ")");
+  }
+  if (!delaunayWarning.empty())
+  {
+    result.Warnings.push_back(delaunayWarning);
   }
   result.Times.Delaunay = Seconds(clock);
 
