@@ -643,7 +643,6 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   return true;
 }
 
-#ifdef BENDER_HAVE_QHULL
 // Qhull's Delaunay: the lower hull of the points lifted to a paraboloid, triangulated output
 // ('Qt'), with a point at infinity for co-spherical input ('Qz').
 bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
@@ -656,6 +655,11 @@ bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
   {
     neighbours->clear();
   }
+#ifndef BENDER_HAVE_QHULL
+  (void)points;
+  error = "this build has no Qhull";
+  return false;
+#else
   std::vector<coordT> coords(points.size() * 3);
   for (std::size_t i = 0; i < points.size(); ++i)
   {
@@ -720,21 +724,7 @@ bool QhullTetrahedra(const std::vector<std::array<double, 3>>& points,
     *neighbours = FaceNeighbours(tetras);
   }
   return exitCode == 0;
-}
-#else
-bool QhullTetrahedra(const std::vector<std::array<double, 3>>&,
-  std::vector<std::array<vtkIdType, 4>>& tetras,
-  std::string& error,
-  std::vector<std::array<vtkIdType, 4>>* neighbours)
-{
-  tetras.clear();
-  if (neighbours)
-  {
-    neighbours->clear();
-  }
-  error = "this build has no Qhull";
-  return false;
-}
 #endif
+}
 
 } // namespace bender
