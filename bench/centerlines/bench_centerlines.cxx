@@ -107,8 +107,8 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
 }
 
 // The Delaunay stage against a reference in the same run: the surface's points (jittered by
-// 1e-7 of the diagonal, as the centerlines jitter theirs) tetrahedralised by the centerlines'
-// incremental Delaunay and by Qhull (the library the centerlines used before).
+// 1e-7 of the diagonal, the order of the centerlines' own jitter of 1e-4 mean edge) tetrahedralised
+// by the centerlines' incremental Delaunay and by Qhull (the library the centerlines used before).
 void DelaunayReference(vtkPolyData* surface, int repeats)
 {
   std::vector<std::array<double, 3>> points(static_cast<std::size_t>(surface->GetNumberOfPoints()));

@@ -393,7 +393,7 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
     int Face = 0;
     std::uint32_t Generation = 0;
   };
-  std::vector<EdgeSlot> edgeTable(1024);
+  std::vector<EdgeSlot> edgeTable(64); // grows with the largest cavity (often, so it is exercised)
   std::uint32_t generation = 0;
   std::uint32_t walkState = 0x9e3779b9u;
   int hint = 0;
@@ -523,8 +523,12 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
     }
     if (edgeTable.size() < 4 * boundary.size())
     {
-      edgeTable.assign(2 * edgeTable.size() + 4 * boundary.size(), EdgeSlot());
-      edgeTable.resize(std::size_t(1) << static_cast<int>(std::ceil(std::log2(edgeTable.size()))));
+      std::size_t size = edgeTable.size();
+      while (size < 4 * boundary.size())
+      {
+        size *= 2; // a power of two, for the mask
+      }
+      edgeTable.assign(size, EdgeSlot());
     }
     if (++generation == 0)
     {
