@@ -1,0 +1,38 @@
+#include "StringUtil.h"
+
+#include <gtest/gtest.h>
+
+namespace
+{
+
+TEST(StringUtil, ToLowerFoldsAsciiOnly)
+{
+  EXPECT_EQ(bender::ToLower("Aneurysm.STL"), "aneurysm.stl");
+  EXPECT_EQ(bender::ToLower("\xC3\x89"), "\xC3\x89"); // UTF-8 bytes are left as they are
+  EXPECT_TRUE(bender::EqualsIgnoreCase("FASTRAK", "fastrak"));
+  EXPECT_FALSE(bender::EqualsIgnoreCase("fastrak", "fastra"));
+}
+
+TEST(StringUtil, ExtensionsAndNames)
+{
+  EXPECT_EQ(bender::LowerExtension("/data/Vessel.STL"), ".stl");
+  EXPECT_EQ(bender::LowerExtension("/data/noext"), "");
+  EXPECT_EQ(bender::LowerExtension("/data.d/noext"), "");
+  EXPECT_EQ(bender::LowerExtension("scan.nii.gz"), ".gz");
+  EXPECT_EQ(bender::LowerDoubleExtension("scan.NII.GZ"), ".nii.gz");
+  EXPECT_EQ(bender::LowerDoubleExtension("scan.nrrd"), ".nrrd");
+  EXPECT_EQ(bender::DisplayName("/data/aneurysm.stl"), "aneurysm.stl");
+  EXPECT_EQ(bender::DisplayName("aneurysm.stl"), "aneurysm.stl");
+}
+
+TEST(StringUtil, AffixesAndTrim)
+{
+  EXPECT_TRUE(bender::StartsWith("solid wall", "solid"));
+  EXPECT_FALSE(bender::StartsWith("so", "solid"));
+  EXPECT_TRUE(bender::EndsWith("case.vtp", ".vtp"));
+  EXPECT_FALSE(bender::EndsWith("vtp", ".vtp"));
+  EXPECT_EQ(bender::Trim("  \tsolid wall\r\n"), "solid wall");
+  EXPECT_EQ(bender::Trim(" \n "), "");
+}
+
+} // namespace
