@@ -35,4 +35,11 @@ bool SameFile(const std::string& a, const std::string& b)
   return na == nb;
 }
 
+std::string AbsolutePath(const std::string& path)
+{
+  std::error_code ec;
+  const auto absolute = std::filesystem::absolute(path, ec);
+  return ec ? path : absolute.lexically_normal().string();
+}
+
 } // namespace bender

@@ -12,6 +12,10 @@ namespace bender
 /// input (meshes, plans, recordings and their sidecars).
 bool SameFile(const std::string& a, const std::string& b);
 
+/// `path` made absolute and lexically normalised (no file system access beyond the current
+/// folder); `path` itself when the current folder cannot be read.
+std::string AbsolutePath(const std::string& path);
+
 } // namespace bender
 
 #endif
