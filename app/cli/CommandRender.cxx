@@ -3,6 +3,7 @@
 
 #include "CliCommands.h"
 #include "CliParsing.h"
+#include "HeadlessDisplay.h"
 
 #include "MeshIO.h"
 #include "RenderToPng.h"
@@ -112,6 +113,10 @@ int RunRenderCommand(const std::vector<std::string>& args)
       options.ribbons.push_back({ w.initial, width, { { 0.2, 0.4, 0.9 } } });
       options.ribbons.push_back({ w.final, width, { { 0.95, 0.5, 0.1 } } });
     }
+  }
+  if (const std::string problem = bender::EnsureHeadlessDisplay(); !problem.empty())
+  {
+    return Fail(outPath + ": " + problem);
   }
   try
   {

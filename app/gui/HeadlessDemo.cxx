@@ -1,6 +1,7 @@
 #include "HeadlessDemo.h"
 
 #include "BenderErrors.h"
+#include "HeadlessDisplay.h"
 #include "RunDemo.h"
 
 #include <QDir>
@@ -29,6 +30,8 @@ int RunHeadlessDemo(const QString& outDir, bool segment)
     std::fprintf(warning ? stderr : stdout, "%s\n", line.c_str());
     std::fflush(warning ? stderr : stdout);
   };
+  // demo.png needs a display: a private Xvfb without one (else RunDemo skips it, warning).
+  bender::EnsureHeadlessDisplay();
   bender::RunDemoResult result;
   try
   {

@@ -11,6 +11,7 @@
 // throughout; OpenFOAM's p is kinematic (p / rho), reported here in Pa with rho.
 
 #include "PatchLabels.h"
+#include "Progress.h"
 
 #include <array>
 #include <functional>
@@ -95,9 +96,6 @@ struct CfdCaseResult
 /// folder without force, an unwritable folder.
 CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& options);
 
-/// True when `program` is an executable file in one of PATH's folders.
-bool IsOnPath(const std::string& program);
-
 /// Where OpenFOAM is: empty when simpleFoam, blockMesh, surfaceFeatureExtract, snappyHexMesh
 /// and checkMesh are on PATH (and mpirun when processors > 1); else what is missing, one line.
 std::string FindOpenFoamProblem(int processors = 1);
@@ -139,11 +137,15 @@ struct CfdRunOptions
   Steps steps = Steps::All;
   /// Lines of the Allrun's progress ("bender Allrun: snappyHexMesh").
   std::function<void(const std::string&)> onLine;
+  /// Its cancel flag stops the Allrun and the programs it started (RunOpenFoamCase throws
+  /// Cancelled); its callback is not used.
+  ProgressReporter progress;
 };
 
 /// Runs the case's Allrun (serial or with mpirun, as written; its output also in log.Allrun)
 /// and reads the results (an empty result for Steps::Mesh). Throws EnvironmentError when
-/// OpenFOAM is not installed, Error naming the failed step and its log.
+/// OpenFOAM is not installed or Allrun cannot be started, Error naming the failed step and its
+/// log, Cancelled when options.progress was cancelled.
 CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptions& options = {});
 
 /// The patches of the OpenFOAM mesh (constant/polyMesh/boundary) with their face counts, in

@@ -17,21 +17,10 @@
 #include <vtkSmartPointer.h>
 #include <vtkWindowToImageFilter.h>
 
-#include <chrono>
-#include <csignal>
 #include <cstdlib>
-#include <filesystem>
-#include <mutex>
-#include <sstream>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <thread>
-#include <unistd.h>
 
 namespace bender
 {
-
-namespace fs = std::filesystem;
 
 bool ParseRenderView(const std::string& name, RenderView& view)
 {
@@ -55,100 +44,6 @@ bool ParseRenderView(const std::string& name, RenderView& view)
 
 namespace
 {
-std::string FindExecutable(const std::string& name)
-{
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "/usr/bin:/bin");
-  std::string dir;
-  while (std::getline(dirs, dir, ':'))
-  {
-    const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/" + name;
-    if (::access(candidate.c_str(), X_OK) == 0)
-    {
-      return candidate;
-    }
-  }
-  return {};
-}
-
-// A private X server for the life of the process, started when rendering is asked for and the
-// process has no display.
-class PrivateXvfb
-{
-public:
-  ~PrivateXvfb()
-  {
-    if (this->Pid > 0)
-    {
-      ::kill(this->Pid, SIGTERM);
-      int status = 0;
-      ::waitpid(this->Pid, &status, 0);
-    }
-  }
-
-  // Returns "" when DISPLAY now names a running server.
-  std::string Start()
-  {
-    const std::string xvfb = FindExecutable("Xvfb");
-    if (xvfb.empty())
-    {
-      return "no display: DISPLAY is not set and Xvfb is not installed (install xvfb, or run "
-             "under xvfb-run -a)";
-    }
-    for (int number = 91; number < 140; ++number)
-    {
-      const std::string socket = "/tmp/.X11-unix/X" + std::to_string(number);
-      const std::string lock = "/tmp/.X" + std::to_string(number) + "-lock";
-      std::error_code error;
-      if (fs::exists(socket, error) || fs::exists(lock, error))
-      {
-        continue;
-      }
-      const std::string display = ":" + std::to_string(number);
-      const pid_t pid = ::fork();
-      if (pid < 0)
-      {
-        break;
-      }
-      if (pid == 0)
-      {
-        ::execl(xvfb.c_str(),
-          "Xvfb",
-          display.c_str(),
-          "-screen",
-          "0",
-          "1280x1024x24",
-          "-nolisten",
-          "tcp",
-          static_cast<char*>(nullptr));
-        ::_exit(127);
-      }
-      for (int wait = 0; wait < 100; ++wait)
-      {
-        if (fs::exists(socket, error))
-        {
-          ::setenv("DISPLAY", display.c_str(), 1);
-          this->Pid = pid;
-          return {};
-        }
-        int status = 0;
-        if (::waitpid(pid, &status, WNOHANG) == pid)
-        {
-          break; // this display number was taken meanwhile: try the next
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      }
-      ::kill(pid, SIGTERM);
-      int status = 0;
-      ::waitpid(pid, &status, 0);
-    }
-    return "no display: DISPLAY is not set and a private Xvfb could not be started";
-  }
-
-private:
-  pid_t Pid = -1;
-};
-
 vtkSmartPointer<vtkActor> RibbonActor(const RenderRibbon& r)
 {
   vtkNew<vtkBenderRibbonSource> source;
@@ -168,26 +63,6 @@ vtkSmartPointer<vtkActor> RibbonActor(const RenderRibbon& r)
 }
 } // namespace
 
-std::string EnsureRenderDisplay()
-{
-  static std::mutex mutex;
-  static PrivateXvfb server;
-  static std::string problem;
-  static bool tried = false;
-  std::lock_guard<std::mutex> lock(mutex);
-  const char* display = std::getenv("DISPLAY");
-  if (display && *display)
-  {
-    return {};
-  }
-  if (!tried)
-  {
-    tried = true;
-    problem = server.Start();
-  }
-  return problem;
-}
-
 void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options)
 {
   const std::string& path = options.output;
@@ -204,11 +79,13 @@ void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options)
     throw InputError(path + ": the image size must be in 16..8192 pixels");
   }
   // Debian's VTK renders through GLX: without an X server the render window would abort the
-  // process. Start a private one, or say why not.
-  const std::string problem = EnsureRenderDisplay();
-  if (!problem.empty())
+  // process. The application starts a private one (HeadlessDisplay) before it renders.
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
   {
-    throw EnvironmentError(path + ": " + problem);
+    throw EnvironmentError(path +
+      ": no display: DISPLAY is not set (run under xvfb-run -a, or through bender-cli, which "
+      "starts a private Xvfb)");
   }
 
   vtkNew<vtkRenderer> renderer;

@@ -55,15 +55,11 @@ struct RenderToPngOptions
 };
 
 /// Renders `surface` off screen and writes a PNG (bender-cli render, the headless demo).
-/// Debian's VTK renders through an X server: with DISPLAY set it renders off screen there;
-/// without one it starts a private Xvfb (kept for the life of the process) when Xvfb is
-/// installed. Throws EnvironmentError (one line: no display and no Xvfb), InputError (no
+/// Debian's VTK renders through an X server: it renders off screen on the display DISPLAY
+/// names (the application starts a private Xvfb where there is none: app/cli's
+/// HeadlessDisplay). Throws EnvironmentError (one line: DISPLAY is not set), InputError (no
 /// surface, bad size, the PNG cannot be written). Nothing is left behind on failure.
 void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options);
-
-/// Makes sure rendering can run: DISPLAY set, or a private Xvfb started now. Returns an empty
-/// string when it can, else the one-line reason.
-std::string EnsureRenderDisplay();
 
 } // namespace bender
 

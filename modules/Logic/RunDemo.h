@@ -21,8 +21,8 @@ struct RunDemoOptions
   DemoOptions demo;
   std::string vesselPath; ///< empty: DemoVesselPath()
   std::string planPath;   ///< empty: DemoPlanPath()
-  /// Render demo.png (a private Xvfb is started without a display; skipped with a warning
-  /// when rendering is impossible).
+  /// Render demo.png (on DISPLAY; skipped with a warning when rendering is impossible: the
+  /// application starts a private Xvfb where there is no display).
   bool screenshot = true;
   /// Also make the vessel CFD-ready (PrepareForCfd: ends clipped, flow extensions, labelled
   /// caps), bend it by the plan and write it in metres (demo-cfd.stl, named solids, with

@@ -5,6 +5,7 @@
 // original and bent by the demo plan), fresh folders and running external programs.
 
 #include "CfdCase.h"
+#include "ProcessRunner.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -53,7 +54,7 @@ std::string ReadText(const std::string& path);
 #define BENDER_REQUIRE_PROGRAM(program)                                                            \
   do                                                                                               \
   {                                                                                                \
-    if (!bender::IsOnPath(program))                                                                \
+    if (bender::FindExecutable(program).empty())                                                   \
     {                                                                                              \
       if (std::getenv("BENDER_REQUIRE_CFD"))                                                       \
       {                                                                                            \

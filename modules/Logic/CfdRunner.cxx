@@ -1,0 +1,163 @@
+#include "CfdCase.h"
+
+#include "BenderErrors.h"
+#include "CfdCaseFile.h"
+
+#include "ProcessRunner.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+// Running a case: where OpenFOAM is, the Allrun, the mesh's patches checked between the steps.
+
+namespace fs = std::filesystem;
+
+namespace bender
+{
+
+std::string FindOpenFoamProblem(int processors)
+{
+  for (const char* program :
+    { "blockMesh", "surfaceFeatureExtract", "snappyHexMesh", "checkMesh", "simpleFoam" })
+  {
+    if (FindExecutable(program).empty())
+    {
+      return std::string("OpenFOAM is not installed: ") + program +
+        " is not on PATH (Debian: apt-get install openfoam; elsewhere source OpenFOAM's "
+        "etc/bashrc)";
+    }
+  }
+  if (processors > 1)
+  {
+    for (const char* program : { "decomposePar", "reconstructPar", "mpirun" })
+    {
+      if (FindExecutable(program).empty())
+      {
+        return std::string("a parallel run needs ") + program + ", which is not on PATH";
+      }
+    }
+  }
+  const char* project = std::getenv("WM_PROJECT_DIR");
+  std::error_code ec;
+  if ((!project || !fs::exists(fs::path(project) / "etc" / "controlDict", ec)) &&
+    !fs::exists("/usr/share/openfoam/etc/controlDict", ec))
+  {
+    return "OpenFOAM's etc/controlDict is not found (set WM_PROJECT_DIR or source OpenFOAM's "
+           "etc/bashrc)";
+  }
+  return "";
+}
+
+namespace
+{
+/// Runs `sh ./Allrun what` in dir, its output to log.Allrun (appended when append) and to
+/// options.onLine. Throws Error naming the failed step.
+void RunAllrun(const fs::path& dir,
+  const std::string& caseDirectory,
+  const std::string& what,
+  const CfdRunOptions& options,
+  bool append)
+{
+  ProcessOptions run;
+  run.argv = { "/bin/sh", "./Allrun", what };
+  run.workingDirectory = dir.string();
+  run.logPath = (dir / "log.Allrun").string();
+  run.appendLog = append;
+  run.onLine = options.onLine;
+  run.cancel = options.progress.cancel;
+  const ProcessResult result = RunProcess(run);
+  if (result.cancelled)
+  {
+    throw Cancelled(caseDirectory + ": cancelled during Allrun " + what);
+  }
+  if (!result.Succeeded())
+  {
+    // Allrun's own message names the failed step and its log.
+    const std::string text = ReadTextFile(dir / "log.Allrun");
+    std::string failed;
+    const std::size_t at = text.find("bender Allrun: ");
+    std::size_t pos = text.rfind(" failed, see ");
+    if (pos == std::string::npos)
+    {
+      pos = text.rfind("checkMesh found problems");
+    }
+    if (pos != std::string::npos && at != std::string::npos)
+    {
+      const std::size_t start = text.rfind("bender Allrun: ", pos);
+      const std::size_t end = text.find('\n', pos);
+      failed =
+        text.substr(start + 15, end == std::string::npos ? std::string::npos : end - start - 15);
+    }
+    throw Error(caseDirectory + ": " + (failed.empty() ? "Allrun failed" : failed) +
+      " (all output in log.Allrun)");
+  }
+}
+
+/// Every end of the case (bender-case.json) must be a non-empty patch of the mesh.
+void CheckMeshPatches(const std::string& caseDirectory)
+{
+  const auto meshPatches = ReadMeshPatches(caseDirectory);
+  std::ifstream in(fs::path(caseDirectory) / kCfdCaseJson);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.contains("patches"))
+  {
+    throw InputError(caseDirectory + ": " + kCfdCaseJson + " is unreadable");
+  }
+  for (const auto& p : j["patches"])
+  {
+    const std::string name = p.value("name", "");
+    const auto it = std::find_if(
+      meshPatches.begin(), meshPatches.end(), [&](const auto& m) { return m.first == name; });
+    if (it == meshPatches.end() || it->second <= 0)
+    {
+      throw Error(caseDirectory + ": snappyHexMesh left patch " + name +
+        " without faces (give a smaller --cell-size)");
+    }
+  }
+}
+} // namespace
+
+CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptions& options)
+{
+  const fs::path dir(caseDirectory);
+  std::error_code ec;
+  if (!fs::exists(dir / "Allrun", ec) || !fs::exists(dir / kCfdCaseJson, ec))
+  {
+    throw InputError(caseDirectory + ": not a case written by bender-cli cfd-case (no Allrun)");
+  }
+  int processors = 1;
+  try
+  {
+    std::ifstream in(dir / kCfdCaseJson);
+    processors = nlohmann::json::parse(in).at("processors").get<int>();
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    throw InputError((dir / kCfdCaseJson).string() + ": " + e.what());
+  }
+  if (const std::string problem = FindOpenFoamProblem(processors); !problem.empty())
+  {
+    throw EnvironmentError(problem);
+  }
+  using Steps = CfdRunOptions::Steps;
+  if (options.steps != Steps::Solve)
+  {
+    RunAllrun(dir, caseDirectory, "mesh", options, false);
+    CheckMeshPatches(caseDirectory);
+  }
+  if (options.steps != Steps::Mesh)
+  {
+    RunAllrun(dir, caseDirectory, "solve", options, options.steps == Steps::All);
+  }
+  if (options.steps == CfdRunOptions::Steps::Mesh)
+  {
+    return CfdRunResult{};
+  }
+  return ReadCfdResults(caseDirectory);
+}
+
+} // namespace bender
