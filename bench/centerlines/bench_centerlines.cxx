@@ -45,6 +45,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -126,36 +127,53 @@ void DelaunayReference(vtkPolyData* surface, int repeats)
       c += jitter(random);
     }
   }
-  std::vector<std::array<vtkIdType, 4>> tets;
+  std::vector<std::array<vtkIdType, 4>> ours, qhull;
   std::string error;
-  std::size_t ours = 0, qhull = 0;
-  const auto oursMs = bender_bench::TimeRunsMs(repeats,
-    [&]
-    {
-      auto copy = points;
-      if (!bender::DelaunayTetrahedra(copy, tets, error))
+  std::vector<double> oursMs, qhullMs;
+  for (int r = 0; r < repeats; ++r)
+  {
+    // Interleaved, so that a change of the machine's speed shows in both columns.
+    oursMs.push_back(bender_bench::TimeRunsMs(1,
+      [&]
       {
-        throw std::runtime_error("Delaunay: " + error);
-      }
-      ours = tets.size();
-    });
-  const auto qhullMs = bender_bench::TimeRunsMs(repeats,
-    [&]
-    {
-      if (!bender::QhullTetrahedra(points, tets, error))
+        auto copy = points;
+        if (!bender::DelaunayTetrahedra(copy, ours, error))
+        {
+          throw std::runtime_error("Delaunay: " + error);
+        }
+      })[0]);
+    qhullMs.push_back(bender_bench::TimeRunsMs(1,
+      [&]
       {
-        throw std::runtime_error("Qhull: " + error);
-      }
-      qhull = tets.size();
-    });
+        if (!bender::QhullTetrahedra(points, qhull, error))
+        {
+          throw std::runtime_error("Qhull: " + error);
+        }
+      })[0]);
+  }
+  // The result compared: the tetrahedra both give, as sets of four point ids.
+  const auto canonical = [](std::vector<std::array<vtkIdType, 4>> tets)
+  {
+    for (auto& t : tets)
+    {
+      std::sort(t.begin(), t.end());
+    }
+    std::sort(tets.begin(), tets.end());
+    return tets;
+  };
+  const auto a4 = canonical(ours), b4 = canonical(qhull);
+  std::vector<std::array<vtkIdType, 4>> common;
+  std::set_intersection(a4.begin(), a4.end(), b4.begin(), b4.end(), std::back_inserter(common));
   const auto a = bender_bench::Summarise(oursMs), b = bender_bench::Summarise(qhullMs);
   std::printf("  Delaunay of the %zu surface points, ms: incremental %s (%zu tetrahedra), Qhull %s "
-              "(%zu): Qhull / incremental %.1fx\n",
+              "(%zu), %zu tetrahedra in both (%.2f %%): Qhull / incremental %.1fx\n",
     points.size(),
     bender_bench::Format(a).c_str(),
-    ours,
+    ours.size(),
     bender_bench::Format(b).c_str(),
-    qhull,
+    qhull.size(),
+    common.size(),
+    100.0 * double(common.size()) / double(std::max(a4.size(), b4.size())),
     b.median / a.median);
 }
 

@@ -1,5 +1,6 @@
-// bench_segmentation [aneurysm.stl] [--no-large] [--vtk-only] [--seeding-only] [--ch2 FILE]
-// [--repeats K] Builds the phantom (0.4 mm) and a 512x512x400 resampling of it, then times the
+// bench_segmentation [aneurysm.stl] [--no-large] [--vtk-only] [--seeding-only]
+// [--smoothing-only] [--ch2 FILE] [--repeats K]
+// Builds the phantom (0.4 mm) and a 512x512x400 resampling of it, then times the
 // default pipeline (threshold + seeded region + fill holes, marching cubes, smoothing 0.5, normals)
 // with both extractors (--vtk-only: the default one only) and prints per-stage wall times (the
 // segmentation's stages from its progress reports), wall and CPU time of each run, accuracy
@@ -7,8 +8,11 @@
 // component, as for a head MRI) against the seeded segmentation of the same component (the
 // reference, measured in the same run, interleaved) on both phantoms and on ch2.nii.gz (the
 // Colin27 T1 head, data/external; window: 40 to its maximum, as in docs/segmentation.md),
-// with a check that both masks are equal (--seeding-only: this part alone). Every figure:
-// median [min, max] over the runs.
+// with a check that both masks are equal (--seeding-only: this part alone). Then the surface
+// smoothing's own windowed-sinc filter (the path ExtractSurface takes for closed surfaces)
+// against vtkWindowedSincPolyDataFilter with the same parameters on the same unsmoothed surface,
+// in the same run: times and the largest distance between their points (--smoothing-only: this
+// part alone). Every figure: median [min, max] over the runs.
 
 #include "MeshIO.h"
 #include "SurfaceExtraction.h"
@@ -19,7 +23,9 @@
 
 #include "BenchMachine.h"
 
+#include <vtkNew.h>
 #include <vtkPolyData.h>
+#include <vtkWindowedSincPolyDataFilter.h>
 
 #include <algorithm>
 #include <chrono>
@@ -271,6 +277,81 @@ void CompareSeeding(const char* name,
     same ? "yes" : "NO");
 }
 
+/// The smoothing of ExtractSurface (its own windowed-sinc filter on closed surfaces: 20
+/// iterations, pass band 10^(-4 * 0.5), normalised coordinates, no feature edges) against
+/// vtkWindowedSincPolyDataFilter with the same parameters on the same unsmoothed surface, the
+/// two alternating, `repeats` runs each. The own filter's time is ExtractSurface's "smoothing"
+/// stage; the result compared is the largest distance between corresponding points.
+void CompareSmoothing(const char* name,
+  const bender::Volume& volume,
+  const bender::Phantom& phantom,
+  int repeats)
+{
+  bender::SegmentationParameters segmentation;
+  segmentation.seeds = { phantom.seed };
+  const bender::LabelMap mask = bender::SegmentVessels(volume, segmentation);
+  bender::SurfaceParameters raw;
+  raw.seeds = segmentation.seeds;
+  raw.smoothing = 0.0;
+  const bender::SurfaceResult unsmoothed = bender::ExtractSurface(mask, raw);
+  // Points and triangles only: the filter gets what the own filter gets.
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(unsmoothed.surface->GetPoints());
+  input->SetPolys(unsmoothed.surface->GetPolys());
+  bender::SurfaceParameters smoothed = raw;
+  smoothed.smoothing = 0.5;
+  std::vector<double> ownMs, vtkMs;
+  double worst = 0.0;
+  bool samePoints = true;
+  for (int r = 0; r < repeats; ++r)
+  {
+    const bender::SurfaceResult own = bender::ExtractSurface(mask, smoothed);
+    for (const bender::StageTime& t : own.timings)
+    {
+      if (t.stage == "smoothing")
+      {
+        ownMs.push_back(1000.0 * t.seconds);
+      }
+    }
+    vtkNew<vtkWindowedSincPolyDataFilter> filter;
+    vtkMs.push_back(bender_bench::TimeRunsMs(1,
+      [&]
+      {
+        filter->SetInputData(input);
+        filter->SetNumberOfIterations(20);
+        filter->SetPassBand(std::pow(10.0, -4.0 * smoothed.smoothing));
+        filter->BoundarySmoothingOff();
+        filter->FeatureEdgeSmoothingOff();
+        filter->NonManifoldSmoothingOn();
+        filter->NormalizeCoordinatesOn();
+        filter->Update();
+      })[0]);
+    vtkPolyData* reference = filter->GetOutput();
+    samePoints = samePoints && reference->GetNumberOfPoints() == own.surface->GetNumberOfPoints();
+    for (vtkIdType i = 0; samePoints && i < reference->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      own.surface->GetPoint(i, a);
+      reference->GetPoint(i, b);
+      worst = std::max(worst, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+    }
+  }
+  const bender_bench::Spread own = bender_bench::Summarise(ownMs);
+  const bender_bench::Spread vtk = bender_bench::Summarise(vtkMs);
+  char distance[64] = "point counts differ";
+  if (samePoints)
+  {
+    std::snprintf(distance, sizeof distance, "%.2g mm", worst);
+  }
+  std::printf("  %-30s %10lld %-26s %-26s %7.2f %s\n",
+    name,
+    static_cast<long long>(unsmoothed.surface->GetNumberOfPolys()),
+    bender_bench::Format(own, 1).c_str(),
+    bender_bench::Format(vtk, 1).c_str(),
+    vtk.median / own.median,
+    distance);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -280,6 +361,7 @@ int main(int argc, char** argv)
   bool large = true;
   bool withItk = true;
   bool pipeline = true;
+  bool seeding = true;
   int repeats = 5;
   for (int i = 1; i < argc; ++i)
   {
@@ -294,6 +376,11 @@ int main(int argc, char** argv)
     else if (std::strcmp(argv[i], "--seeding-only") == 0)
     {
       pipeline = false;
+    }
+    else if (std::strcmp(argv[i], "--smoothing-only") == 0)
+    {
+      pipeline = false;
+      seeding = false;
     }
     else if (std::strcmp(argv[i], "--ch2") == 0 && i + 1 < argc)
     {
@@ -332,35 +419,54 @@ int main(int argc, char** argv)
       }
     }
 
-    std::printf(
-      "\n== segmentation without a seed (largest component) vs the seeded reference, same "
-      "component, same run; ms, median [min, max] of %d runs each\n",
+    if (seeding)
+    {
+      std::printf(
+        "\n== segmentation without a seed (largest component) vs the seeded reference, same "
+        "component, same run; ms, median [min, max] of %d runs each\n",
+        repeats);
+      std::printf("  %-34s %14s %10s %-26s %-26s %7s %s\n",
+        "volume",
+        "voxels",
+        "component",
+        "seeded ms (reference)",
+        "no seed ms",
+        "ratio",
+        "same mask");
+      bender::SegmentationParameters threshold; // the default window (lower 250) fits the phantom
+      CompareSeeding("phantom 0.4 mm", phantom.volume, threshold, &phantom.seed, repeats);
+      if (large)
+      {
+        CompareSeeding("phantom resampled", big, threshold, &phantom.seed, repeats);
+      }
+      if (std::filesystem::exists(ch2))
+      {
+        const bender::Volume head = bender::ReadVolume(ch2);
+        bender::SegmentationParameters headWindow;
+        headWindow.lower = 40.0; // the head's threshold in docs/segmentation.md
+        CompareSeeding("ch2.nii.gz (head T1)", head, headWindow, nullptr, repeats);
+        std::printf("  ch2 window: [%.1f, max]\n", headWindow.lower);
+      }
+      else
+      {
+        std::printf("  ch2: %s not found (run scripts/fetch-data)\n", ch2.c_str());
+      }
+    }
+    std::printf("\n== surface smoothing: own windowed-sinc filter vs "
+                "vtkWindowedSincPolyDataFilter, same input and parameters, same run; ms, median "
+                "[min, max] of %d runs each\n",
       repeats);
-    std::printf("  %-34s %14s %10s %-26s %-26s %7s %s\n",
-      "volume",
-      "voxels",
-      "component",
-      "seeded ms (reference)",
-      "no seed ms",
-      "ratio",
-      "same mask");
-    bender::SegmentationParameters threshold; // the default window (lower 250) fits the phantom
-    CompareSeeding("phantom 0.4 mm", phantom.volume, threshold, &phantom.seed, repeats);
+    std::printf("  %-30s %10s %-26s %-26s %7s %s\n",
+      "surface of",
+      "triangles",
+      "own ms",
+      "vtkWindowedSinc ms",
+      "vtk/own",
+      "largest point distance");
+    CompareSmoothing("phantom 0.4 mm", phantom.volume, phantom, repeats);
     if (large)
     {
-      CompareSeeding("phantom resampled", big, threshold, &phantom.seed, repeats);
-    }
-    if (std::filesystem::exists(ch2))
-    {
-      const bender::Volume head = bender::ReadVolume(ch2);
-      bender::SegmentationParameters headWindow;
-      headWindow.lower = 40.0; // the head's threshold in docs/segmentation.md
-      CompareSeeding("ch2.nii.gz (head T1)", head, headWindow, nullptr, repeats);
-      std::printf("  ch2 window: [%.1f, max]\n", headWindow.lower);
-    }
-    else
-    {
-      std::printf("  ch2: %s not found (run scripts/fetch-data)\n", ch2.c_str());
+      CompareSmoothing("phantom resampled 512x512x400", big, phantom, repeats);
     }
   }
   catch (const std::exception& e)
