@@ -3,7 +3,7 @@
 // triangles, closed), with the time of each stage. Prints the machine, every run and the
 // median, min and max of each stage, then the Delaunay stage against a reference measured in the
 // same run: the surface's points tetrahedralised by the centerlines' own Delaunay and by Qhull.
-// Target (issue 10): at most 1 s for the 55 k-triangle surface on a 2-core machine. Figures taken
+// Target: at most 1 s for the 55 k-triangle surface on a 2-core machine. Figures taken
 // on a loaded machine are not final: say so when quoting them.
 //
 // With --invariance it also prints how far the centerline moves under a rigid motion, a finer
@@ -12,7 +12,7 @@
 // segmentation). The measure: for every point of the new centerlines (the paths from the inlet
 // to each outlet) farther than 2 x the largest end radius from every endpoint and every
 // bifurcation point, the distance to the reference centerlines (polylines, point to segment),
-// over the point's inscribed radius; the largest of these ratios (issue 10's target: 2 %) and the
+// over the point's inscribed radius; the largest of these ratios (target: 2 %) and the
 // largest distance in mm (0.3 mm between the aneurysm and its phantom), with where the worst
 // point is (position, abscissa on its path, radius).
 //
@@ -109,7 +109,7 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
 
 // The Delaunay stage against a reference in the same run: the surface's points (jittered by
 // 1e-7 of the diagonal, the order of the centerlines' own jitter of 1e-4 mean edge) tetrahedralised
-// by the centerlines' incremental Delaunay and by Qhull (the library the centerlines used before).
+// by the centerlines' incremental Delaunay and by Qhull (the library doing the same job).
 void DelaunayReference(vtkPolyData* surface, int repeats)
 {
   std::vector<std::array<double, 3>> points(static_cast<std::size_t>(surface->GetNumberOfPoints()));
