@@ -1,7 +1,8 @@
 #ifndef bender_GeometryErrors_h
 #define bender_GeometryErrors_h
 
-#include <stdexcept>
+#include "BenderErrors.h"
+
 #include <string>
 #include <utility>
 
@@ -11,12 +12,13 @@ namespace bender
 /// Base of the errors thrown by the geometry core for input it cannot use. field() is the
 /// part of the warp the problem belongs to, relative to the warp: "initial", "final",
 /// "initial.end.tangent", "radius", ... (empty when it concerns the whole input); problem() is
-/// the human description without the field; what() is "field: problem".
-class GeometryError : public std::invalid_argument
+/// the human description without the field; what() is "field: problem". An InputError: the
+/// caller's ribbon or warp cannot be used.
+class GeometryError : public InputError
 {
 public:
   GeometryError(std::string field, std::string problem)
-    : std::invalid_argument(field.empty() ? problem : field + ": " + problem)
+    : InputError(field.empty() ? problem : field + ": " + problem)
     , Field(std::move(field))
     , Problem(std::move(problem))
   {

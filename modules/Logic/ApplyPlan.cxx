@@ -1,5 +1,6 @@
 #include "ApplyPlan.h"
 
+#include "GeometryErrors.h"
 #include "RibbonWarp.h"
 #include "vtkBenderAdaptiveSubdivisionFilter.h"
 #include "vtkBenderWarpFilter.h"
@@ -62,7 +63,7 @@ vtkSmartPointer<vtkPolyData> ApplyOne(vtkPolyData* input,
       info.flipOccurred = validated.FlipOccurred();
       info.warning = validated.SpaceInversionWarning();
     }
-    catch (const std::exception& e)
+    catch (const GeometryError& e)
     {
       throw InputError(where + ": " + e.what());
     }

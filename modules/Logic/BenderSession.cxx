@@ -139,7 +139,7 @@ bool BenderSession::LoadSurface(const std::string& path)
   {
     mesh = ReadMesh(path);
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // the reader's errors, and VTK's or std's (bad_alloc): a message
   {
     this->Report(MessageSeverity::Error, e.what());
     return false;
@@ -201,7 +201,7 @@ bool BenderSession::SavePlan(const std::string& path)
   {
     WriteWarpPlan(this->GetPlan(), path);
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // WarpPlanError, and std's (filesystem, bad_alloc): a message
   {
     this->Report(MessageSeverity::Error, std::string("Saving the plan failed: ") + e.what());
     return false;
@@ -288,7 +288,7 @@ bool BenderSession::Autosave()
     }
     WriteSessionFile(snapshot, this->AutosavePath);
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // the writers, VTK, std and the window's decorator: a warning
   {
     this->Report(MessageSeverity::Warning, std::string("Autosave failed: ") + e.what());
     return false;

@@ -1,5 +1,6 @@
 #include "BenderSession.h"
 
+#include "GeometryErrors.h"
 #include "Ribbon.h"
 #include "RibbonWarp.h"
 #include <vtkCellArray.h>
@@ -9,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <limits>
 #include <sstream>
 
@@ -56,7 +56,7 @@ bool BenderSession::SetLiveWarp(const WarpSpec& warp, std::string& problem)
     ++this->WarpBuildCount;
     built = std::make_shared<const RibbonWarp>(warp);
   }
-  catch (const std::exception& e)
+  catch (const GeometryError& e)
   {
     problem = e.what();
     return false;
@@ -146,7 +146,7 @@ void BenderSession::SetRibbonInformation(const std::optional<RibbonSpec>& ribbon
       this->MinimumRadius = Ribbon(*ribbon).Wire().MinimumRadius();
       this->InitialMinimumRadius = this->MinimumRadius;
     }
-    catch (const std::exception&)
+    catch (const GeometryError&)
     {
       // An invalid ribbon has no r_min; PlaceRibbon refuses it before.
     }
@@ -168,7 +168,7 @@ bool BenderSession::PlaceRibbon(const RibbonSpec& ribbon)
   {
     Ribbon check(ribbon);
   }
-  catch (const std::exception& e)
+  catch (const GeometryError& e)
   {
     this->Report(MessageSeverity::Error, std::string("Place ribbon: ") + e.what());
     return false;
@@ -338,7 +338,7 @@ bool BenderSession::Grab(const RibbonSpec& initial)
   {
     this->Unwrapper.Start(start);
   }
-  catch (const std::exception& e)
+  catch (const GeometryError& e)
   {
     this->Report(MessageSeverity::Error, std::string("Grab refused: ") + e.what());
     return false;
@@ -392,7 +392,7 @@ bool BenderSession::MoveFinal(const RibbonSpec& final)
   {
     candidate.final = this->Unwrapper.Unwrap(final);
   }
-  catch (const std::exception& e)
+  catch (const GeometryError& e)
   {
     problem = e.what();
   }

@@ -115,7 +115,7 @@ std::shared_ptr<SessionJob> BenderSession::BeginLoadPlan(const std::string& path
   {
     plan = ReadWarpPlan(path);
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // WarpPlanError, and std's (filesystem, bad_alloc): a message
   {
     this->Report(MessageSeverity::Error, e.what());
     return nullptr;

@@ -1,6 +1,8 @@
 #ifndef bender_LogicMessage_h
 #define bender_LogicMessage_h
 
+#include <cstddef>
+#include <iterator>
 #include <string>
 
 namespace bender
@@ -20,18 +22,12 @@ struct LogicMessage
   std::string text;
 };
 
+/// "info", "warning", "error" (in the order of MessageSeverity).
 inline const char* ToString(MessageSeverity severity)
 {
-  switch (severity)
-  {
-    case MessageSeverity::Info:
-      return "info";
-    case MessageSeverity::Warning:
-      return "warning";
-    case MessageSeverity::Error:
-      return "error";
-  }
-  return "info";
+  constexpr const char* names[] = { "info", "warning", "error" };
+  const auto index = static_cast<std::size_t>(severity);
+  return index < std::size(names) ? names[index] : names[0];
 }
 
 } // namespace bender

@@ -1,9 +1,8 @@
 #ifndef bender_RibbonPlacement_h
 #define bender_RibbonPlacement_h
 
+#include "BenderErrors.h"
 #include "WarpPlan.h"
-
-#include <stdexcept>
 
 class vtkPolyData;
 
@@ -29,10 +28,10 @@ struct RibbonPlacementOptions
 };
 
 /// The pick is not usable (empty surface, non-finite point, not enough surface near it).
-class RibbonPlacementError : public std::runtime_error
+class RibbonPlacementError : public InputError
 {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Places a straight ribbon along the part of `surface` near `picked` (model coordinates,

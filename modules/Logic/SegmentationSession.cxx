@@ -141,7 +141,7 @@ void SegmentationSession::ReadJob::Run(const ProgressReporter& progress)
   {
     throw;
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // the volume reader's errors and ITK's: the mask is left out
   {
     this->maskProblem = e.what();
   }
@@ -167,7 +167,7 @@ void SegmentationSession::DemoJob::Run(const ProgressReporter& progress)
   {
     throw;
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // the segmentation's errors and ITK's
   {
     // Without the segmentation the demo still bends the vessel surface itself.
     this->fallback = e.what();
@@ -210,7 +210,7 @@ bool SegmentationSession::SetSettings(const SegmentationSettings& settings, std:
   {
     ValidateSegmentationParameters(settings.segmentation);
   }
-  catch (const std::exception& e)
+  catch (const Error& e)
   {
     problem = e.what();
     return false;

@@ -665,7 +665,7 @@ void AutosaveCopies::Run(Slot* slot,
   {
     write(path);
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // the writers' errors, ITK's and std's: end of the thread
   {
     error = e.what();
   }

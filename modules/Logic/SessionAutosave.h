@@ -1,6 +1,7 @@
 #ifndef bender_SessionAutosave_h
 #define bender_SessionAutosave_h
 
+#include "BenderErrors.h"
 #include "SegmentationSession.h"
 #include "Volume.h"
 #include "WarpPlan.h"
@@ -10,7 +11,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -18,10 +18,10 @@ namespace bender
 {
 
 /// A session file cannot be read or written; what() names the file and the problem.
-class SessionFileError : public std::runtime_error
+class SessionFileError : public InputError
 {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// The volume behind the session's surface: where it was read from and what it was, so that

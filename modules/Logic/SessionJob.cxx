@@ -86,7 +86,7 @@ void SessionJob::Run(const ProgressReporter& progress)
     this->Result = Outcome::Cancelled;
     this->Problem = e.what();
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // the workflows' errors, VTK's and std's: Run never throws
   {
     this->Result = Outcome::Failed;
     this->Problem = e.what();

@@ -1,6 +1,8 @@
 #include "RibbonPlacement.h"
+#include "GeometryErrors.h"
 #include "LogicTestUtilities.h"
 #include "RibbonWarp.h"
+#include "SessionAutosave.h"
 
 #include <vtkPolyData.h>
 
@@ -42,4 +44,23 @@ TEST(RibbonPlacement, RefusesUnusablePicks)
   RibbonPlacementOptions options;
   options.lengthFactor = 100;
   EXPECT_THROW(PlaceRibbonOnSurface(tube, { 40, 0, 3 }, options), RibbonPlacementError);
+}
+
+// The errors of Logic and of the geometry core are InputErrors: a caller (the CLI, the
+// session) catches bender::Error once, with no catch-all re-wrap in between.
+TEST(LogicErrors, AreRootedAtInputError)
+{
+  EXPECT_THROW(PlaceRibbonOnSurface(nullptr, { 0, 0, 0 }), InputError);
+  EXPECT_THROW(ReadSessionFile("/nonexistent/bender-session.json"), InputError);
+  WarpSpec warp; // coincident ends: no wire
+  warp.radius = 10.0;
+  try
+  {
+    RibbonWarp::Validate(warp);
+    FAIL() << "a ribbon with coincident ends was accepted";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(dynamic_cast<const GeometryError*>(&e), nullptr) << e.what();
+  }
 }
