@@ -3,6 +3,7 @@
 #include "CfdPatches.h"
 
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <locale>
 #include <sstream>
@@ -83,6 +84,22 @@ std::array<int, 3> SplitAxes(int processors, const std::array<double, 3>& extent
     split[axis] *= *f;
   }
   return split;
+}
+
+// A field of 0/: the header, `head` (dimensions, internal field), then each patch's boundary
+// condition as `condition` writes it.
+std::string InitialField(const std::string& cls,
+  const std::string& object,
+  const std::string& head,
+  const std::vector<CfdPatch>& patches,
+  const std::function<std::string(const CfdPatch&)>& condition)
+{
+  std::string s = FoamHeader(cls, "0", object) + head + "boundaryField\n{\n";
+  for (const auto& p : patches)
+  {
+    s += "    " + p.name + "\n    {\n" + condition(p) + "    }\n";
+  }
+  return s + "}\n";
 }
 
 } // namespace
@@ -310,66 +327,49 @@ std::string TurbulenceProperties()
 
 std::string VelocityField(const std::vector<CfdPatch>& patches, const CfdCaseOptions& options)
 {
-  std::ostringstream s;
-  s << FoamHeader("volVectorField", "0", "U");
-  s << "dimensions      [0 1 -1 0 0 0 0];\n\ninternalField   uniform (0 0 0);\n\n"
-       "boundaryField\n{\n";
-  for (const auto& p : patches)
-  {
-    s << "    " << p.name << "\n    {\n";
-    if (p.type == PatchType::Wall)
+  return InitialField("volVectorField",
+    "U",
+    "dimensions      [0 1 -1 0 0 0 0];\n\ninternalField   uniform (0 0 0);\n\n",
+    patches,
+    [&options](const CfdPatch& p) -> std::string
     {
-      s << "        type            noSlip;\n";
-    }
-    else if (p.type == PatchType::Inlet)
-    {
-      if (options.flowRate > 0.0)
+      if (p.type == PatchType::Wall)
       {
-        s << "        type            flowRateInletVelocity;\n"
-             "        volumetricFlowRate constant "
-          << CfdNumber(options.flowRate)
-          << ";  // m^3/s\n        extrapolateProfile no;\n        value           uniform (0 0 "
-             "0);\n";
+        return "        type            noSlip;\n";
       }
-      else
+      if (p.type == PatchType::Inlet && options.flowRate > 0.0)
       {
-        s << "        // Uniform, normal to the inlet, into the domain (m/s).\n"
-             "        type            surfaceNormalFixedValue;\n        refValue        uniform "
-          << CfdNumber(-options.velocity) << ";\n        value           uniform (0 0 0);\n";
+        return "        type            flowRateInletVelocity;\n"
+               "        volumetricFlowRate constant " +
+          CfdNumber(options.flowRate) +
+          ";  // m^3/s\n        extrapolateProfile no;\n        value           uniform (0 0 "
+          "0);\n";
       }
-    }
-    else
-    {
-      s << "        type            inletOutlet;\n        inletValue      uniform (0 0 0);\n"
-           "        value           uniform (0 0 0);\n";
-    }
-    s << "    }\n";
-  }
-  s << "}\n";
-  return s.str();
+      if (p.type == PatchType::Inlet)
+      {
+        return "        // Uniform, normal to the inlet, into the domain (m/s).\n"
+               "        type            surfaceNormalFixedValue;\n        refValue        "
+               "uniform " +
+          CfdNumber(-options.velocity) + ";\n        value           uniform (0 0 0);\n";
+      }
+      return "        type            inletOutlet;\n        inletValue      uniform (0 0 0);\n"
+             "        value           uniform (0 0 0);\n";
+    });
 }
 
 std::string PressureField(const std::vector<CfdPatch>& patches)
 {
-  std::ostringstream s;
-  s << FoamHeader("volScalarField", "0", "p");
-  s << "// Kinematic pressure p / rho (m^2/s^2).\ndimensions      [0 2 -2 0 0 0 0];\n\n"
-       "internalField   uniform 0;\n\nboundaryField\n{\n";
-  for (const auto& p : patches)
-  {
-    s << "    " << p.name << "\n    {\n";
-    if (p.type == PatchType::Outlet)
+  return InitialField("volScalarField",
+    "p",
+    "// Kinematic pressure p / rho (m^2/s^2).\ndimensions      [0 2 -2 0 0 0 0];\n\n"
+    "internalField   uniform 0;\n\n",
+    patches,
+    [](const CfdPatch& p) -> std::string
     {
-      s << "        type            fixedValue;\n        value           uniform 0;\n";
-    }
-    else
-    {
-      s << "        type            zeroGradient;\n";
-    }
-    s << "    }\n";
-  }
-  s << "}\n";
-  return s.str();
+      return p.type == PatchType::Outlet
+        ? "        type            fixedValue;\n        value           uniform 0;\n"
+        : "        type            zeroGradient;\n";
+    });
 }
 
 std::string Allrun(int processors)

@@ -260,42 +260,39 @@ std::vector<std::pair<std::string, long long>> ReadMeshPatches(const std::string
 
 std::string CfdToJson(const CfdCaseResult& written, const CfdRunResult* run)
 {
-  nlohmann::ordered_json j;
-  j["case"] = written.caseDirectory;
-  j["inlet"] = written.inlet;
-  j["inletFlowRate"] = written.inletFlowRate;
-  j["inletVelocity"] = written.inletVelocity;
-  j["reynolds"] = written.reynolds;
-  j["cellSize"] = written.cellSize;
-  j["backgroundCells"] = written.backgroundCells;
-  j["insidePoint"] = written.insidePoint;
-  j["patches"] = CfdPatchesJson(written.patches);
-  j["files"] = written.written;
+  nlohmann::ordered_json j = { { "case", written.caseDirectory },
+    { "inlet", written.inlet },
+    { "inletFlowRate", written.inletFlowRate },
+    { "inletVelocity", written.inletVelocity },
+    { "reynolds", written.reynolds },
+    { "cellSize", written.cellSize },
+    { "backgroundCells", written.backgroundCells },
+    { "insidePoint", written.insidePoint },
+    { "patches", CfdPatchesJson(written.patches) },
+    { "files", written.written } };
   if (run)
   {
-    nlohmann::ordered_json r;
-    r["iterations"] = run->iterations;
-    r["converged"] = run->converged;
-    r["inletFlowRate"] = run->inletFlowRate;
-    r["massImbalance"] = run->massImbalance;
-    r["patches"] = nlohmann::ordered_json::array();
+    nlohmann::ordered_json flows = nlohmann::ordered_json::array();
     for (const auto& f : run->patches)
     {
-      nlohmann::ordered_json o;
-      o["name"] = f.name;
-      o["type"] = PatchTypeName(f.type);
-      o["flowRate"] = f.flowRate;
-      o["percentOfInlet"] = f.percentOfInlet;
-      o["pressure"] = f.pressure;
-      o["pressureDrop"] = f.pressureDrop;
-      r["patches"].push_back(o);
+      flows.push_back({ { "name", f.name },
+        { "type", PatchTypeName(f.type) },
+        { "flowRate", f.flowRate },
+        { "percentOfInlet", f.percentOfInlet },
+        { "pressure", f.pressure },
+        { "pressureDrop", f.pressureDrop } });
     }
-    r["residuals"] = nlohmann::ordered_json::object();
+    nlohmann::ordered_json residuals = nlohmann::ordered_json::object();
     for (const auto& [field, value] : run->residuals)
     {
-      r["residuals"][field] = value;
+      residuals[field] = value;
     }
-    j["run"] = r;
+    j["run"] = { { "iterations", run->iterations },
+      { "converged", run->converged },
+      { "inletFlowRate", run->inletFlowRate },
+      { "massImbalance", run->massImbalance },
+      { "patches", flows },
+      { "residuals", residuals } };
   }
   return j.dump(2);
 }
