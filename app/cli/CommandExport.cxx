@@ -5,6 +5,7 @@
 #include "CliParsing.h"
 
 #include "ExportSurface.h"
+#include "MeshFormats.h"
 
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace
@@ -139,11 +141,13 @@ int RunExportCommand(const std::vector<std::string>& args)
   {
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
-  if (ext != ".stl" && ext != ".vtp" && ext != ".smesh" && ext != ".poly")
+  const std::optional<bender::MeshFormat> format = bender::FindMeshFormat(outPath);
+  if (!format || !format->CanWrite())
   {
     std::fprintf(stderr,
-      "bender-cli export: %s: the output must be .stl, .vtp, .smesh or .poly\n",
-      outPath.c_str());
+      "bender-cli export: %s: the output must be %s\n",
+      outPath.c_str(),
+      bender::MeshExtensionList(bender::MeshAccess::Write).c_str());
     return 2;
   }
   if (ext != ".stl" && options.patches != bender::StlPatchMode::Single)
@@ -161,8 +165,8 @@ int RunExportCommand(const std::vector<std::string>& args)
     options.stlEncoding = bender::StlEncoding::Ascii; // named solids are ASCII STL
   }
   // The sidecar goes with every export of patches.
-  options.patchesJson = options.patchesJson || options.patches != bender::StlPatchMode::Single ||
-    ext == ".smesh" || ext == ".poly";
+  options.patchesJson =
+    options.patchesJson || options.patches != bender::StlPatchMode::Single || format->regionPoint;
   const std::string& inPath = positional[0];
   options.output = outPath;
   options.protectedPath = inPath;

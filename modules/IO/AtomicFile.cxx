@@ -166,23 +166,30 @@ bool AtomicWrite(const std::string& path, const FileProducer& produce, std::stri
   return true;
 }
 
+FileProducer TextProducer(std::shared_ptr<const std::string> text)
+{
+  return [text](const std::string& temp, std::string& why)
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out)
+    {
+      why = "cannot create a file there";
+      return false;
+    }
+    out.write(text->data(), static_cast<std::streamsize>(text->size()));
+    out.flush();
+    if (!out)
+    {
+      why = "write failed (disk full?)";
+      return false;
+    }
+    return true;
+  };
+}
+
 bool AtomicWriteText(const std::string& path, const std::string& text, std::string& problem)
 {
-  return AtomicWrite(
-    path,
-    [&text](const std::string& temp, std::string& why)
-    {
-      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-      out.write(text.data(), static_cast<std::streamsize>(text.size()));
-      out.flush();
-      if (!out)
-      {
-        why = "write failed (disk full?)";
-        return false;
-      }
-      return true;
-    },
-    problem);
+  return AtomicWrite(path, TextProducer(std::make_shared<const std::string>(text)), problem);
 }
 
 bool AtomicWriteAll(const std::vector<AtomicFile>& files, std::string& problem)

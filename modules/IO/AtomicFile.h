@@ -5,6 +5,7 @@
 // writer of meshes, plans, sessions, STL exports and rendered images goes through here.
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ using FileProducer = std::function<bool(const std::string& tempPath, std::string
 /// fails, "write failed" when it set nothing). Exceptions thrown by produce propagate after
 /// the temporary file is removed.
 bool AtomicWrite(const std::string& path, const FileProducer& produce, std::string& problem);
+
+/// A producer that writes `text` as the whole content of its temporary file ("cannot create a
+/// file there", "write failed (disk full?)").
+FileProducer TextProducer(std::shared_ptr<const std::string> text);
 
 /// Writes text as the whole content of path through AtomicWrite.
 bool AtomicWriteText(const std::string& path, const std::string& text, std::string& problem);

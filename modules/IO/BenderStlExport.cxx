@@ -3,6 +3,7 @@
 #include "AtomicFile.h"
 #include "BenderErrors.h"
 #include "FileUtilities.h"
+#include "StringUtil.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -23,7 +24,6 @@ namespace bender
 {
 namespace
 {
-using io_detail::DisplayName;
 
 struct Facet
 {

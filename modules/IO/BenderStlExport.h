@@ -6,6 +6,7 @@
 // labelled triangles and the frame/unit change of the written coordinates.
 
 #include "AtomicFile.h"
+#include "BenderErrors.h"
 #include "PatchLabels.h"
 
 #include <vtkType.h>
@@ -22,10 +23,10 @@ namespace bender
 {
 
 /// An export that could not be written; what() names the file and the problem.
-class StlExportError : public std::runtime_error
+class StlExportError : public InputError
 {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// How patches (the labels of PatchLabels.h: wall 1, ends 2..) are written.

@@ -16,22 +16,6 @@ namespace bender
 namespace io_detail
 {
 
-std::string DisplayName(const std::string& path)
-{
-  const std::string name = fs::path(path).filename().string();
-  return name.empty() ? path : name;
-}
-
-std::string LowerExtension(const std::string& path)
-{
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return ext;
-}
-
 bool CheckReadableFile(const std::string& path, std::uintmax_t& size, std::string& problem)
 {
   size = 0;

@@ -2,9 +2,11 @@
 #define bender_FileUtilities_h
 
 // Internal helpers shared by the readers and writers of this module; not part of the
-// module's interface. The atomic write they use is public: AtomicFile.h.
+// module's interface. The atomic write they use is public: AtomicFile.h; the file-name
+// helpers (DisplayName, LowerExtension) are Core's StringUtil.h.
 
 #include "AtomicFile.h"
+#include "StringUtil.h"
 
 #include <cstdint>
 #include <string>
@@ -13,13 +15,6 @@ namespace bender
 {
 namespace io_detail
 {
-
-/// The last path component ("aneurysm.stl" for "/data/aneurysm.stl"); the whole path when it
-/// has none. Used to prefix messages.
-std::string DisplayName(const std::string& path);
-
-/// The extension in lower case with its dot (".stl"), empty when there is none.
-std::string LowerExtension(const std::string& path);
 
 /// Checks that path names a readable, non-empty regular file and returns its size in bytes.
 /// Otherwise returns false and sets problem to a short description ("no such file",

@@ -1,6 +1,7 @@
 #ifndef bender_MeshIO_h
 #define bender_MeshIO_h
 
+#include "BenderErrors.h"
 #include "FileIdentity.h"
 
 #include <vtkSmartPointer.h>
@@ -15,10 +16,10 @@ namespace bender
 
 /// A mesh file that cannot be read or written. what() is one line that names the file and the
 /// problem, e.g. "cow.off: line 12: expected 3 coordinates".
-class MeshIOError : public std::runtime_error
+class MeshIOError : public InputError
 {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 enum class StlEncoding
@@ -38,7 +39,8 @@ struct MeshWriteOptions
   std::string header;
 };
 
-/// Reads a surface mesh; the format is chosen by the extension (case-insensitive):
+/// Reads a surface mesh; the format is the row of the mesh-format table (MeshFormats.h) for
+/// the extension (case-insensitive). The built-in readable formats:
 /// .stl (binary or ASCII; exactly coincident corners welded into shared vertices, degenerate
 /// triangles dropped), .obj, .ply, .vtp, .vtk (legacy polydata, every point and cell array),
 /// .off (ASCII; also COFF/NOFF/CNOFF/STOFF, extra vertex and face columns ignored, comments
@@ -52,11 +54,13 @@ struct MeshWriteOptions
 /// A mesh with points but no polygons is returned as is (callers decide).
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path);
 
-/// Writes a surface mesh; the format is chosen by the extension: .stl (binary or ASCII per
+/// Writes a surface mesh; the format is the row of the mesh-format table (MeshFormats.h) for
+/// the extension. The built-in writable formats: .stl (binary or ASCII per
 /// options; polygons and strips triangulated; float), .obj (float), .ply (binary little
 /// endian, float), .vtp (appended raw binary, zlib, double kept, all arrays), .vtk (legacy
 /// binary, version 5.1, double kept, all arrays), .off (ASCII, shortest decimals that read
-/// back bit-identical; polygons and strips, no vertex or line cells).
+/// back bit-identical; polygons and strips, no vertex or line cells), .smesh and .poly (TetGen,
+/// TetgenExport.h, without a region point).
 /// Atomic: writes a temporary file beside the target, flushes it to disk and renames it
 /// over the target, so a failure leaves the previous file (if any) and no partial or
 /// temporary file. Throws MeshIOError (unknown extension, missing or unwritable folder, a

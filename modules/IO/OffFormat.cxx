@@ -1,5 +1,8 @@
 #include "OffFormat.h"
 
+#include "StringUtil.h"
+#include "ValidationText.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkIdList.h>
@@ -24,11 +27,6 @@ namespace io_detail
 
 namespace
 {
-
-bool IsSpace(char c)
-{
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
-}
 
 // Data lines of the file: comments ("#" to the end of the line) and blank lines skipped.
 class LineReader
@@ -56,14 +54,7 @@ public:
       {
         raw = raw.substr(0, hash);
       }
-      while (!raw.empty() && IsSpace(raw.front()))
-      {
-        raw.remove_prefix(1);
-      }
-      while (!raw.empty() && IsSpace(raw.back()))
-      {
-        raw.remove_suffix(1);
-      }
+      raw = Trim(raw);
       if (!raw.empty())
       {
         line = raw;
@@ -79,28 +70,6 @@ private:
   std::size_t Pos = 0;
   std::size_t LineNumber = 0;
 };
-
-void Tokenize(std::string_view line, std::vector<std::string_view>& tokens)
-{
-  tokens.clear();
-  std::size_t i = 0;
-  while (i < line.size())
-  {
-    while (i < line.size() && IsSpace(line[i]))
-    {
-      ++i;
-    }
-    const std::size_t start = i;
-    while (i < line.size() && !IsSpace(line[i]))
-    {
-      ++i;
-    }
-    if (i > start)
-    {
-      tokens.push_back(line.substr(start, i - start));
-    }
-  }
-}
 
 // Locale-independent. A value beyond the double range reads as infinity (and is then
 // refused as non-finite), one below it as zero.
@@ -181,7 +150,7 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
   {
     throw OffError("no data (only comments or blank lines)");
   }
-  Tokenize(line, tokens);
+  SplitWords(line, tokens);
   std::size_t countsAt = 0;
   if (IsOffKeyword(tokens[0]))
   {
@@ -199,7 +168,7 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
       {
         throw OffError("file ends before the vertex and face counts");
       }
-      Tokenize(line, tokens);
+      SplitWords(line, tokens);
       countsAt = 0;
     }
   }
@@ -242,7 +211,7 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
       throw OffError("file ends after " + std::to_string(i) + " of " + std::to_string(vertexCount) +
         " vertices");
     }
-    Tokenize(line, tokens);
+    SplitWords(line, tokens);
     double p[3];
     if (tokens.size() < 3 || !ParseDouble(tokens[0], p[0]) || !ParseDouble(tokens[1], p[1]) ||
       !ParseDouble(tokens[2], p[2]))
@@ -266,7 +235,7 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
       throw OffError(
         "file ends after " + std::to_string(f) + " of " + std::to_string(faceCount) + " faces");
     }
-    Tokenize(line, tokens);
+    SplitWords(line, tokens);
     long long n = 0;
     if (tokens.empty() || !ParseInteger(tokens[0], n))
     {

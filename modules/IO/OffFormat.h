@@ -3,6 +3,8 @@
 
 // Internal: ASCII OFF (Object File Format) reader and writer; VTK 9.1 has neither.
 
+#include "BenderErrors.h"
+
 #include <vtkSmartPointer.h>
 
 #include <stdexcept>
@@ -16,10 +18,10 @@ namespace io_detail
 {
 
 /// A malformed OFF file; what() is the problem without the file name ("line 12: ...").
-class OffError : public std::runtime_error
+class OffError : public InputError
 {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Reads ASCII OFF: an optional "OFF" keyword (also COFF, NOFF, CNOFF, STOFF; vertex columns

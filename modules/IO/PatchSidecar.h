@@ -42,9 +42,9 @@ struct PatchSidecar
   /// Enclosed volume (positive; the normals above are outward whatever the triangle order).
   double volume = 0.0;
   bool hasInsidePoint = false;
-  /// A point inside the lumen, far from the wall: the best of midpoints between the surface
-  /// and the first surface hit along the inward normal (from each end's centre and from wall
-  /// triangles), each verified inside by its winding number.
+  /// A point inside the lumen, far from the wall (FindLumenPoint of InsidePoint.h: the best of
+  /// midpoints between the surface and the first surface hit along the inward normal, from
+  /// each end's centre and from wall triangles, each verified inside by its winding number).
   std::array<double, 3> insidePoint{ { 0.0, 0.0, 0.0 } };
   /// Distance from insidePoint to the surface.
   double insideClearance = 0.0;
@@ -54,13 +54,6 @@ struct PatchSidecar
 /// Measures the patches of mesh (labels from PatchLabels.h) in the coordinates of transform.
 /// Throws StlExportError (no triangles, non-finite coordinates, bad labels).
 PatchSidecar ComputePatchSidecar(vtkPolyData* mesh, const ExportTransform& transform);
-
-/// The generalized winding number of point about the closed triangle surface (points and
-/// triangles as given): about +1 inside an outward-oriented surface, -1 inside an inward one,
-/// 0 outside.
-double WindingNumber(const std::vector<std::array<double, 3>>& points,
-  const std::vector<std::array<vtkIdType, 3>>& triangles,
-  const double point[3]);
 
 /// The JSON text: {"format": "bender-patches", "version": 1, "unit", "frame", "closed",
 /// "volume", "insidePoint" (null when none was found), "patches": [{"name", "id", "type",

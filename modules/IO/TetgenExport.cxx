@@ -1,6 +1,7 @@
 #include "TetgenExport.h"
 
 #include "FileUtilities.h"
+#include "StringUtil.h"
 
 #include <vtkPolyData.h>
 
@@ -15,7 +16,7 @@ namespace bender
 
 bool TetgenFormatForPath(const std::string& path, TetgenFormat& format)
 {
-  const std::string ext = io_detail::LowerExtension(path);
+  const std::string ext = LowerExtension(path);
   if (ext == ".smesh")
   {
     format = TetgenFormat::Smesh;
@@ -130,26 +131,9 @@ AtomicFile TetgenFile(vtkPolyData* mesh,
   }
   catch (const StlExportError& e)
   {
-    throw StlExportError(io_detail::DisplayName(path) + ": " + e.what());
+    throw StlExportError(DisplayName(path) + ": " + e.what());
   }
-  return { path,
-    [text](const std::string& temp, std::string& problem)
-    {
-      std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(
-        std::fopen(temp.c_str(), "wb"), &std::fclose);
-      if (!f)
-      {
-        problem = "cannot create a file there";
-        return false;
-      }
-      if (std::fwrite(text->data(), 1, text->size(), f.get()) != text->size() ||
-        std::fclose(f.release()) != 0)
-      {
-        problem = "write failed";
-        return false;
-      }
-      return true;
-    } };
+  return { path, TextProducer(text) };
 }
 
 } // namespace bender

@@ -4,6 +4,7 @@
 #include "GeometryErrors.h"
 #include "InputValidation.h"
 #include "RibbonWarp.h"
+#include "StringUtil.h"
 
 #include <nlohmann/json.hpp>
 
@@ -617,7 +618,7 @@ WarpPlan ParseWarpPlan(const std::string& jsonText, const std::string& sourceNam
 
 WarpPlan ReadWarpPlan(const std::string& path)
 {
-  const std::string name = io_detail::DisplayName(path);
+  const std::string name = DisplayName(path);
   std::uintmax_t size = 0;
   std::string problem;
   if (!io_detail::CheckReadableFile(path, size, problem))
@@ -656,7 +657,7 @@ std::string SerializeWarpPlan(const WarpPlan& plan)
 
 void WriteWarpPlan(const WarpPlan& plan, const std::string& path)
 {
-  const std::string name = io_detail::DisplayName(path);
+  const std::string name = DisplayName(path);
   std::string text;
   Print(WarpPlanToJson(plan, name), "", text);
   text += "\n";

@@ -1,6 +1,7 @@
 #ifndef bender_WarpPlanIO_h
 #define bender_WarpPlanIO_h
 
+#include "BenderErrors.h"
 #include "WarpPlan.h"
 
 #include <nlohmann/json_fwd.hpp>
@@ -13,10 +14,10 @@ namespace bender
 
 /// A plan file that breaks warp-file-format.md. what() is one line naming the source, the
 /// warp index and the field: "plan.bender.json: warps[2].final.end.tangent: zero vector".
-class WarpPlanError : public std::runtime_error
+class WarpPlanError : public InputError
 {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Parses and validates a plan (structure, ranges, and every warp's validity under the

@@ -1,6 +1,7 @@
 #include "ExportSurface.h"
 
 #include "BenderErrors.h"
+#include "MeshFormats.h"
 #include "vtkBenderCapFilter.h"
 
 #include <vtkCellData.h>
@@ -11,9 +12,8 @@
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 
-#include <algorithm>
-#include <cctype>
 #include <exception>
+#include <optional>
 #include <utility>
 
 namespace bender
@@ -35,23 +35,6 @@ MeshCheckReport CheckForExport(vtkPolyData* surface, vtkPolyData* before)
     before->GetNumberOfCells() == surface->GetNumberOfCells();
   return CheckMesh(surface, sameTopology ? before : nullptr, checkOptions);
 }
-
-namespace
-{
-bool HasExtension(const std::string& path, const std::string& ext)
-{
-  if (path.size() < ext.size())
-  {
-    return false;
-  }
-  std::string tail = path.substr(path.size() - ext.size());
-  std::transform(tail.begin(),
-    tail.end(),
-    tail.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return tail == ext;
-}
-} // namespace
 
 namespace
 {
@@ -114,17 +97,19 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
   {
     throw InputError(path + ": unknown unit '" + options.unit + "' (expected mm or m)");
   }
-  const bool stl = HasExtension(path, ".stl");
-  TetgenFormat tetgen = TetgenFormat::Smesh;
-  const bool isTetgen = TetgenFormatForPath(path, tetgen);
-  if (!stl && options.patches != StlPatchMode::Single)
+  // An unknown extension takes the WriteMesh path, which names the problem.
+  const MeshFormat format = FindMeshFormat(path).value_or(MeshFormat{});
+  MeshExportRequest request;
+  request.encoding = options.stlEncoding;
+  request.patches = options.patches;
+  request.sidecar = options.patchesJson ? SidecarChoice::On : SidecarChoice::Off;
+  const MeshExportRules rules = ResolveMeshExport(format, request);
+  if (!rules.problem.empty())
   {
-    throw InputError(path +
-      ": patches (solids, files) are written as .stl only; .vtp, .smesh and .poly keep "
-      "them as labels");
+    throw InputError(path + ": " + rules.problem);
   }
   const std::string sidecarPath = PatchSidecarPath(path);
-  if (options.patchesJson && !options.protectedPath.empty() &&
+  if (rules.sidecar && !options.protectedPath.empty() &&
     SameFile(sidecarPath, options.protectedPath))
   {
     throw InputError(sidecarPath + ": refusing to overwrite the input file; choose another output");
@@ -180,25 +165,22 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
     result.patches = ReadPatchLabels(mesh);
     const ExportTransform transform(options.frame, options.unit);
     std::vector<AtomicFile> files;
-    if (options.patchesJson || isTetgen)
+    if (rules.measure)
     {
       AtomicFile sidecar = PatchSidecarFile(mesh, sidecarPath, transform, &result.sidecar);
       result.measured = true;
-      if (options.patchesJson)
+      if (rules.sidecar)
       {
         files.push_back(std::move(sidecar));
       }
     }
-    if (stl)
+    TetgenFormat tetgen = TetgenFormat::Smesh;
+    if (format.namedPatches)
     {
       StlExportOptions stlOptions;
-      stlOptions.patches = options.patches;
+      stlOptions.patches = rules.patches;
       stlOptions.frame = options.frame;
       stlOptions.unit = options.unit;
-      if (options.patches == StlPatchMode::Single && options.stlEncoding == StlEncoding::Ascii)
-      {
-        stlOptions.patches = StlPatchMode::Solids; // ASCII of the whole surface: named solids
-      }
       if (!options.protectedPath.empty())
       {
         // With one file per patch the names derive from the output: none may be the input.
@@ -214,7 +196,7 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
       std::vector<AtomicFile> stlFiles = StlFiles(mesh, path, stlOptions);
       files.insert(files.begin(), stlFiles.begin(), stlFiles.end());
     }
-    else if (isTetgen)
+    else if (format.regionPoint && TetgenFormatForPath(path, tetgen))
     {
       files.insert(files.begin(),
         TetgenFile(mesh,
@@ -226,8 +208,7 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
     else
     {
       vtkSmartPointer<vtkPolyData> written = mesh;
-      const bool vtp = HasExtension(path, ".vtp");
-      if (options.frame == StlFrame::RAS || options.unit != "mm" || vtp)
+      if (options.frame == StlFrame::RAS || options.unit != "mm" || format.patchLabels)
       {
         // RAS negates x and y (a half turn about z: orientation and volume are kept); metres
         // divide by 1000.
@@ -242,7 +223,7 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
           pts->SetPoint(i, q);
         }
       }
-      if (vtp)
+      if (format.patchLabels)
       {
         // The VTK form states its frame and unit in field data beside the patch names.
         for (const auto& [name, value] :
@@ -257,7 +238,7 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
         }
       }
       MeshWriteOptions writeOptions;
-      writeOptions.stlEncoding = options.stlEncoding;
+      writeOptions.stlEncoding = rules.encoding;
       writeOptions.header = ExportHeader(options.frame, options.unit);
       files.insert(files.begin(), AtomicFile{ path, MeshProducer(written, writeOptions) });
     }

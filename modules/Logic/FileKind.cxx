@@ -1,36 +1,23 @@
 #include "FileKind.h"
 
+#include "MeshFormats.h"
+#include "StringUtil.h"
+
 #include <algorithm>
-#include <cctype>
-#include <initializer_list>
+#include <cstring>
+#include <iterator>
 
 namespace bender
 {
 
 namespace
 {
-std::string Lower(const std::string& text)
+// A name that ends with suffix and has something before it (".json" alone is no plan).
+bool NameEndsWith(const std::string& name, const char* suffix)
 {
-  std::string lower = text;
-  std::transform(lower.begin(),
-    lower.end(),
-    lower.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return lower;
+  return name.size() > std::strlen(suffix) && EndsWith(name, suffix);
 }
-
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() > suffix.size() &&
-    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-bool EndsWithAny(const std::string& text, std::initializer_list<const char*> suffixes)
-{
-  return std::any_of(
-    suffixes.begin(), suffixes.end(), [&](const char* s) { return EndsWith(text, s); });
-}
-}
+} // namespace
 
 FileKind ClassifyFile(const std::string& path, bool isDirectory)
 {
@@ -40,20 +27,24 @@ FileKind ClassifyFile(const std::string& path, bool isDirectory)
   }
   // The name alone: a folder part such as "scans.stl/" must not decide the kind.
   const std::size_t slash = path.find_last_of("/\\");
-  const std::string name = Lower(slash == std::string::npos ? path : path.substr(slash + 1));
-  if (EndsWith(name, ".bender-session.json"))
+  const std::string name = ToLower(slash == std::string::npos ? path : path.substr(slash + 1));
+  if (NameEndsWith(name, ".bender-session.json"))
   {
     return FileKind::Session;
   }
-  if (EndsWith(name, ".json"))
+  if (NameEndsWith(name, ".json"))
   {
     return FileKind::Plan;
   }
-  if (EndsWithAny(name, { ".stl", ".obj", ".ply", ".vtp", ".vtk", ".off" }))
+  const std::optional<MeshFormat> mesh = FindMeshFormat(name);
+  if (mesh && mesh->CanRead())
   {
     return FileKind::Mesh;
   }
-  if (EndsWithAny(name, { ".nrrd", ".nhdr", ".nii", ".nii.gz", ".mha", ".mhd", ".vti" }))
+  const char* const volumes[] = { ".nrrd", ".nhdr", ".nii", ".nii.gz", ".mha", ".mhd", ".vti" };
+  if (std::any_of(std::begin(volumes),
+        std::end(volumes),
+        [&](const char* ext) { return NameEndsWith(name, ext); }))
   {
     return FileKind::Volume;
   }
@@ -80,9 +71,14 @@ const char* FileKindName(FileKind kind)
 
 std::string UnknownFileTypeMessage(const std::string& name)
 {
-  return name +
-    ": unknown file type (meshes: stl obj ply vtp vtk off; volumes: nrrd nhdr nii nii.gz mha mhd "
-    "vti or a DICOM folder; plans: .bender.json; sessions: .bender-session.json)";
+  std::string meshes;
+  for (const std::string& ext : MeshExtensions(MeshAccess::Read))
+  {
+    meshes += (meshes.empty() ? "" : " ") + ext.substr(1);
+  }
+  return name + ": unknown file type (meshes: " + meshes +
+    "; volumes: nrrd nhdr nii nii.gz mha mhd vti or a DICOM folder; plans: .bender.json; "
+    "sessions: .bender-session.json)";
 }
 
 } // namespace bender

@@ -9,7 +9,7 @@ namespace bender
 /// What Bender opens a path as. The GUI's Open, Open Recent and drag and drop dispatch on it.
 enum class FileKind
 {
-  Mesh,    ///< .stl .obj .ply .vtp .vtk .off
+  Mesh,    ///< a readable format of the mesh-format table (MeshFormats.h): .stl .obj ...
   Volume,  ///< .nrrd .nhdr .nii .nii.gz .mha .mhd .vti, or a folder (a DICOM series)
   Plan,    ///< .bender.json (any other .json too: the plan reader says what is wrong)
   Session, ///< .bender-session.json (an autosave): recovery

@@ -4,6 +4,7 @@
 
 #include "BenderStlExport.h"
 #include "IOTestUtilities.h"
+#include "InsidePoint.h"
 #include "MesherTestUtilities.h"
 #include "PatchLabels.h"
 #include "PatchSidecar.h"

@@ -1,4 +1,5 @@
 #include "FileKind.h"
+#include "MeshFormats.h"
 
 #include <gtest/gtest.h>
 
@@ -34,4 +35,30 @@ TEST(FileKind, TheRefusalNamesTheFile)
   const std::string message = UnknownFileTypeMessage("notes.xyz");
   EXPECT_EQ(message.rfind("notes.xyz: unknown file type", 0), 0u);
   EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
+TEST(FileKind, ARegisteredMeshFormatIsOpenedAsAMesh)
+{
+  MeshFormat dummy = *FindMeshFormatByName("off");
+  dummy.name = "dummy";
+  dummy.extensions = { ".dmy" };
+  dummy.label = "Dummy mesh";
+  {
+    ScopedMeshFormat scoped(dummy);
+    EXPECT_EQ(ClassifyFile("dir/a.DMY"), FileKind::Mesh);
+    EXPECT_NE(UnknownFileTypeMessage("notes.xyz").find(" dmy"), std::string::npos);
+  }
+  EXPECT_EQ(ClassifyFile("dir/a.DMY"), FileKind::Unknown);
+  EXPECT_EQ(UnknownFileTypeMessage("notes.xyz").find(" dmy"), std::string::npos);
+  // Every readable row of the table is a mesh to open, and the refusal names it.
+  for (const MeshFormat& format : MeshFormats())
+  {
+    for (const std::string& ext : format.extensions)
+    {
+      EXPECT_EQ(ClassifyFile("a" + ext) == FileKind::Mesh, format.CanRead()) << ext;
+      EXPECT_EQ(UnknownFileTypeMessage("x").find(" " + ext.substr(1)) != std::string::npos,
+        format.CanRead())
+        << ext;
+    }
+  }
 }
