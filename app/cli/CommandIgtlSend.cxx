@@ -1,6 +1,7 @@
 // bender-cli igtl-send SURFACE --to HOST:PORT [--name NAME]: sends a surface to an
 // OpenIGTLink server (3D Slicer's OpenIGTLinkIF connector in server mode) as POLYDATA in RAS.
-// The sending itself is bender::IgtlSender (modules/Tracking), which the application uses too.
+// The sending itself is bender::SlicerLink (modules/Logic), which the application's "Send to
+// Slicer" uses too.
 
 #include "CliCommands.h"
 #include "CliParsing.h"
@@ -9,6 +10,7 @@
 #include "IgtlSocket.h"
 #include "IgtlSurfaceFromMesh.h"
 #include "MeshIO.h"
+#include "SlicerLink.h"
 #include "TrackingErrors.h"
 #include "WarpPlanIO.h"
 
@@ -16,6 +18,7 @@
 #include <vtkPolyData.h>
 
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -112,18 +115,22 @@ int RunIgtlSendCommand(const std::vector<std::string>& args)
   }
   try
   {
-    bender::IgtlSender sender(options);
-    sender.Connect();
-    sender.SendSurface(surface, name);
-    if (ribbon)
-    {
-      sender.SendRibbonEnds(*ribbon, name.substr(0, 9) + "Ribbon");
-    }
+    bender::SlicerLink::Options link;
+    link.sender = options;
+    link.surfaceName = name;
+    link.ribbonPrefix = name.substr(0, 9) + "Ribbon";
+    auto frame = std::make_shared<bender::SlicerLink::Frame>();
+    frame->surface = surface;
+    frame->ribbon = ribbon;
+    frame->final = true;
+    bender::SlicerLink sender(link);
+    sender.Submit(frame);
+    sender.Finish();
     std::printf("sent POLYDATA '%s' (%zu points, %zu polygons, %llu bytes) to %s:%d\n",
       name.c_str(),
       surface.points.size(),
       surface.polygons.size(),
-      static_cast<unsigned long long>(sender.BytesSent()),
+      static_cast<unsigned long long>(sender.GetCounters().bytes),
       options.host.c_str(),
       options.port);
   }

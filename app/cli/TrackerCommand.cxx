@@ -1,23 +1,16 @@
 #include "TrackerCommand.h"
 
-#include "FastrakEncoding.h"
-#include "IgtlDevice.h"
 #include "RibbonEndMapping.h"
-#include "StreamRecorder.h"
-#include "TrackerDeviceFactory.h"
+#include "TrackerStream.h"
 #include "TrackingErrors.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <ostream>
-#include <sys/stat.h>
 
 namespace bender
 {
@@ -276,174 +269,56 @@ int RunTrackerCli(const std::vector<std::string>& args,
     return 2;
   }
 
-  TrackerDeviceSpec spec;
+  std::unique_ptr<TrackerStream> stream;
   try
   {
-    spec = TrackerDeviceSpec::Parse(deviceText);
+    stream = std::make_unique<TrackerStream>(deviceText, options);
   }
   catch (const TrackingError& e)
   {
     err << "bender-cli tracker: " << e.what() << "\n";
     return 2;
   }
-  const bool live = spec.kind == TrackerDeviceSpec::Kind::Usb ||
-    spec.kind == TrackerDeviceSpec::Kind::Serial || spec.kind == TrackerDeviceSpec::Kind::Igtl;
-  const bool simulated = spec.kind == TrackerDeviceSpec::Kind::Simulator;
-  const bool igtl = spec.kind == TrackerDeviceSpec::Kind::Igtl;
-
-  // Recording over the file being replayed would truncate it before it is read.
-  if (spec.kind == TrackerDeviceSpec::Kind::Replay && !options.recordPath.empty())
-  {
-    struct stat a
-    {
-    }, b{};
-    if (::stat(spec.path.c_str(), &a) == 0 && ::stat(options.recordPath.c_str(), &b) == 0 &&
-      a.st_dev == b.st_dev && a.st_ino == b.st_ino)
-    {
-      err << "bender-cli tracker: " << options.recordPath
-          << ": refusing to record over the recording being replayed\n";
-      return 1;
-    }
-  }
 
   SignalGuard signals;
-  std::unique_ptr<TrackerDevice> device;
-  std::unique_ptr<StreamRecorder> simRecorder;
-  std::uint64_t printed = 0;
   int status = 0;
   try
   {
-    // The simulator and OpenIGTLink send no Fastrak bytes: their recording is the binary
-    // records a Fastrak would have sent for the two hands (so replay:FILE plays it back).
-    TrackerDeviceOptions deviceOptions = options;
-    if ((simulated || igtl) && !options.recordPath.empty())
+    TrackerStream::Limits limits;
+    limits.count = count;
+    limits.duration = duration;
+    limits.timeout = timeout;
+    TrackerStream::Sink sink;
+    sink.pose = [&out](const TrackerPose& pose, const std::string* name)
+    { out << PoseJson(pose, name) << '\n'; };
+    sink.batchDone = [&out]() { out.flush(); };
+    sink.event = [&err](const TrackerEvent& event)
     {
-      simRecorder = std::make_unique<StreamRecorder>(options.recordPath);
-      deviceOptions.recordPath.clear();
+      char line[96];
+      std::snprintf(
+        line, sizeof line, "%s station %d at t=%.3f s\n", ToString(event.type), event.station, event.time);
+      err << line;
+    };
+    const TrackerStream::Result result =
+      stream->Run(limits, sink, []() { return Interrupted != 0; });
+    if (result.interrupted)
+    {
+      err << "bender-cli tracker: interrupted\n";
     }
-    device = CreateTrackerDevice(spec, deviceOptions);
-    // Replay: lose nothing (the reader waits for us); live: keep the newest.
-    device->EnablePoseQueue(4096, !live);
-    // OpenIGTLink: print every pose with its device name, hands or not.
-    IgtlDevice* igtlDevice = dynamic_cast<IgtlDevice*>(device.get());
-    if (igtlDevice)
+    if (!result.failure.empty())
     {
-      igtlDevice->EnableNamedQueue(4096);
+      err << "bender-cli tracker: " << result.failure << "\n";
+      status = 1;
     }
-    device->Open();
-    device->Start();
-    const auto started = std::chrono::steady_clock::now();
-    bool done = false;
-    while (!done)
+    PrintSummary(err, stream->Name(), stream->Statistics(), result.poses);
+    for (const std::string& line : stream->SummaryLines())
     {
-      if (Interrupted)
-      {
-        err << "bender-cli tracker: interrupted\n";
-        break;
-      }
-      device->WaitForActivity(std::chrono::milliseconds(100));
-      const std::vector<TrackerEvent> events = device->TakeEvents();
-      const std::vector<TrackerPose> poses = device->TakePoses();
-      std::vector<IgtlNamedPose> named;
-      if (igtlDevice)
-      {
-        named = igtlDevice->TakeNamedPoses();
-      }
-      else
-      {
-        for (const TrackerPose& pose : poses)
-        {
-          named.push_back({ {}, pose });
-        }
-      }
-      for (const IgtlNamedPose& item : named)
-      {
-        const TrackerPose& pose = item.pose;
-        if (duration > 0.0 && pose.time > duration)
-        {
-          done = true;
-          break;
-        }
-        out << PoseJson(pose, igtlDevice ? &item.name : nullptr) << '\n';
-        if (simRecorder && pose.station >= 1)
-        {
-          const std::vector<std::uint8_t> record = EncodeFastrakRecord(pose, FastrakFormat::Binary);
-          simRecorder->Append(record.data(), record.size(), pose.time);
-        }
-        ++printed;
-        if (count > 0 && printed >= count)
-        {
-          done = true;
-          break;
-        }
-      }
-      out.flush();
-      for (const TrackerEvent& event : events)
-      {
-        if (event.type == TrackerEventType::Grab || event.type == TrackerEventType::Release)
-        {
-          char line[96];
-          std::snprintf(line,
-            sizeof line,
-            "%s station %d at t=%.3f s\n",
-            ToString(event.type),
-            event.station,
-            event.time);
-          err << line;
-        }
-        else if (event.type == TrackerEventType::EndOfStream)
-        {
-          done = true;
-        }
-        else if (!done)
-        {
-          err << "bender-cli tracker: " << device->Name() << ": " << event.message << "\n";
-          status = 1;
-          done = true;
-        }
-      }
-      if (!done && printed == 0 && !simulated &&
-        std::chrono::steady_clock::now() - started > std::chrono::duration<double>(timeout))
-      {
-        err << "bender-cli tracker: " << device->Name() << ": no pose within " << timeout
-            << (igtl ? " s; does the server stream TRANSFORM, POSITION, QTDATA or TDATA messages?\n"
-                     : " s; is the Fastrak switched on, its receivers plugged in and streaming?\n");
-        status = 1;
-        done = true;
-      }
+      err << "  " << line << "\n";
     }
-    device->Stop();
-    PrintSummary(err, spec.ToString(), device->Statistics(), printed);
-    if (igtlDevice)
+    stream->Close();
+    if (!result.noPoses.empty())
     {
-      const IgtlStatistics s = igtlDevice->IgtlStats();
-      err << "  igtl: " << s.decoder.messages << " messages, " << s.poses << " poses, "
-          << s.invalidPoses << " invalid, " << s.decoder.crcErrors << " CRC errors, "
-          << s.decoder.malformed << " malformed, " << s.unknownTypes << " skipped ("
-          << s.buttonMessages << " button, " << s.statusMessages << " status messages)\n";
-      for (const auto& [name, n] : s.names)
-      {
-        err << "  device '" << name << "': " << n << " poses"
-            << (name == options.igtlToolNames[0]      ? " (hand 1)"
-                   : name == options.igtlToolNames[1] ? " (hand 2)"
-                                                      : " (not a hand: see --tools)")
-            << "\n";
-      }
-      for (const auto& [type, n] : s.skippedTypes)
-      {
-        err << "  skipped " << type << ": " << n << "\n";
-      }
-      if (!s.lastStatus.empty())
-      {
-        err << "  last problem: " << s.lastStatus << "\n";
-      }
-    }
-    device->Close();
-    if (status == 0 && printed == 0 && spec.kind == TrackerDeviceSpec::Kind::Replay)
-    {
-      err << "bender-cli tracker: " << spec.path << ": no pose decoded (not a Fastrak "
-          << (options.format == FastrakFormat::Binary ? "binary" : "ASCII")
-          << " recording with the output list 2,11,16,0?)\n";
+      err << "bender-cli tracker: " << result.noPoses << "\n";
       status = 1;
     }
   }

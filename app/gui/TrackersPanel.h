@@ -13,8 +13,9 @@ class BenderSession;
 class TrackerDevice;
 class TrackerSession;
 }
+class HandMarkers;
+class SlicerSendBox;
 class QTimer;
-class vtkObjectBase;
 class BenderView;
 class QComboBox;
 
@@ -42,12 +43,9 @@ class QSpinBox;
 /// balls jump onto the ends (the status bar says how far they moved; nothing is bent). Align
 /// is disabled, with a tooltip saying why, until a tracker is connected.
 ///
-/// "Send to Slicer" sends the surface shown (POLYDATA "BenderVessel") and the ribbon's end
-/// frames (TRANSFORMs "BenderRibbonStart"/"BenderRibbonEnd") to an OpenIGTLink server (3D
-/// Slicer's OpenIGTLinkIF connector, default port 18944): at once when switched on, after each
-/// change of the committed surface, and during a bend at most 10 times a second. A sender
-/// thread does the network work with the newest snapshot only (older frames not yet sent are
-/// dropped); an error shows one line in the status bar and switches the toggle off.
+/// The device's lifecycle is a bender::TrackerStream (created here, opened on a pool thread
+/// when live) handed to the TrackerSession; the markers are HandMarkers; "Send to Slicer" is
+/// the SlicerSendBox below the tracker controls.
 class TrackersPanel : public QWidget
 {
   Q_OBJECT
@@ -105,14 +103,9 @@ signals:
   void trackerMoved();
 
 private:
-  class SlicerLink;
-  class HandMarkers;
   void updateHandMarkers();
   void finishConnect(bool connected);
-  void setSendToSlicer(bool on);
-  void sendSnapshot(bool final);
   void showCounters();
-  void pruneRetired();
 
   QComboBox* Kind;
   QLineEdit* Device;
@@ -121,21 +114,10 @@ private:
   QLineEdit* IgtlTool1;
   QLineEdit* IgtlTool2;
   QLabel* IgtlCounters;
-  QCheckBox* SendToSlicer;
-  QLineEdit* SlicerHost;
-  QSpinBox* SlicerPort;
-  QLabel* SlicerCounters;
-  QTimer* SnapshotTimer = nullptr;
+  SlicerSendBox* Slicer;
   QTimer* CountersTimer = nullptr;
-  std::unique_ptr<SlicerLink> Link;
   std::unique_ptr<HandMarkers> Markers;
-  std::vector<std::unique_ptr<SlicerLink>> Retired; ///< switched off, thread still ending
-  unsigned LinkGeneration = 0;                      ///< which sender an error report belongs to
   bool Connecting = false;
-  bool SentWhileGrabbed = false;
-  vtkObjectBase* SentSurface = nullptr; ///< the committed surface last sent (identity only)
-  unsigned long SentSurfaceTime = 0;
-  std::size_t SentHistoryPosition = 0;
   QSpinBox* Left;
   QSpinBox* Right;
   QDoubleSpinBox* Scale;

@@ -3,6 +3,7 @@
 #include "BenderErrors.h"
 #include "BenderSession.h"
 #include "TrackerDevice.h"
+#include "TrackerStream.h"
 
 #include <algorithm>
 #include <array>
@@ -36,7 +37,9 @@ bool TrackerSession::Connect(const std::string& deviceSpec,
   std::unique_ptr<TrackerDevice> device;
   try
   {
-    device = CreateTrackerDevice(TrackerDeviceSpec::Parse(deviceSpec), options);
+    TrackerStream stream(deviceSpec, options);
+    stream.Create();
+    device = stream.TakeDevice();
   }
   catch (const std::exception& e)
   {
@@ -93,26 +96,6 @@ bool TrackerSession::Connect(std::unique_ptr<TrackerDevice> device,
         "(P) to bend from where it is");
   }
   return true;
-}
-
-std::unique_ptr<TrackerDevice> TrackerSession::OpenDevice(const std::string& deviceSpec,
-  const TrackerDeviceOptions& options)
-{
-  std::unique_ptr<TrackerDevice> device;
-  try
-  {
-    device = CreateTrackerDevice(TrackerDeviceSpec::Parse(deviceSpec), options);
-    device->Open();
-  }
-  catch (const std::exception& e)
-  {
-    if (device)
-    {
-      device->Close();
-    }
-    throw Error("Tracker " + deviceSpec + ": " + e.what());
-  }
-  return device;
 }
 
 void TrackerSession::Disconnect()

@@ -46,18 +46,12 @@ public:
     const TrackerDeviceOptions& options = {},
     const HandMapping& hands = {},
     const TrackerCalibration& calibration = {});
-  /// Same with a device made by the caller (tests, custom devices); takes ownership. A device
-  /// that is already open (see OpenDevice) is only started.
+  /// Same with a device made by the caller (tests, custom devices, TrackerStream::TakeDevice);
+  /// takes ownership. A device that is already open (TrackerStream::Open) is only started.
   bool Connect(std::unique_ptr<TrackerDevice> device,
     const HandMapping& hands = {},
     const TrackerCalibration& calibration = {});
-  /// Creates and opens the device named by `deviceSpec` without touching any session, so that
-  /// a window can open it on a worker thread (IgtlDevice::Open waits up to its connect timeout
-  /// for a host that does not answer) and then hand it to Connect on its own thread. Throws
-  /// (one line naming the device and the problem) on failure.
-  static std::unique_ptr<TrackerDevice> OpenDevice(const std::string& deviceSpec,
-    const TrackerDeviceOptions& options = {});
-  /// The connected device (its own statistics, e.g. IgtlDevice::IgtlStats()); null when not
+  /// The connected device (its own counters: TrackerDevice::CountersText); null when not
   /// connected.
   const TrackerDevice* GetDevice() const { return this->Device.get(); }
   /// Stops and closes; a live warp is cancelled.

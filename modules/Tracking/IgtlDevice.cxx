@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <sstream>
 
 namespace bender
 {
@@ -284,18 +285,73 @@ IgtlStatistics IgtlDevice::IgtlStats() const
   return this->Stats;
 }
 
-void IgtlDevice::EnableNamedQueue(std::size_t capacity)
+bool IgtlDevice::EnableNamedQueue(std::size_t capacity)
 {
   std::lock_guard<std::mutex> lock(this->StatsMutex);
   this->NamedCapacity = capacity;
+  return true;
 }
 
-std::vector<IgtlNamedPose> IgtlDevice::TakeNamedPoses()
+std::vector<NamedTrackerPose> IgtlDevice::TakeNamedPoses()
 {
   std::lock_guard<std::mutex> lock(this->StatsMutex);
-  std::vector<IgtlNamedPose> out(this->Named.begin(), this->Named.end());
+  std::vector<NamedTrackerPose> out(this->Named.begin(), this->Named.end());
   this->Named.clear();
   return out;
+}
+
+std::vector<std::string> IgtlDevice::SummaryLines() const
+{
+  const IgtlStatistics s = this->IgtlStats();
+  std::vector<std::string> lines;
+  std::ostringstream igtl;
+  igtl << "igtl: " << s.decoder.messages << " messages, " << s.poses << " poses, "
+       << s.invalidPoses << " invalid, " << s.decoder.crcErrors << " CRC errors, "
+       << s.decoder.malformed << " malformed, " << s.unknownTypes << " skipped ("
+       << s.buttonMessages << " button, " << s.statusMessages << " status messages)";
+  lines.push_back(igtl.str());
+  for (const auto& [name, n] : s.names)
+  {
+    lines.push_back("device '" + name + "': " + std::to_string(n) + " poses" +
+      (name == this->Opts.toolNames[0]      ? " (hand 1)"
+          : name == this->Opts.toolNames[1] ? " (hand 2)"
+                                            : " (not a hand: see --tools)"));
+  }
+  for (const auto& [type, n] : s.skippedTypes)
+  {
+    lines.push_back("skipped " + type + ": " + std::to_string(n));
+  }
+  if (!s.lastStatus.empty())
+  {
+    lines.push_back("last problem: " + s.lastStatus);
+  }
+  return lines;
+}
+
+std::string IgtlDevice::CountersText() const
+{
+  const IgtlStatistics stats = this->IgtlStats();
+  std::ostringstream text;
+  text << "OpenIGTLink: ";
+  if (stats.names.empty())
+  {
+    text << "no poses yet";
+  }
+  else
+  {
+    text << "names seen:";
+    const char* separator = " ";
+    for (const auto& [name, count] : stats.names)
+    {
+      text << separator << name << " (" << count << ")";
+      separator = ", ";
+    }
+  }
+  text << "\nCRC errors " << stats.decoder.crcErrors << ", garbage bytes "
+       << stats.decoder.garbageBytes << ", skipped messages " << stats.unknownTypes
+       << ", invalid poses " << stats.invalidPoses;
+  text << "\nlast STATUS: " << (stats.lastStatus.empty() ? "OK" : stats.lastStatus);
+  return text.str();
 }
 
 } // namespace bender

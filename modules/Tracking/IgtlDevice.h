@@ -34,13 +34,6 @@ struct IgtlStatistics
   std::string lastStatus; ///< the last STATUS that was not OK, "" when none
 };
 
-/// A pose as received, with its device name, in LPS millimetres (see IgtlDevice).
-struct IgtlNamedPose
-{
-  std::string name;
-  TrackerPose pose; ///< station 1/2 for the two hands' names, 0 for any other name
-};
-
 /// A tracker reached over OpenIGTLink: a TCP client of a PLUS server, 3D Slicer or any peer
 /// that sends tracking messages (`--device igtl:HOST:PORT`).
 ///
@@ -94,9 +87,16 @@ public:
   TrackerStatistics Statistics() const override;
 
   IgtlStatistics IgtlStats() const;
-  /// Keep every received pose, whatever its name (bounded, oldest dropped).
-  void EnableNamedQueue(std::size_t capacity);
-  std::vector<IgtlNamedPose> TakeNamedPoses();
+  /// Keeps every received pose, whatever its name (LPS millimetres; station 1/2 for the two
+  /// hands' names, 0 for any other name); true.
+  bool EnableNamedQueue(std::size_t capacity) override;
+  std::vector<NamedTrackerPose> TakeNamedPoses() override;
+  /// "igtl: N messages, ...", the poses per device name (which hand, or "not a hand"), the
+  /// skipped message types and the last problem.
+  std::vector<std::string> SummaryLines() const override;
+  /// "OpenIGTLink: names seen: ...", CRC errors, garbage bytes, skipped messages, invalid
+  /// poses and the last STATUS.
+  std::string CountersText() const override;
 
   const Options& GetOptions() const { return this->Opts; }
 
@@ -117,7 +117,7 @@ private:
   mutable std::mutex StatsMutex;
   IgtlStatistics Stats;
   std::uint64_t Filtered = 0;
-  std::deque<IgtlNamedPose> Named;
+  std::deque<NamedTrackerPose> Named;
   std::size_t NamedCapacity = 0;
 };
 

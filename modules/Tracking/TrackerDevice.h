@@ -49,6 +49,23 @@ public:
   }
   virtual TrackerStatistics Statistics() const { return this->Store.Statistics(); }
 
+  /// A device that names its poses (OpenIGTLink) keeps, once this is called, every pose with
+  /// its name (hands or not; bounded, oldest dropped) for TakeNamedPoses, so that a user sees
+  /// everything a server sends. False, and nothing kept, for a device without names.
+  virtual bool EnableNamedQueue(std::size_t capacity)
+  {
+    (void)capacity;
+    return false;
+  }
+  virtual std::vector<NamedTrackerPose> TakeNamedPoses() { return {}; }
+  /// What this kind of device counts beyond Statistics(), one line each without indentation,
+  /// for a summary at the end of a stream (OpenIGTLink: messages, device names, CRC errors,
+  /// the last STATUS); empty for a device with nothing more to say.
+  virtual std::vector<std::string> SummaryLines() const { return {}; }
+  /// The same, short, for a status panel updated while streaming (a few lines); empty when the
+  /// device has nothing more to say.
+  virtual std::string CountersText() const { return {}; }
+
 protected:
   PoseStore Store;
 };

@@ -4,6 +4,8 @@
 #include "Quaternion.h"
 #include "Vec3.h"
 
+#include <string>
+
 namespace bender
 {
 
@@ -24,6 +26,14 @@ struct TrackerPose
   /// Seconds since the device started streaming (steady clock), or the receive time stored
   /// in a recording when replaying one.
   double time = 0.0;
+};
+
+/// A pose as received from a device that names its poses (OpenIGTLink device names), with
+/// that name; `pose.station` is the hand's station, 0 for a name that is no hand's.
+struct NamedTrackerPose
+{
+  std::string name;
+  TrackerPose pose;
 };
 
 } // namespace bender
