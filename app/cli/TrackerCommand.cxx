@@ -146,37 +146,41 @@ void PrintSummary(std::ostream& err,
 
 std::string TrackerCliUsage()
 {
-  return "usage: bender-cli tracker --device usb|usb:N|serial:PATH[@BAUD[,8N1]]|replay:FILE|sim|\n"
-         "                                   igtl:HOST:PORT\n"
+  std::string devices;
+  for (const TrackerDeviceKind& kind : TrackerDeviceKinds())
+  {
+    devices += (devices.empty() ? "" : "|") + kind.syntax;
+  }
+  std::string deviceHelp;
+  for (const std::string& line : TrackerDeviceHelpLines(71))
+  {
+    deviceHelp += "                   " + line + "\n";
+  }
+  return "usage: bender-cli tracker --device SPEC\n"
          "                          [--record FILE] [--count N] [--stations 1,2]\n"
          "                          [--tools NAME1,NAME2]\n"
          "                          [--format binary|ascii] [--realtime] [--duration S]\n"
          "                          [--timeout S] [--reset]\n\n"
-         "Streams poses from a Polhemus Fastrak (USB or serial), a recording or the simulator\n"
-         "and prints one JSON line per pose on stdout:\n"
+         "Streams poses from a Polhemus Fastrak (USB or serial), a recording, the simulator or\n"
+         "an OpenIGTLink server and prints one JSON line per pose on stdout:\n"
          "  {\"t\": s, \"station\": n, \"position\": [x, y, z] (mm), \"quaternion\": [w, x, y, z],"
          " \"button\": 0|1}\n"
-         "Grab/release events and a summary (rates, dropped and malformed records) go to "
-         "stderr.\n\n"
-         "  --device SPEC    usb: first Fastrak on USB (vendor 0x0f44); serial:/dev/ttyUSB0 at\n"
-         "                   115200 8N1 unless @BAUD[,8N1] says otherwise; replay:FILE plays raw\n"
-         "                   bytes recorded in binary mode (FILE.timestamps used when present);\n"
-         "                   sim: two scripted hands bending a ribbon; igtl:HOST:PORT: an\n"
-         "                   OpenIGTLink server (PLUS, 3D Slicer): every TRANSFORM, POSITION,\n"
-         "                   QTDATA or TDATA pose is printed with its \"device\" name (station 1\n"
-         "                   and 2 for the --tools names, 0 for others), converted RAS -> LPS\n"
-         "  --tools A,B      OpenIGTLink device names of hand 1 and hand 2\n"
-         "                   (default StylusToTracker,Stylus2ToTracker)\n"
-         "  --record FILE    write what the device sends to FILE (+ FILE.timestamps)\n"
-         "  --count N        stop after N poses\n"
-         "  --stations LIST  stations to activate and print (default 1,2)\n"
-         "  --format F       binary (default) or ascii records (for replay: how FILE was "
-         "recorded)\n"
-         "  --realtime       replay at the recorded pace instead of as fast as possible\n"
-         "  --duration S     stop after S seconds of pose time\n"
-         "  --timeout S      fail when a live device sends no pose within S s (default 5)\n"
-         "  --reset          reset the unit (^Y) first; takes about 10 s\n"
-         "See docs/tracking.md for connecting a Fastrak, udev rules and the recording format.\n";
+         "(OpenIGTLink: with the pose's \"device\" name.) Grab/release events and a summary\n"
+         "(rates, dropped and malformed records) go to stderr.\n\n"
+         "  --device SPEC    " +
+    devices + "\n" + deviceHelp +
+    "  --tools A,B      OpenIGTLink device names of hand 1 and hand 2\n"
+    "                   (default StylusToTracker,Stylus2ToTracker)\n"
+    "  --record FILE    write what the device sends to FILE (+ FILE.timestamps)\n"
+    "  --count N        stop after N poses\n"
+    "  --stations LIST  stations to activate and print (default 1,2)\n"
+    "  --format F       binary (default) or ascii records (for replay: how FILE was "
+    "recorded)\n"
+    "  --realtime       replay at the recorded pace instead of as fast as possible\n"
+    "  --duration S     stop after S seconds of pose time\n"
+    "  --timeout S      fail when a live device sends no pose within S s (default 5)\n"
+    "  --reset          reset the unit (^Y) first; takes about 10 s\n"
+    "See docs/tracking.md for connecting a Fastrak, udev rules and the recording format.\n";
 }
 
 int RunTrackerCli(const std::vector<std::string>& args,
@@ -295,8 +299,12 @@ int RunTrackerCli(const std::vector<std::string>& args,
     sink.event = [&err](const TrackerEvent& event)
     {
       char line[96];
-      std::snprintf(
-        line, sizeof line, "%s station %d at t=%.3f s\n", ToString(event.type), event.station, event.time);
+      std::snprintf(line,
+        sizeof line,
+        "%s station %d at t=%.3f s\n",
+        ToString(event.type),
+        event.station,
+        event.time);
       err << line;
     };
     const TrackerStream::Result result =

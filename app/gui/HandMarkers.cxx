@@ -71,7 +71,8 @@ void HandMarkers::attach(vtkRenderer* layer)
   }
 }
 
-void HandMarkers::show(const bender::RibbonSpec& hands, const std::optional<bender::RibbonSpec>& held)
+void HandMarkers::show(const bender::RibbonSpec& hands,
+  const std::optional<bender::RibbonSpec>& held)
 {
   const bender::RibbonSpec& scaleOf = held ? *held : hands;
   const double length = bender::Distance(scaleOf.start.position, scaleOf.end.position);

@@ -44,7 +44,6 @@ SlicerSendBox::SlicerSendBox(QWidget* parent)
   this->SlicerCounters->setObjectName("slicerCounters");
   this->SlicerCounters->setWordWrap(true);
   slicerForm->addRow(this->SlicerCounters);
-  layout->addWidget(this);
   connect(this->SendToSlicer, &QCheckBox::toggled, this, &SlicerSendBox::setSending);
   this->SnapshotTimer = new QTimer(this);
   this->SnapshotTimer->setSingleShot(true);
@@ -82,7 +81,6 @@ void SlicerSendBox::showCounters()
                                     .arg(sent.messages)
                                     .arg(double(sent.bytes) / 1024.0, 0, 'f', 1));
   }
-}
 }
 
 void SlicerSendBox::pruneRetired()

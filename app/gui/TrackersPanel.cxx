@@ -13,12 +13,11 @@
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QCompleter>
 #include <QDoubleSpinBox>
-#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QFormLayout>
 #include <QFutureWatcher>
-#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
@@ -80,7 +79,15 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   auto* deviceRow = new QHBoxLayout;
   this->Device = new QLineEdit("sim", this);
   this->Device->setObjectName("trackerDevice");
-  this->Device->setToolTip("usb, usb:N, serial:/dev/ttyUSB0@115200, replay:FILE or sim");
+  // The device table's kinds: the completer lists them, the tooltip shows their forms.
+  QStringList kinds;
+  for (const bender::TrackerDeviceKind& kind : bender::TrackerDeviceKinds())
+  {
+    const bool argument = kind.argument == bender::TrackerDeviceKind::Argument::Required;
+    kinds << QString::fromStdString(kind.name + (argument ? ":" : ""));
+  }
+  this->Device->setCompleter(new QCompleter(kinds, this->Device));
+  this->Device->setToolTip(QString::fromStdString(bender::TrackerDeviceForms()));
   deviceRow->addWidget(this->Device);
   auto* browse = new QPushButton("Replay...", this);
   deviceRow->addWidget(browse);
@@ -502,6 +509,7 @@ void TrackersPanel::showCounters()
   const std::string counters = device ? device->CountersText() : std::string();
   this->IgtlCounters->setText(QString::fromStdString(counters));
   this->IgtlCounters->setVisible(!counters.empty());
+}
 
 bool TrackersPanel::isSendingToSlicer() const
 {

@@ -45,7 +45,10 @@ SlicerLink::SlicerLink(Options options, std::function<void(std::string)> onError
 SlicerLink::~SlicerLink()
 {
   this->RequestStop();
-  this->Thread.join();
+  if (this->Thread.joinable())
+  {
+    this->Thread.join();
+  }
 }
 
 void SlicerLink::RequestStop()
@@ -73,7 +76,10 @@ void SlicerLink::Finish()
     this->Wake.wait(lock, [this]() { return !this->Pending || this->Done.load(); });
   }
   this->RequestStop();
-  this->Thread.join();
+  if (this->Thread.joinable())
+  {
+    this->Thread.join();
+  }
   if (!this->Failure.empty())
   {
     throw Error(this->Failure);

@@ -3,7 +3,7 @@
 
 #include "RibbonEndMapping.h"
 #include "TrackerCalibration.h"
-#include "TrackerDeviceFactory.h"
+#include "TrackerDeviceRegistry.h"
 #include "TrackerStatistics.h"
 #include "TwoHandRibbonInput.h"
 

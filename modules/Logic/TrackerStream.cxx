@@ -1,7 +1,6 @@
 #include "TrackerStream.h"
 
 #include "FastrakEncoding.h"
-#include "FileIdentity.h"
 #include "StreamRecorder.h"
 #include "TrackingErrors.h"
 
@@ -11,31 +10,9 @@
 namespace bender
 {
 
-namespace
-{
-bool RecordsBytes(TrackerDeviceSpec::Kind kind)
-{
-  return kind == TrackerDeviceSpec::Kind::Usb || kind == TrackerDeviceSpec::Kind::Serial ||
-    kind == TrackerDeviceSpec::Kind::Replay;
-}
-
-// What a device that sends no pose within the timeout is told to check; empty: never silent.
-std::string SilentHint(TrackerDeviceSpec::Kind kind)
-{
-  switch (kind)
-  {
-    case TrackerDeviceSpec::Kind::Simulator:
-      return {};
-    case TrackerDeviceSpec::Kind::Igtl:
-      return "does the server stream TRANSFORM, POSITION, QTDATA or TDATA messages?";
-    default:
-      return "is the Fastrak switched on, its receivers plugged in and streaming?";
-  }
-}
-} // namespace
-
 TrackerStream::TrackerStream(const std::string& spec, TrackerDeviceOptions options)
   : DeviceSpec(TrackerDeviceSpec::Parse(spec))
+  , DeviceKind(FindTrackerDeviceKind(DeviceSpec.kind))
   , Options(std::move(options))
 {
 }
@@ -45,28 +22,14 @@ TrackerStream::~TrackerStream()
   this->Close();
 }
 
-bool TrackerStream::IsLive() const
-{
-  const TrackerDeviceSpec::Kind kind = this->DeviceSpec.kind;
-  return kind == TrackerDeviceSpec::Kind::Usb || kind == TrackerDeviceSpec::Kind::Serial ||
-    kind == TrackerDeviceSpec::Kind::Igtl;
-}
-
 TrackerDevice& TrackerStream::Create()
 {
   if (this->Device)
   {
     return *this->Device;
   }
-  // Recording over the file being replayed would truncate it before it is read.
-  if (this->DeviceSpec.kind == TrackerDeviceSpec::Kind::Replay &&
-    !this->Options.recordPath.empty() && SameFile(this->DeviceSpec.path, this->Options.recordPath))
-  {
-    throw RecordingError(
-      this->Options.recordPath + ": refusing to record over the recording being replayed");
-  }
   TrackerDeviceOptions deviceOptions = this->Options;
-  if (!RecordsBytes(this->DeviceSpec.kind) && !this->Options.recordPath.empty())
+  if (!this->DeviceKind.recordsBytes && !this->Options.recordPath.empty())
   {
     this->PoseRecorder = std::make_unique<StreamRecorder>(this->Options.recordPath);
     deviceOptions.recordPath.clear();
@@ -105,7 +68,7 @@ TrackerStream::Result TrackerStream::Run(const Limits& limits,
   const bool named = device.EnableNamedQueue(4096);
   this->Open();
   device.Start();
-  const std::string silentHint = SilentHint(this->DeviceSpec.kind);
+  const std::string& silentHint = this->DeviceKind.silentHint;
   const auto started = std::chrono::steady_clock::now();
   bool done = false;
   while (!done)
@@ -181,12 +144,9 @@ TrackerStream::Result TrackerStream::Run(const Limits& limits,
     }
   }
   device.Stop();
-  if (result.failure.empty() && result.poses == 0 &&
-    this->DeviceSpec.kind == TrackerDeviceSpec::Kind::Replay)
+  if (result.failure.empty() && result.poses == 0 && this->DeviceKind.noPoses)
   {
-    result.noPoses = this->DeviceSpec.path + ": no pose decoded (not a Fastrak " +
-      (this->Options.format == FastrakFormat::Binary ? "binary" : "ASCII") +
-      " recording with the output list 2,11,16,0?)";
+    result.noPoses = this->DeviceKind.noPoses(this->DeviceSpec, this->Options);
   }
   return result;
 }

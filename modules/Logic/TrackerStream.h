@@ -2,7 +2,7 @@
 #define bender_TrackerStream_h
 
 #include "TrackerDevice.h"
-#include "TrackerDeviceFactory.h"
+#include "TrackerDeviceRegistry.h"
 
 #include <cstdint>
 #include <functional>
@@ -15,13 +15,13 @@ namespace bender
 
 class StreamRecorder;
 
-/// One tracker device from its spec to a clean stop: created from the spec (`usb`,
-/// `serial:PATH`, `replay:FILE`, `sim`, `igtl:HOST:PORT`, ...), opened, started, its poses and
-/// events handed to a sink in order (Run), recorded (`TrackerDeviceOptions::recordPath`: the
-/// raw bytes of a Fastrak, or, for devices that send no Fastrak bytes, the binary records a
-/// Fastrak would have sent for the hands, so that `replay:FILE` plays it back), stopped on a
-/// pose count, a duration, the end of a replay, a device failure, a silent device or a cancel,
-/// and its statistics.
+/// One tracker device from its spec to a clean stop: created from the spec through the device
+/// table (`usb`, `serial:PATH`, `replay:FILE`, `sim`, `igtl:HOST:PORT`, registered kinds), opened,
+/// started, its poses and events handed to a sink in order (Run), recorded
+/// (`TrackerDeviceOptions::recordPath`: the raw bytes of a Fastrak, or, for devices that send no
+/// Fastrak bytes, the binary records a Fastrak would have sent for the hands, so that `replay:FILE`
+/// plays it back), stopped on a pose count, a duration, the end of a replay, a device failure, a
+/// silent device or a cancel, and its statistics.
 ///
 /// `bender-cli tracker` runs it (Run, then Statistics and SummaryLines); the Trackers panel
 /// creates it on the GUI thread (Create: a bad spec or option is refused before any thread),
@@ -67,12 +67,14 @@ public:
   TrackerStream& operator=(const TrackerStream&) = delete;
 
   const TrackerDeviceSpec& Spec() const { return this->DeviceSpec; }
+  /// The spec's row of the device table.
+  const TrackerDeviceKind& Kind() const { return this->DeviceKind; }
   /// The spec as the summary names it ("replay:FILE", "igtl:HOST:PORT").
   std::string Name() const { return this->DeviceSpec.ToString(); }
   /// A device that waits on hardware or a network host (USB, serial, OpenIGTLink): opened off
   /// the GUI thread, and keeps the newest poses when the reader falls behind (a replay or the
   /// simulator loses none).
-  bool IsLive() const;
+  bool IsLive() const { return this->DeviceKind.live; }
 
   /// Creates the device (options are checked; nothing is opened). Throws TrackingError (bad
   /// tool names, recording over the recording being replayed, ...). Once only.
@@ -103,6 +105,7 @@ private:
   void Record(const TrackerPose& pose);
 
   TrackerDeviceSpec DeviceSpec;
+  TrackerDeviceKind DeviceKind; ///< a copy: registering a kind may move the table's rows
   TrackerDeviceOptions Options;
   std::unique_ptr<TrackerDevice> Device;
   std::unique_ptr<StreamRecorder> PoseRecorder; ///< devices that send no Fastrak bytes

@@ -145,34 +145,20 @@ void FastrakDevice::Start()
   {
     throw TrackingError(this->DeviceName + ": Start() before Open()");
   }
-  if (this->Reader.joinable())
+  if (this->ReaderRunning())
   {
-    if (this->Streaming.load())
-    {
-      return;
-    }
-    this->Reader.join();
+    return;
   }
   if (this->Opts.configure)
   {
     this->Send("C");
   }
-  this->StopRequested = false;
-  this->Store.Rearm();
-  this->StartTime = std::chrono::steady_clock::now();
-  this->Streaming = true;
-  this->Reader = std::thread([this] { this->ReaderLoop(); });
+  this->StartReader([this] { this->ReaderLoop(); });
 }
 
 void FastrakDevice::Stop()
 {
-  this->StopRequested = true;
-  this->Store.Cancel();
-  if (this->Reader.joinable())
-  {
-    this->Reader.join();
-  }
-  this->Streaming = false;
+  this->StopReader();
   if (this->Link && this->Opts.configure)
   {
     try
@@ -196,11 +182,6 @@ void FastrakDevice::Close()
   }
 }
 
-double FastrakDevice::Now() const
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->StartTime).count();
-}
-
 void FastrakDevice::ReaderLoop()
 {
   FastrakParser::Options parserOptions;
@@ -217,10 +198,10 @@ void FastrakDevice::ReaderLoop()
   // The stream is over: consumers that see the event also see IsStreaming() == false.
   const auto finish = [this](const TrackerEvent& event)
   {
-    this->Streaming = false;
+    this->ReaderEnded();
     this->Store.PublishEvent(event);
   };
-  while (!this->StopRequested.load())
+  while (!this->StopRequested())
   {
     std::size_t n = 0;
     try
@@ -229,12 +210,12 @@ void FastrakDevice::ReaderLoop()
     }
     catch (const DeviceDisconnectedError& e)
     {
-      finish({ TrackerEventType::Disconnected, 0, this->Now(), e.what() });
+      finish({ TrackerEventType::Disconnected, 0, this->ReaderTime(), e.what() });
       return;
     }
     catch (const std::exception& e)
     {
-      finish({ TrackerEventType::ReadError, 0, this->Now(), e.what() });
+      finish({ TrackerEventType::ReadError, 0, this->ReaderTime(), e.what() });
       return;
     }
     if (n == 0)
@@ -243,13 +224,13 @@ void FastrakDevice::ReaderLoop()
       {
         parser.Finish();
         publishStats(0);
-        const double t = this->Link->RecordedTime().value_or(this->Now());
+        const double t = this->Link->RecordedTime().value_or(this->ReaderTime());
         finish({ TrackerEventType::EndOfStream, 0, t, {} });
         return;
       }
       continue;
     }
-    const double t = this->Link->RecordedTime().value_or(this->Now());
+    const double t = this->Link->RecordedTime().value_or(this->ReaderTime());
     poses.clear();
     parser.Feed(buffer.data(), n, t, poses);
     std::uint64_t filtered = 0;
@@ -267,7 +248,7 @@ void FastrakDevice::ReaderLoop()
     }
     publishStats(filtered);
   }
-  this->Streaming = false;
+  this->ReaderEnded();
 }
 
 TrackerStatistics FastrakDevice::Statistics() const

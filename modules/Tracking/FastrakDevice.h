@@ -63,7 +63,6 @@ public:
   void Stop() override;
   void Close() override;
   bool IsOpen() const override { return this->Link != nullptr; }
-  bool IsStreaming() const override { return this->Streaming.load(); }
   TrackerStatistics Statistics() const override;
 
   const FastrakOptions& Options() const { return this->Opts; }
@@ -73,16 +72,11 @@ private:
   void MeasureLatency();
   void Send(const std::string& command);
   void ReaderLoop();
-  double Now() const;
 
   std::string DeviceName;
   TransportFactory Factory;
   FastrakOptions Opts;
   std::unique_ptr<Transport> Link;
-  std::thread Reader;
-  std::atomic<bool> StopRequested{ false };
-  std::atomic<bool> Streaming{ false };
-  std::chrono::steady_clock::time_point StartTime;
   mutable std::mutex StatsMutex;
   FastrakParserStatistics ParserStats;
   std::uint64_t Filtered = 0;

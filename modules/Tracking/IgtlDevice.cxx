@@ -76,30 +76,15 @@ void IgtlDevice::Start()
   {
     throw TrackingError(this->Name() + ": Start() before Open()");
   }
-  if (this->Reader.joinable())
+  if (!this->ReaderRunning())
   {
-    if (this->Streaming.load())
-    {
-      return;
-    }
-    this->Reader.join();
+    this->StartReader([this] { this->ReaderLoop(); });
   }
-  this->StopRequested = false;
-  this->Store.Rearm();
-  this->StartTime = std::chrono::steady_clock::now();
-  this->Streaming = true;
-  this->Reader = std::thread([this] { this->ReaderLoop(); });
 }
 
 void IgtlDevice::Stop()
 {
-  this->StopRequested = true;
-  this->Store.Cancel();
-  if (this->Reader.joinable())
-  {
-    this->Reader.join();
-  }
-  this->Streaming = false;
+  this->StopReader();
 }
 
 void IgtlDevice::Close()
@@ -108,17 +93,12 @@ void IgtlDevice::Close()
   this->Link.Close();
 }
 
-double IgtlDevice::Now() const
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->StartTime).count();
-}
-
 void IgtlDevice::ReaderLoop()
 {
   std::vector<std::uint8_t> buffer(65536);
   try
   {
-    while (!this->StopRequested.load())
+    while (!this->StopRequested())
     {
       std::size_t received = 0;
       const IgtlConnection::ReadResult result =
@@ -136,8 +116,9 @@ void IgtlDevice::ReaderLoop()
           std::lock_guard<std::mutex> lock(this->StatsMutex);
           ++this->Stats.truncated;
         }
-        this->Streaming = false;
-        this->Store.PublishEvent({ TrackerEventType::Disconnected, 0, this->Now(), message });
+        this->ReaderEnded();
+        this->Store.PublishEvent(
+          { TrackerEventType::Disconnected, 0, this->ReaderTime(), message });
         return;
       }
       this->Decoder.Feed(buffer.data(), received);
@@ -151,16 +132,16 @@ void IgtlDevice::ReaderLoop()
   }
   catch (const std::exception& e)
   {
-    this->Streaming = false;
-    this->Store.PublishEvent({ TrackerEventType::ReadError, 0, this->Now(), e.what() });
+    this->ReaderEnded();
+    this->Store.PublishEvent({ TrackerEventType::ReadError, 0, this->ReaderTime(), e.what() });
     return;
   }
-  this->Streaming = false;
+  this->ReaderEnded();
 }
 
 void IgtlDevice::Handle(const IgtlMessage& message)
 {
-  const double now = this->Now();
+  const double now = this->ReaderTime();
   const auto hand = [this](const std::string& name)
   {
     for (int i = 0; i < 2; ++i)
@@ -305,10 +286,10 @@ std::vector<std::string> IgtlDevice::SummaryLines() const
   const IgtlStatistics s = this->IgtlStats();
   std::vector<std::string> lines;
   std::ostringstream igtl;
-  igtl << "igtl: " << s.decoder.messages << " messages, " << s.poses << " poses, "
-       << s.invalidPoses << " invalid, " << s.decoder.crcErrors << " CRC errors, "
-       << s.decoder.malformed << " malformed, " << s.unknownTypes << " skipped ("
-       << s.buttonMessages << " button, " << s.statusMessages << " status messages)";
+  igtl << "igtl: " << s.decoder.messages << " messages, " << s.poses << " poses, " << s.invalidPoses
+       << " invalid, " << s.decoder.crcErrors << " CRC errors, " << s.decoder.malformed
+       << " malformed, " << s.unknownTypes << " skipped (" << s.buttonMessages << " button, "
+       << s.statusMessages << " status messages)";
   lines.push_back(igtl.str());
   for (const auto& [name, n] : s.names)
   {

@@ -83,7 +83,6 @@ public:
   void Stop() override;
   void Close() override;
   bool IsOpen() const override { return this->Link.IsOpen(); }
-  bool IsStreaming() const override { return this->Streaming.load(); }
   TrackerStatistics Statistics() const override;
 
   IgtlStatistics IgtlStats() const;
@@ -103,15 +102,10 @@ public:
 private:
   void ReaderLoop();
   void Handle(const IgtlMessage& message);
-  double Now() const;
 
   Options Opts;
   IgtlConnection Link;
   IgtlStreamDecoder Decoder;
-  std::thread Reader;
-  std::atomic<bool> StopRequested{ false };
-  std::atomic<bool> Streaming{ false };
-  std::chrono::steady_clock::time_point StartTime;
   std::array<bool, 2> Buttons{};
   std::array<std::optional<TrackerPose>, 2> LastPoses;
   mutable std::mutex StatsMutex;

@@ -108,14 +108,6 @@ LibusbTransport::~LibusbTransport()
   this->Close();
 }
 
-void LibusbTransport::CheckOpen() const
-{
-  if (!this->Handle)
-  {
-    throw TransportError(this->DeviceName + ": used after Close()");
-  }
-}
-
 bool LibusbTransport::Fill(std::chrono::milliseconds timeout)
 {
   const unsigned ms = unsigned(std::max<long long>(1, timeout.count()));
@@ -162,7 +154,7 @@ std::size_t LibusbTransport::Read(std::uint8_t* buffer,
   std::size_t capacity,
   std::chrono::milliseconds timeout)
 {
-  this->CheckOpen();
+  this->CheckOpen(this->Handle != nullptr);
   if (this->PendingBegin == this->Pending.size() && !this->Fill(timeout))
   {
     return 0;
@@ -177,7 +169,7 @@ void LibusbTransport::Write(const std::uint8_t* data,
   std::size_t size,
   std::chrono::milliseconds timeout)
 {
-  this->CheckOpen();
+  this->CheckOpen(this->Handle != nullptr);
   const unsigned ms = unsigned(std::max<long long>(1, timeout.count()));
   std::vector<std::uint8_t> copy(data, data + size);
   std::size_t done = 0;
@@ -219,7 +211,7 @@ void LibusbTransport::Write(const std::uint8_t* data,
 
 void LibusbTransport::Flush()
 {
-  this->CheckOpen();
+  this->CheckOpen(this->Handle != nullptr);
   this->Pending.clear();
   this->PendingBegin = 0;
   for (int i = 0; i < this->Opts.maxFlushTransfers; ++i)

@@ -37,16 +37,10 @@ public:
   explicit LibusbTransport(std::shared_ptr<UsbBackend> backend);
   LibusbTransport(std::shared_ptr<UsbBackend> backend, const Options& options);
   ~LibusbTransport() override;
-  LibusbTransport(const LibusbTransport&) = delete;
-  LibusbTransport& operator=(const LibusbTransport&) = delete;
 
   std::string Name() const override { return this->DeviceName; }
-  std::size_t Read(std::uint8_t* buffer,
-    std::size_t capacity,
-    std::chrono::milliseconds timeout) override;
-  void Write(const std::uint8_t* data,
-    std::size_t size,
-    std::chrono::milliseconds timeout) override;
+  std::size_t Read(std::uint8_t* buffer, std::size_t capacity, Timeout timeout) override;
+  void Write(const std::uint8_t* data, std::size_t size, Timeout timeout) override;
   void Flush() override;
   void Close() override;
 
@@ -55,9 +49,8 @@ public:
   int Interface() const { return this->InterfaceNumber; }
 
 private:
-  void CheckOpen() const;
   /// One IN transfer into Pending; returns false on timeout with nothing received.
-  bool Fill(std::chrono::milliseconds timeout);
+  bool Fill(Timeout timeout);
 
   std::shared_ptr<UsbBackend> Backend;
   Options Opts;

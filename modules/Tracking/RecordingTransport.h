@@ -23,10 +23,8 @@ public:
   RecordingTransport(std::unique_ptr<Transport> inner, const std::string& path);
 
   std::string Name() const override { return this->Inner->Name(); }
-  std::size_t Read(std::uint8_t* buffer,
-    std::size_t capacity,
-    std::chrono::milliseconds timeout) override;
-  void Write(const std::uint8_t* data, std::size_t size, std::chrono::milliseconds timeout) override
+  std::size_t Read(std::uint8_t* buffer, std::size_t capacity, Timeout timeout) override;
+  void Write(const std::uint8_t* data, std::size_t size, Timeout timeout) override
   {
     this->Inner->Write(data, size, timeout);
   }

@@ -185,10 +185,7 @@ std::size_t ReplayTransport::Read(std::uint8_t* buffer,
   std::size_t capacity,
   std::chrono::milliseconds timeout)
 {
-  if (this->Closed)
-  {
-    throw TransportError(this->Name() + ": used after Close()");
-  }
+  this->CheckOpen(!this->Closed);
   if (this->AtEnd() || capacity == 0)
   {
     return 0;

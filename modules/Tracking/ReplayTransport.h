@@ -35,10 +35,8 @@ public:
   ReplayTransport(const std::string& path, const Options& options);
 
   std::string Name() const override { return "replay " + this->Path; }
-  std::size_t Read(std::uint8_t* buffer,
-    std::size_t capacity,
-    std::chrono::milliseconds timeout) override;
-  void Write(const std::uint8_t*, std::size_t, std::chrono::milliseconds) override {}
+  std::size_t Read(std::uint8_t* buffer, std::size_t capacity, Timeout timeout) override;
+  void Write(const std::uint8_t*, std::size_t, Timeout) override {}
   void Flush() override {}
   void Close() override { this->Closed = true; }
   bool AtEnd() const override { return this->Chunk >= this->Chunks.size(); }

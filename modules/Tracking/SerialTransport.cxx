@@ -135,19 +135,11 @@ SerialTransport::~SerialTransport()
   this->Close();
 }
 
-void SerialTransport::CheckOpen() const
-{
-  if (this->Fd < 0)
-  {
-    throw TransportError(this->Name() + ": used after Close()");
-  }
-}
-
 std::size_t SerialTransport::Read(std::uint8_t* buffer,
   std::size_t capacity,
   std::chrono::milliseconds timeout)
 {
-  this->CheckOpen();
+  this->CheckOpen(this->Fd >= 0);
   pollfd p{ this->Fd, POLLIN, 0 };
   int ready;
   do
@@ -192,7 +184,7 @@ void SerialTransport::Write(const std::uint8_t* data,
   std::size_t size,
   std::chrono::milliseconds timeout)
 {
-  this->CheckOpen();
+  this->CheckOpen(this->Fd >= 0);
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::size_t done = 0;
   while (done < size)
@@ -227,7 +219,7 @@ void SerialTransport::Write(const std::uint8_t* data,
 
 void SerialTransport::Flush()
 {
-  this->CheckOpen();
+  this->CheckOpen(this->Fd >= 0);
   ::tcflush(this->Fd, TCIFLUSH);
 }
 

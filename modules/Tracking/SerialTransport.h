@@ -32,21 +32,14 @@ public:
   /// settings).
   SerialTransport(const std::string& path, const SerialSettings& settings = {});
   ~SerialTransport() override;
-  SerialTransport(const SerialTransport&) = delete;
-  SerialTransport& operator=(const SerialTransport&) = delete;
 
   std::string Name() const override { return "serial " + this->Path; }
-  std::size_t Read(std::uint8_t* buffer,
-    std::size_t capacity,
-    std::chrono::milliseconds timeout) override;
-  void Write(const std::uint8_t* data,
-    std::size_t size,
-    std::chrono::milliseconds timeout) override;
+  std::size_t Read(std::uint8_t* buffer, std::size_t capacity, Timeout timeout) override;
+  void Write(const std::uint8_t* data, std::size_t size, Timeout timeout) override;
   void Flush() override;
   void Close() override;
 
 private:
-  void CheckOpen() const;
   std::string Path;
   int Fd = -1;
 };

@@ -52,29 +52,15 @@ void SimulatedDevice::Start()
   {
     throw TrackingError("simulator: Start() before Open()");
   }
-  if (this->Worker.joinable())
+  if (!this->ReaderRunning())
   {
-    if (this->Streaming.load())
-    {
-      return;
-    }
-    this->Worker.join();
+    this->StartReader([this] { this->Run(); });
   }
-  this->StopRequested = false;
-  this->Store.Rearm();
-  this->Streaming = true;
-  this->Worker = std::thread([this] { this->Run(); });
 }
 
 void SimulatedDevice::Stop()
 {
-  this->StopRequested = true;
-  this->Store.Cancel();
-  if (this->Worker.joinable())
-  {
-    this->Worker.join();
-  }
-  this->Streaming = false;
+  this->StopReader();
 }
 
 void SimulatedDevice::Close()
@@ -86,12 +72,12 @@ void SimulatedDevice::Close()
 void SimulatedDevice::Run()
 {
   const auto start = std::chrono::steady_clock::now();
-  for (std::uint64_t k = 0; !this->StopRequested.load(); ++k)
+  for (std::uint64_t k = 0; !this->StopRequested(); ++k)
   {
     const double t = double(k) / this->Opts.rateHz;
     if (this->Opts.duration > 0.0 && t > this->Opts.duration)
     {
-      this->Streaming = false;
+      this->ReaderEnded();
       this->Store.PublishEvent({ TrackerEventType::EndOfStream, 0, t, {} });
       return;
     }
@@ -101,7 +87,7 @@ void SimulatedDevice::Run()
       const auto due = start +
         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
           std::chrono::duration<double>(t));
-      while (!this->StopRequested.load() && std::chrono::steady_clock::now() < due)
+      while (!this->StopRequested() && std::chrono::steady_clock::now() < due)
       {
         std::this_thread::sleep_for(std::min<std::chrono::steady_clock::duration>(
           due - std::chrono::steady_clock::now(), std::chrono::milliseconds(20)));
@@ -109,13 +95,13 @@ void SimulatedDevice::Run()
     }
     for (int station : this->Opts.stations)
     {
-      if (this->StopRequested.load() || !this->Store.Publish(this->Script.PoseAt(station, t)))
+      if (this->StopRequested() || !this->Store.Publish(this->Script.PoseAt(station, t)))
       {
         break;
       }
     }
   }
-  this->Streaming = false;
+  this->ReaderEnded();
 }
 
 } // namespace bender

@@ -38,16 +38,12 @@ public:
   void Stop() override;
   void Close() override;
   bool IsOpen() const override { return this->Opened; }
-  bool IsStreaming() const override { return this->Streaming.load(); }
 
 private:
   void Run();
 
   Options Opts;
   SimulationScript Script;
-  std::thread Worker;
-  std::atomic<bool> StopRequested{ false };
-  std::atomic<bool> Streaming{ false };
   bool Opened = false;
 };
 

@@ -6,9 +6,12 @@
 #include "TrackerPose.h"
 #include "TrackerStatistics.h"
 
+#include <atomic>
 #include <chrono>
+#include <functional>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace bender
@@ -18,9 +21,9 @@ namespace bender
 ///
 /// Life cycle: Open() -> Start() -> (LatestPose/TakeEvents from any thread) -> Stop() ->
 /// Close(). After a Disconnected event, Close() and Open() again reconnect without
-/// restarting the application. Start() runs a reader thread; Stop() joins it within one read
-/// timeout. Open() and Start() throw TrackingError subclasses; Stop() and Close() never
-/// throw. The destructor of a concrete device stops and closes it.
+/// restarting the application. Start() runs a reader thread (StartReader); Stop() joins it
+/// within one read timeout (StopReader). Open() and Start() throw TrackingError subclasses; Stop()
+/// and Close() never throw. The destructor of a concrete device stops and closes it.
 class TrackerDevice
 {
 public:
@@ -32,7 +35,8 @@ public:
   virtual void Stop() = 0;
   virtual void Close() = 0;
   virtual bool IsOpen() const = 0;
-  virtual bool IsStreaming() const = 0;
+  /// Whether the reader thread runs (devices that use StartReader); false once it ended.
+  virtual bool IsStreaming() const { return this->Streaming.load(); }
 
   /// Newest pose of station 1..4, never waits on the device (see PoseStore).
   std::optional<TrackerPose> LatestPose(int station) const { return this->Store.Latest(station); }
@@ -67,7 +71,28 @@ public:
   virtual std::string CountersText() const { return {}; }
 
 protected:
+  /// For Start(): true while the reader thread still runs (nothing to start); otherwise an
+  /// ended reader is joined and false returned.
+  bool ReaderRunning();
+  /// Starts `loop` on the reader thread, with the pose store rearmed, IsStreaming() true and
+  /// ReaderTime() counting from now.
+  void StartReader(std::function<void()> loop);
+  /// For Stop(): asks the reader to stop, wakes the store's waits and joins the thread.
+  void StopReader();
+  /// The reader's loop condition.
+  bool StopRequested() const { return this->StopFlag.load(); }
+  /// The reader ends by itself (end of a stream, a failure): IsStreaming() is false from now.
+  void ReaderEnded() { this->Streaming = false; }
+  /// Seconds since StartReader (steady clock).
+  double ReaderTime() const;
+
   PoseStore Store;
+
+private:
+  std::thread Reader;
+  std::atomic<bool> StopFlag{ false };
+  std::atomic<bool> Streaming{ false };
+  std::chrono::steady_clock::time_point ReaderStart;
 };
 
 } // namespace bender

@@ -1,18 +1,18 @@
 #ifndef bender_TrackingErrors_h
 #define bender_TrackingErrors_h
 
-#include <stdexcept>
-#include <string>
+#include "BenderErrors.h"
 
 namespace bender
 {
 
-/// Base of every error thrown by modules/Tracking. Messages are one line and name the device
-/// or file and the problem, e.g. "serial /dev/ttyUSB0: permission denied (...)".
-class TrackingError : public std::runtime_error
+/// Base of every error thrown by modules/Tracking, a bender::Error. Messages are one line and
+/// name the device or file and the problem, e.g. "serial /dev/ttyUSB0: permission denied
+/// (...)".
+class TrackingError : public Error
 {
 public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// No device of the requested kind is present (nothing on USB, no such serial port).

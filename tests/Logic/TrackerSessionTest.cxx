@@ -1,15 +1,20 @@
 // Bending with trackers: the scripted two-hand simulator grabs, bends and releases through the
 // session; a stream that ends mid-warp cancels the live warp and keeps the committed shape.
+// TrackerStream: every pose in order, its recording replays to the same poses, a cancel, a
+// duration and failures end it cleanly.
 #include "TrackerSession.h"
 #include "BenderSession.h"
 #include "LogicTestUtilities.h"
+#include "TrackerStream.h"
 #include "TrackerTestUtilities.h"
+#include "TrackingErrors.h"
 
 #include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 using namespace bender;
@@ -202,4 +207,111 @@ TEST(TrackerSession, AlignPutsTheMappedHandsOnTheRibbonEndsAndBendsNothing)
   EXPECT_FALSE(trackers.MappedHands());
   EXPECT_FALSE(trackers.AlignTo(placed));
   EXPECT_EQ(session.GetMessages().back().text, "Align: connect a tracker first");
+}
+
+// TrackerStream: the device lifecycle under `bender-cli tracker` and the Trackers panel.
+TEST(TrackerStream, StreamsEveryPoseInOrderAndRecordsWhatReplaysToTheSame)
+{
+  const std::string recording = ::testing::TempDir() + "/tracker-stream-sim.fastrak";
+  TrackerDeviceOptions options;
+  options.simulatorRealtime = false;
+  options.simulatorDuration = 2.0;
+  options.recordPath = recording;
+  TrackerStream sim("sim", options);
+  EXPECT_FALSE(sim.IsLive());
+  EXPECT_EQ(sim.Kind().name, "sim");
+  std::vector<TrackerPose> poses;
+  int events = 0;
+  TrackerStream::Sink sink;
+  sink.pose = [&](const TrackerPose& pose, const std::string* name)
+  {
+    EXPECT_EQ(name, nullptr); // the simulator does not name its poses
+    poses.push_back(pose);
+  };
+  sink.event = [&](const TrackerEvent& event)
+  {
+    EXPECT_TRUE(event.type == TrackerEventType::Grab || event.type == TrackerEventType::Release);
+    ++events;
+  };
+  const TrackerStream::Result result = sim.Run({}, sink);
+  EXPECT_TRUE(result.Ok()) << result.failure << result.noPoses;
+  EXPECT_FALSE(result.interrupted);
+  ASSERT_EQ(result.poses, poses.size());
+  ASSERT_EQ(poses.size(), 2u * 121u); // 60 Hz for 2 s, two stations
+  EXPECT_EQ(events, 1);               // the script presses at 1 s
+  for (std::size_t i = 1; i < poses.size(); ++i)
+  {
+    EXPECT_LE(poses[i - 1].time, poses[i].time);
+  }
+  const TrackerStatistics stats = sim.Statistics();
+  ASSERT_EQ(stats.stations.size(), 2u);
+  EXPECT_EQ(stats.stations[0].samples + stats.stations[1].samples, poses.size());
+  sim.Close();
+
+  // The recording is the hands as Fastrak binary records: a replay gives the same poses (to
+  // the record's float32 centimetres).
+  TrackerStream replay("replay:" + recording);
+  std::vector<TrackerPose> replayed;
+  TrackerStream::Sink replaySink;
+  replaySink.pose = [&](const TrackerPose& pose, const std::string*) { replayed.push_back(pose); };
+  TrackerStream::Limits limits;
+  limits.count = 50;
+  const TrackerStream::Result again = replay.Run(limits, replaySink);
+  EXPECT_TRUE(again.Ok()) << again.failure << again.noPoses;
+  ASSERT_EQ(replayed.size(), 50u);
+  for (std::size_t i = 0; i < replayed.size(); ++i)
+  {
+    EXPECT_EQ(replayed[i].station, poses[i].station);
+    EXPECT_EQ(replayed[i].button, poses[i].button);
+    EXPECT_LT(Distance(replayed[i].position, poses[i].position), 1e-3);
+  }
+  std::remove(recording.c_str());
+  std::remove((recording + ".timestamps").c_str());
+}
+
+TEST(TrackerStream, CancelDurationAndFailuresEndTheStreamCleanly)
+{
+  // An endless simulator: the cancel callback stops it; the device is stopped, not lost.
+  TrackerStream endless("sim");
+  int polls = 0;
+  const TrackerStream::Result cancelled = endless.Run({}, {}, [&polls]() { return ++polls > 3; });
+  EXPECT_TRUE(cancelled.interrupted);
+  EXPECT_TRUE(cancelled.Ok());
+  std::unique_ptr<TrackerDevice> device = endless.TakeDevice();
+  ASSERT_TRUE(device);
+  EXPECT_TRUE(device->IsOpen());
+  EXPECT_FALSE(device->IsStreaming());
+  device->Close();
+
+  // A duration in pose time.
+  TrackerDeviceOptions fast;
+  fast.simulatorRealtime = false;
+  TrackerStream timed("sim", fast);
+  TrackerStream::Limits limits;
+  limits.duration = 0.5;
+  double last = 0.0;
+  TrackerStream::Sink sink;
+  sink.pose = [&last](const TrackerPose& pose, const std::string*) { last = pose.time; };
+  const TrackerStream::Result result = timed.Run(limits, sink);
+  EXPECT_TRUE(result.Ok());
+  EXPECT_GT(result.poses, 0u);
+  EXPECT_LE(last, 0.5);
+
+  // A bad spec is refused when parsed; a recording that is not there when opened; a file that
+  // decodes nothing is said so.
+  EXPECT_THROW(TrackerStream("floppy"), TrackingConfigurationError);
+  EXPECT_THROW(TrackerStream("replay:/no/such/recording.fastrak").Run({}, {}), RecordingError);
+  const std::string garbage = ::testing::TempDir() + "/tracker-stream-garbage.bin";
+  {
+    std::FILE* file = std::fopen(garbage.c_str(), "wb");
+    ASSERT_NE(file, nullptr);
+    std::fputs(std::string(300, 'z').c_str(), file);
+    std::fclose(file);
+  }
+  TrackerStream noise("replay:" + garbage);
+  const TrackerStream::Result empty = noise.Run({}, {});
+  EXPECT_EQ(empty.poses, 0u);
+  EXPECT_NE(empty.noPoses.find("no pose decoded"), std::string::npos) << empty.noPoses;
+  EXPECT_EQ(noise.Statistics().parser.garbageBytes, 300u);
+  std::remove(garbage.c_str());
 }

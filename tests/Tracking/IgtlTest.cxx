@@ -8,7 +8,7 @@
 #include "IgtlProtocol.h"
 #include "IgtlSender.h"
 #include "TrackerCommand.h"
-#include "TrackerDeviceFactory.h"
+#include "TrackerDeviceRegistry.h"
 #include "TrackingErrors.h"
 #include "TwoHandRibbonInput.h"
 
@@ -400,7 +400,7 @@ TEST(IgtlProtocol, DecodesLibraryPositionMessages)
 TEST(IgtlProtocol, DeviceSpecParsesHostAndPort)
 {
   const auto spec = bender::TrackerDeviceSpec::Parse("igtl:127.0.0.1:18944");
-  EXPECT_EQ(spec.kind, bender::TrackerDeviceSpec::Kind::Igtl);
+  EXPECT_EQ(spec.kind, "igtl");
   EXPECT_EQ(spec.host, "127.0.0.1");
   EXPECT_EQ(spec.port, 18944);
   EXPECT_EQ(spec.ToString(), "igtl:127.0.0.1:18944");

@@ -4,7 +4,7 @@
 #include "ReplayTransport.h"
 #include "SimulationScript.h"
 #include "StreamRecorder.h"
-#include "TrackerDeviceFactory.h"
+#include "TrackerDeviceRegistry.h"
 #include "TrackingTestUtilities.h"
 
 #include <fstream>

@@ -1,8 +1,11 @@
 // bender-cli tracker, in-process (TrackerCommand) and, once the whole tree is built, as
 // the real executable.
 #include "FastrakParser.h"
+#include "SimulatedDevice.h"
 #include "SimulationScript.h"
 #include "TrackerCommand.h"
+#include "TrackerDeviceRegistry.h"
+#include "TrackingErrors.h"
 #include "TrackingTestUtilities.h"
 
 #include <nlohmann/json.hpp>
@@ -184,6 +187,77 @@ TEST(TrackerCli, SimulatorRecordingReplaysToTheSamePoses)
   {
     ExpectPoseEq(ParseLine(sim.lines[i]), ParseLine(replay.lines[i]), 1e-4);
   }
+}
+
+// A device kind registered by a test: the simulator's hands at 20 Hz for `dummy:SECONDS`,
+// with a summary line of its own.
+class DummyDevice : public SimulatedDevice
+{
+public:
+  using SimulatedDevice::SimulatedDevice;
+  std::vector<std::string> SummaryLines() const override { return { "dummy: all quiet" }; }
+};
+
+TrackerDeviceKind DummyKind()
+{
+  TrackerDeviceKind kind;
+  kind.name = "dummy";
+  kind.argument = TrackerDeviceKind::Argument::Required;
+  kind.syntax = "dummy:SECONDS";
+  kind.help = "a test's device: scripted hands for SECONDS";
+  kind.parse = [](const std::string& seconds, TrackerDeviceSpec& spec) -> std::string
+  {
+    spec.path = seconds;
+    return seconds.find_first_not_of("0123456789") == std::string::npos && !seconds.empty()
+      ? std::string()
+      : "'" + seconds + "' is not a number of seconds";
+  };
+  kind.create = [](const TrackerDeviceSpec& spec, const TrackerDeviceOptions& options)
+  {
+    SimulatedDevice::Options sim;
+    sim.stations = options.stations;
+    sim.rateHz = 20.0;
+    sim.duration = std::stod(spec.path);
+    sim.realtime = false;
+    return std::make_unique<DummyDevice>(sim);
+  };
+  return kind;
+}
+
+TEST(TrackerCli, ARegisteredDeviceKindIsListedParsedAndStreamed)
+{
+  RegisterTrackerDeviceKind(DummyKind());
+  // Listed where users look: the --device help and the parse errors' list of forms.
+  const CliResult help = RunCli({ "--help" });
+  std::string helpText;
+  for (const std::string& line : help.lines)
+  {
+    helpText += line + "\n";
+  }
+  EXPECT_NE(helpText.find("dummy:SECONDS"), std::string::npos) << helpText;
+  EXPECT_NE(helpText.find("a test's device"), std::string::npos) << helpText;
+  const CliResult unknown = RunCli({ "--device", "floppy" });
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.err.find("dummy:SECONDS"), std::string::npos) << unknown.err;
+  EXPECT_EQ(RunCli({ "--device", "dummy" }).status, 2);
+  const CliResult bad = RunCli({ "--device", "dummy:soon" });
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("'soon' is not a number of seconds"), std::string::npos) << bad.err;
+  EXPECT_EQ(TrackerDeviceSpec::Parse("dummy:2").ToString(), "dummy:2");
+  EXPECT_THROW(RegisterTrackerDeviceKind(TrackerDeviceKind{}), TrackingConfigurationError);
+
+  // Streamed like any device: 2 s at 20 Hz on two stations, then its own summary line.
+  const CliResult r = RunCli({ "--device", "dummy:2" });
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.lines.size(), 2u * 41u);
+  const SimulationScript script = SimulationScript::TwoHandBend();
+  for (const std::string& line : r.lines)
+  {
+    const TrackerPose got = ParseLine(line);
+    ExpectPoseEq(script.PoseAt(got.station, got.time), got, 1e-4);
+  }
+  EXPECT_NE(r.err.find("tracker summary: dummy:2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("  dummy: all quiet\n"), std::string::npos) << r.err;
 }
 
 // The real executable, once the whole tree builds (label: pipeline).

@@ -3,20 +3,25 @@
 // widgets, moves the ribbon; a connect to a port that does not answer leaves the event loop
 // turning; "Send to Slicer" makes a loopback receiver get the session's surface as POLYDATA and
 // a newer one during and after a bend; a server that goes away ends the connection and Connect
-// reconnects. Loopback 127.0.0.1 on ephemeral ports only.
+// reconnects. A device kind registered in the device table appears in the panel's device list
+// and connects like any other. Loopback 127.0.0.1 on ephemeral ports only.
 
 #include "AppTestUtilities.h"
 #include "BenderSession.h"
 #include "IgtlProtocol.h"
 #include "IgtlSender.h"
 #include "MainWindow.h"
+#include "SimulatedDevice.h"
+#include "TrackerDeviceRegistry.h"
 #include "TrackersPanel.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
+#include <QAbstractItemModel>
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QCompleter>
 #include <QDir>
 #include <QLabel>
 #include <QLineEdit>
@@ -223,6 +228,30 @@ bender::RibbonSpec StraightRibbon(double x0, double x1)
   return ribbon;
 }
 
+// A device kind of the test's own: the simulator, with counters for the panel.
+class PanelDummyDevice : public bender::SimulatedDevice
+{
+public:
+  using SimulatedDevice::SimulatedDevice;
+  std::string CountersText() const override { return "panel dummy: counting"; }
+};
+
+bender::TrackerDeviceKind PanelDummyKind()
+{
+  bender::TrackerDeviceKind kind;
+  kind.name = "paneldummy";
+  kind.syntax = "paneldummy";
+  kind.help = "the Trackers panel test's device";
+  kind.parse = [](const std::string&, bender::TrackerDeviceSpec&) { return std::string(); };
+  kind.create = [](const bender::TrackerDeviceSpec&, const bender::TrackerDeviceOptions& options)
+  {
+    bender::SimulatedDevice::Options sim;
+    sim.stations = options.stations;
+    return std::make_unique<PanelDummyDevice>(sim);
+  };
+  return kind;
+}
+
 } // namespace
 
 class IgtlAppTest : public QObject
@@ -267,6 +296,7 @@ private slots:
   void initTestCase()
   {
     QVERIFY(this->Folder.isValid());
+    bender::RegisterTrackerDeviceKind(PanelDummyKind()); // before the panel lists the kinds
     this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
     QVERIFY(bendertest::ShowTestWindow(*this->Window, false));
     auto* panels = this->Window->findChild<QTabWidget*>("panels");
@@ -463,6 +493,42 @@ private slots:
     QVERIFY(!this->Window->trackers().IsConnected());
     QVERIFY(this->child<QComboBox>("trackerKind")->isEnabled());
     QVERIFY(this->child<QLineEdit>("igtlHost")->isEnabled());
+  }
+
+  void aRegisteredDeviceKindIsInThePanelsListAndConnects()
+  {
+    this->child<QComboBox>("trackerKind")->setCurrentIndex(0);
+    auto* device = this->child<QLineEdit>("trackerDevice");
+    QVERIFY(device->isEnabled());
+    QVERIFY(device->completer());
+    QStringList listed;
+    const QAbstractItemModel* model = device->completer()->model();
+    for (int row = 0; row < model->rowCount(); ++row)
+      listed << model->index(row, 0).data().toString();
+    // Every kind of the table, the registered one included, in the table's order.
+    QStringList expected;
+    for (const bender::TrackerDeviceKind& kind : bender::TrackerDeviceKinds())
+      expected << QString::fromStdString(kind.name);
+    QCOMPARE(listed.size(), expected.size());
+    for (int i = 0; i < expected.size(); ++i)
+      QVERIFY2(listed[i].startsWith(expected[i]), qPrintable(listed.join(' ')));
+    QVERIFY(listed.contains("paneldummy"));
+    QVERIFY(device->toolTip().contains("paneldummy"));
+
+    // Connected through the panel's own button, its counters shown by the panel.
+    this->panel()->setDeviceSpec("paneldummy");
+    QSignalSpy finished(this->panel(), &TrackersPanel::connectFinished);
+    QTest::mouseClick(this->child<QPushButton>("trackerConnect"), Qt::LeftButton);
+    QCOMPARE(finished.count(), 1);
+    QCOMPARE(finished.last().first().toBool(), true);
+    QVERIFY(this->Window->trackers().IsConnected());
+    QTRY_COMPARE_WITH_TIMEOUT(
+      this->child<QLabel>("igtlCounters")->text(), QString("panel dummy: counting"), 5000);
+    QVERIFY(this->child<QLabel>("igtlCounters")->isVisible());
+    QTest::mouseClick(this->child<QPushButton>("trackerDisconnect"), Qt::LeftButton);
+    QVERIFY(!this->Window->trackers().IsConnected());
+    QVERIFY(!this->child<QLabel>("igtlCounters")->isVisible());
+    this->panel()->setDeviceSpec("sim");
   }
 };
 
