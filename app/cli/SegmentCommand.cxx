@@ -430,7 +430,7 @@ PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args)
   return r;
 }
 
-SurfaceResult RunSegmentPipeline(const SegmentRequest& request,
+SegmentVolumeResult RunSegmentPipeline(const SegmentRequest& request,
   const ProgressReporter& progress,
   const std::function<void(const std::string&)>& inform)
 {
@@ -470,7 +470,7 @@ int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::
     }
     // A DICOM folder with several series and no --series: the largest is read and named in
     // one line (before any progress is drawn), as the window does.
-    const SurfaceResult result = RunSegmentPipeline(request,
+    const SegmentVolumeResult result = RunSegmentPipeline(request,
       terminal.Reporter(),
       [&err](const std::string& note) { err << "bender-cli segment: " << note << "\n"; });
     MeshWriteOptions options;
@@ -487,6 +487,8 @@ int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::
         << (result.boundaryEdges == 0 ? std::string("closed")
                                       : std::to_string(result.boundaryEdges) + " open edges")
         << ", " << std::fixed << std::setprecision(2) << total << " s\n";
+    if (!result.warning.empty())
+      err << "bender-cli segment: warning: " << result.warning << "\n";
     return 0;
   }
   catch (const std::exception& e)

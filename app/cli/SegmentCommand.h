@@ -4,6 +4,7 @@
 // `bender-cli segment` and `bender-cli phantom` (part of bender_cli_commands, so that the tests
 // run them in-process). The workflow itself is bender::SegmentVolume in modules/Logic.
 
+#include "SegmentVolume.h"
 #include "SurfaceExtraction.h"
 #include "VesselPhantom.h"
 #include "VesselSegmentation.h"
@@ -48,7 +49,7 @@ PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args);
 /// segmentation, then the surface stages) are appended to the result's timings. `inform` is
 /// told which series was read from a DICOM folder holding several when none was asked for
 /// (SegmentVolumeOptions::inform).
-SurfaceResult RunSegmentPipeline(const SegmentRequest& request,
+SegmentVolumeResult RunSegmentPipeline(const SegmentRequest& request,
   const ProgressReporter& progress = {},
   const std::function<void(const std::string&)>& inform = {});
 

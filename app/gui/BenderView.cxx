@@ -1,9 +1,12 @@
 #include "BenderView.h"
 
 #include "BenderSession.h"
+#include "MainActions.h"
 
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
+
+#include <QAction>
 
 #include <vtkActor.h>
 #include <vtkActor2D.h>
@@ -337,6 +340,19 @@ bool BenderView::sceneBounds(double bounds[6])
   }
   surface->GetBounds(bounds);
   return ValidBounds(bounds);
+}
+
+void BenderView::attachActions(MainActions* actions)
+{
+  connect(actions->ResetCamera, &QAction::triggered, this, &BenderView::resetCamera);
+  for (int v = 0; v < 6; ++v)
+  {
+    connect(actions->StandardViews[v],
+      &QAction::triggered,
+      this,
+      [this, v]() { this->setStandardView(static_cast<StandardView>(v)); });
+  }
+  connect(actions->ShowOriginal, &QAction::toggled, this, &BenderView::setOriginalVisible);
 }
 
 void BenderView::resetCamera()

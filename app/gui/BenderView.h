@@ -8,6 +8,7 @@
 
 #include <functional>
 
+class MainActions;
 class vtkActor;
 class vtkActor2D;
 class vtkAlgorithmOutput;
@@ -79,6 +80,8 @@ public:
   /// interaction or a tracker poll): the caller draws one frame itself.
   void quietly(const std::function<void()>& call);
   /// Frames the surface from the front (the anterior standard view): resets the rotation too.
+  /// Connects the window's view actions: Reset camera, the six standard views, Show original.
+  void attachActions(MainActions* actions);
   void resetCamera();
   /// Looks at the surface from one side of the patient, framing it.
   void setStandardView(StandardView view);

@@ -1,5 +1,7 @@
 #include "CursorOverlay.h"
 
+#include "SliceGeometry.h"
+
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
@@ -20,10 +22,6 @@
 
 namespace
 {
-// The slice views' colours: axial, coronal, sagittal (as in SliceViews).
-const unsigned char PlaneColours[3][3] = { { 242, 97, 89 }, { 115, 217, 102 }, { 242, 217, 77 } };
-// Which LPS axis each plane is normal to: axial z, coronal y, sagittal x.
-const int PlaneAxis[3] = { 2, 1, 0 };
 constexpr int ClickTolerance = 3; // pixels between press and release for a click
 }
 
@@ -203,7 +201,7 @@ void CursorOverlay::rebuild()
   colours->SetNumberOfComponents(3);
   for (int plane = 0; plane < 3; ++plane)
   {
-    const int n = PlaneAxis[plane];
+    const int n = SliceAxis(plane);
     const int u = (n + 1) % 3;
     const int v = (n + 2) % 3;
     const double corners[4][2] = { { b[2 * u], b[2 * v] },
@@ -221,7 +219,7 @@ void CursorOverlay::rebuild()
     }
     ids[4] = ids[0];
     planeLines->InsertNextCell(5, ids);
-    colours->InsertNextTypedTuple(PlaneColours[plane]);
+    colours->InsertNextTypedTuple(SliceColours[plane]);
   }
   this->PlaneData->SetPoints(planePoints);
   this->PlaneData->SetLines(planeLines);

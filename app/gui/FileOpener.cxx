@@ -1,20 +1,16 @@
 #include "FileOpener.h"
 
+#include "AutosaveController.h"
 #include "BendPanel.h"
 #include "BenderSession.h"
 #include "BenderView.h"
 #include "FileKind.h"
 #include "GestureController.h"
 #include "MainActions.h"
-#include "MeshIO.h"
 #include "SegmentPanel.h"
 #include "SegmentationSession.h"
-#include "SessionAutosave.h"
-#include "VolumeIO.h"
 #include "WarpPlanIO.h"
 #include "WorkRunner.h"
-#include "vtkBenderRibbonRepresentation.h"
-#include "vtkBenderRibbonWidget.h"
 
 #include <QAction>
 #include <QDir>
@@ -28,8 +24,6 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QUrl>
-
-#include <vtkPolyData.h>
 
 namespace
 {
@@ -59,44 +53,20 @@ bool IsDicomFile(const QString& path)
 }
 }
 
-FileOpener::FileOpener(bender::BenderSession& session,
-  bender::SegmentationSession& segmentation,
-  WorkRunner* worker,
-  MainActions* actions,
-  BenderView* view,
-  GestureController* gesture,
-  BendPanel* bend,
-  SegmentPanel* segment,
-  QWidget* window)
-  : QObject(window)
-  , Session(session)
-  , Segmentation(segmentation)
-  , Worker(worker)
-  , Actions(actions)
-  , View(view)
-  , Gesture(gesture)
-  , Bend(bend)
-  , Segment(segment)
-  , Window(window)
+FileOpener::FileOpener(const WindowParts& parts, AutosaveController* recovery)
+  : QObject(parts.window)
+  , Session(parts.session)
+  , Segmentation(parts.segmentation)
+  , Worker(parts.worker)
+  , Actions(parts.actions)
+  , View(parts.view)
+  , Gesture(parts.gesture)
+  , Bend(parts.bend)
+  , Segment(parts.segment)
+  , Window(parts.window)
+  , Recovery(recovery)
 {
-  // A copy beside the autosave ends on its own thread: the autosave that references it (or
-  // says why it could not be written) is made on the GUI thread.
-  // Not after the autosave was discarded meanwhile (the work saved): that would bring it back.
-  this->Copies = std::make_unique<bender::AutosaveCopies>(
-    [this]()
-    {
-      const int generation = this->CopiesGeneration.load();
-      QMetaObject::invokeMethod(
-        this,
-        [this, generation]()
-        {
-          if (generation == this->CopiesGeneration.load())
-          {
-            this->Session.Autosave();
-          }
-        },
-        Qt::QueuedConnection);
-    });
+  MainActions* actions = parts.actions;
   connect(actions->Open,
     &QAction::triggered,
     this,
@@ -141,8 +111,8 @@ FileOpener::FileOpener(bender::BenderSession& session,
       this->openFile(f);
     });
   connect(actions->Segment, &QAction::triggered, this, &FileOpener::segmentVolume);
-  window->setAcceptDrops(true);
-  window->installEventFilter(this);
+  this->Window->setAcceptDrops(true);
+  this->Window->installEventFilter(this);
 }
 
 bool FileOpener::openFile(const QString& path)
@@ -165,7 +135,7 @@ bool FileOpener::openFile(const QString& path)
   switch (kind)
   {
     case bender::FileKind::Session:
-      return this->recoverSession(path);
+      return this->Recovery->recoverSession(path);
     case bender::FileKind::Plan:
       return this->openPlan(path);
     case bender::FileKind::Mesh:
@@ -288,23 +258,17 @@ void FileOpener::rememberFolder(const QString& kind, const QString& path)
 bool FileOpener::openMesh(const QString& path)
 {
   this->Actions->addRecentFile(path);
-  return this->Worker->runReporting(this->Session,
-    "Reading " + QFileInfo(path).fileName(),
-    [this, path](const bender::ProgressReporter&)
+  return this->Worker->runSessionJob(this->Session,
+    this->Session.BeginLoadSurface(path.toStdString()),
+    [this](bender::SessionJob&, bool ok)
     {
-      vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(path.toStdString());
-      return WorkRunner::Finisher(
-        [this, mesh, path]()
-        {
-          if (this->Session.SetSurface(
-                mesh, Name(path), QFileInfo(path).absoluteFilePath().toStdString()))
-          {
-            // A mesh file has no volume behind it.
-            this->Segmentation.Clear();
-            emit this->volumeChanged();
-            this->View->resetCamera();
-          }
-        });
+      if (ok)
+      {
+        // A mesh file has no volume behind it.
+        this->Segmentation.Clear();
+        emit this->volumeChanged();
+        this->View->resetCamera();
+      }
     });
 }
 
@@ -367,10 +331,17 @@ bool FileOpener::segmentVolume()
         {
           this->Segmentation.FinishSegment(*job);
           emit this->volumeChanged();
+          this->Segment->showWarning(job->warning);
           if (this->Session.SetSurface(job->surface, "segmented vessel"))
           {
             this->View->resetCamera();
             emit this->panelWanted(this->Bend);
+          }
+          if (!job->warning.empty())
+          {
+            // Back to the Segment panel and its histogram, the warning as the last word.
+            this->Session.AddMessage(bender::MessageSeverity::Warning, job->warning);
+            emit this->panelWanted(this->Segment);
           }
         });
     });
@@ -408,12 +379,7 @@ void FileOpener::startDemo()
             // The ribbon and parameters of the demo plan's first warp, ready to grab; handles
             // sized for the demo's branches (about 3.3 mm).
             const bender::WarpSpec& warp = job->plan.warps.front();
-            bender::WarpParameters parameters = this->Bend->parameters();
-            parameters.radius = warp.radius;
-            parameters.decay = warp.decay;
-            this->Bend->setParameters(parameters);
-            this->Gesture->applyParameters();
-            this->Gesture->showRibbon(warp.initial, 4.0 / 1.2);
+            this->Gesture->showRibbon(warp.initial, warp.radius, warp.decay, 4.0 / 1.2);
           }
           this->View->resetCamera();
           emit this->panelWanted(this->Bend);
@@ -423,321 +389,6 @@ void FileOpener::startDemo()
               "to release");
         });
     });
-}
-
-void FileOpener::offerRecovery()
-{
-  const QString path = QString::fromStdString(this->Session.GetAutosavePath());
-  // What the autosave holds, in the question; an unreadable one is said and kept for a look.
-  QStringList parts;
-  try
-  {
-    const bender::SessionSnapshot snapshot = bender::ReadSessionFile(path.toStdString());
-    const std::string surface = snapshot.surfaceName.empty()
-      ? QFileInfo(QString::fromStdString(snapshot.sourcePath)).fileName().toStdString()
-      : snapshot.surfaceName;
-    parts << QString("the surface \"%1\"").arg(QString::fromStdString(surface));
-    parts << QString("%1 warp%2")
-               .arg(snapshot.plan.warps.size())
-               .arg(snapshot.plan.warps.size() == 1 ? "" : "s");
-    if (snapshot.volume)
-    {
-      parts << QString("the volume \"%1\" (%2)")
-                 .arg(QString::fromStdString(snapshot.volume->name))
-                 .arg(QString::fromStdString(
-                   bender::DescribeVolumeGeometry(snapshot.volume->geometry)));
-    }
-    if (snapshot.segmentation)
-    {
-      parts << QString("the Segment panel's parameters (threshold %1, smoothing %2)")
-                 .arg(snapshot.segmentation->segmentation.lower, 0, 'g', 6)
-                 .arg(snapshot.segmentation->surface.smoothing, 0, 'g', 3);
-    }
-    if (snapshot.ribbon)
-    {
-      parts << QString("the ribbon (R = %1 mm)").arg(snapshot.ribbon->radius, 0, 'g', 4);
-    }
-  }
-  catch (const std::exception& e)
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Error,
-      std::string("The autosave of the last session cannot be recovered: ") + e.what());
-    return;
-  }
-  QMessageBox box(QMessageBox::Question,
-    "Recover the last session?",
-    "Bender did not close cleanly last time. Recover that session?",
-    QMessageBox::Yes | QMessageBox::No,
-    this->Window);
-  box.setObjectName("recoverSession");
-  box.setInformativeText("It holds:\n\u2022 " + parts.join("\n\u2022 "));
-  box.button(QMessageBox::Yes)->setText("Recover");
-  box.button(QMessageBox::No)->setText("Discard");
-  box.setDefaultButton(QMessageBox::Yes);
-  if (box.exec() == QMessageBox::Yes)
-  {
-    this->recoverSession(path);
-  }
-  else
-  {
-    this->discardAutosave();
-  }
-}
-
-FileOpener::~FileOpener()
-{
-  this->Copies->Wait();
-}
-
-void FileOpener::waitForAutosaveCopies()
-{
-  this->Copies->Wait();
-}
-
-void FileOpener::discardAutosave()
-{
-  // A copy being written would land after its removal: it ends first.
-  this->Copies->Forget();
-  ++this->CopiesGeneration;
-  this->Session.DiscardAutosave();
-  bender::RemoveSessionSideFiles(this->Session.GetAutosavePath());
-}
-
-bool FileOpener::recoverSession(const QString& path)
-{
-  if (this->Worker->refuseWhenBusy(this->Session))
-  {
-    return false;
-  }
-  const std::string file = path.toStdString();
-  auto snapshot = std::make_shared<bender::SessionSnapshot>();
-  try
-  {
-    *snapshot = bender::ReadSessionFile(file);
-  }
-  catch (const std::exception& e)
-  {
-    this->Session.AddMessage(
-      bender::MessageSeverity::Error, std::string("Recovery failed: ") + e.what());
-    return false;
-  }
-  std::shared_ptr<bender::SegmentationSession::ReadJob> read;
-  if (snapshot->volume)
-  {
-    read = this->Segmentation.BeginRead(snapshot->volume->path, snapshot->volume->dicomSeriesUid);
-    read->maskPath = snapshot->volume->maskPath;
-  }
-  std::shared_ptr<bender::SessionJob> recover = this->Session.BeginRecover(file);
-  if (!recover)
-  {
-    return false;
-  }
-  const bool started = this->Worker->runReporting(this->Session,
-    "Recovering the session",
-    [this, snapshot, read, recover](const bender::ProgressReporter& progress)
-    {
-      // The volume first: it is in place when the recovered session autosaves.
-      auto problem = std::make_shared<std::string>();
-      if (read)
-      {
-        try
-        {
-          read->Run(progress);
-        }
-        catch (const std::exception& e)
-        {
-          // A cancel here cancels the recovery below too (the same flag).
-          *problem = e.what();
-        }
-      }
-      recover->Run(progress); // never throws
-      return WorkRunner::Finisher([this, snapshot, read, recover, problem]()
-        { this->finishRecovery(*snapshot, read.get(), *problem, *recover); });
-    });
-  if (!started)
-  {
-    // Not run: the session must not stay busy with a job that never comes back.
-    this->Session.Finish(*recover);
-  }
-  return started;
-}
-void FileOpener::finishRecovery(const bender::SessionSnapshot& snapshot,
-  const bender::SegmentationSession::ReadJob* read,
-  const std::string& volumeProblem,
-  bender::SessionJob& recover)
-{
-  const bool cancelled = recover.GetOutcome() == bender::SessionJob::Outcome::Cancelled;
-  std::string volumeNote;
-  bool volumeLoaded = false;
-  if (read && !cancelled)
-  {
-    const std::string name = snapshot.volume->name.empty()
-      ? QFileInfo(QString::fromStdString(snapshot.volume->path)).fileName().toStdString()
-      : snapshot.volume->name;
-    if (!read->volume)
-    {
-      volumeNote = "the volume " + name + " could not be read (" + volumeProblem + ")";
-    }
-    else if (!bender::SameVolumeGeometry(read->volume->geometry, snapshot.volume->geometry))
-    {
-      volumeNote = "the volume " + name + " was not loaded: " + snapshot.volume->path +
-        " now holds " + bender::DescribeVolumeGeometry(read->volume->geometry) +
-        ", the session's was " + bender::DescribeVolumeGeometry(snapshot.volume->geometry);
-    }
-    else
-    {
-      this->Segmentation.FinishRead(*read, name);
-      volumeLoaded = true;
-      emit this->volumeChanged();
-      if (!read->maskProblem.empty())
-      {
-        volumeNote = "the segmentation overlay could not be read (" + read->maskProblem + ")";
-      }
-    }
-  }
-  if (snapshot.segmentation && !cancelled)
-  {
-    std::string problem;
-    // The panel shows them; the session takes them when they are valid (always, for a file
-    // that ReadSessionFile accepted).
-    this->Segment->setSettings(*snapshot.segmentation);
-    this->Segmentation.SetSettings(*snapshot.segmentation, problem);
-  }
-  // The surface and the warps (the session says how that went); it autosaves with the above.
-  if (!this->Session.Finish(recover))
-  {
-    this->Worker->markFailed();
-    return;
-  }
-  if (snapshot.ribbon)
-  {
-    bender::WarpParameters parameters = this->Bend->parameters();
-    parameters.radius = snapshot.ribbon->radius;
-    parameters.decay = snapshot.ribbon->decay;
-    this->Bend->setParameters(parameters);
-    this->Gesture->applyParameters();
-    if (snapshot.ribbon->vesselRadius > 0.0)
-    {
-      this->Gesture->showRibbon(snapshot.ribbon->ribbon, snapshot.ribbon->vesselRadius);
-    }
-    else
-    {
-      this->Gesture->setRibbon(snapshot.ribbon->ribbon);
-      this->View->ribbonWidget()->On();
-    }
-  }
-  this->View->resetCamera();
-  emit this->panelWanted(this->Bend);
-  const std::size_t warps = snapshot.plan.warps.size();
-  std::string text = "Recovered the surface " +
-    (this->Session.GetSurfaceName().empty() ? std::string()
-                                            : "\"" + this->Session.GetSurfaceName() + "\"") +
-    ", " + std::to_string(warps) + (warps == 1 ? " warp" : " warps");
-  if (volumeLoaded)
-  {
-    text += ", the volume \"" + this->Segmentation.GetVolumeName() + "\"";
-    if (this->Segmentation.GetMask())
-    {
-      text += " with its segmentation";
-    }
-  }
-  if (snapshot.segmentation)
-  {
-    text += ", the Segment panel's parameters";
-  }
-  if (snapshot.ribbon)
-  {
-    text += ", the ribbon";
-  }
-  if (volumeNote.empty())
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Info, text);
-  }
-  else
-  {
-    // One message: what is missing, and that the rest is back.
-    this->Session.AddMessage(
-      bender::MessageSeverity::Warning, "Recovery: " + volumeNote + ". " + text);
-  }
-}
-
-void FileOpener::fillSnapshot(bender::SessionSnapshot& snapshot)
-{
-  const auto& volume = this->Segmentation.GetVolume();
-  if (volume)
-  {
-    bender::SessionVolume kept;
-    kept.name = this->Segmentation.GetVolumeName();
-    kept.path = this->Segmentation.GetVolumeSource().path;
-    kept.dicomSeriesUid = this->Segmentation.GetVolumeSource().dicomSeriesUid;
-    kept.geometry = volume->geometry;
-    if (kept.path.empty() && !this->Session.GetAutosavePath().empty())
-    {
-      // Made here (the demo): written once beside the autosave, off the GUI thread; until
-      // the copy is complete this autosave leaves the volume out (the next one, when it is,
-      // keeps it).
-      std::string problem;
-      kept.path = this->Copies->CopyOf(
-        volume,
-        bender::SessionVolumeCopyPath(this->Session.GetAutosavePath()),
-        [volume, hook = this->CopyHook](const std::string& path)
-        {
-          if (hook)
-          {
-            hook();
-          }
-          bender::WriteVolume(*volume, path);
-        },
-        problem);
-      if (!problem.empty())
-      {
-        this->Session.AddMessage(
-          bender::MessageSeverity::Warning, "Autosave: the volume is not kept (" + problem + ")");
-      }
-    }
-    // The segmentation's mask (the slice views' overlay): written once per mask.
-    const auto& mask = this->Segmentation.GetMask();
-    if (!kept.path.empty() && mask && !this->Session.GetAutosavePath().empty())
-    {
-      std::string problem;
-      kept.maskPath = this->Copies->CopyOf(
-        mask,
-        bender::SessionMaskCopyPath(this->Session.GetAutosavePath()),
-        [mask, hook = this->CopyHook](const std::string& path)
-        {
-          if (hook)
-          {
-            hook();
-          }
-          bender::WriteLabelMap(*mask, path);
-        },
-        problem);
-      if (!problem.empty())
-      {
-        this->Session.AddMessage(bender::MessageSeverity::Warning,
-          "Autosave: the segmentation's mask is not kept (" + problem + ")");
-      }
-    }
-    if (!kept.path.empty())
-    {
-      snapshot.volume = kept;
-    }
-  }
-  // The parameters the Segment panel shows (those of the last segmentation, or the user's
-  // since): the panel shows them again after a recovery.
-  snapshot.segmentation = this->Segment->settings();
-  const auto& ribbon = this->Session.GetRibbon();
-  if (ribbon)
-  {
-    bender::SessionRibbon placed;
-    placed.ribbon = *ribbon;
-    placed.radius = this->Session.GetParameters().radius;
-    placed.decay = this->Session.GetParameters().decay;
-    // GestureController::showRibbon's handles: 1.2 vessel radii long.
-    placed.vesselRadius =
-      this->View->ribbonWidget()->GetRibbonRepresentation()->GetHandleLength() / 1.2;
-    snapshot.ribbon = placed;
-  }
 }
 
 bool FileOpener::openDicomFolder(const QString& folder)

@@ -55,14 +55,16 @@ GestureController::GestureController(bender::BenderSession& session,
   , Status(status)
   , Window(window)
 {
+  this->RibbonRest = new QTimer(this);
+  this->RibbonRest->setSingleShot(true);
+  this->RibbonRest->setInterval(500);
+  connect(this->RibbonRest, &QTimer::timeout, this, [this]() { this->Session.AutosaveRibbon(); });
   connect(actions->PlaceRibbon,
     &QAction::triggered,
     this,
     [this]()
     {
-      this->View->setPicking(true);
-      this->HasFirstPick = false;
-      this->Bend->showState(this->Session, true);
+      this->setPlacing(true);
       this->Status->setStyleSheet("");
       if (this->Vessels && this->Vessels->vessels().HasCenterlines())
       {
@@ -89,9 +91,7 @@ GestureController::GestureController(bender::BenderSession& session,
     this,
     [this]()
     {
-      this->View->setPicking(false);
-      this->HasFirstPick = false;
-      this->Bend->showState(this->Session);
+      this->setPlacing(false);
       this->cancelHeld();
     });
   // After an undo or a redo (the window's handlers run first) the ribbon lies on the surface.
@@ -163,6 +163,13 @@ GestureController::GestureController(bender::BenderSession& session,
 GestureController::~GestureController()
 {
   qApp->removeEventFilter(this);
+}
+
+void GestureController::setPlacing(bool on)
+{
+  this->View->setPicking(on);
+  this->HasFirstPick = false;
+  this->Bend->showState(this->Session, on);
 }
 
 bool GestureController::isPlacingRibbon() const
@@ -301,6 +308,27 @@ bool GestureController::keepHeld()
   return true;
 }
 
+void GestureController::sessionChanged()
+{
+  // The status bar's space-inversion warning quotes the session's r_min as it is now (the Bend
+  // panel's), not as it was when the warning was first given in this grab.
+  const QString inversionPrefix = "space inversion possible";
+  if (this->Status->text().startsWith(inversionPrefix) && this->Session.GetSpaceInversionRisk())
+  {
+    const QString now = QString::fromStdString(this->Session.GetSpaceInversionWarning());
+    if (now != this->Status->text())
+    {
+      this->Status->setText(now);
+      this->Status->setToolTip(now);
+    }
+  }
+  this->Bend->showState(this->Session, this->isPlacingRibbon());
+  if (this->Session.HasUnsavedRibbon())
+  {
+    this->RibbonRest->start();
+  }
+}
+
 void GestureController::showSessionRibbon()
 {
   if (this->Session.GetState() == bender::GrabState::Grabbed)
@@ -324,6 +352,27 @@ void GestureController::showRibbon(const bender::RibbonSpec& ribbon, double vess
   rep->SetStripWidth(0.3 * vesselRadius);
   this->setRibbon(ribbon);
   this->View->ribbonWidget()->On();
+}
+
+void GestureController::showRibbon(const bender::RibbonSpec& ribbon,
+  double radius,
+  const bender::DecaySpec& decay,
+  double vesselRadius)
+{
+  bender::WarpParameters parameters = this->Bend->parameters();
+  parameters.radius = radius;
+  parameters.decay = decay;
+  this->Bend->setParameters(parameters);
+  this->applyParameters();
+  if (vesselRadius > 0.0)
+  {
+    this->showRibbon(ribbon, vesselRadius);
+  }
+  else
+  {
+    this->setRibbon(ribbon);
+    this->View->ribbonWidget()->On();
+  }
 }
 
 void GestureController::onPick(const double point[3])
@@ -350,19 +399,15 @@ void GestureController::onPick(const double point[3])
     this->Status->setText("Now click on the vessel where the ribbon ends (Esc cancels)");
     return;
   }
-  this->HasFirstPick = false;
   if (!this->placeRibbonOnCenterline(this->FirstPick, point))
   {
-    this->View->setPicking(true); // try again from the first click
-    this->Bend->showState(this->Session, true);
+    this->setPlacing(true); // try again from the first click
   }
 }
 
 bool GestureController::placeRibbonOnCenterline(const double first[3], const double second[3])
 {
-  this->View->setPicking(false);
-  this->HasFirstPick = false;
-  this->Bend->showState(this->Session);
+  this->setPlacing(false);
   if (!this->Vessels)
   {
     this->Session.AddMessage(
@@ -373,15 +418,7 @@ bool GestureController::placeRibbonOnCenterline(const double first[3], const dou
   {
     const bender::RibbonPlacement placement = this->Vessels->vessels().PlaceRibbon(
       { first[0], first[1], first[2] }, { second[0], second[1], second[2] });
-    this->placeSettled(placement.ribbon, placement.vesselRadius, placement.suggestedRadius);
-    this->Vessels->ribbonPlaced(placement.ribbon);
-    this->Session.AddMessage(bender::MessageSeverity::Info,
-      QString("Ribbon placed on the centerline (inscribed radius %1 mm, R = %2 mm): press G to "
-              "grab")
-        .arg(placement.vesselRadius, 0, 'f', 2)
-        .arg(placement.suggestedRadius, 0, 'f', 2)
-        .toStdString());
-    this->View->render();
+    this->placeSettled(placement, "on the centerline (inscribed radius");
     return true;
   }
   catch (const std::exception& e)
@@ -392,44 +429,41 @@ bool GestureController::placeRibbonOnCenterline(const double first[3], const dou
   }
 }
 
-void GestureController::placeSettled(const bender::RibbonSpec& ribbon,
-  double vesselRadius,
-  double radius)
+void GestureController::placeSettled(const bender::RibbonPlacement& placement, const QString& where)
 {
-  bender::WarpParameters parameters = this->Bend->parameters();
-  parameters.radius = radius;
+  const double vesselRadius = placement.vesselRadius;
+  const double radius = placement.suggestedRadius;
+  bender::DecaySpec decay = this->Bend->parameters().decay;
   // The held vessel moves as a whole: a plateau reaching 1.2 vessel radii keeps its whole
   // cross-section at full weight, so the lumen follows the ribbon instead of pinching (with the
   // bell, the wall at r = R / 2.2 moved about half as far as the centerline).
   if (vesselRadius > 0.0 && radius > 0.0)
   {
-    parameters.decay.shape = bender::DecayShape::Plateau;
-    parameters.decay.plateau = std::clamp(1.2 * vesselRadius / radius, 0.3, 0.8);
+    decay.shape = bender::DecayShape::Plateau;
+    decay.plateau = std::clamp(1.2 * vesselRadius / radius, 0.3, 0.8);
   }
-  this->Bend->setParameters(parameters);
-  this->applyParameters();
-  this->showRibbon(ribbon, vesselRadius);
+  this->showRibbon(placement.ribbon, radius, decay, vesselRadius);
+  if (this->Vessels)
+  {
+    this->Vessels->ribbonPlaced(placement.ribbon);
+  }
+  this->Session.AddMessage(bender::MessageSeverity::Info,
+    QString("Ribbon placed %1 %2 mm, R = %3 mm): press G to grab")
+      .arg(where)
+      .arg(vesselRadius, 0, 'f', 2)
+      .arg(radius, 0, 'f', 2)
+      .toStdString());
+  this->View->render();
 }
 
 bool GestureController::placeRibbonAt(const double point[3])
 {
-  this->View->setPicking(false);
-  this->Bend->showState(this->Session);
+  this->setPlacing(false);
   try
   {
     const bender::RibbonPlacement placement =
       bender::PlaceRibbonOnSurface(this->Session.GetSurface(), { point[0], point[1], point[2] });
-    this->placeSettled(placement.ribbon, placement.vesselRadius, placement.suggestedRadius);
-    if (this->Vessels)
-    {
-      this->Vessels->ribbonPlaced(placement.ribbon);
-    }
-    this->Session.AddMessage(bender::MessageSeverity::Info,
-      QString("Ribbon placed along the vessel (local radius %1 mm, R = %2 mm): press G to grab")
-        .arg(placement.vesselRadius, 0, 'f', 2)
-        .arg(placement.suggestedRadius, 0, 'f', 2)
-        .toStdString());
-    this->View->render();
+    this->placeSettled(placement, "along the vessel (local radius");
     return true;
   }
   catch (const std::exception& e)

@@ -4,12 +4,14 @@
 #include "Ribbon.h"
 
 #include <QObject>
+#include <QString>
 
 #include <memory>
 
 namespace bender
 {
 class BenderSession;
+struct RibbonPlacement;
 }
 class BendPanel;
 class BenderView;
@@ -18,6 +20,7 @@ class ProblemOverlay;
 class QDialog;
 class QLabel;
 class QPushButton;
+class QTimer;
 class QWidget;
 class VesselController;
 class WorkRunner;
@@ -75,6 +78,12 @@ public:
   void setRibbon(const bender::RibbonSpec& ribbon);
   /// Shows `ribbon` in the widget with handles sized for a vessel of `vesselRadius`.
   void showRibbon(const bender::RibbonSpec& ribbon, double vesselRadius);
+  /// The same with the Bend panel's R and decay set to `radius` and `decay` (and taken into
+  /// the session); `vesselRadius` <= 0 (unknown) keeps the handles' size.
+  void showRibbon(const bender::RibbonSpec& ribbon,
+    double radius,
+    const bender::DecaySpec& decay,
+    double vesselRadius);
   /// Takes the Bend panel's parameters into the session.
   void applyParameters();
   /// True while Space is held down after a grab it started.
@@ -92,14 +101,26 @@ public:
   bool keepHeld();
   /// Puts the widget's ribbon back to the session's ribbon (nothing grabbed).
   void showSessionRibbon();
+  /// The window calls this after every change of the session: the Bend panel shows it, the
+  /// status bar's space-inversion warning quotes the r_min of now, and a ribbon placed (or put
+  /// back by undo, cancel, redo: no warp, so no autosave of its own) is autosaved by the
+  /// session (BenderSession::AutosaveRibbon) once it has rested for half a second, not on every
+  /// move of a handle (each autosave is flushed to disk).
+  void sessionChanged();
 
 protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
+  /// "Place ribbon" on (the next clicks on the surface place it) or off; the first of two
+  /// clicks is forgotten either way.
+  void setPlacing(bool on);
   void onRibbonInteraction();
   void onPick(const double point[3]);
-  void placeSettled(const bender::RibbonSpec& ribbon, double vesselRadius, double radius);
+  /// Shows a placed ribbon with the Bend parameters it suggests (R, a plateau holding the
+  /// vessel's cross-section), tells the vessel side, and says where it went: `where` is "on
+  /// the centerline (inscribed radius" or "along the vessel (local radius".
+  void placeSettled(const bender::RibbonPlacement& placement, const QString& where);
   bool isOurs(QObject* watched) const;
   void showCommitGuard();
   void hideCommitGuard();
@@ -118,6 +139,7 @@ private:
   std::unique_ptr<ProblemOverlay> Overlay;
   QDialog* GuardDialog = nullptr;
   QLabel* GuardText = nullptr;
+  QTimer* RibbonRest = nullptr;
 };
 
 #endif

@@ -1,5 +1,6 @@
 #include "MainWindow.h"
 
+#include "AutosaveController.h"
 #include "BendPanel.h"
 #include "BenderView.h"
 #include "DataPanel.h"
@@ -11,7 +12,6 @@
 #include "MainActions.h"
 #include "MeasurementsPanel.h"
 #include "SegmentPanel.h"
-#include "SessionAutosave.h"
 #include "SliceViews.h"
 #include "TrackersPanel.h"
 #include "VesselController.h"
@@ -19,21 +19,16 @@
 #include "WorkRunner.h"
 
 #include <QAction>
-#include <QApplication>
 #include <QCloseEvent>
-#include <QDir>
+#include <QCoreApplication>
 #include <QDockWidget>
-#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
 #include <QMenuBar>
-#include <QProgressBar>
 #include <QSplitter>
-#include <QStandardPaths>
 #include <QStatusBar>
 #include <QTabWidget>
-#include <QTimer>
 
 #include <vtkImageData.h>
 
@@ -71,56 +66,13 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent)
     { this->Session.AddMessage(static_cast<bender::MessageSeverity>(severity), text); },
     this);
   this->Worker->Hook = this->Options.workHook;
-  // The progress bar's text ("Segmenting: surface 40%") is longer than the bar: wider, and the
-  // whole text in its tooltip.
-  for (QProgressBar* progress : this->statusBar()->findChildren<QProgressBar*>())
-  {
-    progress->setMinimumWidth(200);
-    progress->setMaximumWidth(380);
-    connect(progress,
-      &QProgressBar::valueChanged,
-      progress,
-      [progress]() { progress->setToolTip(progress->text()); });
-  }
   this->buildPanels();
   this->Actions->addMenus(this->menuBar());
   this->connectActions();
 
   this->Session.SetMessageCallback([this](const bender::LogicMessage& m) { this->showMessage(m); });
   this->Session.SetChangeCallback([this]() { this->refresh(); });
-  this->RibbonAutosave = new QTimer(this);
-  this->RibbonAutosave->setSingleShot(true);
-  this->RibbonAutosave->setInterval(500);
-  connect(this->RibbonAutosave,
-    &QTimer::timeout,
-    this,
-    [this]()
-    {
-      const auto& ribbon = this->Session.GetRibbon();
-      if (this->Session.IsBusy() || this->Session.GetState() == bender::GrabState::Grabbed ||
-        !this->Session.HasSurface() || !ribbon)
-      {
-        return; // the next autosave (release, busy job's end) keeps it
-      }
-      this->AutosavedRibbon = ribbon;
-      this->Session.Autosave();
-    });
-  // Every autosave also keeps the volume, the segmentation parameters and the ribbon.
-  FileOpener* files = this->Files;
-  this->Session.SetAutosaveDecorator(
-    [files](bender::SessionSnapshot& snapshot) { files->fillSnapshot(snapshot); });
-  QString autosave = this->Options.autosavePath;
-  if (autosave.isEmpty())
-  {
-    const QString folder = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
-    QDir().mkpath(folder);
-    autosave = folder + "/autosave.bender-session.json";
-  }
-  this->Session.SetAutosavePath(autosave.toStdString());
-  if (this->Options.offerRecovery && QFileInfo::exists(autosave))
-  {
-    QTimer::singleShot(0, this->Files, &FileOpener::offerRecovery);
-  }
+  this->Recovery->startAutosave(this->Options.autosavePath, this->Options.offerRecovery);
   this->refresh();
 }
 
@@ -128,7 +80,7 @@ MainWindow::~MainWindow()
 {
   this->Worker->cancelAndWait();
   // The copies beside the autosave end before the sessions they autosave go.
-  this->Files->waitForAutosaveCopies();
+  this->Recovery->waitForAutosaveCopies();
   this->Session.SetMessageCallback(nullptr);
   this->Session.SetChangeCallback(nullptr);
   this->Session.SetAutosaveDecorator(nullptr);
@@ -167,7 +119,7 @@ void MainWindow::buildPanels()
   this->Vessels = new VesselController(
     this->Session, this->View, this->Worker, this->Actions, this->Measurements, this);
   this->Gesture->setVessels(this->Vessels);
-  this->Files = new FileOpener(this->Session,
+  const WindowParts parts{ this->Session,
     this->Segmentation,
     this->Worker,
     this->Actions,
@@ -175,9 +127,11 @@ void MainWindow::buildPanels()
     this->Gesture,
     this->Bend,
     this->Segment,
-    this);
+    this };
+  this->Recovery = new AutosaveController(parts);
+  this->Recovery->setAutosaveCopyHook(this->Options.autosaveCopyHook);
+  this->Files = new FileOpener(parts, this->Recovery);
   this->Files->setInteractive(this->Options.interactive);
-  this->Files->setAutosaveCopyHook(this->Options.autosaveCopyHook);
   this->Gesture->setInteractive(this->Options.interactive);
   this->Exports = new ExportFlow(
     this->Session, this->Worker, this->Actions, this->Export, this->Options.interactive, this);
@@ -214,21 +168,12 @@ void MainWindow::connectActions()
   connect(a->Quit, &QAction::triggered, this, &QWidget::close);
   connect(a->Undo, &QAction::triggered, this, [this]() { this->Session.Undo(); });
   connect(a->Redo, &QAction::triggered, this, [this]() { this->Session.Redo(); });
-  connect(a->ResetCamera, &QAction::triggered, this->View, &BenderView::resetCamera);
-  for (int v = 0; v < 6; ++v)
-  {
-    connect(a->StandardViews[v],
-      &QAction::triggered,
-      this,
-      [this, v]() { this->View->setStandardView(static_cast<BenderView::StandardView>(v)); });
-  }
-  connect(a->ShowOriginal, &QAction::toggled, this->View, &BenderView::setOriginalVisible);
+  this->View->attachActions(a);
   connect(this->Files, &FileOpener::volumeChanged, this, &MainWindow::showSlices);
-  connect(this->Files, &FileOpener::volumeChanged, this, &MainWindow::noteSegmentation);
-  connect(this->Files,
-    &FileOpener::panelWanted,
-    this,
-    [this](QWidget* panel) { this->Panels->setCurrentWidget(panel); });
+  connect(this->Recovery, &AutosaveController::volumeChanged, this, &MainWindow::showSlices);
+  connect(this->Files, &FileOpener::panelWanted, this->Panels, &QTabWidget::setCurrentWidget);
+  connect(
+    this->Recovery, &AutosaveController::panelWanted, this->Panels, &QTabWidget::setCurrentWidget);
   // A job begun: the busy session's refusals show (undo and redo disabled).
   connect(this->Worker, &WorkRunner::started, this, &MainWindow::refresh);
   connect(this->Worker,
@@ -237,9 +182,6 @@ void MainWindow::connectActions()
     [this](bool ok)
     {
       this->refresh();
-      // The job that made a mask is over: a surface that did not come will not come.
-      this->PendingMask.reset();
-      this->SurfaceBeforeMask = nullptr;
       emit this->workFinished(ok);
     });
 }
@@ -256,19 +198,7 @@ void MainWindow::showMessage(const bender::LogicMessage& message)
 
 void MainWindow::refresh()
 {
-  // The status bar's space-inversion warning quotes the session's r_min as it is now (the Bend
-  // panel's), not as it was when the warning was first given in this grab.
-  const QString inversionPrefix = "space inversion possible";
-  if (this->StatusText->text().startsWith(inversionPrefix) && this->Session.GetSpaceInversionRisk())
-  {
-    const QString now = QString::fromStdString(this->Session.GetSpaceInversionWarning());
-    if (now != this->StatusText->text())
-    {
-      this->StatusText->setText(now);
-      this->StatusText->setToolTip(now);
-    }
-  }
-  this->Bend->showState(this->Session, this->Gesture->isPlacingRibbon());
+  this->Gesture->sessionChanged();
   this->Data->showState(this->Session, this->Segmentation);
   this->Actions->Undo->setEnabled(this->Session.CanUndo() && !this->Session.IsBusy());
   this->Actions->Redo->setEnabled(this->Session.CanRedo() && !this->Session.IsBusy());
@@ -284,47 +214,8 @@ void MainWindow::refresh()
   {
     this->View->frameIfNewScene();
   }
-  if (this->PendingMask)
-  {
-    this->judgeSegmentation();
-  }
-  this->autosaveNewRibbon();
   // Inside a widget interaction or a tracker poll the view draws once itself (quietly).
   this->render();
-}
-
-void MainWindow::autosaveNewRibbon()
-{
-  // A ribbon placed (or put back by undo, cancel, redo) changes no warp: the session does not
-  // autosave for it, the window does, so that a crash keeps it too (each autosave is flushed to
-  // disk: not on every mouse move of a handle, once the ribbon rests for half a second).
-  const auto& ribbon = this->Session.GetRibbon();
-  if (!this->RibbonAutosave || this->Session.IsBusy() ||
-    this->Session.GetState() == bender::GrabState::Grabbed || !this->Session.HasSurface() ||
-    !ribbon)
-  {
-    return;
-  }
-  const auto same = [](const bender::RibbonEnd& a, const bender::RibbonEnd& b)
-  {
-    for (int i = 0; i < 3; ++i)
-    {
-      if (a.position[i] != b.position[i] || a.tangent[i] != b.tangent[i] ||
-        a.normal[i] != b.normal[i])
-      {
-        return false;
-      }
-    }
-    return true;
-  };
-  if (this->AutosavedRibbon && same(this->AutosavedRibbon->start, ribbon->start) &&
-    same(this->AutosavedRibbon->end, ribbon->end) &&
-    this->AutosavedRibbon->extraTurns == ribbon->extraTurns)
-  {
-    return;
-  }
-  // Not on every move of a handle: once the ribbon rests for half a second.
-  this->RibbonAutosave->start();
 }
 
 void MainWindow::showSlices()
@@ -345,50 +236,6 @@ void MainWindow::showSlices()
   }
   const auto& mask = this->Segmentation.GetMask();
   this->Slices->setVolume(ToImageData(*volume), mask ? ToImageData(*mask) : nullptr);
-}
-
-void MainWindow::noteSegmentation()
-{
-  // A new mask: its surface is set right after (FileOpener's finisher); judged then.
-  const auto& mask = this->Segmentation.GetMask();
-  if (!mask || mask == this->PendingMask || mask == this->JudgedMask.lock())
-  {
-    return;
-  }
-  this->PendingMask = mask;
-  this->SurfaceBeforeMask = this->Session.GetSurface(); // held: its address is not reused
-  if (mask->CountInside() == 0)
-  {
-    this->judgeSegmentation(); // nothing kept: no surface will come
-  }
-}
-
-void MainWindow::judgeSegmentation()
-{
-  if (!this->PendingMask || this->PendingMask != this->Segmentation.GetMask())
-  {
-    this->PendingMask.reset();
-    this->SurfaceBeforeMask = nullptr;
-    return;
-  }
-  const bool nothing = this->PendingMask->CountInside() == 0;
-  vtkPolyData* surface = this->Session.GetSurface();
-  if (!nothing && (!surface || surface == this->SurfaceBeforeMask))
-  {
-    return; // its surface has not arrived yet
-  }
-  const long long points = nothing ? -1 : static_cast<long long>(surface->GetNumberOfPoints());
-  const QString warning = this->Segment->judgeSegmentation(
-    this->Segmentation.GetSettings().segmentation.lower, this->PendingMask.get(), points);
-  this->JudgedMask = this->PendingMask;
-  this->PendingMask.reset();
-  this->SurfaceBeforeMask = nullptr;
-  if (!warning.isEmpty())
-  {
-    this->Session.AddMessage(bender::MessageSeverity::Warning, warning.toStdString());
-    // Back to the Segment panel and its histogram (after the job's own panel switch).
-    QTimer::singleShot(0, this, [this]() { this->Panels->setCurrentWidget(this->Segment); });
-  }
 }
 
 void MainWindow::render()
@@ -419,35 +266,12 @@ bool MainWindow::isBusy() const
 
 bool MainWindow::waitForCenterlines(int milliseconds)
 {
-  QElapsedTimer timer;
-  timer.start();
-  // refresh() starts the job: also after a change that came without one.
-  this->Vessels->update();
-  while (this->Vessels->isComputing() || this->Worker->isBusy())
-  {
-    if (timer.elapsed() > milliseconds)
-    {
-      return false;
-    }
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
-    this->Vessels->update();
-  }
-  return true;
+  return this->Vessels->waitForCenterlines(milliseconds);
 }
 
 bool MainWindow::waitUntilIdle(int milliseconds)
 {
-  QElapsedTimer timer;
-  timer.start();
-  while (this->Worker->isBusy())
-  {
-    if (timer.elapsed() > milliseconds)
-    {
-      return false;
-    }
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
-  }
-  return true;
+  return this->Worker->waitUntilIdle(milliseconds);
 }
 
 // The window's commands, done by its parts.
@@ -559,7 +383,7 @@ void MainWindow::closeEvent(QCloseEvent* event)
   // start offers to recover it.
   if (!this->Session.HasUnsavedChanges())
   {
-    this->Files->discardAutosave();
+    this->Recovery->discardAutosave();
   }
   event->accept();
 }

@@ -8,12 +8,10 @@
 #include <QImage>
 #include <QMainWindow>
 
-#include <vtkSmartPointer.h>
-
 #include <functional>
 #include <memory>
-#include <optional>
 
+class AutosaveController;
 class BendPanel;
 class BenderView;
 class DataPanel;
@@ -26,15 +24,12 @@ class MainActions;
 class QLabel;
 class QSplitter;
 class QTabWidget;
-class QTimer;
 class QVTKOpenGLNativeWidget;
 class SegmentPanel;
 class SliceViews;
 class TrackersPanel;
 class VesselController;
 class vtkBenderRibbonWidget;
-class vtkImageData;
-class vtkPolyData;
 class vtkRenderer;
 class WorkRunner;
 
@@ -54,16 +49,19 @@ struct MainWindowOptions
   std::function<void()> autosaveCopyHook;
 };
 
-/// The Bender main window. It composes and holds no state of its own: the surface, the gesture,
-/// the history and the jobs are bender::BenderSession's, the volume and its segmentation
-/// bender::SegmentationSession's, the trackers bender::TrackerSession's. It lays out the 3D view
+/// The Bender main window. It composes and holds no state of its own (its options aside): the
+/// surface, the gesture, the history, the jobs and the autosave are bender::BenderSession's, the
+/// volume and its segmentation bender::SegmentationSession's (a segmentation's plausibility
+/// warning is its own result), the trackers bender::TrackerSession's, what is under way in the
+/// window its parts'. It lays out the 3D view
 /// (BenderView), the slice views, the Data / Segment / Bend / Trackers / Export panels, the menus
 /// (MainActions, one set of actions shared by menus, buttons and application-wide shortcuts) and
 /// the status bar, and hands the work to focused parts:
 /// - WorkRunner: long work on a worker thread with progress and Cancel (the window keeps drawing);
-/// - FileOpener: open by file kind (bender::ClassifyFile), drag and drop, demo, segmentation,
-///   recovery;
-/// - GestureController: grab, release (a job), Space held, ribbon moves, place ribbon, keys;
+/// - FileOpener: open by file kind (bender::ClassifyFile), drag and drop, demo, segmentation;
+/// - AutosaveController: the window's part of every autosave, the recovery offered at start;
+/// - GestureController: grab, release (a job), Space held, ribbon moves, place ribbon, keys,
+///   the autosave of a ribbon once it rests;
 /// - ExportFlow: check, export (asks on problems), save plan;
 /// - VesselController: the centerlines of the committed surface (a background job after every
 ///   change of it), drawn in the view, and the Measurements panel;
@@ -164,12 +162,6 @@ private:
   void showMessage(const bender::LogicMessage& message);
   void refresh();
   void showSlices();
-  /// A segmentation's mask arrived / its surface too: warns (status bar and Segment panel)
-  /// when it kept implausibly little.
-  void noteSegmentation();
-  void judgeSegmentation();
-  /// Autosaves when the session's ribbon changed without a warp (placed, put back).
-  void autosaveNewRibbon();
 
   MainWindowOptions Options;
   bender::BenderSession Session;
@@ -188,16 +180,11 @@ private:
   ExportPanel* Export = nullptr;
   MeasurementsPanel* Measurements = nullptr;
   QLabel* StatusText = nullptr;
-  std::shared_ptr<const bender::LabelMap> PendingMask;
-  vtkSmartPointer<vtkPolyData> SurfaceBeforeMask;
-  std::weak_ptr<const bender::LabelMap> JudgedMask;
-  /// The session's ribbon when it was last autosaved (a newly placed one is autosaved).
-  std::optional<bender::RibbonSpec> AutosavedRibbon;
-  QTimer* RibbonAutosave = nullptr;
 
   WorkRunner* Worker = nullptr;
   GestureController* Gesture = nullptr;
   FileOpener* Files = nullptr;
+  AutosaveController* Recovery = nullptr;
   ExportFlow* Exports = nullptr;
   VesselController* Vessels = nullptr;
 };

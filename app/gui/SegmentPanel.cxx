@@ -2,6 +2,7 @@
 
 #include "HistogramWidget.h"
 #include "MainActions.h"
+#include "SegmentVolume.h"
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -11,7 +12,6 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
-#include <algorithm>
 #include <cmath>
 
 SegmentPanel::SegmentPanel(MainActions* actions, QWidget* parent)
@@ -124,11 +124,7 @@ void SegmentPanel::showVolume(const std::shared_ptr<const bender::Volume>& volum
     return;
   }
   this->Histogram->setValues(volume->voxels);
-  this->EightBit = this->Histogram->total() > 0 && this->Histogram->minimum() >= 0.0 &&
-    this->Histogram->maximum() <= 255.0 &&
-    std::all_of(volume->voxels.begin(),
-      volume->voxels.end(),
-      [](float v) { return !std::isfinite(v) || v == std::floor(v); });
+  this->EightBit = bender::IsEightBit(*volume);
   this->Histogram->setThreshold(this->Threshold->value());
   this->Warning->hide();
   this->showKept();
@@ -151,27 +147,8 @@ void SegmentPanel::showKept()
                         .arg(percent, 0, 'g', 3));
 }
 
-QString SegmentPanel::judgeSegmentation(double threshold,
-  const bender::LabelMap* mask,
-  long long surfacePoints)
+void SegmentPanel::showWarning(const std::string& warning)
 {
-  const std::size_t voxels = mask ? mask->CountInside() : 0;
-  if (surfacePoints >= MinimumSurfacePoints)
-  {
-    this->Warning->hide();
-    return {};
-  }
-  const QString volume = this->EightBit ? "an 8-bit volume" : "this volume";
-  const QString what = surfacePoints >= 0
-    ? QString("%1 points").arg(surfacePoints)
-    : QString("%1 voxels and no surface").arg(static_cast<qulonglong>(voxels));
-  const QString text =
-    QString("Segmentation: threshold %1 on %2 kept %3: too little for a vessel. Pick a lower "
-            "threshold on the histogram (Segment panel) and segment again.")
-      .arg(threshold, 0, 'g', 6)
-      .arg(volume)
-      .arg(what);
-  this->Warning->setText(text);
-  this->Warning->show();
-  return text;
+  this->Warning->setText(QString::fromStdString(warning));
+  this->Warning->setVisible(!warning.empty());
 }

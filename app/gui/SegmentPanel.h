@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 
 class HistogramWidget;
 class MainActions;
@@ -16,15 +17,12 @@ class QLabel;
 
 /// The Segment panel: method (threshold / vesselness), lumen threshold with the volume's
 /// intensity histogram (the share of voxels the threshold keeps, a click on the histogram sets
-/// it), smoothing, the Segment action, and a warning when a segmentation kept implausibly
-/// little (fewer than MinimumSurfacePoints surface points).
+/// it), smoothing, the Segment action, and the warning of a segmentation that kept implausibly
+/// little (bender::SegmentationWarning, the segmentation's own result).
 class SegmentPanel : public QWidget
 {
   Q_OBJECT
 public:
-  /// Below this many surface points a segmentation is reported as implausibly small.
-  static constexpr long long MinimumSurfacePoints = 1000;
-
   SegmentPanel(MainActions* actions, QWidget* parent = nullptr);
   /// The parameters to segment with: the panel's method, threshold and smoothing over the
   /// parameters last set with setSettings (those the panel does not show are kept).
@@ -35,12 +33,8 @@ public:
 
   /// Shows the histogram of `volume` (null clears it); computed once per volume.
   void showVolume(const std::shared_ptr<const bender::Volume>& volume);
-  /// A segmentation with lumen threshold `threshold` finished with `mask` and a surface of
-  /// `surfacePoints` points (-1: no surface was made). Returns the warning when it kept too little
-  /// (also shown in the panel), else an empty string (and clears the panel's warning).
-  QString judgeSegmentation(double threshold,
-    const bender::LabelMap* mask,
-    long long surfacePoints);
+  /// Shows the last segmentation's warning under the histogram; empty hides it.
+  void showWarning(const std::string& warning);
 
   HistogramWidget* histogram() const { return this->Histogram; }
   QLabel* warningLabel() const { return this->Warning; }

@@ -12,7 +12,6 @@ class QComboBox;
 class QLabel;
 class QVTKOpenGLNativeWidget;
 class vtkImageData;
-class vtkObject;
 class vtkPolyData;
 class vtkImageSlice;
 class vtkRenderer;
@@ -118,7 +117,6 @@ signals:
 private:
   void updateAnnotation(int view);
   void updateCrosshairs();
-  static void BeforeRender(vtkObject*, unsigned long, void* clientData, void*);
 
   View* Views[3];
   vtkSmartPointer<vtkImageData> Volume;

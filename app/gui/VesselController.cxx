@@ -34,6 +34,17 @@ bool VesselController::isComputing() const
     (this->Session.HasSurface() && !this->Vessels.IsUpToDate(this->Session));
 }
 
+bool VesselController::waitForCenterlines(int milliseconds)
+{
+  // update() starts the job: also after a change that came without one.
+  return this->Worker->waitUntilIdle(milliseconds,
+    [this]()
+    {
+      this->update();
+      return this->isComputing();
+    });
+}
+
 void VesselController::update()
 {
   if (this->LinesWarped && this->Session.GetState() != bender::GrabState::Grabbed &&

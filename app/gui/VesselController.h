@@ -40,6 +40,9 @@ public:
   void update();
   /// True while centerlines are being computed or are due (the surface changed).
   bool isComputing() const;
+  /// For tests and scripts: waits (processing events) until the centerlines of the committed
+  /// surface have been computed (or failed) and the worker is idle; false on timeout.
+  bool waitForCenterlines(int milliseconds);
 
   ///@{ The gesture's steps (GestureController calls them)
   /// A ribbon was placed: its branch is held and measured as it is.

@@ -3,6 +3,7 @@
 #include "BenderSession.h"
 
 #include <QApplication>
+#include <QElapsedTimer>
 #include <QLabel>
 #include <QPointer>
 #include <QProgressBar>
@@ -21,7 +22,13 @@ WorkRunner::WorkRunner(QStatusBar* bar, QLabel* status, Reporter report, QObject
 {
   this->Progress = new QProgressBar(bar);
   this->Progress->setRange(0, 100);
-  this->Progress->setMaximumWidth(220);
+  // The text ("Segmenting: surface 40%") is longer than a bar: wider, and whole in the tooltip.
+  this->Progress->setMinimumWidth(200);
+  this->Progress->setMaximumWidth(380);
+  connect(this->Progress,
+    &QProgressBar::valueChanged,
+    this->Progress,
+    [progress = this->Progress]() { progress->setToolTip(progress->text()); });
   this->Progress->hide();
   bar->addPermanentWidget(this->Progress);
   this->Cancel = new QPushButton("Cancel", bar);
@@ -55,6 +62,21 @@ WorkRunner::WorkRunner(QStatusBar* bar, QLabel* status, Reporter report, QObject
 WorkRunner::~WorkRunner()
 {
   this->cancelAndWait();
+}
+
+bool WorkRunner::waitUntilIdle(int milliseconds, const std::function<bool()>& busy)
+{
+  QElapsedTimer timer;
+  timer.start();
+  while ((busy && busy()) || this->Pending)
+  {
+    if (timer.elapsed() > milliseconds)
+    {
+      return false;
+    }
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+  }
+  return true;
 }
 
 void WorkRunner::cancelAndWait()

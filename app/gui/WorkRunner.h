@@ -44,6 +44,9 @@ public:
   bool isBusy() const { return this->Pending; }
   /// Marks the running job as failed (its finisher found a problem).
   void markFailed() { this->Failed = true; }
+  /// For tests and scripts: waits (processing events) until no job runs and `busy` (when
+  /// given) is false; false on timeout. The window itself never waits.
+  bool waitUntilIdle(int milliseconds, const std::function<bool()>& busy = {});
   /// Asks the running job to stop and waits for the worker (closing the window).
   void cancelAndWait();
   /// Called on the worker at the start of every job (tests).

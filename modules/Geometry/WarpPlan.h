@@ -30,6 +30,18 @@ struct RibbonSpec
   int extraTurns = 0;
 };
 
+/// True when the two ribbons are exactly the same: every coordinate of both end frames and the
+/// extra turns (a release without motion, a ribbon that an autosave already keeps).
+inline bool SameRibbon(const RibbonSpec& a, const RibbonSpec& b)
+{
+  auto same = [](const RibbonEnd& x, const RibbonEnd& y)
+  {
+    auto eq = [](const Vec3& u, const Vec3& v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
+    return eq(x.position, y.position) && eq(x.tangent, y.tangent) && eq(x.normal, y.normal);
+  };
+  return same(a.start, b.start) && same(a.end, b.end) && a.extraTurns == b.extraTurns;
+}
+
 enum class DecayShape
 {
   Bell,   ///< (1 - x^2)^3

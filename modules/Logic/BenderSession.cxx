@@ -130,21 +130,7 @@ bool BenderSession::RefuseWhenBusy(const std::string& what)
 
 bool BenderSession::LoadSurface(const std::string& path)
 {
-  if (this->RefuseWhenBusy(DisplayName(path)))
-  {
-    return false;
-  }
-  vtkSmartPointer<vtkPolyData> mesh;
-  try
-  {
-    mesh = ReadMesh(path);
-  }
-  catch (const std::exception& e) // the reader's errors, and VTK's or std's (bad_alloc): a message
-  {
-    this->Report(MessageSeverity::Error, e.what());
-    return false;
-  }
-  return this->SetSurface(mesh, DisplayName(path), AbsolutePath(path));
+  return this->RunNow(this->BeginLoadSurface(path));
 }
 
 bool BenderSession::SetSurface(vtkPolyData* surface,
@@ -257,6 +243,7 @@ void BenderSession::SetAutosavePath(const std::string& path)
 {
   this->AutosavePath = path;
   this->AutosaveSourcePath.clear();
+  this->AutosavedRibbon.reset();
 }
 
 bool BenderSession::Autosave()
@@ -287,6 +274,7 @@ bool BenderSession::Autosave()
       this->AutosaveDecorator(snapshot);
     }
     WriteSessionFile(snapshot, this->AutosavePath);
+    this->AutosavedRibbon = this->CurrentRibbon;
   }
   catch (const std::exception& e) // the writers, VTK, std and the window's decorator: a warning
   {
@@ -294,6 +282,19 @@ bool BenderSession::Autosave()
     return false;
   }
   return true;
+}
+
+bool BenderSession::HasUnsavedRibbon() const
+{
+  const auto& ribbon = this->CurrentRibbon;
+  return ribbon && !this->AutosavePath.empty() && !this->Busy &&
+    this->State != GrabState::Grabbed && this->HasSurface() &&
+    !(this->AutosavedRibbon && SameRibbon(*this->AutosavedRibbon, *ribbon));
+}
+
+bool BenderSession::AutosaveRibbon()
+{
+  return !this->HasUnsavedRibbon() || this->Autosave();
 }
 
 void BenderSession::DiscardAutosave()
@@ -306,6 +307,7 @@ void BenderSession::DiscardAutosave()
   std::filesystem::remove(this->AutosavePath, ec);
   std::filesystem::remove(this->AutosavePath + ".source.vtp", ec);
   this->AutosaveSourcePath.clear();
+  this->AutosavedRibbon.reset();
 }
 
 bool BenderSession::Recover(const std::string& sessionPath)

@@ -87,7 +87,8 @@ public:
 
   ///@{ Data
   /// Reads a mesh (stl, obj, ply, vtp, vtk, off) and makes it the session's surface, dropping
-  /// the history. On failure the previous surface stays.
+  /// the history. On failure the previous surface stays. The load job (BeginLoadSurface) at
+  /// once.
   bool LoadSurface(const std::string& path);
   /// Makes `surface` (deep-copied) the session's surface. `name` is for messages;
   /// `sourcePath` is the file it came from, empty for a surface made here (segmentation).
@@ -238,6 +239,9 @@ public:
 
   ///@{ Jobs (see SessionJob): nullptr, with a message, when refused (busy, nothing grabbed,
   ///    no surface). While a job is begun and not finished, the session refuses other changes.
+  /// Reads the mesh at `path` in the job; Finish makes it the surface (SetSurface, named after
+  /// the file, its absolute path as the source).
+  std::shared_ptr<SessionJob> BeginLoadSurface(const std::string& path);
   std::shared_ptr<SessionJob> BeginRelease();
   std::shared_ptr<SessionJob> BeginReplay(const WarpPlan& plan, const std::string& name);
   /// Reads the plan file in the job.
@@ -273,6 +277,13 @@ public:
   {
     this->AutosaveDecorator = std::move(decorator);
   }
+  /// True when the ribbon lying on the surface is not the one the last autosave kept (placed,
+  /// or put back by undo, cancel or redo: no warp, so no autosave of its own) and an autosave
+  /// would keep it now (an autosave path, a surface, not busy, not grabbed).
+  bool HasUnsavedRibbon() const;
+  /// Autosaves when HasUnsavedRibbon(); true when nothing was to be done. Not on every move of
+  /// a handle (each autosave is flushed to disk): the window calls it once the ribbon rests.
+  bool AutosaveRibbon();
   /// Removes the autosave files (a clean exit).
   void DiscardAutosave();
   /// Loads the source of a session file and replays its plan.
@@ -298,6 +309,7 @@ private:
   bool RefuseWhenBusy(const std::string& what);
   std::shared_ptr<SessionJob> NewJob(SessionJob::Kind kind, const std::string& title);
   bool RunNow(const std::shared_ptr<SessionJob>& job);
+  bool FinishLoad(SessionJob& job);
   bool FinishRelease(SessionJob& job);
   bool FinishReplay(SessionJob& job);
   bool FinishRecover(SessionJob& job);
@@ -373,6 +385,7 @@ private:
   std::string SurfaceName;
   std::string AutosavePath;
   std::string AutosaveSourcePath;
+  std::optional<RibbonSpec> AutosavedRibbon; // the ribbon when the last autosave was written
   std::function<void(SessionSnapshot&)> AutosaveDecorator;
 
   std::vector<LogicMessage> Messages;

@@ -13,21 +13,6 @@
 namespace bender
 {
 
-namespace
-{
-
-bool SameRibbon(const RibbonSpec& a, const RibbonSpec& b)
-{
-  auto same = [](const RibbonEnd& x, const RibbonEnd& y)
-  {
-    auto eq = [](const Vec3& u, const Vec3& v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
-    return eq(x.position, y.position) && eq(x.tangent, y.tangent) && eq(x.normal, y.normal);
-  };
-  return same(a.start, b.start) && same(a.end, b.end) && a.extraTurns == b.extraTurns;
-}
-
-}
-
 std::shared_ptr<SessionJob> BenderSession::NewJob(SessionJob::Kind kind, const std::string& title)
 {
   auto job = std::make_shared<SessionJob>();
@@ -44,6 +29,19 @@ bool BenderSession::RunNow(const std::shared_ptr<SessionJob>& job)
   }
   job->Run({});
   return this->Finish(*job);
+}
+
+std::shared_ptr<SessionJob> BenderSession::BeginLoadSurface(const std::string& path)
+{
+  if (this->RefuseWhenBusy(DisplayName(path)))
+  {
+    return nullptr;
+  }
+  auto job = this->NewJob(SessionJob::Kind::Load, "Reading " + DisplayName(path));
+  job->Name = DisplayName(path);
+  job->Path = path;
+  this->Busy = true;
+  return job;
 }
 
 std::shared_ptr<SessionJob> BenderSession::BeginRelease()
@@ -188,14 +186,17 @@ std::shared_ptr<SessionJob> BenderSession::BeginExport(const std::string& path,
 
 bool BenderSession::Finish(SessionJob& job)
 {
-  const bool warps = job.JobKind == SessionJob::Kind::Release ||
-    job.JobKind == SessionJob::Kind::Replay || job.JobKind == SessionJob::Kind::Recover;
-  if (warps)
+  const bool changes = job.JobKind == SessionJob::Kind::Load ||
+    job.JobKind == SessionJob::Kind::Release || job.JobKind == SessionJob::Kind::Replay ||
+    job.JobKind == SessionJob::Kind::Recover;
+  if (changes)
   {
     this->Busy = false;
   }
   switch (job.JobKind)
   {
+    case SessionJob::Kind::Load:
+      return this->FinishLoad(job);
     case SessionJob::Kind::Release:
       return this->FinishRelease(job);
     case SessionJob::Kind::Replay:
@@ -218,6 +219,18 @@ bool BenderSession::Finish(SessionJob& job)
       return this->FinishExport(job);
   }
   return false;
+}
+
+bool BenderSession::FinishLoad(SessionJob& job)
+{
+  if (job.Result != SessionJob::Outcome::Done)
+  {
+    const bool cancelled = job.Result == SessionJob::Outcome::Cancelled;
+    this->Report(cancelled ? MessageSeverity::Warning : MessageSeverity::Error,
+      cancelled ? job.Name + ": reading cancelled, the surface is unchanged" : job.Problem);
+    return false;
+  }
+  return this->SetSurface(job.Input, job.Name, AbsolutePath(job.Path));
 }
 
 bool BenderSession::FinishRelease(SessionJob& job)

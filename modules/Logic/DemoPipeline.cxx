@@ -1,5 +1,6 @@
 #include "DemoPipeline.h"
 
+#include "BenderErrors.h"
 #include "DataDirectory.h"
 
 #include "MeshIO.h"
@@ -10,6 +11,7 @@
 #include <vtkPolyData.h>
 
 #include <cstdlib>
+#include <exception>
 #include <sstream>
 
 namespace bender
@@ -64,6 +66,27 @@ DemoVessel SegmentDemoVessel(const std::string& vesselPath,
           << " voxels), surface of " << demo.surface->GetNumberOfPolys() << " triangles (LPS mm)";
   demo.summary = summary.str();
   return demo;
+}
+
+DemoVessel SegmentDemoVesselOrFallBack(const std::string& vesselPath,
+  const DemoOptions& options,
+  const ProgressReporter& progress)
+{
+  try
+  {
+    return SegmentDemoVessel(vesselPath, options, progress);
+  }
+  catch (const Cancelled&)
+  {
+    throw;
+  }
+  catch (const std::exception& e) // the segmentation's errors and ITK's: the vessel itself
+  {
+    DemoVessel demo;
+    demo.fallback = e.what();
+    demo.surface = ReadMesh(vesselPath);
+    return demo;
+  }
 }
 
 } // namespace bender

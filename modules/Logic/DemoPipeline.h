@@ -36,6 +36,9 @@ struct DemoVessel
   LabelMap mask;
   vtkSmartPointer<vtkPolyData> surface;
   std::string summary; ///< one line for the user
+  /// SegmentDemoVesselOrFallBack: why the segmentation failed and the vessel surface itself is
+  /// the surface (volume and mask empty); empty when segmented.
+  std::string fallback;
 };
 
 /// The built-in demo: makes the MRA-like phantom of the aneurysm vessel, segments its lumen
@@ -43,6 +46,14 @@ struct DemoVessel
 /// calling thread (a GUI calls it from a worker). Throws MeshIOError (missing vessel file),
 /// the segmentation module's errors, SegmentationCancelled.
 DemoVessel SegmentDemoVessel(const std::string& vesselPath,
+  const DemoOptions& options = {},
+  const ProgressReporter& progress = {});
+
+/// The demo's "segment, else fall back" (the window's demo and bender --demo-headless): the
+/// result of SegmentDemoVessel, or, when the segmentation fails (missing ITK data, a failure),
+/// the vessel surface read from `vesselPath` with `fallback` saying why (the demo still bends
+/// the vessel). Throws Cancelled, and the reader's errors when even the vessel cannot be read.
+DemoVessel SegmentDemoVesselOrFallBack(const std::string& vesselPath,
   const DemoOptions& options = {},
   const ProgressReporter& progress = {});
 

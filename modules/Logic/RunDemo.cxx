@@ -52,36 +52,36 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
   auto out = [&dir](const char* name) { return (fs::path(dir) / name).string(); };
 
   vtkSmartPointer<vtkPolyData> surface;
-  if (options.segment)
-  {
-    say("Segmenting the demo vessel (MRA-like phantom of " + vesselPath + ")...");
-    try
-    {
-      DemoVessel demo = SegmentDemoVessel(vesselPath, options.demo, options.progress);
-      say(demo.summary);
-      surface = demo.surface;
-      WriteMesh(surface, out("demo-segmented.vtp"));
-      result.written.push_back(out("demo-segmented.vtp"));
-      result.segmented = true;
-    }
-    catch (const Cancelled&)
-    {
-      throw;
-    }
-    catch (const std::exception& e)
-    {
-      warn(std::string("segmentation failed (") + e.what() + "); using the vessel surface");
-      surface = nullptr;
-    }
-  }
   WarpPlan plan;
   try
   {
-    if (!surface)
+    if (options.segment)
+    {
+      say("Segmenting the demo vessel (MRA-like phantom of " + vesselPath + ")...");
+      const DemoVessel demo =
+        SegmentDemoVesselOrFallBack(vesselPath, options.demo, options.progress);
+      surface = demo.surface;
+      if (demo.fallback.empty())
+      {
+        say(demo.summary);
+        WriteMesh(surface, out("demo-segmented.vtp"));
+        result.written.push_back(out("demo-segmented.vtp"));
+        result.segmented = true;
+      }
+      else
+      {
+        warn("segmentation failed (" + demo.fallback + "); using the vessel surface");
+      }
+    }
+    else
     {
       surface = ReadMesh(vesselPath);
     }
     plan = ReadWarpPlan(planPath);
+  }
+  catch (const Cancelled&)
+  {
+    throw;
   }
   catch (const std::exception& e)
   {

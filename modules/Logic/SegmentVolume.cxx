@@ -8,13 +8,79 @@
 #include <vtkSmartPointer.h>
 
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 
 namespace bender
 {
 
-SurfaceResult SegmentVolume(const SegmentVolumeOptions& options)
+bool IsEightBit(const Volume& volume)
+{
+  bool any = false;
+  for (const float v : volume.voxels)
+  {
+    if (!std::isfinite(v))
+    {
+      continue;
+    }
+    if (v < 0.0f || v > 255.0f || v != std::floor(v))
+    {
+      return false;
+    }
+    any = true;
+  }
+  return any;
+}
+
+std::string SegmentationWarning(double threshold,
+  bool eightBit,
+  std::size_t maskVoxels,
+  long long surfacePoints)
+{
+  if (surfacePoints >= MinimumSurfacePoints)
+  {
+    return {};
+  }
+  std::ostringstream text;
+  text << "Segmentation: threshold " << std::setprecision(6) << threshold << " on "
+       << (eightBit ? "an 8-bit volume" : "this volume") << " kept ";
+  if (surfacePoints >= 0)
+  {
+    text << surfacePoints << " points";
+  }
+  else
+  {
+    text << maskVoxels << " voxels and no surface";
+  }
+  text << ": too little for a vessel. Pick a lower threshold on the histogram (Segment panel) "
+          "and segment again.";
+  return text.str();
+}
+
+SegmentVolumeResult SegmentLoadedVolume(const Volume& volume,
+  const SegmentationParameters& segmentation,
+  const SurfaceParameters& surface,
+  const ProgressReporter& progress)
+{
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point t0 = Clock::now();
+  auto mask = std::make_shared<const LabelMap>(SegmentVessels(volume, segmentation, progress));
+  const Clock::time_point t1 = Clock::now();
+  SegmentVolumeResult result;
+  static_cast<SurfaceResult&>(result) = ExtractSurface(*mask, surface, progress);
+  result.timings.insert(result.timings.begin(),
+    StageTime{ "segmentation", std::chrono::duration<double>(t1 - t0).count() });
+  result.mask = std::move(mask);
+  const long long points = result.surface ? result.surface->GetNumberOfPoints() : -1;
+  result.warning =
+    SegmentationWarning(segmentation.lower, IsEightBit(volume), result.mask->CountInside(), points);
+  return result;
+}
+
+SegmentVolumeResult SegmentVolume(const SegmentVolumeOptions& options)
 {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point t0 = Clock::now();
@@ -27,12 +93,10 @@ SurfaceResult SegmentVolume(const SegmentVolumeOptions& options)
   }
   const Volume volume = ReadVolume(options.input, read, options.progress);
   const Clock::time_point t1 = Clock::now();
-  const LabelMap mask = SegmentVessels(volume, options.segmentation, options.progress);
-  const Clock::time_point t2 = Clock::now();
-  SurfaceResult result = ExtractSurface(mask, options.surface, options.progress);
-  result.timings.insert(result.timings.begin(),
-    { { "read", std::chrono::duration<double>(t1 - t0).count() },
-      { "segmentation", std::chrono::duration<double>(t2 - t1).count() } });
+  SegmentVolumeResult result =
+    SegmentLoadedVolume(volume, options.segmentation, options.surface, options.progress);
+  result.timings.insert(
+    result.timings.begin(), StageTime{ "read", std::chrono::duration<double>(t1 - t0).count() });
   return result;
 }
 

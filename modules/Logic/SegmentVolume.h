@@ -7,7 +7,9 @@
 #include "VesselSegmentation.h"
 #include "VolumeIO.h"
 
+#include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace bender
@@ -26,13 +28,46 @@ struct SegmentVolumeOptions
   std::function<void(const std::string&)> inform;
 };
 
-/// The segment workflow of bender-cli and the GUI: reads the volume, segments the vessels and
-/// extracts their surface (LPS mm). The series of a DICOM folder is the one of ChooseDicomSeries
-/// (read.dicomSeriesUid, else the largest). The result's timings start with "read" and
-/// "segmentation", then the surface stages. Throws the segmentation module's errors
-/// (VolumeReadError, ParameterError, SeedError, SegmentationError; all bender::Error) and
-/// bender::Cancelled.
-SurfaceResult SegmentVolume(const SegmentVolumeOptions& options);
+/// Below this many surface points a segmentation kept implausibly little for a vessel (a
+/// threshold above the lumen's intensities, a seed outside the lumen).
+constexpr long long MinimumSurfacePoints = 1000;
+
+/// Whether `volume` holds only integers in [0, 255] (non-finite voxels aside; at least one
+/// finite voxel): an 8-bit acquisition, whose intensities are not those of a CT or an MRA.
+bool IsEightBit(const Volume& volume);
+
+/// The plausibility rule of a segmentation: empty when its surface has at least
+/// MinimumSurfacePoints points, else one sentence for the user naming the lumen threshold, the
+/// volume (`eightBit`: "an 8-bit volume") and what was kept: the surface's points, or
+/// (`surfacePoints` < 0: no surface was made) the mask's `maskVoxels` voxels.
+std::string SegmentationWarning(double threshold,
+  bool eightBit,
+  std::size_t maskVoxels,
+  long long surfacePoints);
+
+/// What a segmentation made: the surface (SurfaceResult: LPS mm, its edges, the timings of
+/// every stage), the mask it was extracted from, and SegmentationWarning's sentence (empty
+/// when the segmentation is plausible).
+struct SegmentVolumeResult : SurfaceResult
+{
+  std::shared_ptr<const LabelMap> mask;
+  std::string warning;
+};
+
+/// Segments a loaded volume (SegmentVessels), extracts the surface (ExtractSurface) and judges
+/// it (SegmentationWarning): the segment step of the GUI's Segment panel and of SegmentVolume.
+/// The timings start with "segmentation", then the surface stages. Throws as SegmentVolume.
+SegmentVolumeResult SegmentLoadedVolume(const Volume& volume,
+  const SegmentationParameters& segmentation,
+  const SurfaceParameters& surface,
+  const ProgressReporter& progress = {});
+
+/// The segment workflow of bender-cli: reads the volume, then SegmentLoadedVolume (LPS mm).
+/// The series of a DICOM folder is the one of ChooseDicomSeries (read.dicomSeriesUid, else the
+/// largest). The result's timings start with "read" and "segmentation", then the surface
+/// stages. Throws the segmentation module's errors (VolumeReadError, ParameterError,
+/// SeedError, SegmentationError; all bender::Error) and bender::Cancelled.
+SegmentVolumeResult SegmentVolume(const SegmentVolumeOptions& options);
 
 /// Options of MakePhantomVolume: the vessel surface, the phantom's parameters, the output.
 struct PhantomVolumeOptions

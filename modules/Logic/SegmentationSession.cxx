@@ -2,6 +2,7 @@
 
 #include "DemoPipeline.h"
 #include "MeshIO.h"
+#include "SegmentVolume.h"
 #include "VolumeIO.h"
 #include "WarpPlanIO.h"
 
@@ -149,30 +150,17 @@ void SegmentationSession::ReadJob::Run(const ProgressReporter& progress)
 
 void SegmentationSession::SegmentJob::Run(const ProgressReporter& progress)
 {
-  auto labels = std::make_shared<const LabelMap>(
-    SegmentVessels(*this->volume, this->settings.segmentation, progress));
-  SurfaceResult result = ExtractSurface(*labels, this->settings.surface, progress);
-  this->mask = labels;
+  SegmentVolumeResult result = SegmentLoadedVolume(
+    *this->volume, this->settings.segmentation, this->settings.surface, progress);
+  this->mask = result.mask;
   this->surface = result.surface;
+  this->warning = result.warning;
 }
 
 void SegmentationSession::DemoJob::Run(const ProgressReporter& progress)
 {
-  DemoVessel demo;
-  try
-  {
-    demo = SegmentDemoVessel(DemoVesselPath(), {}, progress);
-  }
-  catch (const Cancelled&)
-  {
-    throw;
-  }
-  catch (const std::exception& e) // the segmentation's errors and ITK's
-  {
-    // Without the segmentation the demo still bends the vessel surface itself.
-    this->fallback = e.what();
-    demo.surface = ReadMesh(DemoVesselPath());
-  }
+  DemoVessel demo = SegmentDemoVesselOrFallBack(DemoVesselPath(), {}, progress);
+  this->fallback = demo.fallback;
   this->plan = ReadWarpPlan(DemoPlanPath());
   if (!demo.volume.voxels.empty())
   {

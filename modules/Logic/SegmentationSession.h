@@ -81,13 +81,16 @@ public:
     std::string dicomSeriesUid;
   };
 
-  /// Segments a volume and extracts its surface (SegmentVessels, then ExtractSurface).
+  /// Segments a volume and extracts its surface (SegmentLoadedVolume: SegmentVessels, then
+  /// ExtractSurface, then the plausibility rule).
   struct SegmentJob
   {
     std::shared_ptr<const Volume> volume;
     SegmentationSettings settings;
     std::shared_ptr<const LabelMap> mask;
     vtkSmartPointer<vtkPolyData> surface;
+    /// SegmentationWarning's sentence when the segmentation kept too little; empty otherwise.
+    std::string warning;
     /// Throws the segmentation's errors (bender::Error) and bender::Cancelled.
     void Run(const ProgressReporter& progress);
   };

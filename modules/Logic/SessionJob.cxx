@@ -16,6 +16,9 @@ void SessionJob::Run(const ProgressReporter& progress)
   {
     switch (this->JobKind)
     {
+      case Kind::Load:
+        this->Input = ReadMesh(this->Path);
+        break;
       case Kind::Recover:
       {
         const SessionSnapshot snapshot = ReadSessionFile(this->SessionPath);

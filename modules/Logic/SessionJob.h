@@ -19,8 +19,8 @@ namespace bender
 
 class BenderSession;
 
-/// Long work of a session (release, replay, recovery, check, export) as a job that runs off the
-/// session's thread: BenderSession::Begin... makes it on the session's thread (inputs copied,
+/// Long work of a session (load, release, replay, recovery, check, export) as a job that runs off
+/// the session's thread: BenderSession::Begin... makes it on the session's thread (inputs copied,
 /// the session refuses other changes meanwhile), Run computes on any thread (only the job's own
 /// data), BenderSession::Finish commits it on the session's thread. Synchronous callers use the
 /// plain operations (Release, ReplayPlan, ...), which do the three steps at once.
@@ -29,6 +29,7 @@ class SessionJob
 public:
   enum class Kind
   {
+    Load,
     Release,
     Replay,
     Recover,
@@ -70,7 +71,7 @@ private:
   std::string SessionPath;             // Recover
   std::string SourcePath;              // Recover: the source read by the job
   std::string SurfaceName;             // Recover: the surface's name in the session file
-  std::string Path;                    // Export
+  std::string Path;                    // Load: the mesh read; Export: the file written
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
   bool MakeProxy = false; // Release: decimate the result for the level of detail
