@@ -273,7 +273,7 @@ CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& opti
     throw InputError("--cell-size " + CfdNumber(result.cellSize) + " m: the background mesh of " +
       name + " would have " + CfdShort(cells) + " cells; give a larger cell size");
   }
-  result.insidePoint = InsidePoint(surface, patches, inlet, result.cellSize, name);
+  result.insidePoint = InsidePoint(surface, result.cellSize, name);
   result.patches = patches;
   const CfdPatch& in = patches[inlet];
   result.inletFlowRate = options.flowRate > 0.0 ? options.flowRate : options.velocity * in.area;

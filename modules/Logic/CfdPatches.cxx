@@ -1,17 +1,17 @@
 #include "CfdPatches.h"
 
 #include "BenderErrors.h"
+#include "InsidePoint.h"
 
 #include <vtkCellType.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkSelectEnclosedPoints.h>
-#include <vtkStaticCellLocator.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace bender
 {
@@ -162,69 +162,24 @@ std::vector<CfdPatch> MeasurePatches(vtkPolyData* surface,
   return patches;
 }
 
-std::array<double, 3> InsidePoint(vtkPolyData* surface,
-  const std::vector<CfdPatch>& patches,
-  std::size_t inlet,
-  double cellSize,
-  const std::string& name)
+std::array<double, 3> InsidePoint(vtkPolyData* surface, double cellSize, const std::string& name)
 {
-  vtkNew<vtkSelectEnclosedPoints> enclosed;
-  enclosed->SetTolerance(1e-6);
-  enclosed->Initialize(surface);
-  vtkNew<vtkStaticCellLocator> locator;
-  locator->SetDataSet(surface);
-  locator->BuildLocator();
-  std::vector<std::size_t> order{ inlet };
-  for (std::size_t i = 0; i < patches.size(); ++i)
-  {
-    if (i != inlet && IsEndPatch(patches[i].type))
-    {
-      order.push_back(i);
-    }
-  }
-  std::array<double, 3> best{};
-  double bestDistance = -1.0;
-  for (const std::size_t i : order)
-  {
-    const CfdPatch& p = patches[i];
-    const double radius = 0.5 * p.diameter;
-    for (const double depth : { 0.75, 1.0, 1.5, 0.5, 2.0, 3.0, 0.25 })
-    {
-      // mm, nudged off the background grid's planes.
-      double x[3];
-      for (std::size_t k = 0; k < 3; ++k)
-      {
-        const double nudge = (0.0173 + 0.0119 * static_cast<double>(k)) * cellSize;
-        x[k] = 1e3 * (p.centre[k] - depth * radius * p.normal[k] + nudge);
-      }
-      if (!enclosed->IsInsideSurface(x))
-      {
-        continue;
-      }
-      double closest[3], d2 = 0.0;
-      vtkIdType cellId = -1;
-      int subId = 0;
-      locator->FindClosestPoint(x, closest, cellId, subId, d2);
-      const double d = 1e-3 * std::sqrt(d2);
-      if (d > bestDistance)
-      {
-        bestDistance = d;
-        best = { 1e-3 * x[0], 1e-3 * x[1], 1e-3 * x[2] };
-      }
-    }
-    if (bestDistance >= 1.5 * cellSize)
-    {
-      break;
-    }
-  }
-  enclosed->Complete();
-  if (bestDistance < 0.0)
+  const std::optional<LumenPoint> found = FindInsidePoint(surface);
+  if (!found)
   {
     throw InputError(name +
       ": no point inside the lumen was found behind its ends (is the "
       "surface oriented consistently and closed?)");
   }
-  return best;
+  // Metres, nudged off the background grid's planes (a fraction of a cell: far less than the
+  // point's distance to the wall).
+  const double mm[3] = { found->point.x, found->point.y, found->point.z };
+  std::array<double, 3> x{};
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    x[k] = 1e-3 * mm[k] + (0.0173 + 0.0119 * static_cast<double>(k)) * cellSize;
+  }
+  return x;
 }
 
 } // namespace bender

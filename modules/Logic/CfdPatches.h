@@ -25,13 +25,11 @@ std::vector<CfdPatch> MeasurePatches(vtkPolyData* surface,
   const std::vector<PatchLabel>& labels,
   const std::string& name);
 
-/// A point well inside the lumen (metres): on the inward normal of an end (the inlet first),
-/// the candidate farthest from the wall. Throws InputError naming `name` when none is inside.
-std::array<double, 3> InsidePoint(vtkPolyData* surface,
-  const std::vector<CfdPatch>& patches,
-  std::size_t inlet,
-  double cellSize,
-  const std::string& name);
+/// A point well inside the lumen (metres): the one inside point of Bender (InsidePoint.h,
+/// FindInsidePoint: the verified chord midpoint farthest from the wall), moved off the
+/// background grid's planes by a few hundredths of `cellSize`. Throws InputError naming `name`
+/// when none is found.
+std::array<double, 3> InsidePoint(vtkPolyData* surface, double cellSize, const std::string& name);
 
 } // namespace bender
 

@@ -29,7 +29,7 @@ void SessionJob::Run(const ProgressReporter& progress)
         {
           this->Input = ReadMesh(snapshot.sourcePath);
         }
-        catch (const std::exception& e)
+        catch (const MeshIOError& e)
         {
           throw InputError(std::string("the session's source cannot be read: ") + e.what());
         }

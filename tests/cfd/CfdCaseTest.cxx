@@ -6,6 +6,7 @@
 #include "BenderMeshCheck.h"
 #include "CfdTestUtilities.h"
 #include "CliCommands.h"
+#include "InsidePoint.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
 #include "RunDemo.h"
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -136,6 +138,16 @@ TEST(CfdCase, WritesACompleteCaseInMetres)
   double inside[3] = { 1e3 * r.insidePoint[0], 1e3 * r.insidePoint[1], 1e3 * r.insidePoint[2] };
   EXPECT_TRUE(enclosed->IsInsideSurface(inside));
   enclosed->Complete();
+  // It is Bender's one inside point (the sidecar's), moved off the grid by a few hundredths
+  // of a cell.
+  const std::optional<bender::LumenPoint> lumen = bender::FindInsidePoint(Aneurysm());
+  ASSERT_TRUE(lumen.has_value());
+  const double shared[3] = { lumen->point.x, lumen->point.y, lumen->point.z };
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_NEAR(inside[k], shared[k], 0.05 * 1e3 * r.cellSize) << k;
+  }
+  EXPECT_LT(0.05 * 1e3 * r.cellSize, lumen->clearance);
   const std::string snappy = ReadText(dir + "/system/snappyHexMeshDict");
   EXPECT_NE(snappy.find("locationInMesh ("), std::string::npos);
   for (const auto& p : r.patches)
