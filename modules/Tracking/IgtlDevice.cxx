@@ -1,29 +1,13 @@
 #include "IgtlDevice.h"
 
+#include "StringUtil.h"
 #include "TrackingErrors.h"
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 
 namespace bender
 {
-
-namespace
-{
-std::string Lowered(const std::string& text)
-{
-  std::string out;
-  for (char c : text)
-  {
-    if (!std::isspace(static_cast<unsigned char>(c)))
-    {
-      out.push_back(char(std::tolower(static_cast<unsigned char>(c))));
-    }
-  }
-  return out;
-}
-} // namespace
 
 IgtlDevice::IgtlDevice(Options options)
   : Opts(std::move(options))
@@ -157,7 +141,7 @@ void IgtlDevice::Handle(const IgtlMessage& message)
   {
     const int h = hand(message.deviceName);
     const std::optional<std::string> text = DecodeIgtlString(message);
-    const std::string word = text ? Lowered(*text) : std::string();
+    const std::string word = text ? ToLower(Trim(*text)) : std::string();
     const bool down = word == "down" || word == "pressed" || word == "1";
     const bool up = word == "up" || word == "released" || word == "0";
     if (h < 0 || !(down || up))
