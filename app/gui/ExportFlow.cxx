@@ -102,22 +102,12 @@ void ExportDialog::browse()
   {
     return;
   }
-  const QString suffix = QFileInfo(f).suffix().toLower();
-  const std::pair<const char*, int> formats[] = { { "vtp", ExportOptionsForm::Vtp },
-    { "ply", ExportOptionsForm::Ply },
-    { "obj", ExportOptionsForm::Obj },
-    { "smesh", ExportOptionsForm::TetgenSmesh } };
+  // The format follows the file chosen (the encoding stays when the format does).
+  const auto chosen = bender::FindMeshFormat(f.toStdString());
   this->setPath(f);
-  for (const auto& [ext, format] : formats)
+  if (chosen && chosen->name != this->Form->format().name)
   {
-    if (suffix == ext)
-    {
-      this->Form->Formats->setCurrentIndex(format);
-    }
-  }
-  if (suffix == "stl" && !this->Form->suffix().endsWith("stl"))
-  {
-    this->Form->Formats->setCurrentIndex(ExportOptionsForm::StlBinary);
+    this->Form->Formats->setCurrentIndex(this->Form->formatIndex(chosen->name));
   }
   this->followFormat();
 }

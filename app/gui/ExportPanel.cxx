@@ -18,6 +18,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 ExportOptionsForm::ExportOptionsForm(QWidget* parent)
   : QWidget(parent)
@@ -34,12 +36,22 @@ ExportOptionsForm::ExportOptionsForm(QWidget* parent)
   form->addRow("Preset", this->Presets);
   this->Formats = new QComboBox(this);
   this->Formats->setObjectName("formatCombo");
-  this->Formats->addItems({ "STL (binary)",
-    "STL (ASCII)",
-    "VTP (keeps the patch labels)",
-    "PLY",
-    "OBJ",
-    "TetGen (.smesh, facet markers)" });
+  for (const bender::MeshFormat& format : bender::MeshFormats())
+  {
+    if (!format.CanWrite())
+    {
+      continue;
+    }
+    const QString label = QString::fromStdString(format.label);
+    const QString name = QString::fromStdString(format.name);
+    for (const bool ascii :
+      format.encodingChoice ? std::vector<bool>{ false, true } : std::vector<bool>{ false })
+    {
+      const QString text =
+        format.encodingChoice ? label + (ascii ? " (ASCII)" : " (binary)") : label;
+      this->Formats->addItem(text, ascii ? name + ":ascii" : name);
+    }
+  }
   form->addRow("Format", this->Formats);
   this->Cap = new QCheckBox("Cap the open vessel ends (inlets and outlets)", this);
   this->Cap->setObjectName("capCheck");
@@ -116,12 +128,12 @@ void ExportOptionsForm::applyPreset(int preset)
   this->Sidecar->setChecked(true);
   if (preset == OpenFoam)
   {
-    this->Formats->setCurrentIndex(StlAscii);
+    this->Formats->setCurrentIndex(this->formatIndex("stl", true));
     this->Patches->setCurrentIndex(1);
   }
   else
   {
-    this->Formats->setCurrentIndex(TetgenSmesh);
+    this->Formats->setCurrentIndex(this->formatIndex("smesh"));
     this->Patches->setCurrentIndex(0);
   }
   this->Note->clear();
@@ -132,10 +144,9 @@ void ExportOptionsForm::applyPreset(int preset)
 
 void ExportOptionsForm::formatChanged()
 {
-  const int format = this->Formats->currentIndex();
-  const bool stl = format == StlBinary || format == StlAscii;
-  this->Patches->setEnabled(stl);
-  if (format == StlBinary && this->Patches->currentIndex() == 1)
+  const bender::MeshFormat format = this->format();
+  this->Patches->setEnabled(format.namedPatches);
+  if (format.encodingChoice && !this->isAscii() && this->Patches->currentIndex() == 1)
   {
     // Named solids exist only in ASCII STL: say what changed instead of writing ASCII anyway.
     const QSignalBlocker block(this->Patches);
@@ -151,10 +162,11 @@ void ExportOptionsForm::formatChanged()
 
 void ExportOptionsForm::patchesChanged()
 {
-  if (this->Patches->currentIndex() == 1 && this->Formats->currentIndex() == StlBinary)
+  const bender::MeshFormat format = this->format();
+  if (this->Patches->currentIndex() == 1 && format.encodingChoice && !this->isAscii())
   {
     const QSignalBlocker block(this->Formats);
-    this->Formats->setCurrentIndex(StlAscii);
+    this->Formats->setCurrentIndex(this->formatIndex(format.name, true));
     this->Note->setText("Named solids are ASCII STL only: the format is now \"STL (ASCII)\".");
   }
   else
@@ -171,19 +183,27 @@ QString ExportOptionsForm::note() const
 
 QString ExportOptionsForm::suffix() const
 {
-  switch (this->Formats->currentIndex())
-  {
-    case Vtp:
-      return ".vtp";
-    case Ply:
-      return ".ply";
-    case Obj:
-      return ".obj";
-    case TetgenSmesh:
-      return ".smesh";
-    default:
-      return ".stl";
-  }
+  const bender::MeshFormat format = this->format();
+  return format.extensions.empty() ? QString() : QString::fromStdString(format.extensions.front());
+}
+
+int ExportOptionsForm::formatIndex(const std::string& name, bool ascii) const
+{
+  const QString entry = QString::fromStdString(name);
+  return this->Formats->findData(ascii ? entry + ":ascii" : entry);
+}
+
+bender::MeshFormat ExportOptionsForm::format() const
+{
+  // The entry's data: the format's name, with ":ascii" for its ASCII entry.
+  const QString name = this->Formats->currentData().toString().section(':', 0, 0);
+  const auto format = bender::FindMeshFormatByName(name.toStdString());
+  return format ? *format : bender::MeshFormat{};
+}
+
+bool ExportOptionsForm::isAscii() const
+{
+  return this->Formats->currentData().toString().endsWith(":ascii");
 }
 
 void ExportOptionsForm::copyFrom(const ExportOptionsForm& other)
@@ -209,12 +229,14 @@ bender::ExportSurfaceOptions ExportOptionsForm::options(const QString& path) con
 {
   bender::ExportSurfaceOptions options;
   options.output = path.toStdString();
-  const bool stlPath = path.toLower().endsWith(".stl");
-  options.stlEncoding = (stlPath && this->Formats->currentIndex() == StlAscii)
+  // The file's format decides; the form's encoding and patches apply where that format has them.
+  const auto written = bender::FindMeshFormat(path.toStdString());
+  const bool chosen = written && written->name == this->format().name;
+  options.stlEncoding = (chosen && written->encodingChoice && this->isAscii())
     ? bender::StlEncoding::Ascii
     : bender::StlEncoding::Binary;
   options.cap = this->Cap->isChecked();
-  const int patches = stlPath ? this->Patches->currentIndex() : 0;
+  const int patches = written && written->namedPatches ? this->Patches->currentIndex() : 0;
   options.patches = patches == 1
     ? bender::StlPatchMode::Solids
     : (patches == 2 ? bender::StlPatchMode::Files : bender::StlPatchMode::Single);
@@ -570,6 +592,5 @@ void ExportPanel::showReport(const QString& text)
 
 QString ExportPanel::fileFilter()
 {
-  return "STL (*.stl);;VTK XML polydata with patch labels (*.vtp);;TetGen surface mesh "
-         "(*.smesh);;PLY (*.ply);;Wavefront OBJ (*.obj)";
+  return QString::fromStdString(bender::MeshFileDialogFilters(bender::MeshAccess::Write));
 }

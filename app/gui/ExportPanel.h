@@ -2,6 +2,7 @@
 #define ExportPanel_h
 
 #include "ExportSurface.h"
+#include "MeshFormats.h"
 #include "PrepareForCfd.h"
 
 #include <QWidget>
@@ -19,20 +20,12 @@ class QTableWidget;
 /// ("OpenFOAM (m, named solids)", "TetGen (.smesh, m)"), the format, caps, STL patches, frame,
 /// unit and the patches sidecar. Named solids are ASCII STL: choosing them with "STL (binary)"
 /// switches the format to "STL (ASCII)" and says so in the note below the form (never a
-/// silent change of format).
+/// silent change of format). The formats are bender::MeshFormats' writable rows, in table
+/// order: one entry each ("STL" with a choice of encoding: "STL (binary)" and "STL (ASCII)").
 class ExportOptionsForm : public QWidget
 {
   Q_OBJECT
 public:
-  enum Format
-  {
-    StlBinary = 0,
-    StlAscii,
-    Vtp,
-    Ply,
-    Obj,
-    TetgenSmesh
-  };
   enum Preset
   {
     Custom = 0,
@@ -44,6 +37,12 @@ public:
   bender::ExportSurfaceOptions options(const QString& path) const;
   /// The extension of the chosen format, with its dot (".stl", ".vtp", ".smesh", ...).
   QString suffix() const;
+  /// The Formats entry of the format called `name` (its ASCII entry for `ascii`, formats with
+  /// a choice of encoding); -1 when there is none.
+  int formatIndex(const std::string& name, bool ascii = false) const;
+  /// The chosen format's row, and whether its ASCII entry is chosen.
+  bender::MeshFormat format() const;
+  bool isAscii() const;
   /// Sets every control as in `other`.
   void copyFrom(const ExportOptionsForm& other);
   /// Sets the controls of a preset (Custom leaves them).

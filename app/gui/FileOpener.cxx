@@ -7,6 +7,7 @@
 #include "FileKind.h"
 #include "GestureController.h"
 #include "MainActions.h"
+#include "MeshFormats.h"
 #include "SegmentPanel.h"
 #include "SegmentationSession.h"
 #include "WarpPlanIO.h"
@@ -72,12 +73,8 @@ FileOpener::FileOpener(const WindowParts& parts, AutosaveController* recovery)
     this,
     [this]()
     {
-      const QString file = QFileDialog::getOpenFileName(this->Window,
-        "Open",
-        FileOpener::lastFolder("open"),
-        "All supported (*.stl *.obj *.ply *.vtp *.vtk *.off *.json *.nrrd *.nhdr *.nii *.nii.gz "
-        "*.mha *.mhd *.vti *.dcm);;DICOM series: pick any file of its folder (*.dcm *);;All "
-        "files (*)");
+      const QString file = QFileDialog::getOpenFileName(
+        this->Window, "Open", FileOpener::lastFolder("open"), FileOpener::openFilter());
       if (file.isEmpty())
         return;
       FileOpener::rememberFolder("open", file);
@@ -240,6 +237,24 @@ bool FileOpener::confirmDiscard(const QString& what)
   }
   FileOpener::rememberFolder("plan", file);
   return this->Session.SavePlan(file.toStdString());
+}
+
+QString FileOpener::openFilter()
+{
+  QStringList meshes;
+  for (const std::string& extension : bender::MeshExtensions(bender::MeshAccess::Read))
+  {
+    meshes << "*" + QString::fromStdString(extension);
+  }
+  QStringList filters{ "All supported (" + meshes.join(' ') +
+    " *.json *.nrrd *.nhdr *.nii *.nii.gz *.mha *.mhd *.vti *.dcm)" };
+  for (const std::string& filter : bender::MeshFormatFilters(bender::MeshAccess::Read))
+  {
+    filters << QString::fromStdString(filter);
+  }
+  filters << "DICOM series: pick any file of its folder (*.dcm *)"
+          << "All files (*)";
+  return filters.join(";;");
 }
 
 QString FileOpener::lastFolder(const QString& kind)

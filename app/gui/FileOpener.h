@@ -42,6 +42,9 @@ public:
   /// warps and interactive, asks Save plan (then goes on when saved) / Discard (the work counts
   /// as discarded: the autosave may go) / Cancel.
   bool confirmDiscard(const QString& what);
+  /// The Open dialog's filters: all supported files (every readable mesh format of
+  /// bender::MeshFormats, plans, sessions, volumes, DICOM), then each mesh format, DICOM, all.
+  static QString openFilter();
   /// The folder a file dialog of `kind` ("open", "plan", "recording", ...) starts in: the one
   /// used last, else the home folder; rememberFolder stores the folder of `path`.
   static QString lastFolder(const QString& kind);

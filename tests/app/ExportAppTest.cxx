@@ -23,6 +23,7 @@
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QFileDialog>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -49,11 +50,14 @@
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
 
+#include "MeshFormats.h"
 #include "PatchLabels.h"
 #include "VesselClip.h"
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
+#include <memory>
 #include <thread>
 
 namespace
@@ -218,7 +222,7 @@ private slots:
     }
     QCOMPARE(form->Presets->itemText(ExportOptionsForm::OpenFoam), "OpenFOAM (m, named solids)");
     form->Presets->setCurrentIndex(ExportOptionsForm::OpenFoam);
-    QCOMPARE(form->Formats->currentIndex(), int(ExportOptionsForm::StlAscii));
+    QCOMPARE(form->Formats->currentIndex(), form->formatIndex("stl", true));
     QCOMPARE(form->Patches->currentIndex(), 1);
     QCOMPARE(form->Unit->currentIndex(), 1);
     QVERIFY(form->Cap->isChecked());
@@ -259,12 +263,12 @@ private slots:
     QVERIFY(form);
     form->Presets->setCurrentIndex(ExportOptionsForm::Custom);
     form->Patches->setCurrentIndex(0);
-    form->Formats->setCurrentIndex(ExportOptionsForm::StlBinary);
+    form->Formats->setCurrentIndex(form->formatIndex("stl"));
     QVERIFY(form->note().isEmpty());
     form->Patches->setCurrentIndex(1);
-    QCOMPARE(form->Formats->currentIndex(), int(ExportOptionsForm::StlAscii));
+    QCOMPARE(form->Formats->currentIndex(), form->formatIndex("stl", true));
     QVERIFY2(form->note().contains("STL (ASCII)"), qPrintable(form->note()));
-    form->Formats->setCurrentIndex(ExportOptionsForm::StlBinary);
+    form->Formats->setCurrentIndex(form->formatIndex("stl"));
     QCOMPARE(form->Patches->currentIndex(), 0);
     QVERIFY2(form->note().contains("One surface"), qPrintable(form->note()));
     // The binary STL written is binary.
@@ -279,7 +283,7 @@ private slots:
     QVERIFY(!head.startsWith("solid"));
     QVERIFY(head.contains("unit mm"));
     // Patches are for STL only: the combo follows the format.
-    form->Formats->setCurrentIndex(ExportOptionsForm::Vtp);
+    form->Formats->setCurrentIndex(form->formatIndex("vtp"));
     QVERIFY(!form->Patches->isEnabled());
   }
 
@@ -295,6 +299,60 @@ private slots:
     QVERIFY(text.contains("1=wall 2=inlet 3=outlet_1"));
     QVERIFY(text.contains("unit m"));
     QVERIFY(QFileInfo::exists(this->Folder.filePath("tet.patches.json")));
+  }
+
+  void aRegisteredFormatIsInTheOpenDialogAndTheExportFormats()
+  {
+    // A dummy format, registered for this test only (bender::MeshFormats' registry).
+    bender::MeshFormat dummy;
+    dummy.name = "dummy";
+    dummy.extensions = { ".dummy" };
+    dummy.label = "Dummy test mesh";
+    dummy.read = [](const std::string&, std::uintmax_t)
+    { return vtkSmartPointer<vtkPolyData>::New(); };
+    dummy.write = [](
+                    vtkPolyData*, const std::string&, const bender::MeshWriteOptions&, std::string&)
+    { return true; };
+    const bender::ScopedMeshFormat registered(dummy);
+    auto window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
+    QVERIFY(bendertest::ShowTestWindow(*window, false));
+
+    // The Export panel's formats are the table's writable rows: the dummy is one of them, and
+    // choosing it gives its extension.
+    ExportOptionsForm* form = window->findChild<ExportPanel*>()->form();
+    const int entry = form->formatIndex("dummy");
+    QVERIFY(entry >= 0);
+    QCOMPARE(form->Formats->itemText(entry), QString("Dummy test mesh"));
+    form->Formats->setCurrentIndex(entry);
+    QCOMPARE(form->suffix(), QString(".dummy"));
+    QVERIFY(!form->Patches->isEnabled());
+    QVERIFY(ExportPanel::fileFilter().contains("Dummy test mesh (*.dummy)"));
+
+    // File > Open: Qt's own dialog (the widget), read while it is open, then cancelled.
+    QCoreApplication::setAttribute(Qt::AA_DontUseNativeDialogs, true);
+    QStringList filters;
+    QTimer poll;
+    poll.setInterval(50);
+    connect(&poll,
+      &QTimer::timeout,
+      [&filters, &poll]()
+      {
+        if (auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget()))
+        {
+          filters = dialog->nameFilters();
+          dialog->reject();
+          poll.stop();
+        }
+      });
+    poll.start();
+    window->actions()->Open->trigger();
+    poll.stop();
+    QVERIFY(!filters.isEmpty());
+    QVERIFY2(filters.front().startsWith("All supported (") && filters.front().contains("*.dummy"),
+      qPrintable(filters.front()));
+    QVERIFY2(filters.contains("Dummy test mesh (*.dummy)"), qPrintable(filters.join(" | ")));
+    QVERIFY(filters.contains("STL (*.stl)"));
+    window->close();
   }
 
   void anEmptyFileIsRefusedInTheDialog()
