@@ -3,7 +3,7 @@
 // The sending itself is bender::SlicerLink (modules/Logic), which the application's "Send to
 // Slicer" uses too.
 
-#include "CliCommands.h"
+#include "CliCommand.h"
 #include "CliParsing.h"
 
 #include "IgtlSender.h"
@@ -14,7 +14,6 @@
 #include "TrackingErrors.h"
 #include "WarpPlanIO.h"
 
-#include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 
 #include <cstdio>
@@ -24,72 +23,32 @@
 
 namespace
 {
-const char* const Usage =
-  "usage: bender-cli igtl-send SURFACE --to HOST:PORT [options]\n"
-  "\n"
-  "Sends a surface (.stl .obj .ply .vtp .vtk .off, LPS millimetres) to an OpenIGTLink server\n"
-  "as one POLYDATA message in RAS millimetres (x and y negated), e.g. to 3D Slicer: add an\n"
+const char* const Details =
+  "Sends a surface (.stl .obj .ply .vtp .vtk .off, LPS millimetres) to an OpenIGTLink server as "
+  "one POLYDATA message in RAS millimetres (x and y negated), e.g. to 3D Slicer: add an "
   "OpenIGTLinkIF connector of type Server on port 18944, activate it, then run\n"
   "  bender-cli igtl-send vessel.vtp --to 127.0.0.1:18944 --name BenderVessel\n"
   "Polygons are sent as polygons; triangle strips, lines and vertices are not sent.\n"
   "\n"
-  "options:\n"
-  "  --to HOST:PORT   the server (required)\n"
-  "  --name NAME      device name of the message, 1 to 20 characters (default BenderSurface)\n"
-  "  --timeout S      seconds allowed to connect and to send (default 5)\n"
-  "  --plan PLAN      also send the final ribbon of the plan's last warp as two TRANSFORMs,\n"
-  "                   <NAME>RibbonStart and <NAME>RibbonEnd (NAME cut to 9 characters;\n"
-  "                   x = tangent, z = normal, in RAS)\n"
-  "  -h, --help       this help\n"
-  "\n"
   "exit status: 0 sent, 1 unreadable surface or the server cannot be reached, 2 usage error\n"
-  "See docs/tracking.md (OpenIGTLink).\n";
-} // namespace
+  "See docs/tracking.md (OpenIGTLink).";
 
-int RunIgtlSendCommand(const std::vector<std::string>& args)
+struct IgtlSendArguments
 {
-  bender::CommandLine cli("igtl-send", Usage);
-  std::vector<std::string> positional;
-  std::string to, name = "BenderSurface", planPath;
+  std::string input, to, name = "BenderSurface", planPath;
   double timeout = 5.0;
-  cli.App.add_option("surface", positional);
-  cli.App.add_option("--to", to);
-  cli.App.add_option("--name", name);
-  cli.App.add_option("--timeout", timeout);
-  cli.App.add_option("--plan", planPath);
-  if (const int status = cli.Parse(args); status >= 0)
-  {
-    return status;
-  }
-  if (positional.size() != 1)
-  {
-    return cli.UsageError("expected one SURFACE");
-  }
-  if (to.empty())
-  {
-    return cli.UsageError("--to HOST:PORT is required");
-  }
-  if (name.empty() || name.size() > 20)
-  {
-    return cli.UsageError("--name '" + name + "': expected 1 to 20 characters");
-  }
-  if (!(timeout > 0.0 && timeout <= 3600.0))
-  {
-    return cli.UsageError("--timeout: expected seconds in (0, 3600]");
-  }
+};
+
+int RunIgtlSend(const IgtlSendArguments& a)
+{
+  const std::string& name = a.name;
+  const std::string& planPath = a.planPath;
   bender::IgtlSender::Options options;
-  try
-  {
-    bender::ParseHostPort(to, "--to", options.host, options.port);
-  }
-  catch (const bender::TrackingError& e)
-  {
-    return cli.UsageError(e.what());
-  }
+  bender::ParseHostPort(a.to, "--to", options.host, options.port);
+  const double timeout = a.timeout;
   options.connectTimeout = std::chrono::milliseconds(long(timeout * 1000.0));
   options.writeTimeout = options.connectTimeout;
 
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
   bender::IgtlSurface surface;
   std::optional<bender::RibbonSpec> ribbon;
   try
@@ -106,7 +65,7 @@ int RunIgtlSendCommand(const std::vector<std::string>& args)
       bender::IgtlRibbonEndFrame(ribbon->start); // refuse a degenerate frame before sending
       bender::IgtlRibbonEndFrame(ribbon->end);
     }
-    surface = bender::MakeIgtlSurface(bender::ReadMesh(positional[0]), positional[0]);
+    surface = bender::MakeIgtlSurface(bender::ReadMesh(a.input), a.input);
   }
   catch (const std::exception& e)
   {
@@ -140,4 +99,55 @@ int RunIgtlSendCommand(const std::vector<std::string>& args)
     return 1;
   }
   return 0;
+}
+} // namespace
+
+void bender::AddIgtlSendCommand(CLI::App& cli)
+{
+  auto a = std::make_shared<IgtlSendArguments>();
+  CLI::App* send = AddCommand(cli,
+    "igtl-send",
+    "send a surface to 3D Slicer (OpenIGTLink POLYDATA, RAS)",
+    Details,
+    [a] { return RunIgtlSend(*a); });
+  send->add_option("SURFACE", a->input, "the surface to send")->required();
+  send->add_option("--to", a->to, "the server")
+    ->required()
+    ->option_text("HOST:PORT")
+    ->check(CLI::Validator(
+      [](std::string& text) -> std::string
+      {
+        std::string host;
+        int port = 0;
+        try
+        {
+          bender::ParseHostPort(text, "address", host, port);
+        }
+        catch (const bender::TrackingError& e)
+        {
+          return e.what();
+        }
+        return {};
+      },
+      "HOST:PORT"));
+  send->add_option("--name", a->name, "device name of the message, 1 to 20 characters")
+    ->type_name("NAME")
+    ->check(CLI::Validator(
+      [](std::string& text) -> std::string
+      {
+        return text.empty() || text.size() > 20 ? "'" + text + "': expected 1 to 20 characters"
+                                                : std::string();
+      },
+      "1 to 20 characters"))
+    ->capture_default_str();
+  send->add_option("--timeout", a->timeout, "seconds allowed to connect and to send")
+    ->type_name("S")
+    ->check(bender::NumberAbove(0, 3600))
+    ->capture_default_str();
+  send
+    ->add_option("--plan",
+      a->planPath,
+      "also send the final ribbon of the plan's last warp as two TRANSFORMs, <NAME>RibbonStart "
+      "and <NAME>RibbonEnd (NAME cut to 9 characters; x = tangent, z = normal, in RAS)")
+    ->type_name("PLAN");
 }

@@ -1,7 +1,7 @@
 // bender-cli render MESH -o OUT.png [--plan PLAN --show-ribbon] [--view ...]: an off-screen
 // VTK rendering for documentation and tests.
 
-#include "CliCommands.h"
+#include "CliCommand.h"
 #include "CliParsing.h"
 #include "HeadlessDisplay.h"
 
@@ -9,101 +9,50 @@
 #include "RenderToPng.h"
 #include "WarpPlanIO.h"
 
-#include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
 #include <cstdio>
+#include <memory>
 #include <string>
 
 namespace
 {
-const char* const Usage =
-  "usage: bender-cli render MESH -o OUT.png [options]\n"
+const char* const Details =
+  "Renders MESH off screen and writes a PNG. Without a display a private Xvfb is started when "
+  "installed (else the command says so and fails).\n"
   "\n"
-  "Renders MESH off screen and writes a PNG. Without a display a private Xvfb is started\n"
-  "when installed (else the command says so and fails).\n"
-  "\n"
-  "options:\n"
-  "  -o, --output OUT.png      the image (required)\n"
-  "  --plan PLAN               a .bender.json plan, for --show-ribbon\n"
-  "  --show-ribbon             draw the plan's ribbons: initial (blue) and final (orange)\n"
-  "  --view iso|front|back|left|right|top|bottom\n"
-  "                            camera direction (default iso); LPS: front looks along +y\n"
-  "  --size WxH                image size in pixels (default 800x600)\n"
-  "  --wireframe               draw the triangle edges on the surface\n"
-  "  -h, --help                this help\n"
-  "\n"
-  "exit status: 0 written, 1 bad input or rendering failure, 2 usage error\n";
+  "exit status: 0 written, 1 bad input or rendering failure, 2 usage error";
 
-int Fail(const std::string& message)
+struct RenderArguments
 {
-  std::fprintf(stderr, "bender-cli render: %s\n", message.c_str());
-  return 1;
-}
-} // namespace
-
-int RunRenderCommand(const std::vector<std::string>& args)
-{
-  bender::CommandLine cli("render", Usage);
-  std::vector<std::string> positional;
-  std::string outPath, planPath, view = "iso", size;
+  std::string input, planPath, view = "iso", size = "800x600";
   bool showRibbon = false;
   bender::RenderToPngOptions options;
-  cli.App.add_option("mesh", positional);
-  cli.App.add_option("-o,--output", outPath);
-  cli.App.add_option("--plan", planPath);
-  cli.App.add_option("--view", view);
-  cli.App.add_option("--size", size);
-  cli.App.add_flag("--show-ribbon", showRibbon);
-  cli.App.add_flag("--wireframe", options.wireframe);
-  if (const int status = cli.Parse(args); status >= 0)
+};
+
+// "WxH" in pixels, each in [16, 8192].
+bool ReadSize(const std::string& text, int& width, int& height)
+{
+  char tail = 0;
+  return std::sscanf(text.c_str(), "%dx%d%c", &width, &height, &tail) == 2 && width >= 16 &&
+    height >= 16 && width <= 8192 && height <= 8192;
+}
+
+int RunRender(RenderArguments a)
+{
+  bender::RenderToPngOptions& options = a.options;
+  bender::ParseRenderView(a.view, options.view);
+  ReadSize(a.size, options.width, options.height);
+  if (bender::SameFile(a.input, options.output) ||
+    (!a.planPath.empty() && bender::SameFile(a.planPath, options.output)))
   {
-    return status;
+    return bender::CommandError("render", options.output + ": refusing to overwrite an input file");
   }
-  if (!bender::ParseRenderView(view, options.view))
-  {
-    return cli.UsageError("--view: unknown value '" + view + "'");
-  }
-  if (!size.empty())
-  {
-    char tail = 0;
-    if (std::sscanf(size.c_str(), "%dx%d%c", &options.width, &options.height, &tail) != 2 ||
-      options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192)
-    {
-      return cli.UsageError("--size: expected WxH in 16..8192");
-    }
-  }
-  if (positional.size() != 1 || outPath.empty())
-  {
-    return cli.UsageError("expected MESH -o OUT.png");
-  }
-  if (showRibbon && planPath.empty())
-  {
-    return cli.UsageError("--show-ribbon needs --plan PLAN");
-  }
-  if (bender::SameFile(positional[0], outPath) ||
-    (!planPath.empty() && bender::SameFile(planPath, outPath)))
-  {
-    return Fail(outPath + ": refusing to overwrite an input file");
-  }
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
-  vtkSmartPointer<vtkPolyData> mesh;
-  bender::WarpPlan plan;
-  try
-  {
-    mesh = bender::ReadMesh(positional[0]);
-    if (!planPath.empty())
-    {
-      plan = bender::ReadWarpPlan(planPath);
-    }
-  }
-  catch (const std::exception& e)
-  {
-    return Fail(e.what());
-  }
-  options.output = outPath;
-  if (showRibbon)
+  const vtkSmartPointer<vtkPolyData> mesh = bender::ReadMesh(a.input);
+  const bender::WarpPlan plan =
+    a.planPath.empty() ? bender::WarpPlan() : bender::ReadWarpPlan(a.planPath);
+  if (a.showRibbon)
   {
     // See the ribbons through the surface: initial blue, final orange.
     options.opacity = 0.45;
@@ -116,15 +65,44 @@ int RunRenderCommand(const std::vector<std::string>& args)
   }
   if (const std::string problem = bender::EnsureHeadlessDisplay(); !problem.empty())
   {
-    return Fail(outPath + ": " + problem);
+    return bender::CommandError("render", options.output + ": " + problem);
   }
-  try
-  {
-    bender::RenderToPng(mesh, options);
-  }
-  catch (const bender::Error& e)
-  {
-    return Fail(e.what());
-  }
+  bender::RenderToPng(mesh, options);
   return 0;
+}
+} // namespace
+
+void bender::AddRenderCommand(CLI::App& cli)
+{
+  auto a = std::make_shared<RenderArguments>();
+  CLI::App* render = AddCommand(cli,
+    "render",
+    "render a mesh (optionally with a plan's ribbons) to a PNG",
+    Details,
+    [a] { return RunRender(*a); });
+  render->add_option("MESH", a->input, "the mesh to render")->required();
+  render->add_option("-o,--output", a->options.output, "the image")
+    ->required()
+    ->type_name("OUT.png");
+  CLI::Option* plan =
+    render->add_option("--plan", a->planPath, "a .bender.json plan, for --show-ribbon")
+      ->type_name("PLAN");
+  render
+    ->add_flag(
+      "--show-ribbon", a->showRibbon, "draw the plan's ribbons: initial (blue) and final (orange)")
+    ->needs(plan);
+  OneOf(render->add_option("--view", a->view, "camera direction; LPS: front looks along +y"),
+    { "iso", "front", "back", "left", "right", "top", "bottom" })
+    ->capture_default_str();
+  render->add_option("--size", a->size, "image size in pixels, each in [16, 8192]")
+    ->type_name("WxH")
+    ->check(CLI::Validator(
+      [](std::string& text) -> std::string
+      {
+        int width = 0, height = 0;
+        return ReadSize(text, width, height) ? "" : "'" + text + "' is not WxH in 16..8192";
+      },
+      "WxH"))
+    ->capture_default_str();
+  render->add_flag("--wireframe", a->options.wireframe, "draw the triangle edges on the surface");
 }

@@ -1,17 +1,23 @@
+// bender-cli segment and bender-cli phantom: their options (CLI11, CliParsing.h) and the runs;
+// the workflows are bender::SegmentVolume and bender::MakePhantomVolume in modules/Logic.
+
 #include "SegmentCommand.h"
+
+#include "CliCommand.h"
+#include "CliParsing.h"
 
 #include "MeshIO.h"
 #include "SegmentVolume.h"
-
-#include <CLI/CLI.hpp>
 
 #include <vtkPolyData.h>
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
+#include <limits>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <unistd.h>
@@ -20,68 +26,176 @@ namespace bender
 {
 namespace
 {
+const char* const SegmentDetails =
+  "Segments the vessels of VOLUME and writes their lumen surface (LPS mm) to SURFACE (.stl "
+  ".obj .ply .vtp .vtk .off).\n"
+  "VOLUME: .nrrd .nhdr .nii .nii.gz .mha .mhd .vti, or a folder holding a DICOM series.\n"
+  "\n"
+  "example: bender-cli segment phantom.nii.gz -o vessel.vtp --seed 10.5,-20,31 --method "
+  "vesselness\n"
+  "\n"
+  "exit status: 0 written, 1 bad input (unreadable volume, seed outside the volume or in the "
+  "background), 2 usage error";
 
-double ParseNumber(const std::string& option, const std::string& text)
+const char* const PhantomDetails =
+  "Builds an MRA-like volume from a vessel surface (the ground truth): caps the open vessel "
+  "ends, voxelizes, blurs with the point-spread function, adds a smooth intensity bias and "
+  "Rician noise. Deterministic. VOLUME: .nrrd .nhdr .nii .nii.gz .mha .mhd .vti\n"
+  "\n"
+  "exit status: 0 written, 1 unreadable surface or write failure, 2 usage error";
+
+const double Lowest = std::numeric_limits<double>::lowest();
+const double Highest = std::numeric_limits<double>::max();
+
+// What CLI11 reads as text for segment; SegmentRequest gets it in FinishSegmentRequest.
+struct SegmentTexts
 {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
-  {
-    throw ParameterError(option + ": '" + text + "' is not a number");
-  }
-  return value;
+  std::vector<std::string> seeds;
+  std::string method = "threshold";
+  std::string fillHoles = "on";
+  std::string extractor = "vtk";
+};
+
+struct SegmentState
+{
+  SegmentRequest request;
+  SegmentTexts texts;
+};
+
+void AddSegmentOptions(CLI::App& segment, SegmentRequest& r, SegmentTexts& t)
+{
+  SegmentationParameters& s = r.segmentation;
+  segment.add_option("VOLUME", r.input, "the volume (file, or folder of a DICOM series)")
+    ->required();
+  segment.add_option("-o,--output", r.output, "the surface file to write")
+    ->required()
+    ->type_name("SURFACE");
+  OneOf(segment.add_option("--method",
+          t.method,
+          "threshold: intensity window + seeded region; vesselness: multi-scale Frangi "
+          "vesselness, then seeded region"),
+    { "threshold", "vesselness" })
+    ->capture_default_str();
+  segment.add_option("--lower", s.lower, "lower end of the lumen's intensity window")
+    ->type_name("L")
+    ->check(NumberIn(Lowest, Highest))
+    ->capture_default_str();
+  segment.add_option("--upper", s.upper, "upper end of the window (default: no upper end)")
+    ->type_name("U")
+    ->check(NumberIn(Lowest, Highest));
+  AddPointsOption(segment,
+    "--seed",
+    t.seeds,
+    "seed points, LPS mm (repeatable); the connected lumen that contains them is kept "
+    "(default: the largest component)");
+  OneOf(segment.add_option("--fill-holes", t.fillHoles, "fill cavities enclosed by the lumen"),
+    { "on", "off" })
+    ->capture_default_str();
+  segment.add_option("--closing", s.closingRadius, "morphological closing radius, mm (0 = off)")
+    ->type_name("R")
+    ->check(NumberIn(0, 5))
+    ->capture_default_str();
+  segment.add_option("--min-radius", s.minRadius, "vesselness: smallest vessel radius, mm")
+    ->type_name("R")
+    ->check(NumberIn(0.1, 20))
+    ->capture_default_str();
+  segment.add_option("--max-radius", s.maxRadius, "vesselness: largest vessel radius, mm")
+    ->type_name("R")
+    ->check(NumberIn(0.1, 20))
+    ->capture_default_str();
+  segment.add_option("--scales", s.scales, "vesselness: number of scales")
+    ->type_name("N")
+    ->check(IntegerIn(1, 10))
+    ->capture_default_str();
+  segment
+    .add_option("--vesselness-threshold",
+      s.vesselnessThreshold,
+      "vesselness: keep voxels >= T of the maximum, in (0, 1)")
+    ->type_name("T")
+    ->check(NumberAbove(0, 1))
+    ->capture_default_str();
+  segment
+    .add_option("--level-set",
+      s.levelSetIterations,
+      "geodesic active contour refinement, N iterations (0 = off)")
+    ->type_name("N")
+    ->check(IntegerIn(0, 1000))
+    ->capture_default_str();
+  segment.add_option("--smoothing", r.surface.smoothing, "surface smoothing")
+    ->type_name("S")
+    ->check(NumberIn(0, 1))
+    ->capture_default_str();
+  segment
+    .add_option("--target-triangles",
+      r.surface.targetTriangles,
+      "decimate to about N triangles (0 = keep all)")
+    ->type_name("N")
+    ->check(IntegerIn(0, 1e12))
+    ->capture_default_str();
+  OneOf(
+    segment.add_option(
+      "--extractor", t.extractor, "marching cubes: VTK flying edges or ITK BinaryMask3DMeshSource"),
+    { "vtk", "itk" })
+    ->capture_default_str();
+  segment
+    .add_option("--series",
+      r.read.dicomSeriesUid,
+      "DICOM folder with several series: the one to read (default: the one with the most "
+      "slices, named on stderr)")
+    ->type_name("UID");
+  segment.add_flag("-q,--quiet", r.quiet, "no progress output");
 }
 
-bool ParsePoint(const std::string& text, Point3& point)
+// The request completed from its texts and checked as a whole; throws ParameterError.
+void FinishSegmentRequest(SegmentRequest& r, const SegmentTexts& t)
 {
-  std::stringstream s(text);
-  std::string part;
-  int n = 0;
-  while (std::getline(s, part, ','))
+  for (const Point3& p : Points(t.seeds))
   {
-    char* end = nullptr;
-    const double v = std::strtod(part.c_str(), &end);
-    if (n >= 3 || part.empty() || end != part.c_str() + part.size() || !std::isfinite(v))
-    {
-      return false;
-    }
-    point[std::size_t(n++)] = v;
+    r.segmentation.seeds.push_back(p);
   }
-  return n == 3;
+  r.segmentation.method =
+    t.method == "vesselness" ? SegmentationMethod::Vesselness : SegmentationMethod::Threshold;
+  r.segmentation.fillHoles = t.fillHoles == "on";
+  r.surface.extractor = t.extractor == "itk" ? SurfaceExtractor::Itk : SurfaceExtractor::Vtk;
+  ValidateSegmentationParameters(r.segmentation);
+  r.surface.seeds = r.segmentation.seeds;
 }
 
-// Runs CLI11 on the words after the command name; a CLI11 error becomes a ParameterError with
-// CLI11's one-line message. Returns false when --help was given (whatever else was wrong).
-bool ParseWords(CLI::App& app, const std::vector<std::string>& args, const bool& help)
+void AddPhantomOptions(CLI::App& phantom, PhantomRequest& r)
 {
-  try
-  {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    app.parse(reversed);
-  }
-  catch (const CLI::ParseError& e)
-  {
-    if (help)
-    {
-      return false;
-    }
-    std::string what = e.what();
-    while (!what.empty() && (what.back() == '\n' || what.back() == ' '))
-    {
-      what.pop_back();
-    }
-    throw ParameterError(what);
-  }
-  return !help;
-}
-
-// The value of an option given as text, as a number (same messages for every option).
-void Number(const CLI::App& app, const char* option, const std::string& text, double& value)
-{
-  if (app.count(option))
-  {
-    value = ParseNumber(option, text);
-  }
+  PhantomParameters& p = r.phantom;
+  phantom.add_option("SURFACE", r.input, "the vessel surface (the ground truth)")->required();
+  phantom.add_option("-o,--output", r.output, "the volume to write")
+    ->required()
+    ->type_name("VOLUME");
+  phantom.add_option("--spacing", p.spacing, "voxel size, mm")
+    ->type_name("H")
+    ->check(NumberIn(0.1, 2))
+    ->capture_default_str();
+  phantom.add_option("--psf", p.psfFwhm, "point-spread full width at half maximum, mm")
+    ->type_name("FWHM")
+    ->check(NumberIn(0, 5))
+    ->capture_default_str();
+  phantom
+    .add_option("--noise",
+      p.noiseSigma,
+      "Rician noise sigma (lumen " + std::to_string(int(p.vesselIntensity)) + ", background " +
+        std::to_string(int(p.backgroundIntensity)) + ")")
+    ->type_name("SIGMA")
+    ->check(NumberIn(0, 200))
+    ->capture_default_str();
+  phantom.add_option("--bias", p.biasAmplitude, "relative bias amplitude")
+    ->type_name("A")
+    ->check(NumberIn(0, 0.5))
+    ->capture_default_str();
+  phantom.add_option("--margin", p.margin, "background around the surface, mm")
+    ->type_name("M")
+    ->check(NumberIn(0, 50))
+    ->capture_default_str();
+  phantom.add_option("--random-seed", p.randomSeed, "noise generator seed")
+    ->type_name("N")
+    ->check(IntegerIn(0, 4294967295.0))
+    ->capture_default_str();
 }
 
 /// Prints "stage  NN%" lines; on a terminal they overwrite each other.
@@ -153,313 +267,16 @@ std::string FormatPoint(const Point3& p)
   return s.str();
 }
 
-} // namespace
-
-std::string SegmentUsage()
+int RunSegment(SegmentState state, std::ostream& out, std::ostream& err)
 {
-  const SegmentationParameters d;
-  const SurfaceParameters s;
-  std::ostringstream u;
-  u << "usage: bender-cli segment VOLUME -o SURFACE [options]\n"
-       "\n"
-       "Segments the vessels of VOLUME and writes their lumen surface (LPS mm) to SURFACE\n"
-       "(.stl .obj .ply .vtp .vtk .off).\n"
-       "VOLUME: .nrrd .nhdr .nii .nii.gz .mha .mhd .vti, or a folder holding a DICOM series.\n"
-       "\n"
-       "options:\n"
-       "  -o, --output SURFACE       the surface file to write (required)\n"
-       "  --method threshold|vesselness\n"
-       "                             threshold: intensity window + seeded region (default);\n"
-       "                             vesselness: multi-scale Frangi vesselness, then seeded "
-       "region\n"
-       "  --lower L, --upper U       intensity window of the lumen (default "
-    << d.lower
-    << ", +inf)\n"
-       "  --seed x,y,z [x,y,z ...]   seed points, LPS mm (repeatable); the connected lumen that\n"
-       "                             contains them is kept. Default: the largest component\n"
-       "  --fill-holes on|off        fill cavities enclosed by the lumen (default on)\n"
-       "  --closing R                morphological closing radius, mm, 0..5 (default 0 = off)\n"
-       "  --min-radius R, --max-radius R\n"
-       "                             vesselness: vessel radii, mm (default "
-    << d.minRadius << ", " << d.maxRadius
-    << ")\n"
-       "  --scales N                 vesselness: number of scales, 1..10 (default "
-    << d.scales
-    << ")\n"
-       "  --vesselness-threshold T   vesselness: keep voxels >= T of the maximum, (0,1) (default "
-    << d.vesselnessThreshold
-    << ")\n"
-       "  --level-set N              geodesic active contour refinement, N iterations (default 0 = "
-       "off)\n"
-       "  --smoothing S              surface smoothing, 0..1 (default "
-    << s.smoothing
-    << ")\n"
-       "  --target-triangles N       decimate to about N triangles (default 0 = keep all)\n"
-       "  --extractor vtk|itk        marching cubes: VTK flying edges (default) or ITK\n"
-       "                             BinaryMask3DMeshSource\n"
-       "  --series UID               DICOM folder with several series: the one to read\n"
-       "                             (default: the one with the most slices, named on stderr)\n"
-       "  -q, --quiet                no progress output\n"
-       "  -h, --help                 this help\n";
-  return u.str();
-}
-
-std::string PhantomUsage()
-{
-  const PhantomParameters d;
-  std::ostringstream u;
-  u << "usage: bender-cli phantom SURFACE -o VOLUME [options]\n"
-       "\n"
-       "Builds an MRA-like volume from a vessel surface (the ground truth): caps the open vessel\n"
-       "ends, voxelizes, blurs with the point-spread function, adds a smooth intensity bias and\n"
-       "Rician noise. Deterministic. VOLUME: .nrrd .nhdr .nii .nii.gz .mha .mhd .vti\n"
-       "\n"
-       "options:\n"
-       "  -o, --output VOLUME   the volume to write (required)\n"
-       "  --spacing H           voxel size, mm, 0.1..2 (default "
-    << d.spacing << ")\n"
-    << "  --psf FWHM            point-spread full width at half maximum, mm (default " << d.psfFwhm
-    << ")\n"
-    << "  --noise SIGMA         Rician noise sigma (default " << d.noiseSigma << "; lumen "
-    << d.vesselIntensity << ", background " << d.backgroundIntensity << ")\n"
-    << "  --bias A              relative bias amplitude, 0..0.5 (default " << d.biasAmplitude
-    << ")\n"
-    << "  --margin M            background around the surface, mm (default " << d.margin << ")\n"
-    << "  --random-seed N       noise generator seed (default " << d.randomSeed << ")\n"
-    << "  -h, --help            this help\n";
-  return u.str();
-}
-
-SegmentRequest ParseSegmentArguments(const std::vector<std::string>& args)
-{
-  SegmentRequest r;
-  CLI::App app("", "bender-cli segment");
-  app.set_help_flag();
-  app.add_flag("-h,--help", r.help);
-  std::vector<std::string> positional, seeds;
-  std::string method, lower, upper, fillHoles, closing, minRadius, maxRadius, scales, threshold,
-    levelSet, smoothing, targetTriangles, extractor;
-  app.add_option("volume", positional);
-  app.add_option("-o,--output", r.output);
-  app.add_option("--method", method);
-  app.add_option("--lower", lower);
-  app.add_option("--upper", upper);
-  // --seed x,y,z [x,y,z ...], repeatable.
-  app.add_option("--seed", seeds)->allow_extra_args(false);
-  app.add_option("--fill-holes", fillHoles);
-  app.add_option("--closing", closing);
-  app.add_option("--min-radius", minRadius);
-  app.add_option("--max-radius", maxRadius);
-  app.add_option("--scales", scales);
-  app.add_option("--vesselness-threshold", threshold);
-  app.add_option("--level-set", levelSet);
-  app.add_option("--smoothing", smoothing);
-  app.add_option("--target-triangles", targetTriangles);
-  app.add_option("--extractor", extractor);
-  app.add_option("--series", r.read.dicomSeriesUid);
-  app.add_flag("-q,--quiet", r.quiet);
-  // "--seed x,y,z [x,y,z ...]": every point is passed as "--seed=x,y,z" so that negative
-  // coordinates are never taken for options and the word after the points stays positional.
-  std::vector<std::string> words;
-  for (std::size_t i = 0; i < args.size(); ++i)
-  {
-    if (args[i] != "--seed" || i + 1 >= args.size())
-    {
-      words.push_back(args[i]);
-      continue;
-    }
-    words.push_back("--seed=" + args[++i]);
-    Point3 p{};
-    while (i + 1 < args.size() && ParsePoint(args[i + 1], p))
-    {
-      words.push_back("--seed=" + args[++i]);
-    }
-  }
-  if (!ParseWords(app, words, r.help))
-  {
-    r.help = true;
-    return r;
-  }
-  for (const std::string& text : seeds)
-  {
-    Point3 p{};
-    if (!ParsePoint(text, p))
-    {
-      throw ParameterError("--seed: expected x,y,z in mm, got '" + text + "'");
-    }
-    r.segmentation.seeds.push_back(p);
-  }
-  if (app.count("--method"))
-  {
-    if (method == "threshold")
-    {
-      r.segmentation.method = SegmentationMethod::Threshold;
-    }
-    else if (method == "vesselness")
-    {
-      r.segmentation.method = SegmentationMethod::Vesselness;
-    }
-    else
-    {
-      throw ParameterError("--method: '" + method + "' is not threshold or vesselness");
-    }
-  }
-  Number(app, "--lower", lower, r.segmentation.lower);
-  Number(app, "--upper", upper, r.segmentation.upper);
-  if (app.count("--fill-holes"))
-  {
-    if (fillHoles != "on" && fillHoles != "off")
-    {
-      throw ParameterError("--fill-holes: expected on or off, got '" + fillHoles + "'");
-    }
-    r.segmentation.fillHoles = fillHoles == "on";
-  }
-  Number(app, "--closing", closing, r.segmentation.closingRadius);
-  Number(app, "--min-radius", minRadius, r.segmentation.minRadius);
-  Number(app, "--max-radius", maxRadius, r.segmentation.maxRadius);
-  if (app.count("--scales"))
-  {
-    r.segmentation.scales = int(ParseNumber("--scales", scales));
-  }
-  Number(app, "--vesselness-threshold", threshold, r.segmentation.vesselnessThreshold);
-  if (app.count("--level-set"))
-  {
-    r.segmentation.levelSetIterations = int(ParseNumber("--level-set", levelSet));
-  }
-  Number(app, "--smoothing", smoothing, r.surface.smoothing);
-  if (app.count("--target-triangles"))
-  {
-    const double n = ParseNumber("--target-triangles", targetTriangles);
-    if (n < 0 || n != std::floor(n))
-    {
-      throw ParameterError("--target-triangles: expected a count >= 0");
-    }
-    r.surface.targetTriangles = std::size_t(n);
-  }
-  if (app.count("--extractor"))
-  {
-    if (extractor == "vtk")
-    {
-      r.surface.extractor = SurfaceExtractor::Vtk;
-    }
-    else if (extractor == "itk")
-    {
-      r.surface.extractor = SurfaceExtractor::Itk;
-    }
-    else
-    {
-      throw ParameterError("--extractor: '" + extractor + "' is not vtk or itk");
-    }
-  }
-  if (positional.size() > 1)
-  {
-    throw ParameterError("unexpected argument '" + positional[1] + "' (one VOLUME only)");
-  }
-  if (!positional.empty())
-  {
-    r.input = positional[0];
-  }
-  if (r.input.empty())
-  {
-    throw ParameterError("missing VOLUME");
-  }
-  if (r.output.empty())
-  {
-    throw ParameterError("missing -o SURFACE");
-  }
-  if (!(r.surface.smoothing >= 0.0 && r.surface.smoothing <= 1.0))
-  {
-    throw ParameterError("--smoothing: must be in [0, 1]");
-  }
-  ValidateSegmentationParameters(r.segmentation);
-  r.surface.seeds = r.segmentation.seeds;
-  return r;
-}
-
-PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args)
-{
-  PhantomRequest r;
-  CLI::App app("", "bender-cli phantom");
-  app.set_help_flag();
-  app.add_flag("-h,--help", r.help);
-  std::vector<std::string> positional;
-  std::string spacing, psf, noise, bias, margin, randomSeed;
-  app.add_option("surface", positional);
-  app.add_option("-o,--output", r.output);
-  app.add_option("--spacing", spacing);
-  app.add_option("--psf", psf);
-  app.add_option("--noise", noise);
-  app.add_option("--bias", bias);
-  app.add_option("--margin", margin);
-  app.add_option("--random-seed", randomSeed);
-  if (!ParseWords(app, args, r.help))
-  {
-    r.help = true;
-    return r;
-  }
-  Number(app, "--spacing", spacing, r.phantom.spacing);
-  Number(app, "--psf", psf, r.phantom.psfFwhm);
-  Number(app, "--noise", noise, r.phantom.noiseSigma);
-  Number(app, "--bias", bias, r.phantom.biasAmplitude);
-  Number(app, "--margin", margin, r.phantom.margin);
-  if (app.count("--random-seed"))
-  {
-    const double n = ParseNumber("--random-seed", randomSeed);
-    if (n < 0 || n > 4294967295.0 || n != std::floor(n))
-    {
-      throw ParameterError("--random-seed: expected an integer in [0, 2^32)");
-    }
-    r.phantom.randomSeed = std::uint32_t(n);
-  }
-  if (positional.size() > 1)
-  {
-    throw ParameterError("unexpected argument '" + positional[1] + "' (one SURFACE only)");
-  }
-  if (!positional.empty())
-  {
-    r.input = positional[0];
-  }
-  if (r.input.empty())
-  {
-    throw ParameterError("missing SURFACE");
-  }
-  if (r.output.empty())
-  {
-    throw ParameterError("missing -o VOLUME");
-  }
-  return r;
-}
-
-SegmentVolumeResult RunSegmentPipeline(const SegmentRequest& request,
-  const ProgressReporter& progress,
-  const std::function<void(const std::string&)>& inform)
-{
-  SegmentVolumeOptions options;
-  options.inform = inform;
-  options.input = request.input;
-  options.read = request.read;
-  options.segmentation = request.segmentation;
-  options.surface = request.surface;
-  options.progress = progress;
-  return SegmentVolume(options);
-}
-
-int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
-{
-  SegmentRequest request;
+  SegmentRequest& request = state.request;
   try
   {
-    request = ParseSegmentArguments(args);
+    FinishSegmentRequest(request, state.texts);
   }
   catch (const ParameterError& e)
   {
-    err << "bender-cli segment: " << e.what() << " (see bender-cli segment --help)\n";
-    return 2;
-  }
-  if (request.help)
-  {
-    out << SegmentUsage();
-    return 0;
+    return UsageError(err, "segment", e.what());
   }
   TerminalProgress terminal(err, request.quiet);
   try
@@ -499,23 +316,8 @@ int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::
   }
 }
 
-int RunPhantomCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
+int RunPhantom(const PhantomRequest& request, std::ostream& out, std::ostream& err)
 {
-  PhantomRequest request;
-  try
-  {
-    request = ParsePhantomArguments(args);
-  }
-  catch (const ParameterError& e)
-  {
-    err << "bender-cli phantom: " << e.what() << " (see bender-cli phantom --help)\n";
-    return 2;
-  }
-  if (request.help)
-  {
-    out << PhantomUsage();
-    return 0;
-  }
   try
   {
     PhantomVolumeOptions options;
@@ -537,6 +339,97 @@ int RunPhantomCli(const std::vector<std::string>& args, std::ostream& out, std::
     err << "bender-cli phantom: " << e.what() << "\n";
     return 1;
   }
+}
+
+// Parses the words after a command's name with that command's options alone (`add` adds them
+// to the subcommand): a CLI11 error becomes a ParameterError with its one-line message.
+// Returns false when --help was given.
+bool ParseAlone(const char* name,
+  const std::vector<std::string>& args,
+  const std::function<void(CLI::App&)>& add)
+{
+  const std::unique_ptr<CLI::App> cli = NewCliApp();
+  add(*cli->add_subcommand(name));
+  std::vector<std::string> words = { name };
+  words.insert(words.end(), args.begin(), args.end());
+  words = SplitPointLists(words);
+  try
+  {
+    std::vector<std::string> reversed(words.rbegin(), words.rend());
+    cli->parse(reversed);
+  }
+  catch (const CLI::CallForHelp&)
+  {
+    return false;
+  }
+  catch (const CLI::ParseError& e)
+  {
+    throw ParameterError(e.what());
+  }
+  return true;
+}
+} // namespace
+
+SegmentRequest ParseSegmentArguments(const std::vector<std::string>& args)
+{
+  SegmentState state;
+  if (!ParseAlone("segment",
+        args,
+        [&state](CLI::App& segment) { AddSegmentOptions(segment, state.request, state.texts); }))
+  {
+    state.request.help = true;
+    return state.request;
+  }
+  FinishSegmentRequest(state.request, state.texts);
+  return state.request;
+}
+
+SegmentVolumeResult RunSegmentPipeline(const SegmentRequest& request,
+  const ProgressReporter& progress,
+  const std::function<void(const std::string&)>& inform)
+{
+  SegmentVolumeOptions options;
+  options.inform = inform;
+  options.input = request.input;
+  options.read = request.read;
+  options.segmentation = request.segmentation;
+  options.surface = request.surface;
+  options.progress = progress;
+  return SegmentVolume(options);
+}
+
+void AddSegmentCommand(CLI::App& cli, std::ostream& out, std::ostream& err)
+{
+  auto state = std::make_shared<SegmentState>();
+  CLI::App* segment = AddCommand(cli,
+    "segment",
+    "segment the vessels of a volume and extract their surface",
+    SegmentDetails,
+    [state, &out, &err] { return RunSegment(*state, out, err); });
+  AddSegmentOptions(*segment, state->request, state->texts);
+}
+
+void AddPhantomCommand(CLI::App& cli, std::ostream& out, std::ostream& err)
+{
+  auto request = std::make_shared<PhantomRequest>();
+  CLI::App* phantom = AddCommand(cli,
+    "phantom",
+    "build the MRA-like demo volume from a vessel surface",
+    PhantomDetails,
+    [request, &out, &err] { return RunPhantom(*request, out, err); });
+  AddPhantomOptions(*phantom, *request);
+}
+
+int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
+{
+  return RunAlone(
+    "segment", args, out, err, [&](CLI::App& cli) { AddSegmentCommand(cli, out, err); });
+}
+
+int RunPhantomCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
+{
+  return RunAlone(
+    "phantom", args, out, err, [&](CLI::App& cli) { AddPhantomCommand(cli, out, err); });
 }
 
 } // namespace bender

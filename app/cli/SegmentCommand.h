@@ -34,16 +34,11 @@ struct PhantomRequest
   std::string input;
   std::string output;
   PhantomParameters phantom;
-  bool help = false;
 };
 
-std::string SegmentUsage();
-std::string PhantomUsage();
-
-/// Parses the words after `segment`. Throws ParameterError with a one-line message.
+/// Parses the words after `segment` (the options of `bender-cli segment`). Throws
+/// ParameterError with a one-line message; help is set for --help.
 SegmentRequest ParseSegmentArguments(const std::vector<std::string>& args);
-/// Parses the words after `phantom`. Throws ParameterError with a one-line message.
-PhantomRequest ParsePhantomArguments(const std::vector<std::string>& args);
 
 /// Reads, segments and extracts; the surface is in LPS mm. Timings of every stage (read,
 /// segmentation, then the surface stages) are appended to the result's timings. `inform` is
@@ -53,7 +48,8 @@ SegmentVolumeResult RunSegmentPipeline(const SegmentRequest& request,
   const ProgressReporter& progress = {},
   const std::function<void(const std::string&)>& inform = {});
 
-/// The whole commands: usage on `out` for --help (exit 0); progress and errors on `err`; exit
+/// The whole commands, as `bender-cli segment|phantom ARGS` (CliCommand.h): help on `out` for
+/// --help (exit 0); progress and errors on `err`; exit
 /// status 0 on success, 1 on a processing error (bad input, seed outside the volume or in
 /// background), 2 on a usage error. The output file is written atomically (never half-written).
 int RunSegmentCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

@@ -33,6 +33,13 @@ using bender::test::ReadText;
 namespace
 {
 
+/// bender-cli cfd-case in-process.
+int RunCfdCaseCommand(std::vector<std::string> args)
+{
+  args.insert(args.begin(), "cfd-case");
+  return bender::RunBenderCli(args);
+}
+
 /// The capped aneurysm, read once for the suite.
 vtkPolyData* Aneurysm()
 {

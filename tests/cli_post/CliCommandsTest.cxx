@@ -1,45 +1,50 @@
-// The command library (bender_cli_commands) in-process: every command of the table answers
-// --help with its own usage and exit 0, and refuses an unknown option with one line naming it
-// and exit 2 (CLI11 parsing, the same contract for all).
+// The command library (bender_cli_commands) in-process: every command answers --help with its
+// own generated help and exit 0, and refuses an unknown option with one line naming it and exit
+// 2 (CLI11 subcommands, the same contract for all).
 
 #include "CliCommands.h"
 #include "InProcessCli.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 using bendertest::RunInProcess;
 using Captured = bendertest::CliRun;
 
 TEST(CliCommands, EveryCommandHasItsOwnHelp)
 {
-  ASSERT_GE(bender::CliCommandTable().size(), 7u);
-  for (const bender::CliCommand& command : bender::CliCommandTable())
+  ASSERT_GE(bender::CliCommandNames().size(), 12u);
+  for (const std::string& command : bender::CliCommandNames())
   {
-    const Captured help = RunInProcess({ command.name, "--help" });
-    EXPECT_EQ(help.status, 0) << command.name << "\n" << help.err;
-    EXPECT_NE(help.out.find(std::string("bender-cli ") + command.name), std::string::npos)
-      << command.name << ": " << help.out;
-    const Captured shortHelp = RunInProcess({ command.name, "-h" });
-    EXPECT_EQ(shortHelp.status, 0) << command.name;
-    EXPECT_EQ(shortHelp.out, help.out) << command.name;
+    const Captured help = RunInProcess({ command, "--help" });
+    EXPECT_EQ(help.status, 0) << command << "\n" << help.err;
+    EXPECT_EQ(help.out.rfind("usage: bender-cli " + command, 0), 0u) << command << ": " << help.out;
+    EXPECT_NE(help.out.find("-h,--help"), std::string::npos) << command << ": " << help.out;
+    EXPECT_TRUE(help.err.empty()) << command << ": " << help.err;
+    const Captured shortHelp = RunInProcess({ command, "-h" });
+    EXPECT_EQ(shortHelp.status, 0) << command;
+    EXPECT_EQ(shortHelp.out, help.out) << command;
   }
 }
 
 TEST(CliCommands, EveryCommandRefusesAnUnknownOptionWithExitTwo)
 {
-  for (const bender::CliCommand& command : bender::CliCommandTable())
+  for (const std::string& command : bender::CliCommandNames())
   {
-    const Captured r = RunInProcess({ command.name, "--no-such-option" });
-    EXPECT_EQ(r.status, 2) << command.name << "\n" << r.err;
-    EXPECT_NE(r.err.find("--no-such-option"), std::string::npos) << command.name << ": " << r.err;
-    EXPECT_NE(r.err.find(std::string("bender-cli ") + command.name), std::string::npos)
-      << command.name << ": " << r.err;
+    const Captured r = RunInProcess({ command, "--no-such-option" });
+    EXPECT_EQ(r.status, 2) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find("--no-such-option"), std::string::npos) << command << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("bender-cli " + command + ": ", 0), 0u) << command << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("bender-cli " + command + " --help"), std::string::npos) << r.err;
   }
 }
 
@@ -50,9 +55,9 @@ TEST(CliCommands, TheToolItself)
   EXPECT_NE(r.err.find("usage: bender-cli COMMAND"), std::string::npos);
   r = RunInProcess({ "--help" });
   EXPECT_EQ(r.status, 0);
-  for (const bender::CliCommand& command : bender::CliCommandTable())
+  for (const std::string& command : bender::CliCommandNames())
   {
-    EXPECT_NE(r.out.find(command.name), std::string::npos) << command.name;
+    EXPECT_NE(r.out.find("\n  " + command + " "), std::string::npos) << command << "\n" << r.out;
   }
   r = RunInProcess({ "frobnicate" });
   EXPECT_EQ(r.status, 2);
@@ -60,6 +65,76 @@ TEST(CliCommands, TheToolItself)
   r = RunInProcess({ "--version" });
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("bender-cli "), std::string::npos);
+}
+
+TEST(CliCommands, TheHelpIsGeneratedFromTheRegisteredOptions)
+{
+  // The usage line names the positionals and the required options; every option is listed
+  // with its value, its choices and its default.
+  const Captured help = RunInProcess({ "export", "--help" });
+  ASSERT_EQ(help.status, 0) << help.err;
+  EXPECT_EQ(help.out.rfind("usage: bender-cli export IN_MESH -o OUT [options]\n", 0), 0u)
+    << help.out;
+  for (const char* option : { "-o,--output OUT",
+         "--cap",
+         "--planarity F",
+         "--patches single|solids|files",
+         "--unit mm|m",
+         "--frame lps|ras",
+         "--patches-json",
+         "--quiet",
+         "(default 0.1)",
+         "(default single)",
+         "exit status:" })
+  {
+    EXPECT_NE(help.out.find(option), std::string::npos) << option << "\n" << help.out;
+  }
+  const Captured warp = RunInProcess({ "warp", "--help" });
+  EXPECT_EQ(warp.out.rfind("usage: bender-cli warp IN_MESH PLAN OUT_MESH [options]\n", 0), 0u)
+    << warp.out;
+  // The tool's own help: its options and every command with its summary.
+  const Captured tool = RunInProcess({ "--help" });
+  for (const char* option : { "-h,--help", "--version", "--data-dir" })
+  {
+    EXPECT_NE(tool.out.find(option), std::string::npos) << option << "\n" << tool.out;
+  }
+  // No line of any help is wider than a terminal.
+  for (const std::string& command : bender::CliCommandNames())
+  {
+    std::istringstream lines(RunInProcess({ command, "--help" }).out);
+    for (std::string line; std::getline(lines, line);)
+    {
+      EXPECT_LE(line.size(), 100u) << command << ": " << line;
+    }
+  }
+}
+
+TEST(CliCommands, AUsageErrorIsOneLineNamingTheOptionAndTheValue)
+{
+  const std::vector<std::vector<std::string>> cases = {
+    { "export", "a.off", "-o", "o.stl", "--planarity", "1.5" },
+    { "export", "a.off", "-o", "o.stl", "--frame", "xyz" },
+    { "clip", "a.stl", "-o", "o.vtp", "--extend-inlet", "nan" },
+    { "cfd-case", "a.vtp", "-o", "case", "--iterations", "2.5" },
+    { "segment", "in.nrrd", "-o", "o.stl", "--seed", "1,2" },
+  };
+  for (const std::vector<std::string>& args : cases)
+  {
+    const Captured r = RunInProcess(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("bender-cli " + args[0] + ": " + args[args.size() - 2] + ": ", 0), 0u)
+      << r.err;
+    EXPECT_NE(r.err.find(args.back()), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  // A missing required argument, and two options that exclude each other.
+  Captured r = RunInProcess({ "export", "a.off" });
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--output is required"), std::string::npos) << r.err;
+  r = RunInProcess({ "measure", "a.stl", "--after", "b.stl", "--plan", "p.json" });
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("excludes"), std::string::npos) << r.err;
 }
 
 TEST(CliCommands, NumbersAndChoicesAreCheckedBeforeAnyWork)
