@@ -272,6 +272,15 @@ CLI::Option* OneOf(CLI::Option* option, const std::vector<std::string>& names)
   return option->transform(CLI::IsMember(names, CLI::ignore_case))->type_name(shown);
 }
 
+std::vector<std::array<double, 3>> EndpointSeeds(const std::vector<std::string>& texts)
+{
+  if (texts.size() == 1)
+  {
+    throw CLI::ValidationError("--seeds", "give at least two points (the inlet first)");
+  }
+  return Points(texts);
+}
+
 std::vector<std::string> SplitPointLists(const std::vector<std::string>& args)
 {
   std::vector<std::string> words;

@@ -77,6 +77,11 @@ CLI::Option* AddPointsOption(CLI::App& command,
 /// The points of `texts` as checked by AddPointsOption.
 std::vector<std::array<double, 3>> Points(const std::vector<std::string>& texts);
 
+/// The endpoints of a vessel given with --seeds (AddPointsOption), the inlet first: none (they
+/// are then found automatically) or at least two; one is a usage error (throws
+/// CLI::ValidationError, which RunCli reports as such).
+std::vector<std::array<double, 3>> EndpointSeeds(const std::vector<std::string>& texts);
+
 /// `option` takes one of `names` (in any case; the value becomes the name as listed here); its
 /// help shows them as a|b|c.
 CLI::Option* OneOf(CLI::Option* option, const std::vector<std::string>& names);

@@ -7,7 +7,6 @@
 #include "VesselWorkflows.h"
 
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <string>
 
@@ -35,12 +34,7 @@ struct CenterlineArguments
 
 int RunCenterline(CenterlineArguments a)
 {
-  a.options.seeds = bender::Points(a.seeds);
-  if (a.options.seeds.size() == 1)
-  {
-    return bender::UsageError(
-      std::cerr, "centerline", "--seeds: give at least two points (the inlet first)");
-  }
+  a.options.seeds = bender::EndpointSeeds(a.seeds);
   const bender::CenterlineWorkflowResult result = bender::ComputeCenterlinesOfFile(a.options);
   if (a.json)
   {

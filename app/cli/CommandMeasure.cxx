@@ -7,7 +7,6 @@
 #include "VesselWorkflows.h"
 
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <string>
 
@@ -36,12 +35,7 @@ struct MeasureArguments
 
 int RunMeasure(MeasureArguments a)
 {
-  a.options.seeds = bender::Points(a.seeds);
-  if (a.options.seeds.size() == 1)
-  {
-    return bender::UsageError(
-      std::cerr, "measure", "--seeds: give at least two points (the inlet first)");
-  }
+  a.options.seeds = bender::EndpointSeeds(a.seeds);
   const bender::MeasureWorkflowResult result = bender::MeasureVessels(a.options);
   const std::string text =
     a.json ? bender::MeasurementsToJson(result) + "\n" : bender::MeasurementsToText(result);
