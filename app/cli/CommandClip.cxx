@@ -206,7 +206,7 @@ void bender::AddClipCommand(CLI::App& cli)
     ->check(Check(ReadName, "x,y,z=NAME"));
   clip
     ->add_option(
-      "--extend-inlet", a->options.InletExtension, "inlet flow extension, F x its radius (0: none)")
+      "--extend-inlet", a->options.InletExtension, "inlet flow extension, F x its radius; 0: none")
     ->type_name("F")
     ->check(NumberIn(0, 100))
     ->capture_default_str();

@@ -91,7 +91,7 @@ void AddSegmentOptions(CLI::App& segment, SegmentRequest& r, SegmentTexts& t)
   OneOf(segment.add_option("--fill-holes", t.fillHoles, "fill cavities enclosed by the lumen"),
     { "on", "off" })
     ->capture_default_str();
-  segment.add_option("--closing", s.closingRadius, "morphological closing radius, mm (0 = off)")
+  segment.add_option("--closing", s.closingRadius, "morphological closing radius, mm; 0 = off")
     ->type_name("R")
     ->check(NumberIn(0, 5))
     ->capture_default_str();
@@ -117,7 +117,7 @@ void AddSegmentOptions(CLI::App& segment, SegmentRequest& r, SegmentTexts& t)
   segment
     .add_option("--level-set",
       s.levelSetIterations,
-      "geodesic active contour refinement, N iterations (0 = off)")
+      "geodesic active contour refinement, N iterations; 0 = off")
     ->type_name("N")
     ->check(IntegerIn(0, 1000))
     ->capture_default_str();
@@ -128,7 +128,7 @@ void AddSegmentOptions(CLI::App& segment, SegmentRequest& r, SegmentTexts& t)
   segment
     .add_option("--target-triangles",
       r.surface.targetTriangles,
-      "decimate to about N triangles (0 = keep all)")
+      "decimate to about N triangles; 0 = keep all")
     ->type_name("N")
     ->check(IntegerIn(0, 1e12))
     ->capture_default_str();
