@@ -28,6 +28,7 @@ void AddCenterlineCommand(CLI::App& cli);
 void AddMeasureCommand(CLI::App& cli);
 void AddClipCommand(CLI::App& cli);
 void AddCfdCaseCommand(CLI::App& cli);
+void AddFormatsCommand(CLI::App& cli);
 void AddTrackerCommand(CLI::App& cli);
 void AddIgtlSendCommand(CLI::App& cli);
 } // namespace bender

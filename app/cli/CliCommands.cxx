@@ -28,6 +28,7 @@ void AddCommands(CLI::App& cli)
   AddMeasureCommand(cli);
   AddClipCommand(cli);
   AddCfdCaseCommand(cli);
+  AddFormatsCommand(cli);
   AddTrackerCommand(cli);
   AddIgtlSendCommand(cli);
 }

@@ -169,12 +169,21 @@ void bender::AddExportCommand(CLI::App& cli)
     ->type_name("F")
     ->check(NumberIn(0.0, 1.0))
     ->capture_default_str();
+  std::string named;
+  for (const MeshFormat& format : MeshFormats())
+  {
+    if (format.namedPatches && format.CanWrite())
+    {
+      named += (named.empty() ? "" : " ") + format.extensions.front();
+    }
+  }
   OneOf(e->add_option("--patches",
           a->patches,
-          ".stl only. single: one binary STL; solids: one ASCII STL with a solid per patch named "
-          "by the patch (wall, inlet, outlet_1, ...; snappyHexMesh, gmsh, TetGen); files: one "
-          "binary STL per patch, OUT_wall.stl, OUT_inlet.stl, ... whose rims share their "
-          "vertices exactly"),
+          "for formats that name their patches (" + named +
+            "). single: one file; solids: one ASCII STL with a solid per patch named by the "
+            "patch (wall, inlet, outlet_1, ...; snappyHexMesh, gmsh, TetGen); files: one "
+            "binary STL per patch, OUT_wall.stl, OUT_inlet.stl, ... whose rims share their "
+            "vertices exactly"),
     { "single", "solids", "files" })
     ->capture_default_str();
   OneOf(e->add_option("--unit",

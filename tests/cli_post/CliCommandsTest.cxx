@@ -4,6 +4,11 @@
 
 #include "CliCommands.h"
 #include "InProcessCli.h"
+#include "MeshFormats.h"
+#include "MeshIO.h"
+
+#include <nlohmann/json.hpp>
+#include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -167,5 +173,65 @@ TEST(CliCommands, ExportBlamesTheInputForAnInputWithoutTriangles)
     << r.err;
   EXPECT_EQ(r.err.find("out.stl"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(folder / "out.stl"));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(CliCommands, FormatsListsTheRegistryAndExportWritesEveryWritableFormat)
+{
+  // A format registered through the table is listed by `formats` and written by `export`.
+  const std::optional<bender::MeshFormat> off = bender::FindMeshFormatByName("off");
+  ASSERT_TRUE(off);
+  bender::MeshFormat dummy;
+  dummy.name = "dummy";
+  dummy.extensions = { ".dmy" };
+  dummy.label = "Dummy mesh";
+  dummy.read = off->read;
+  dummy.write = off->write;
+  const bender::ScopedMeshFormat registered(dummy);
+
+  const Captured json = RunInProcess({ "formats", "--json" });
+  ASSERT_EQ(json.status, 0) << json.err;
+  const nlohmann::json list = nlohmann::json::parse(json.out).at("formats");
+  const std::vector<bender::MeshFormat> formats = bender::MeshFormats();
+  ASSERT_EQ(list.size(), formats.size());
+  bool listed = false;
+  for (std::size_t i = 0; i < list.size(); ++i)
+  {
+    const bender::MeshFormat& row = formats[i];
+    EXPECT_EQ(list[i].at("name"), row.name);
+    EXPECT_EQ(list[i].at("extensions").get<std::vector<std::string>>(), row.extensions);
+    EXPECT_EQ(list[i].at("read").get<bool>(), row.CanRead());
+    EXPECT_EQ(list[i].at("write").get<bool>(), row.CanWrite());
+    listed = listed || list[i].at("name") == "dummy";
+  }
+  EXPECT_TRUE(listed) << json.out;
+  const Captured table = RunInProcess({ "formats" });
+  EXPECT_EQ(table.status, 0);
+  EXPECT_NE(table.out.find("Dummy mesh"), std::string::npos) << table.out;
+
+  // export writes every format marked writable, the dummy one included, and reads it back.
+  const std::filesystem::path folder =
+    std::filesystem::temp_directory_path() / "bender-cli-export-formats";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string input = (folder / "tetra.off").string();
+  std::ofstream(input) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                          "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  for (const bender::MeshFormat& format : formats)
+  {
+    if (!format.CanWrite())
+    {
+      continue;
+    }
+    const std::string output = (folder / ("out" + format.extensions.front())).string();
+    const Captured r = RunInProcess({ "export", input, "-o", output, "--quiet" });
+    EXPECT_EQ(r.status, 0) << format.name << ": " << r.err;
+    EXPECT_TRUE(std::filesystem::exists(output)) << format.name;
+  }
+  EXPECT_EQ(bender::ReadMesh((folder / "out.dmy").string())->GetNumberOfPolys(), 4);
+  // An extension that no writable format has is a usage error naming the writable ones.
+  const Captured refused = RunInProcess({ "export", input, "-o", (folder / "out.xyz").string() });
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find(".dmy"), std::string::npos) << refused.err;
   std::filesystem::remove_all(folder);
 }
