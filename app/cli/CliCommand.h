@@ -29,8 +29,8 @@ void AddMeasureCommand(CLI::App& cli);
 void AddClipCommand(CLI::App& cli);
 void AddCfdCaseCommand(CLI::App& cli);
 void AddFormatsCommand(CLI::App& cli);
-void AddTrackerCommand(CLI::App& cli);
 void AddIgtlSendCommand(CLI::App& cli);
+// AddTrackerCommand: TrackerCommand.h (it also takes the USB back end of the tests).
 } // namespace bender
 
 #endif

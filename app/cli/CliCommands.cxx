@@ -7,6 +7,7 @@
 #include "CliParsing.h"
 
 #include "DataDirectory.h"
+#include "TrackerCommand.h"
 
 #include <filesystem>
 #include <iostream>
@@ -29,7 +30,7 @@ void AddCommands(CLI::App& cli)
   AddClipCommand(cli);
   AddCfdCaseCommand(cli);
   AddFormatsCommand(cli);
-  AddTrackerCommand(cli);
+  AddTrackerCommand(cli, std::cout, std::cerr);
   AddIgtlSendCommand(cli);
 }
 

@@ -1,15 +1,18 @@
 #include "TrackerCommand.h"
 
+#include "CliCommand.h"
+#include "CliParsing.h"
 #include "RibbonEndMapping.h"
+#include "TrackerDeviceRegistry.h"
 #include "TrackerStream.h"
 #include "TrackingErrors.h"
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <functional>
 #include <ostream>
 
 namespace bender
@@ -46,31 +49,6 @@ private:
   void (*OldInt)(int) = SIG_DFL;
   void (*OldTerm)(int) = SIG_DFL;
 };
-
-struct UsageError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-double ParseNumber(const std::string& option, const std::string& value, double min, double max)
-{
-  std::size_t used = 0;
-  double v = 0.0;
-  try
-  {
-    v = std::stod(value, &used);
-  }
-  catch (const std::exception&)
-  {
-    used = 0;
-  }
-  if (used != value.size() || !std::isfinite(v) || v < min || v > max)
-  {
-    throw UsageError(option + " '" + value + "': expected a number in [" + std::to_string(min) +
-      ", " + std::to_string(max) + "]");
-  }
-  return v;
-}
 
 // Rounded to the printed precision (4 decimals in mm, 6 for time and quaternions); "+ 0.0"
 // turns -0 into 0, so that JSON consumers never see "-0.0".
@@ -142,136 +120,121 @@ void PrintSummary(std::ostream& err,
     err << line;
   }
 }
-} // namespace
 
-std::string TrackerCliUsage()
-{
-  std::string devices;
-  for (const TrackerDeviceKind& kind : TrackerDeviceKinds())
-  {
-    devices += (devices.empty() ? "" : "|") + kind.syntax;
-  }
-  std::string deviceHelp;
-  for (const std::string& line : TrackerDeviceHelpLines(71))
-  {
-    deviceHelp += "                   " + line + "\n";
-  }
-  return "usage: bender-cli tracker --device SPEC\n"
-         "                          [--record FILE] [--count N] [--stations 1,2]\n"
-         "                          [--tools NAME1,NAME2]\n"
-         "                          [--format binary|ascii] [--realtime] [--duration S]\n"
-         "                          [--timeout S] [--reset]\n\n"
-         "Streams poses from a Polhemus Fastrak (USB or serial), a recording, the simulator or\n"
-         "an OpenIGTLink server and prints one JSON line per pose on stdout:\n"
-         "  {\"t\": s, \"station\": n, \"position\": [x, y, z] (mm), \"quaternion\": [w, x, y, z],"
-         " \"button\": 0|1}\n"
-         "(OpenIGTLink: with the pose's \"device\" name.) Grab/release events and a summary\n"
-         "(rates, dropped and malformed records) go to stderr.\n\n"
-         "  --device SPEC    " +
-    devices + "\n" + deviceHelp +
-    "  --tools A,B      OpenIGTLink device names of hand 1 and hand 2\n"
-    "                   (default StylusToTracker,Stylus2ToTracker)\n"
-    "  --record FILE    write what the device sends to FILE (+ FILE.timestamps)\n"
-    "  --count N        stop after N poses\n"
-    "  --stations LIST  stations to activate and print (default 1,2)\n"
-    "  --format F       binary (default) or ascii records (for replay: how FILE was "
-    "recorded)\n"
-    "  --realtime       replay at the recorded pace instead of as fast as possible\n"
-    "  --duration S     stop after S seconds of pose time\n"
-    "  --timeout S      fail when a live device sends no pose within S s (default 5)\n"
-    "  --reset          reset the unit (^Y) first; takes about 10 s\n"
-    "See docs/tracking.md for connecting a Fastrak, udev rules and the recording format.\n";
-}
+const char* const Details =
+  "Streams poses from a Polhemus Fastrak (USB or serial), a recording, the simulator or an "
+  "OpenIGTLink server and prints one JSON line per pose on stdout:\n"
+  "  {\"t\": s, \"station\": n, \"position\": [x, y, z] (mm), \"quaternion\": [w, x, y, z], "
+  "\"button\": 0|1}\n"
+  "(OpenIGTLink: with the pose's \"device\" name.) Grab/release events and a summary (rates, "
+  "dropped and malformed records) go to stderr. It stops at --count poses, the end of a "
+  "replay, --duration, or Ctrl-C.\n"
+  "\n"
+  "example: bender-cli tracker --device replay:session.fastrak --realtime\n"
+  "\n"
+  "exit status: 0 streamed, 1 the device failed (not found, no reply, unplugged, bad "
+  "recording), 2 usage error\n"
+  "See docs/tracking.md for connecting a Fastrak, udev rules and the recording format.";
 
-int RunTrackerCli(const std::vector<std::string>& args,
-  std::ostream& out,
-  std::ostream& err,
-  std::shared_ptr<UsbBackend> usbBackend)
+struct TrackerArguments
 {
-  std::string deviceText;
+  std::string device;
   TrackerDeviceOptions options;
-  options.usbBackend = std::move(usbBackend);
-  std::uint64_t count = 0;
+  double count = 0.0;
   double duration = 0.0;
   double timeout = 5.0;
-  try
+  std::string stations;
+  std::string tools;
+  std::string format = "binary";
+};
+
+// A CLI11 check by one of the Tracking parsers, whose TrackingError is the message.
+CLI::Validator ParsedBy(const std::function<void(const std::string&)>& parse)
+{
+  return CLI::Validator(
+    [parse](std::string& text) -> std::string
+    {
+      try
+      {
+        parse(text);
+      }
+      catch (const TrackingError& e)
+      {
+        return e.what();
+      }
+      return {};
+    },
+    "");
+}
+
+void AddTrackerOptions(CLI::App& tracker, TrackerArguments& a)
+{
+  std::string devices = "the device: " + TrackerDeviceForms();
+  for (const std::string& line : TrackerDeviceHelpLines(64))
   {
-    CLI::App app("", "bender-cli tracker");
-    app.set_help_flag();
-    bool help = false;
-    std::string countText, stationsText, formatText, durationText, timeoutText, toolsText;
-    app.add_flag("-h,--help", help);
-    app.add_option("--device", deviceText);
-    app.add_option("--record", options.recordPath);
-    app.add_option("--count", countText);
-    app.add_option("--stations", stationsText);
-    app.add_option("--tools", toolsText);
-    app.add_option("--format", formatText);
-    app.add_flag("--realtime", options.realtime);
-    app.add_option("--duration", durationText);
-    app.add_option("--timeout", timeoutText);
-    app.add_flag("--reset", options.reset);
-    try
-    {
-      std::vector<std::string> reversed(args.rbegin(), args.rend());
-      app.parse(reversed);
-    }
-    catch (const CLI::ParseError& e)
-    {
-      if (!help)
-      {
-        throw UsageError(e.what());
-      }
-    }
-    if (help)
-    {
-      out << TrackerCliUsage();
-      return 0;
-    }
-    if (app.count("--count"))
-    {
-      count = std::uint64_t(ParseNumber("--count", countText, 1, 1e12));
-    }
-    if (app.count("--stations"))
-    {
-      options.stations = ParseStationList(stationsText);
-    }
-    if (app.count("--tools"))
-    {
-      const std::size_t comma = toolsText.find(',');
-      if (comma == std::string::npos || toolsText.find(',', comma + 1) != std::string::npos)
-      {
-        throw UsageError("--tools '" + toolsText + "': expected two names separated by a comma");
-      }
-      options.igtlToolNames = { toolsText.substr(0, comma), toolsText.substr(comma + 1) };
-    }
-    if (app.count("--format"))
-    {
-      if (formatText != "binary" && formatText != "ascii")
-      {
-        throw UsageError("--format '" + formatText + "': expected binary or ascii");
-      }
-      options.format = formatText == "binary" ? FastrakFormat::Binary : FastrakFormat::Ascii;
-    }
-    if (app.count("--duration"))
-    {
-      duration = ParseNumber("--duration", durationText, 0.001, 1e7);
-    }
-    if (app.count("--timeout"))
-    {
-      timeout = ParseNumber("--timeout", timeoutText, 0.1, 3600);
-    }
-    if (deviceText.empty())
-    {
-      throw UsageError("--device is required");
-    }
+    devices += "\n" + line;
   }
-  catch (const std::exception& e)
+  tracker.add_option("--device", a.device, devices)
+    ->required()
+    ->type_name("SPEC")
+    ->check(ParsedBy([](const std::string& text) { TrackerDeviceSpec::Parse(text); }));
+  tracker
+    .add_option("--tools",
+      a.tools,
+      "OpenIGTLink device names of hand 1 and hand 2 (default StylusToTracker,Stylus2ToTracker)")
+    ->type_name("A,B")
+    ->check(CLI::Validator(
+      [](std::string& text) -> std::string
+      {
+        const std::size_t comma = text.find(',');
+        return comma == std::string::npos || text.find(',', comma + 1) != std::string::npos
+          ? "'" + text + "': expected two names separated by a comma"
+          : std::string();
+      },
+      ""));
+  tracker
+    .add_option(
+      "--record", a.options.recordPath, "write what the device sends to FILE (+ FILE.timestamps)")
+    ->type_name("FILE");
+  tracker.add_option("--count", a.count, "stop after N poses")
+    ->type_name("N")
+    ->check(IntegerIn(1, 1e12));
+  tracker.add_option("--stations", a.stations, "stations to activate and print (default 1,2)")
+    ->type_name("LIST")
+    ->check(ParsedBy([](const std::string& text) { ParseStationList(text); }));
+  OneOf(
+    tracker.add_option("--format", a.format, "Fastrak records (for replay: how FILE was recorded)"),
+    { "binary", "ascii" })
+    ->capture_default_str();
+  tracker.add_flag(
+    "--realtime", a.options.realtime, "replay at the recorded pace instead of as fast as possible");
+  tracker.add_option("--duration", a.duration, "stop after S seconds of pose time")
+    ->type_name("S")
+    ->check(NumberIn(0.001, 1e7));
+  tracker.add_option("--timeout", a.timeout, "fail when a live device sends no pose within S s")
+    ->type_name("S")
+    ->check(NumberIn(0.1, 3600))
+    ->capture_default_str();
+  tracker.add_flag("--reset", a.options.reset, "reset the unit (^Y) first; takes about 10 s");
+}
+
+int RunTracker(TrackerArguments a, std::ostream& out, std::ostream& err)
+{
+  const std::string& deviceText = a.device;
+  TrackerDeviceOptions& options = a.options;
+  if (!a.tools.empty())
   {
-    err << "bender-cli tracker: " << e.what() << "\n"
-        << "run 'bender-cli tracker --help' for usage\n";
-    return 2;
+    const std::size_t comma = a.tools.find(',');
+    options.igtlToolNames = { a.tools.substr(0, comma), a.tools.substr(comma + 1) };
   }
+  if (!a.stations.empty())
+  {
+    options.stations = ParseStationList(a.stations);
+  }
+  options.format = a.format == "ascii" ? FastrakFormat::Ascii : FastrakFormat::Binary;
+  const std::uint64_t count = std::uint64_t(a.count);
+  const double duration = a.duration;
+  const double timeout = a.timeout;
 
   std::unique_ptr<TrackerStream> stream;
   try
@@ -336,6 +299,34 @@ int RunTrackerCli(const std::vector<std::string>& args,
     return 1;
   }
   return status;
+}
+} // namespace
+
+void AddTrackerCommand(CLI::App& cli,
+  std::ostream& out,
+  std::ostream& err,
+  std::shared_ptr<UsbBackend> usbBackend)
+{
+  auto a = std::make_shared<TrackerArguments>();
+  a->options.usbBackend = std::move(usbBackend);
+  CLI::App* tracker = AddCommand(cli,
+    "tracker",
+    "stream poses from a Polhemus Fastrak, OpenIGTLink, a recording or the simulator",
+    Details,
+    [a, &out, &err] { return RunTracker(*a, out, err); });
+  AddTrackerOptions(*tracker, *a);
+}
+
+int RunTrackerCli(const std::vector<std::string>& args,
+  std::ostream& out,
+  std::ostream& err,
+  std::shared_ptr<UsbBackend> usbBackend)
+{
+  return RunAlone("tracker",
+    args,
+    out,
+    err,
+    [&](CLI::App& cli) { AddTrackerCommand(cli, out, err, usbBackend); });
 }
 
 } // namespace bender
