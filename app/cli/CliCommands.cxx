@@ -67,11 +67,23 @@ std::unique_ptr<CLI::App> NewBenderCli()
     "print the folder where the demo data is looked for (BENDER_DATA_DIR, else "
     "<bin>/../share/bender)");
   AddCommands(*cli);
-  cli->require_subcommand(1);
   for (CLI::App* command : cli->get_subcommands({}))
   {
     command->group("commands");
   }
+  // `bender-cli help` is --help, as in git; hidden from the list (no group).
+  CLI::App* tool = cli.get();
+  cli->add_subcommand("help", "the help")
+    ->group("")
+    ->callback(
+      [tool]
+      {
+        // The tool's own help (help() would give this subcommand's, now that it is chosen).
+        std::cout << tool->get_formatter()->make_help(
+          tool, tool->get_name(), CLI::AppFormatMode::Normal);
+        throw CLI::Success();
+      });
+  cli->require_subcommand(1);
   return cli;
 }
 } // namespace
@@ -82,7 +94,10 @@ std::vector<std::string> CliCommandNames()
   std::vector<std::string> names;
   for (const CLI::App* command : cli->get_subcommands({}))
   {
-    names.push_back(command->get_name());
+    if (!command->get_group().empty())
+    {
+      names.push_back(command->get_name());
+    }
   }
   return names;
 }

@@ -65,6 +65,9 @@ TEST(CliCommands, TheToolItself)
   {
     EXPECT_NE(r.out.find("\n  " + command + " "), std::string::npos) << command << "\n" << r.out;
   }
+  const Captured help = RunInProcess({ "help" });
+  EXPECT_EQ(help.status, 0);
+  EXPECT_EQ(help.out, r.out);
   r = RunInProcess({ "frobnicate" });
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("unknown command 'frobnicate'"), std::string::npos) << r.err;
