@@ -1,6 +1,7 @@
 #include "MeasurementsPanel.h"
 
 #include "MainActions.h"
+#include "VesselMeasureTable.h"
 
 #include <QAction>
 #include <QHeaderView>
@@ -10,7 +11,7 @@
 #include <QVBoxLayout>
 
 #include <cmath>
-#include <sstream>
+#include <vector>
 
 namespace
 {
@@ -43,6 +44,20 @@ QString Outlets(const bender::BranchMeasures& branch)
   }
   return names.isEmpty() ? QString::number(branch.BranchId) : names.join(", ");
 }
+
+/// The rows of the measure table that the panel shows, in the table's order.
+std::vector<const bender::VesselMeasure*> PanelMeasures()
+{
+  std::vector<const bender::VesselMeasure*> shown;
+  for (const bender::VesselMeasure& m : bender::VesselMeasureTable())
+  {
+    if (m.Panel)
+    {
+      shown.push_back(&m);
+    }
+  }
+  return shown;
+}
 } // namespace
 
 MeasurementsPanel::MeasurementsPanel(MainActions* actions, QWidget* parent)
@@ -59,27 +74,40 @@ MeasurementsPanel::MeasurementsPanel(MainActions* actions, QWidget* parent)
   auto* heldTitle = new QLabel("<b>Branch under the ribbon</b> (between its ends)", this);
   heldTitle->setWordWrap(true);
   layout->addWidget(heldTitle);
-  this->Held = new QTableWidget(3, 3, this);
+  const std::vector<const bender::VesselMeasure*> shown = PanelMeasures();
+  QStringList heldRows;
+  QStringList planColumns{ "Outlets" };
+  for (const bender::VesselMeasure* m : shown)
+  {
+    heldRows << QString::fromStdString(bender::MeasureTitle(*m));
+    planColumns << QString::fromStdString(m->Label) << "after";
+  }
+  this->Held = new QTableWidget(static_cast<int>(shown.size()), 3, this);
   this->Held->setObjectName("heldTable");
   this->Held->setHorizontalHeaderLabels({ "Before", "Now", "Change" });
-  this->Held->setVerticalHeaderLabels({ "Length (mm)", "Bend angle (deg)", "Min radius (mm)" });
+  this->Held->setVerticalHeaderLabels(heldRows);
   this->Held->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   this->Held->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  this->Held->setMaximumHeight(120);
+  this->Held->setMaximumHeight(30 * (static_cast<int>(shown.size()) + 1));
   layout->addWidget(this->Held);
 
   auto* planTitle = new QLabel("<b>Plan: before / after</b> (each branch, by its outlets)", this);
   planTitle->setWordWrap(true);
   layout->addWidget(planTitle);
-  this->Plan = new QTableWidget(0, 7, this);
+  this->Plan = new QTableWidget(0, planColumns.size(), this);
   this->Plan->setObjectName("planTable");
-  this->Plan->setHorizontalHeaderLabels(
-    { "Outlets", "Length", "after", "Bend", "after", "Min R", "after" });
+  this->Plan->setHorizontalHeaderLabels(planColumns);
   this->Plan->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   this->Plan->verticalHeader()->hide();
   this->Plan->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  this->Plan->setToolTip("Length and minimal radius in mm, bend angle (between the branch's end "
-                         "directions) in degrees; after = the committed surface");
+  QStringList units;
+  for (const bender::VesselMeasure* m : shown)
+  {
+    units << QString::fromStdString(bender::MeasureTitle(*m));
+  }
+  this->Plan->setToolTip(units.join(", ") +
+    "; the bend angle is between the branch's end "
+    "directions; after = the committed surface");
   layout->addWidget(this->Plan, 1);
   this->showHeld({}, {});
 }
@@ -87,27 +115,31 @@ MeasurementsPanel::MeasurementsPanel(MainActions* actions, QWidget* parent)
 void MeasurementsPanel::showState(const bender::VesselSession& vessels, const QString& state)
 {
   this->State->setText(state);
+  const std::vector<const bender::VesselMeasure*> shown = PanelMeasures();
   const auto& comparison = vessels.GetComparison();
   const auto& measures = vessels.GetMeasures();
+  // Each row: the outlets, then before and after of each measure of the panel.
+  auto showRow = [&](int row, const bender::BranchMeasures* b, const bender::BranchMeasures* a)
+  {
+    const double nan = std::nan("");
+    this->Plan->setItem(row, 0, Item(Outlets(b ? *b : *a)));
+    int column = 1;
+    for (const bender::VesselMeasure* m : shown)
+    {
+      this->Plan->setItem(row, column++, Item(Number(b ? m->Get(*b) : nan, m->Decimals)));
+      this->Plan->setItem(
+        row, column++, a == b ? Item("=") : Item(Number(a ? m->Get(*a) : nan, m->Decimals)));
+    }
+  };
   if (comparison)
   {
     this->Plan->setRowCount(static_cast<int>(comparison->Pairs.size()));
     int row = 0;
     for (const bender::BranchChange& pair : comparison->Pairs)
     {
-      const bender::BranchMeasures* b =
-        pair.BeforeIndex >= 0 ? &comparison->Before.Branches[pair.BeforeIndex] : nullptr;
-      const bender::BranchMeasures* a =
-        pair.AfterIndex >= 0 ? &comparison->After.Branches[pair.AfterIndex] : nullptr;
-      const double nan = std::nan("");
-      this->Plan->setItem(row, 0, Item(Outlets(b ? *b : *a)));
-      this->Plan->setItem(row, 1, Item(Number(b ? b->Length : nan, 1)));
-      this->Plan->setItem(row, 2, Item(Number(a ? a->Length : nan, 1)));
-      this->Plan->setItem(row, 3, Item(Number(b ? b->BendAngle : nan, 1)));
-      this->Plan->setItem(row, 4, Item(Number(a ? a->BendAngle : nan, 1)));
-      this->Plan->setItem(row, 5, Item(Number(b ? b->MinRadius : nan, 2)));
-      this->Plan->setItem(row, 6, Item(Number(a ? a->MinRadius : nan, 2)));
-      ++row;
+      showRow(row++,
+        pair.BeforeIndex >= 0 ? &comparison->Before.Branches[pair.BeforeIndex] : nullptr,
+        pair.AfterIndex >= 0 ? &comparison->After.Branches[pair.AfterIndex] : nullptr);
     }
   }
   else
@@ -117,14 +149,7 @@ void MeasurementsPanel::showState(const bender::VesselSession& vessels, const QS
     int row = 0;
     for (const bender::BranchMeasures& b : measures.Branches)
     {
-      this->Plan->setItem(row, 0, Item(Outlets(b)));
-      this->Plan->setItem(row, 1, Item(Number(b.Length, 1)));
-      this->Plan->setItem(row, 2, Item("="));
-      this->Plan->setItem(row, 3, Item(Number(b.BendAngle, 1)));
-      this->Plan->setItem(row, 4, Item("="));
-      this->Plan->setItem(row, 5, Item(Number(b.MinRadius, 2)));
-      this->Plan->setItem(row, 6, Item("="));
-      ++row;
+      showRow(row++, &b, &b);
     }
   }
 }
@@ -133,17 +158,14 @@ void MeasurementsPanel::showHeld(const bender::HeldBranchMeasures& before,
   const bender::HeldBranchMeasures& now)
 {
   const double nan = std::nan("");
-  const double b[3] = { before.Valid ? before.Length : nan,
-    before.Valid ? before.BendAngle : nan,
-    before.Valid ? before.MinRadius : nan };
-  const double n[3] = {
-    now.Valid ? now.Length : nan, now.Valid ? now.BendAngle : nan, now.Valid ? now.MinRadius : nan
-  };
-  const int decimals[3] = { 1, 1, 2 };
-  for (int row = 0; row < 3; ++row)
+  int row = 0;
+  for (const bender::VesselMeasure* m : PanelMeasures())
   {
-    this->Held->setItem(row, 0, Item(Number(b[row], decimals[row])));
-    this->Held->setItem(row, 1, Item(Number(n[row], decimals[row])));
-    this->Held->setItem(row, 2, Item(Signed(n[row] - b[row], decimals[row])));
+    const double b = before.Valid ? m->Get(before) : nan;
+    const double n = now.Valid ? m->Get(now) : nan;
+    this->Held->setItem(row, 0, Item(Number(b, m->Decimals)));
+    this->Held->setItem(row, 1, Item(Number(n, m->Decimals)));
+    this->Held->setItem(row, 2, Item(Signed(n - b, m->Decimals)));
+    ++row;
   }
 }

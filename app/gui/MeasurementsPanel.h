@@ -10,9 +10,10 @@ class QLabel;
 class QTableWidget;
 
 /// The vessel measurements: the centerline state (with the Show centerline toggle), the branch
-/// held under the ribbon (its stretch between the ribbon's ends: length, bend angle, minimal
-/// radius before the grab, now, and the change, live during a bend) and the plan's before/after
-/// table (every branch matched by its outlets: the original surface against the committed one).
+/// held under the ribbon (its stretch between the ribbon's ends before the grab, now, and the
+/// change, live during a bend) and the plan's before/after table (every branch matched by its
+/// outlets: the original surface against the committed one). The measures shown are the rows
+/// of the vessel measure table marked Panel (VesselMeasureTable.h), in its order.
 class MeasurementsPanel : public QWidget
 {
   Q_OBJECT

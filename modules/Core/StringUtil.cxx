@@ -1,6 +1,7 @@
 #include "StringUtil.h"
 
 #include <filesystem>
+#include <sstream>
 
 namespace bender
 {
@@ -70,6 +71,14 @@ std::string DisplayName(const std::string& path)
 {
   const std::string name = std::filesystem::path(path).filename().string();
   return name.empty() ? path : name;
+}
+
+std::string FormatPoint(const std::array<double, 3>& p)
+{
+  std::ostringstream s;
+  s.precision(4);
+  s << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+  return s.str();
 }
 
 std::string_view Trim(std::string_view text)

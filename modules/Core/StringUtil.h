@@ -2,9 +2,11 @@
 #define bender_StringUtil_h
 
 // The small string helpers every layer needs, written once: case folding for file extensions
-// and keywords, the extension of a path, the display name used to prefix messages, trimming.
+// and keywords, the extension of a path, the display name used to prefix messages and
+// the text of a point in them, trimming.
 // ASCII only (file extensions, keywords, device names); no locale is consulted.
 
+#include <array>
 #include <string>
 #include <string_view>
 
@@ -31,6 +33,9 @@ std::string LowerDoubleExtension(const std::string& path);
 /// The last path component ("aneurysm.stl" for "/data/aneurysm.stl"); the whole path when it
 /// has none. Used to prefix one-line messages.
 std::string DisplayName(const std::string& path);
+
+/// How messages name a point: "(x, y, z)" with 4 significant digits.
+std::string FormatPoint(const std::array<double, 3>& p);
 
 /// text without leading and trailing blanks (space, tab, CR, LF, FF, VT).
 std::string_view Trim(std::string_view text);

@@ -1,6 +1,7 @@
 #include "BenderMeshCheck.h"
 
 #include "MeshCheckPasses.h"
+#include "UnionFind.h"
 #include "Vec3.h"
 
 #include <vtkCellArray.h>

@@ -1,5 +1,7 @@
 #include "MeshTopology.h"
 
+#include "UnionFind.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkPolyData.h>
@@ -56,42 +58,6 @@ std::vector<std::int64_t> CollectTriangles(vtkPolyData* mesh)
     }
   }
   return tris;
-}
-
-UnionFind::UnionFind(std::size_t n)
-  : Parent(n)
-  , Count(n)
-{
-  std::iota(this->Parent.begin(), this->Parent.end(), std::size_t(0));
-}
-
-std::size_t UnionFind::Find(std::size_t i)
-{
-  std::size_t root = i;
-  while (this->Parent[root] != root)
-  {
-    root = this->Parent[root];
-  }
-  while (this->Parent[i] != root)
-  {
-    const std::size_t next = this->Parent[i];
-    this->Parent[i] = root;
-    i = next;
-  }
-  return root;
-}
-
-bool UnionFind::Join(std::size_t a, std::size_t b)
-{
-  a = this->Find(a);
-  b = this->Find(b);
-  if (a == b)
-  {
-    return false;
-  }
-  this->Parent[std::max(a, b)] = std::min(a, b);
-  --this->Count;
-  return true;
 }
 
 namespace

@@ -2,7 +2,7 @@
 #define bender_MeshTopology_h
 
 // Topology of triangle surfaces shared by the mesh check, the cap filter, the surface
-// extraction and the centerline code: triangles of a polydata, union-find, boundary edges and
+// extraction and the centerline code: triangles of a polydata, boundary edges and
 // boundary loops. Triangles are given as a flat list of point ids, three per triangle, as
 // CollectTriangles returns them.
 
@@ -19,24 +19,6 @@ namespace bender
 /// Triangles of a polydata (polygons fanned from their first point, strips converted with
 /// alternating orientation fixed), as 3 point ids each; vertices and lines are ignored.
 std::vector<std::int64_t> CollectTriangles(vtkPolyData* mesh);
-
-/// Disjoint sets over 0..n-1 with path compression; the representative of a set is its
-/// smallest element.
-class UnionFind
-{
-public:
-  explicit UnionFind(std::size_t n);
-  /// The representative of i's set.
-  std::size_t Find(std::size_t i);
-  /// Merges the sets of a and b; true when they were different sets.
-  bool Join(std::size_t a, std::size_t b);
-  /// The number of sets.
-  std::size_t Sets() const { return this->Count; }
-
-private:
-  std::vector<std::size_t> Parent;
-  std::size_t Count = 0;
-};
 
 /// One undirected edge of a triangle list: its end points (lo < hi) and the triangles using
 /// it (uses() of them, in increasing order from first in TriangleEdges::Uses()).

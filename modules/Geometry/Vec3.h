@@ -1,6 +1,7 @@
 #ifndef bender_Vec3_h
 #define bender_Vec3_h
 
+#include <array>
 #include <cmath>
 
 namespace bender
@@ -99,6 +100,59 @@ inline Vec3 Rotate(const Vec3& k, double c, double s, const Vec3& v)
 inline double SignedAngle(const Vec3& u, const Vec3& v, const Vec3& k)
 {
   return std::atan2(Dot(Cross(u, v), k), Dot(u, v));
+}
+
+/// The same arithmetic on std::array<double, 3>, the storage of the VTK-facing code
+/// (vtkPoints::GetPoint and vtkDataArray::GetTuple write into its data()), so that such code
+/// carries no private copy of it. ToVec3 and ToArray convert between the two.
+using Array3 = std::array<double, 3>;
+
+inline Array3 Sub(const Array3& a, const Array3& b)
+{
+  return { { a[0] - b[0], a[1] - b[1], a[2] - b[2] } };
+}
+inline Array3 Add(const Array3& a, const Array3& b)
+{
+  return { { a[0] + b[0], a[1] + b[1], a[2] + b[2] } };
+}
+inline Array3 Scale(const Array3& a, double s)
+{
+  return { { a[0] * s, a[1] * s, a[2] * s } };
+}
+inline double Dot(const Array3& a, const Array3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline Array3 Cross(const Array3& a, const Array3& b)
+{
+  return { { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] } };
+}
+inline double Norm(const Array3& a)
+{
+  return std::sqrt(Dot(a, a));
+}
+inline double Distance(const Array3& a, const Array3& b)
+{
+  return Norm(Sub(a, b));
+}
+/// a + t (b - a).
+inline Array3 Lerp(const Array3& a, const Array3& b, double t)
+{
+  return { { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]) } };
+}
+/// a / |a|; the zero vector stays zero.
+inline Array3 Normalized(const Array3& a)
+{
+  const double n = Norm(a);
+  return n > 0.0 ? Array3{ { a[0] / n, a[1] / n, a[2] / n } } : Array3{ { 0.0, 0.0, 0.0 } };
+}
+inline Vec3 ToVec3(const Array3& a)
+{
+  return { a[0], a[1], a[2] };
+}
+inline Array3 ToArray(const Vec3& a)
+{
+  return { { a.x, a.y, a.z } };
 }
 
 } // namespace bender

@@ -2,10 +2,12 @@
 
 #include "BenderSession.h"
 #include "RibbonWarp.h"
+#include "Vec3.h"
 #include "VesselArrayNames.h"
 
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -15,13 +17,13 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace bender
 {
 namespace
 {
-constexpr double Degrees = 180.0 / 3.14159265358979323846;
 
 vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* surface)
 {
@@ -46,15 +48,6 @@ Vec3 PointOf(vtkPolyData* data, vtkIdType id)
   return { p[0], p[1], p[2] };
 }
 
-double AngleBetween(const Vec3& a, const Vec3& b)
-{
-  const double na = Norm(a), nb = Norm(b);
-  if (!(na > 0) || !(nb > 0))
-  {
-    return 0.0;
-  }
-  return std::acos(std::clamp(Dot(a, b) / (na * nb), -1.0, 1.0)) * Degrees;
-}
 } // namespace
 
 void CenterlineJob::Run(const ProgressReporter& progress)
@@ -368,94 +361,106 @@ bool VesselSession::HoldBranch(const RibbonSpec& ribbon, vtkPolyData* surface)
   return this->Held.size() >= 3;
 }
 
-HeldBranchMeasures VesselSession::Measure(const std::vector<Vec3>& centers,
-  const std::vector<std::vector<Vec3>>& walls) const
+bool VesselSession::HeldSamples(const WarpSpec* warp,
+  std::vector<Point3>& points,
+  std::vector<double>& radii) const
+{
+  points.clear();
+  radii.clear();
+  if (this->Held.size() < 3)
+  {
+    return false;
+  }
+  try
+  {
+    std::unique_ptr<RibbonWarp> moved;
+    if (warp)
+    {
+      moved = std::make_unique<RibbonWarp>(*warp);
+    }
+    const auto carry = [&](const Vec3& x) { return moved ? moved->Apply(x) : x; };
+    for (const HeldSample& sample : this->Held)
+    {
+      const Vec3 centre = carry(sample.position);
+      // The radius at a sample: its distance to the nearest of its (carried) wall points; the
+      // centerline's own where it has none.
+      double radius = std::numeric_limits<double>::infinity();
+      for (const Vec3& w : sample.wall)
+      {
+        radius = std::min(radius, Distance(carry(w), centre));
+      }
+      points.push_back(ToArray(centre));
+      radii.push_back(std::isfinite(radius) ? radius : sample.radius);
+    }
+    return true;
+  }
+  catch (const std::exception&)
+  {
+    points.clear(); // an invalid live warp: the session does not apply it either
+    radii.clear();
+    return false;
+  }
+}
+
+HeldBranchMeasures VesselSession::MeasureBy(const WarpSpec* warp) const
 {
   HeldBranchMeasures m;
-  const int n = static_cast<int>(centers.size());
-  if (n < 3)
+  std::vector<Point3> points;
+  std::vector<double> radii;
+  if (!this->HeldSamples(warp, points, radii))
   {
     return m;
   }
-  for (int i = 1; i < n; ++i)
-  {
-    m.Length += Distance(centers[i - 1], centers[i]);
-  }
-  // End directions over a quarter of the local radius of arc (at least one sample, at most a
-  // third of the stretch): the centerline is smooth there, and the warp near the ribbon's ends
-  // is the end screws' own (farther in, it is already the interpolated screws').
-  auto reach = [&](int from, int step)
-  {
-    const double wanted = 0.25 * this->Held[from].radius;
-    double travelled = 0;
-    int i = from;
-    while (
-      i + step >= 0 && i + step < n && travelled < wanted && std::abs(i + step - from) <= n / 3)
-    {
-      travelled += Distance(centers[i], centers[i + step]);
-      i += step;
-    }
-    return i == from ? from + step : i;
-  };
-  const Vec3 startDirection = centers[reach(0, +1)] - centers[0];
-  const Vec3 endDirection = centers[n - 1] - centers[reach(n - 1, -1)];
-  m.BendAngle = AngleBetween(startDirection, endDirection);
-  m.MinRadius = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < n; ++i)
-  {
-    for (const Vec3& w : walls[i])
-    {
-      m.MinRadius = std::min(m.MinRadius, Distance(w, centers[i]));
-    }
-  }
-  if (!std::isfinite(m.MinRadius))
-  {
-    m.MinRadius = 0;
-  }
-  m.Samples = n;
+  static_cast<BranchMeasures&>(m) = MeasureStretch(points, radii);
+  m.Samples = static_cast<int>(points.size());
   m.Valid = std::isfinite(m.Length) && std::isfinite(m.BendAngle);
   return m;
 }
 
 HeldBranchMeasures VesselSession::MeasureHeld() const
 {
-  std::vector<Vec3> centers;
-  std::vector<std::vector<Vec3>> walls;
-  for (const auto& s : this->Held)
-  {
-    centers.push_back(s.position);
-    walls.push_back(s.wall);
-  }
-  return this->Measure(centers, walls);
+  return this->MeasureBy(nullptr);
 }
 
 HeldBranchMeasures VesselSession::MeasureHeld(const WarpSpec& warp) const
 {
-  if (this->Held.empty())
+  return this->MeasureBy(&warp);
+}
+
+vtkSmartPointer<vtkPolyData> VesselSession::StretchBy(const WarpSpec* warp) const
+{
+  std::vector<Point3> points;
+  std::vector<double> radii;
+  if (!this->HeldSamples(warp, points, radii))
   {
-    return {};
+    return nullptr;
   }
-  try
+  vtkNew<vtkPoints> xyz;
+  xyz->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName(VesselArrays::MaximumInscribedSphereRadius);
+  vtkNew<vtkCellArray> line;
+  line->InsertNextCell(static_cast<vtkIdType>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const RibbonWarp moved(warp);
-    std::vector<Vec3> centers;
-    std::vector<std::vector<Vec3>> walls;
-    for (const auto& s : this->Held)
-    {
-      centers.push_back(moved.Apply(s.position));
-      std::vector<Vec3> wall;
-      for (const Vec3& w : s.wall)
-      {
-        wall.push_back(moved.Apply(w));
-      }
-      walls.push_back(std::move(wall));
-    }
-    return this->Measure(centers, walls);
+    line->InsertCellPoint(xyz->InsertNextPoint(points[i].data()));
+    radius->InsertNextValue(radii[i]);
   }
-  catch (const std::exception&)
-  {
-    return {}; // an invalid live warp: the session does not apply it either
-  }
+  auto stretch = vtkSmartPointer<vtkPolyData>::New();
+  stretch->SetPoints(xyz);
+  stretch->SetLines(line);
+  stretch->GetPointData()->AddArray(radius);
+  return stretch;
+}
+
+vtkSmartPointer<vtkPolyData> VesselSession::HeldStretch() const
+{
+  return this->StretchBy(nullptr);
+}
+
+vtkSmartPointer<vtkPolyData> VesselSession::HeldStretch(const WarpSpec& warp) const
+{
+  return this->StretchBy(&warp);
 }
 
 vtkSmartPointer<vtkPolyData> VesselSession::WarpedPaths(const WarpSpec& warp) const

@@ -30,13 +30,13 @@ namespace bender
 class BenderSession;
 
 /// The measures of the centerline stretch between the held ribbon's ends (extended by one local
-/// radius beyond each end, so that the end tangents are those of the vessel, not of one sample).
-struct HeldBranchMeasures
+/// radius beyond each end, so that the end tangents are those of the vessel, not of one sample),
+/// by MeasureStretch: the same rule as the plan's table (the end-window rule of
+/// VesselMeasures.h). The radius at a sample is its distance to the nearest of the wall points
+/// held with it (carried by the live warp), so MinRadius is the narrowest the bend makes it.
+struct HeldBranchMeasures : BranchMeasures
 {
   bool Valid = false;
-  double Length = 0;    ///< arc length of the stretch, mm
-  double BendAngle = 0; ///< degrees between the stretch's start and end directions
-  double MinRadius = 0; ///< smallest distance from a centerline sample to its wall points, mm
   int Samples = 0;
 };
 
@@ -116,6 +116,12 @@ public:
   /// The held stretch warped by `warp` (the live warp: initial and final ribbons, R, decay):
   /// its samples and wall points moved with RibbonWarp's exact evaluation.
   HeldBranchMeasures MeasureHeld(const WarpSpec& warp) const;
+  /// The held stretch (as it is, or warped by `warp`) as one polyline with point data
+  /// MaximumInscribedSphereRadius (the radii MeasureHeld uses): MeasureBranches of it gives
+  /// MeasureHeld's values, as the plan's table measures its branches. Null when nothing is held
+  /// or for an invalid warp.
+  vtkSmartPointer<vtkPolyData> HeldStretch() const;
+  vtkSmartPointer<vtkPolyData> HeldStretch(const WarpSpec& warp) const;
   ///@}
 
   /// The shown paths carried by `warp` (same lines and point data, points moved with
@@ -130,8 +136,13 @@ private:
     double radius = 0;
     std::vector<Vec3> wall; // surface points whose nearest sample this is (a few at most)
   };
-  HeldBranchMeasures Measure(const std::vector<Vec3>& centers,
-    const std::vector<std::vector<Vec3>>& walls) const;
+  // The held samples carried by `warp` (none: as they are) and their radii; false when nothing
+  // is held or the warp is invalid.
+  bool HeldSamples(const WarpSpec* warp,
+    std::vector<Point3>& points,
+    std::vector<double>& radii) const;
+  HeldBranchMeasures MeasureBy(const WarpSpec* warp) const;
+  vtkSmartPointer<vtkPolyData> StretchBy(const WarpSpec* warp) const;
 
   std::optional<CenterlineResult> Shown;
   std::optional<CenterlineResult> OriginalResult;

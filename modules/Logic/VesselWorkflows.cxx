@@ -3,7 +3,9 @@
 #include "ApplyPlan.h"
 #include "BenderErrors.h"
 #include "MeshIO.h"
+#include "StringUtil.h"
 #include "VesselArrayNames.h"
+#include "VesselMeasureTable.h"
 #include "WarpPlanIO.h"
 
 #include <nlohmann/json.hpp>
@@ -19,18 +21,6 @@ namespace
 {
 using Json = nlohmann::ordered_json;
 
-std::string BaseName(const std::string& path)
-{
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-bool EndsWith(const std::string& s, const std::string& suffix)
-{
-  return s.size() >= suffix.size() &&
-    s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 vtkSmartPointer<vtkPolyData> Read(const std::string& path)
 {
   try
@@ -41,18 +31,6 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path)
   {
     throw InputError(e.what());
   }
-}
-
-double Angle(const Point3& a, const Point3& b)
-{
-  const double na = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  const double nb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-  if (na <= 0 || nb <= 0)
-  {
-    return 0.0;
-  }
-  const double c = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (na * nb);
-  return std::acos(std::max(-1.0, std::min(1.0, c))) * 180.0 / 3.14159265358979323846;
 }
 
 // Rounded for the reader: 1e-4 mm is far below any segmentation's resolution.
@@ -89,16 +67,11 @@ Json BranchJson(const BranchMeasures& b)
   j["endpoint"] = b.EndpointId;
   j["startBifurcation"] = b.StartBifurcationId;
   j["endBifurcation"] = b.EndBifurcationId;
-  j["length"] = R4(b.Length);
-  j["tortuosity"] = R4(b.Tortuosity);
-  j["maxCurvature"] = R4(b.MaxCurvature);
-  j["meanCurvature"] = R4(b.MeanCurvature);
-  j["bendAngle"] = R4(b.BendAngle);
-  j["minRadius"] = R4(b.MinRadius);
-  j["meanRadius"] = R4(b.MeanRadius);
-  j["maxRadius"] = R4(b.MaxRadius);
+  for (const VesselMeasure& m : VesselMeasureTable())
+  {
+    j[m.Key] = R4(m.Get(b));
+  }
   j["minRadiusPosition"] = P(b.MinRadiusPosition);
-  j["minRadiusAbscissa"] = R4(b.MinRadiusAbscissa);
   j["start"] = P(b.Start);
   j["end"] = P(b.End);
   j["startTangent"] = P(b.StartTangent);
@@ -210,16 +183,16 @@ CenterlineWorkflowResult ComputeCenterlinesOfFile(const CenterlineWorkflowOption
   {
     if (!EndsWith(options.output, ".vtp") && !EndsWith(options.output, ".vtk"))
     {
-      throw InputError(BaseName(options.output) +
+      throw InputError(DisplayName(options.output) +
         ": centerlines are written as .vtp or .vtk (polylines with point and cell data)");
     }
     if (SameFile(options.input, options.output))
     {
-      throw InputError(BaseName(options.output) + ": is the input surface; not overwritten");
+      throw InputError(DisplayName(options.output) + ": is the input surface; not overwritten");
     }
   }
   vtkSmartPointer<vtkPolyData> surface = Read(options.input);
-  CenterlineWorkflowResult result = Compute(surface, BaseName(options.input), options.seeds);
+  CenterlineWorkflowResult result = Compute(surface, DisplayName(options.input), options.seeds);
   if (!options.output.empty())
   {
     try
@@ -241,13 +214,13 @@ MeasureWorkflowResult MeasureVessels(const MeasureWorkflowOptions& options)
     throw InputError("measure: give either an after surface or a plan, not both");
   }
   MeasureWorkflowResult result;
-  result.before = Compute(Read(options.input), BaseName(options.input), options.seeds);
+  result.before = Compute(Read(options.input), DisplayName(options.input), options.seeds);
   vtkSmartPointer<vtkPolyData> after;
   std::string afterName;
   if (!options.after.empty())
   {
     after = Read(options.after);
-    afterName = BaseName(options.after);
+    afterName = DisplayName(options.after);
   }
   else if (!options.plan.empty())
   {
@@ -261,9 +234,9 @@ MeasureWorkflowResult MeasureVessels(const MeasureWorkflowOptions& options)
       throw InputError(e.what());
     }
     ApplyPlanOptions applyOptions;
-    applyOptions.planName = BaseName(options.plan);
+    applyOptions.planName = DisplayName(options.plan);
     after = ApplyPlan(result.before.surface, plan, applyOptions).output;
-    afterName = BaseName(options.input) + " after " + BaseName(options.plan);
+    afterName = DisplayName(options.input) + " after " + DisplayName(options.plan);
   }
   if (!after)
   {
@@ -287,8 +260,8 @@ MeasureWorkflowResult MeasureVessels(const MeasureWorkflowOptions& options)
     }
     if (c.before && c.after)
     {
-      c.startTurn = Angle(c.before->StartTangent, c.after->StartTangent);
-      c.endTurn = Angle(c.before->EndTangent, c.after->EndTangent);
+      c.startTurn = AngleDegrees(c.before->StartTangent, c.after->StartTangent);
+      c.endTurn = AngleDegrees(c.before->EndTangent, c.after->EndTangent);
     }
     else
     {
@@ -321,14 +294,14 @@ std::string MeasurementsToJson(const MeasureWorkflowResult& result)
       e["after"] = c.after ? BranchJson(*c.after) : Json();
       if (c.before && c.after)
       {
-        e["change"] = { { "length", R4(c.after->Length - c.before->Length) },
-          { "tortuosity", R4(c.after->Tortuosity - c.before->Tortuosity) },
-          { "bendAngle", R4(c.after->BendAngle - c.before->BendAngle) },
-          { "minRadius", R4(c.after->MinRadius - c.before->MinRadius) },
-          { "meanRadius", R4(c.after->MeanRadius - c.before->MeanRadius) },
-          { "maxCurvature", R4(c.after->MaxCurvature - c.before->MaxCurvature) },
-          { "startTurn", R4(c.startTurn) },
-          { "endTurn", R4(c.endTurn) } };
+        Json change;
+        for (const VesselMeasure& m : VesselMeasureTable())
+        {
+          change[m.Key] = R4(m.Get(*c.after) - m.Get(*c.before));
+        }
+        change["startTurn"] = R4(c.startTurn);
+        change["endTurn"] = R4(c.endTurn);
+        e["change"] = change;
       }
       comparison.push_back(e);
     }
@@ -340,38 +313,53 @@ std::string MeasurementsToJson(const MeasureWorkflowResult& result)
 
 std::string MeasurementsToText(const MeasureWorkflowResult& result)
 {
+  std::vector<const VesselMeasure*> columns;
+  for (const VesselMeasure& m : VesselMeasureTable())
+  {
+    if (m.Text)
+    {
+      columns.push_back(&m);
+    }
+  }
+  auto width = [](const VesselMeasure& m)
+  { return std::max<int>(10, static_cast<int>(MeasureTitle(m).size())); };
   std::ostringstream out;
-  char line[256];
+  char cell[64];
+  auto header = [&](const char* first)
+  {
+    out << first;
+    for (const VesselMeasure* m : columns)
+    {
+      std::snprintf(cell, sizeof(cell), "  %*s", width(*m), MeasureTitle(*m).c_str());
+      out << cell;
+    }
+  };
   auto table = [&](const CenterlineWorkflowResult& r, const char* title)
   {
     out << title << ": " << r.centerlines.Endpoints.size() << " endpoints, "
         << r.measures.Branches.size() << " branches, " << r.measures.Bifurcations.size()
         << " bifurcations\n";
-    out << "  branch parent  length  tortuosity  bend(deg)  max curv  min/mean/max radius\n";
+    header("  branch parent");
+    out << "\n";
     for (const auto& b : r.measures.Branches)
     {
-      std::snprintf(line,
-        sizeof(line),
-        "  %6d %6d %7.2f %11.4f %10.2f %9.4f  %.2f / %.2f / %.2f\n",
-        b.BranchId,
-        b.ParentBranchId,
-        b.Length,
-        b.Tortuosity,
-        b.BendAngle,
-        b.MaxCurvature,
-        b.MinRadius,
-        b.MeanRadius,
-        b.MaxRadius);
-      out << line;
+      std::snprintf(cell, sizeof(cell), "  %6d %6d", b.BranchId, b.ParentBranchId);
+      out << cell;
+      for (const VesselMeasure* m : columns)
+      {
+        std::snprintf(cell, sizeof(cell), "  %*.*f", width(*m), m->Decimals, m->Get(b));
+        out << cell;
+      }
+      out << "\n";
     }
     for (const auto& b : r.measures.Bifurcations)
     {
-      std::snprintf(line,
-        sizeof(line),
+      std::snprintf(cell,
+        sizeof(cell),
         "  bifurcation %d: angle between children %.1f deg\n",
         b.Id,
         b.ChildrenAngle);
-      out << line;
+      out << cell;
     }
     for (const auto& w : r.centerlines.Warnings)
     {
@@ -383,24 +371,28 @@ std::string MeasurementsToText(const MeasureWorkflowResult& result)
   {
     table(*result.after, "after");
     out << "change (after - before)\n";
-    out << "  branch  length  tortuosity  bend(deg)  min radius  start turn  end turn\n";
+    header("  branch");
+    out << "  start turn    end turn\n";
     for (const auto& c : result.branches)
     {
       if (!c.before || !c.after)
       {
         continue;
       }
-      std::snprintf(line,
-        sizeof(line),
-        "  %6d %+7.2f %+11.4f %+10.2f %+11.3f %10.1f %9.1f\n",
-        c.before->BranchId,
-        c.after->Length - c.before->Length,
-        c.after->Tortuosity - c.before->Tortuosity,
-        c.after->BendAngle - c.before->BendAngle,
-        c.after->MinRadius - c.before->MinRadius,
-        c.startTurn,
-        c.endTurn);
-      out << line;
+      std::snprintf(cell, sizeof(cell), "  %6d", c.before->BranchId);
+      out << cell;
+      for (const VesselMeasure* m : columns)
+      {
+        std::snprintf(cell,
+          sizeof(cell),
+          "  %+*.*f",
+          width(*m),
+          m->Decimals,
+          m->Get(*c.after) - m->Get(*c.before));
+        out << cell;
+      }
+      std::snprintf(cell, sizeof(cell), "  %10.1f  %10.1f\n", c.startTurn, c.endTurn);
+      out << cell;
     }
     for (const auto& w : result.warnings)
     {

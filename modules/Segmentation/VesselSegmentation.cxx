@@ -1,6 +1,8 @@
 #include "VesselSegmentation.h"
 
 #include "Private/ItkImage.h"
+#include "Private/VoxelRuns.h"
+#include "StringUtil.h"
 
 #include <itkBinaryBallStructuringElement.h>
 #include <itkBinaryFillholeImageFilter.h>
@@ -30,14 +32,7 @@ namespace
 
 using detail::FloatImage;
 using detail::MaskImage;
-
-std::string Format(const Point3& p)
-{
-  std::ostringstream s;
-  s.precision(4);
-  s << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
-  return s.str();
-}
+using detail::VoxelBox;
 
 void Require(bool ok, const std::string& message)
 {
@@ -88,14 +83,6 @@ FloatImage::Pointer NormalisedVesselness(FloatImage* input,
   }
   return vesselness;
 }
-
-/// Voxel index box [lo, hi] (inclusive); empty while hi < lo.
-struct VoxelBox
-{
-  std::array<long, 3> lo{ { 0, 0, 0 } };
-  std::array<long, 3> hi{ { -1, -1, -1 } };
-  bool Empty() const { return this->hi[0] < this->lo[0]; }
-};
 
 /// Face-connected scan-line flood fill on a raw buffer of `size` voxels, limited to `box`:
 /// starting from `seeds`, marks every voxel for which fillable(linear index) holds and that is
@@ -197,310 +184,6 @@ VoxelBox ScanlineFill(const std::array<std::size_t, 3>& size,
   return filled;
 }
 
-std::uint32_t FindRun(std::vector<std::uint32_t>& parent, std::uint32_t i)
-{
-  while (parent[i] != i)
-  {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
-void UniteRuns(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b)
-{
-  a = FindRun(parent, a);
-  b = FindRun(parent, b);
-  if (a != b)
-  {
-    parent[std::max(a, b)] = std::min(a, b);
-  }
-}
-
-/// The largest face-connected component of the window [lo, hi] of `values` (a raw buffer of
-/// `size` voxels), written as 1 into `out` (all zero on entry). Same component as
-/// itk::ConnectedComponentImageFilter (FullyConnected off) + RelabelComponentImageFilter label 1,
-/// but on runs instead of voxels: every x-row is cut into runs of in-window voxels, runs of
-/// face-adjacent rows (j - 1 and k - 1) that overlap in x are joined (union-find, the root of a
-/// set is its first run in raster order), and the runs of the largest set (ties: the set that
-/// starts first in raster order) are written out. One read of the volume; rows without an
-/// in-window voxel cost one vectorised pass. Returns the bounding box of the component (empty
-/// when no voxel is in the window). Reports progress and honours cancellation every few rows.
-VoxelBox LargestComponentInPlace(const float* values,
-  const std::array<std::size_t, 3>& size,
-  float lo,
-  float hi,
-  std::uint8_t* out,
-  const ProgressReporter& progress)
-{
-  const std::string stage = "components";
-  progress.Report(stage, 0.0);
-  progress.ThrowIfCancelled(stage);
-  const std::size_t nx = size[0];
-  const std::size_t rows = size[1] * size[2];
-  if (size[0] * rows >= std::size_t(std::numeric_limits<std::uint32_t>::max()))
-  {
-    throw SegmentationError("segmentation: the volume has more than 2^32 voxels");
-  }
-  struct Run
-  {
-    std::uint32_t a, b; // x, inclusive
-  };
-  std::vector<Run> runs;
-  std::vector<std::uint32_t> parent;
-  std::vector<std::uint32_t> first(rows + 1, 0);
-  const auto joinRows = [&](std::size_t r, std::size_t s)
-  {
-    std::uint32_t p = first[r];
-    std::uint32_t q = first[s];
-    while (p < first[r + 1] && q < first[s + 1])
-    {
-      if (runs[p].a <= runs[q].b && runs[q].a <= runs[p].b)
-      {
-        UniteRuns(parent, p, q);
-      }
-      if (runs[p].b < runs[q].b)
-      {
-        ++p;
-      }
-      else
-      {
-        ++q;
-      }
-    }
-  };
-  const std::size_t reportRows =
-    std::max<std::size_t>(1, (std::size_t(1) << 20) / std::max<std::size_t>(nx, 1));
-  for (std::size_t r = 0; r < rows; ++r)
-  {
-    const float* row = values + r * nx;
-    // Vectorisable test for an in-window voxel (NaN is never in the window).
-    int any = 0;
-    for (std::size_t i = 0; i < nx; ++i)
-    {
-      any |= int(row[i] >= lo) & int(row[i] <= hi);
-    }
-    if (any)
-    {
-      for (std::size_t i = 0; i < nx;)
-      {
-        while (i < nx && !(row[i] >= lo && row[i] <= hi))
-        {
-          ++i;
-        }
-        if (i == nx)
-        {
-          break;
-        }
-        const std::size_t a = i;
-        while (i < nx && row[i] >= lo && row[i] <= hi)
-        {
-          ++i;
-        }
-        parent.push_back(static_cast<std::uint32_t>(runs.size()));
-        runs.push_back({ std::uint32_t(a), std::uint32_t(i - 1) });
-      }
-    }
-    first[r + 1] = static_cast<std::uint32_t>(runs.size());
-    if (first[r + 1] > first[r])
-    {
-      if (r % size[1] > 0)
-      {
-        joinRows(r, r - 1);
-      }
-      if (r >= size[1])
-      {
-        joinRows(r, r - size[1]);
-      }
-    }
-    if ((r + 1) % reportRows == 0)
-    {
-      progress.Report(stage, 0.9 * double(r + 1) / double(rows));
-      progress.ThrowIfCancelled(stage);
-    }
-  }
-  VoxelBox box;
-  if (runs.empty())
-  {
-    progress.Report(stage, 1.0);
-    return box;
-  }
-  // Every parent precedes its child (UniteRuns links the later root under the earlier), so
-  // one forward pass points every run at its root, and sums the sets' voxel counts.
-  std::vector<std::uint64_t> voxels(runs.size(), 0);
-  for (std::size_t p = 0; p < runs.size(); ++p)
-  {
-    parent[p] = parent[parent[p]];
-    voxels[parent[p]] += runs[p].b - runs[p].a + 1;
-  }
-  std::uint32_t largest = 0;
-  for (std::size_t p = 1; p < runs.size(); ++p)
-  {
-    if (voxels[p] > voxels[largest])
-    {
-      largest = static_cast<std::uint32_t>(p);
-    }
-  }
-  box.lo = { { long(nx), long(size[1]), long(size[2]) } };
-  box.hi = { { -1, -1, -1 } };
-  for (std::size_t r = 0; r < rows; ++r)
-  {
-    for (std::uint32_t p = first[r]; p < first[r + 1]; ++p)
-    {
-      if (parent[p] != largest)
-      {
-        continue;
-      }
-      std::fill(out + r * nx + runs[p].a, out + r * nx + runs[p].b + 1, std::uint8_t(1));
-      const long j = long(r % size[1]);
-      const long k = long(r / size[1]);
-      box.lo[0] = std::min(box.lo[0], long(runs[p].a));
-      box.hi[0] = std::max(box.hi[0], long(runs[p].b));
-      box.lo[1] = std::min(box.lo[1], j);
-      box.hi[1] = std::max(box.hi[1], j);
-      box.lo[2] = std::min(box.lo[2], k);
-      box.hi[2] = std::max(box.hi[2], k);
-    }
-  }
-  progress.Report(stage, 1.0);
-  return box;
-}
-
-/// Fills the cavities of the 0/1 mask inside `box` in place: background voxels that are not
-/// face-connected to the box's faces through background become foreground. Same result as
-/// itk::BinaryFillholeImageFilter (FullyConnected off) on the box, but on runs instead of voxels:
-/// the background of every x-row of the box is cut into runs (an empty row is one run), runs of
-/// face-adjacent rows that overlap in x are joined (union-find), and the runs not joined to the
-/// box's faces are the holes. One read of the box; the background (most of the box) is never
-/// flood-filled voxel by voxel.
-void FillHolesInPlace(std::uint8_t* voxels,
-  const std::array<std::size_t, 3>& size,
-  const VoxelBox& box,
-  const ProgressReporter& progress)
-{
-  progress.Report("fill holes", 0.0);
-  progress.ThrowIfCancelled("fill holes");
-  const long nx = box.hi[0] - box.lo[0] + 1;
-  const long ny = box.hi[1] - box.lo[1] + 1;
-  const long nz = box.hi[2] - box.lo[2] + 1;
-  const auto rowPointer = [&](long j, long k)
-  {
-    return voxels + std::size_t(box.lo[0]) +
-      size[0] * (std::size_t(box.lo[1] + j) + size[1] * std::size_t(box.lo[2] + k));
-  };
-  struct Run
-  {
-    std::uint32_t a, b; // box-local x, inclusive
-  };
-  std::vector<Run> runs;
-  std::vector<std::size_t> first(std::size_t(ny * nz) + 1, 0);
-  for (long k = 0; k < nz; ++k)
-  {
-    for (long j = 0; j < ny; ++j)
-    {
-      const std::uint8_t* row = rowPointer(j, k);
-      std::uint8_t any = 0;
-      for (long i = 0; i < nx; ++i)
-      {
-        any |= row[i];
-      }
-      if (any == 0)
-      {
-        runs.push_back({ 0, std::uint32_t(nx - 1) });
-      }
-      else
-      {
-        for (long i = 0; i < nx;)
-        {
-          while (i < nx && row[i] != 0)
-          {
-            ++i;
-          }
-          if (i == nx)
-          {
-            break;
-          }
-          const long a = i;
-          while (i < nx && row[i] == 0)
-          {
-            ++i;
-          }
-          runs.push_back({ std::uint32_t(a), std::uint32_t(i - 1) });
-        }
-      }
-      first[std::size_t(j + ny * k) + 1] = runs.size();
-    }
-  }
-  progress.ThrowIfCancelled("fill holes");
-  // Node runs.size() stands for the outside of the box.
-  const auto outside = static_cast<std::uint32_t>(runs.size());
-  std::vector<std::uint32_t> parent(runs.size() + 1);
-  for (std::size_t i = 0; i < parent.size(); ++i)
-  {
-    parent[i] = static_cast<std::uint32_t>(i);
-  }
-  const auto joinRows = [&](std::size_t r, std::size_t s)
-  {
-    std::size_t p = first[r];
-    std::size_t q = first[s];
-    while (p < first[r + 1] && q < first[s + 1])
-    {
-      if (runs[p].a <= runs[q].b && runs[q].a <= runs[p].b)
-      {
-        UniteRuns(parent, std::uint32_t(p), std::uint32_t(q));
-      }
-      if (runs[p].b < runs[q].b)
-      {
-        ++p;
-      }
-      else
-      {
-        ++q;
-      }
-    }
-  };
-  for (long k = 0; k < nz; ++k)
-  {
-    for (long j = 0; j < ny; ++j)
-    {
-      const std::size_t r = std::size_t(j + ny * k);
-      const bool faceRow = j == 0 || j == ny - 1 || k == 0 || k == nz - 1;
-      for (std::size_t p = first[r]; p < first[r + 1]; ++p)
-      {
-        if (faceRow || runs[p].a == 0 || runs[p].b == std::uint32_t(nx - 1))
-        {
-          UniteRuns(parent, std::uint32_t(p), outside);
-        }
-      }
-      if (j > 0)
-      {
-        joinRows(r, r - 1);
-      }
-      if (k > 0)
-      {
-        joinRows(r, r - std::size_t(ny));
-      }
-    }
-  }
-  const std::uint32_t outsideRoot = FindRun(parent, outside);
-  for (long k = 0; k < nz; ++k)
-  {
-    for (long j = 0; j < ny; ++j)
-    {
-      const std::size_t r = std::size_t(j + ny * k);
-      for (std::size_t p = first[r]; p < first[r + 1]; ++p)
-      {
-        if (FindRun(parent, std::uint32_t(p)) != outsideRoot)
-        {
-          std::uint8_t* row = rowPointer(j, k);
-          std::fill(row + runs[p].a, row + runs[p].b + 1, std::uint8_t(1));
-        }
-      }
-    }
-  }
-  progress.Report("fill holes", 1.0);
-}
-
 MaskImage::Pointer RefineWithLevelSet(FloatImage* intensity,
   MaskImage* mask,
   const SegmentationParameters& p,
@@ -598,9 +281,9 @@ LabelMap Segment(const Volume& volume,
         const Point3 a = g.IndexToPhysical({ { 0, 0, 0 } });
         const Point3 b = g.IndexToPhysical(
           { { double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1) } });
-        throw SeedError("seed " + Format(seed) +
-          " mm (LPS) is outside the volume, whose voxel centres run from " + Format(a) + " to " +
-          Format(b));
+        throw SeedError("seed " + FormatPoint(seed) +
+          " mm (LPS) is outside the volume, whose voxel centres run from " + FormatPoint(a) +
+          " to " + FormatPoint(b));
       }
       const Point3 ci = g.PhysicalToIndex(seed);
       FloatImage::IndexType index;
@@ -612,7 +295,7 @@ LabelMap Segment(const Volume& volume,
       if (!(value >= lower && value <= upper))
       {
         std::ostringstream msg;
-        msg << "seed " << Format(seed) << " mm (LPS), voxel (" << index[0] << ", " << index[1]
+        msg << "seed " << FormatPoint(seed) << " mm (LPS), voxel (" << index[0] << ", " << index[1]
             << ", " << index[2] << "), is in background: " << quantity << " " << value
             << " is outside [" << lower << ", "
             << (upper >= 1e30 ? std::string("inf") : std::to_string(upper)) << "]";
@@ -645,7 +328,7 @@ LabelMap Segment(const Volume& volume,
   {
     // The largest component (no seed, e.g. a head MRI): run-based labelling of the window.
     result.voxels.assign(g.VoxelCount(), 0);
-    found = LargestComponentInPlace(
+    found = detail::LargestComponentInPlace(
       source->GetBufferPointer(), g.size, lo, hi, result.voxels.data(), progress);
   }
   source = nullptr;
@@ -726,7 +409,7 @@ LabelMap Segment(const Volume& volume,
   progress.ThrowIfCancelled("segmentation");
   if (p.fillHoles)
   {
-    FillHolesInPlace(result.voxels.data(), g.size, box, progress);
+    detail::FillHolesInPlace(result.voxels.data(), g.size, box, progress);
   }
   progress.ThrowIfCancelled("segmentation");
 

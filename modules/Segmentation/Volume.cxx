@@ -2,9 +2,10 @@
 
 #include "SegmentationErrors.h"
 
+#include <vtkSMPTools.h>
+
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 namespace bender
 {
@@ -126,17 +127,11 @@ Volume ResampleVolume(const Volume& input, const std::array<std::size_t, 3>& siz
       }
     }
   };
-  const std::size_t threads =
-    std::max<std::size_t>(1, std::min<std::size_t>(std::thread::hardware_concurrency(), size[2]));
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < threads; ++t)
-  {
-    pool.emplace_back(work, size[2] * t / threads, size[2] * (t + 1) / threads);
-  }
-  for (std::thread& t : pool)
-  {
-    t.join();
-  }
+  // Each output slice is independent of the others.
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(size[2]),
+    [&](vtkIdType k0, vtkIdType k1)
+    { work(static_cast<std::size_t>(k0), static_cast<std::size_t>(k1)); });
   return out;
 }
 

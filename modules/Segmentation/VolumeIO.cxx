@@ -1,8 +1,10 @@
 #include "VolumeIO.h"
 
+#include "AtomicFile.h"
 #include "InputValidation.h"
 #include "ItkVtkBridge.h"
 #include "Private/ItkImage.h"
+#include "StringUtil.h"
 #include "VolumeValidation.h"
 
 #include <itkGDCMImageIO.h>
@@ -29,17 +31,13 @@
 #include <vtkXMLImageDataWriter.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <mutex>
 #include <random>
 #include <sstream>
 
-#include <fcntl.h>
 #include <unistd.h>
 
 namespace bender
@@ -59,21 +57,9 @@ enum class VolumeFormat
   Unknown
 };
 
-std::string Lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-bool EndsWith(const std::string& s, const std::string& suffix)
-{
-  return s.size() >= suffix.size() &&
-    s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 VolumeFormat FormatOf(const std::string& path)
 {
-  const std::string p = Lower(path);
+  const std::string p = ToLower(path);
   if (EndsWith(p, ".nrrd") || EndsWith(p, ".nhdr"))
   {
     return VolumeFormat::Nrrd;
@@ -363,26 +349,13 @@ void WriteVti(vtkImageData* image, const std::string& path, const std::string& r
   }
 }
 
-/// Flushes a written file to disk; false when that fails (full disk, I/O error).
-bool SyncFile(const std::string& path)
-{
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0)
-  {
-    return false;
-  }
-  const bool ok = ::fsync(fd) == 0;
-  ::close(fd);
-  return ok;
-}
-
 /// All-or-nothing volume writes. The writer writes into a fresh hidden folder beside the
 /// target under the target's own name (so that a .mhd or .nhdr header names its data file by
-/// the final name); every file written there is flushed, the result is read back through the
-/// same validator as the readers use (ITK's NIfTI and MetaImage writers report success for a
-/// file cut short by a full disk), then the data files and last the header are renamed into
-/// place. Any failure removes the folder and everything in it; the previous target, if any,
-/// is untouched.
+/// the final name); the result is read back through the same validator as the readers use
+/// (ITK's NIfTI and MetaImage writers report success for a file cut short by a full disk), then
+/// the files are published by AtomicWriteAll (flushed, the data files before the header, all or
+/// none). Any failure removes the folder and everything in it; the previous target, if any, is
+/// untouched.
 void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write)
 {
   namespace fs = std::filesystem;
@@ -417,43 +390,33 @@ void WriteAtomically(const std::string& path, const std::function<void(const std
   try
   {
     write(staged);
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(staging))
-    {
-      files.push_back(entry.path());
-    }
-    for (const fs::path& file : files)
-    {
-      if (!SyncFile(file.string()))
-      {
-        throw VolumeWriteError(path + ": cannot flush " + file.filename().string() + " to disk (" +
-          std::strerror(errno) + ")");
-      }
-    }
     std::string problem;
     if (!io_detail::CheckVolumeFile(staged, io_detail::MaxVolumeBytes * 2, problem))
     {
       throw VolumeWriteError(
         path + ": the written file is incomplete, disk full? (" + problem + ")");
     }
-    // Data files first, the header (the target itself) last.
+    // Data files first, the header (the target itself) last; each one's content is the staged
+    // file, moved to the temporary name AtomicWriteAll gives it.
+    std::vector<AtomicFile> files;
+    for (const auto& entry : fs::directory_iterator(staging))
+    {
+      const fs::path file = entry.path();
+      files.push_back({ (folder / file.filename()).string(),
+        [file](const std::string& temp, std::string& why)
+        {
+          std::error_code moved;
+          fs::rename(file, temp, moved);
+          why = moved ? "cannot move the written file (" + moved.message() + ")" : "";
+          return !moved;
+        } });
+    }
     std::stable_partition(files.begin(),
       files.end(),
-      [&](const fs::path& f) { return f.filename() != target.filename(); });
-    for (const fs::path& file : files)
+      [&](const AtomicFile& f) { return fs::path(f.path).filename() != target.filename(); });
+    if (!AtomicWriteAll(files, problem))
     {
-      fs::rename(file, folder / file.filename(), ec);
-      if (ec)
-      {
-        throw VolumeWriteError(
-          path + ": cannot rename the finished file into place (" + ec.message() + ")");
-      }
-    }
-    const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
-    if (dir >= 0)
-    {
-      ::fsync(dir);
-      ::close(dir);
+      throw VolumeWriteError(path + ": " + problem);
     }
   }
   catch (...)

@@ -1,8 +1,8 @@
 #include "FlowExtensions.h"
 
-#include "ArrayVector.h"
 #include "BenderErrors.h"
 #include "MeshTopology.h"
+#include "Vec3.h"
 
 #include <vtkCellArray.h>
 #include <vtkPoints.h>
@@ -19,14 +19,7 @@ namespace bender
 {
 namespace
 {
-using vessel_detail::Cross;
-using vessel_detail::Distance;
-using vessel_detail::Dot;
-using vessel_detail::Lerp;
-using vessel_detail::Norm;
-using vessel_detail::Sub;
-using vessel_detail::Unit;
-using vessel_detail::V3;
+using V3 = std::array<double, 3>;
 
 /// True when extension `b` (its axis and rings of radius reachB, sampled) enters the cylinder
 /// of extension `a` (beyond a's rim plane, within 1.1 reachA of its axis).
@@ -44,7 +37,7 @@ bool Sweeps(const FlowExtensionEnd& a,
     return false;
   }
   V3 e1 = Cross(axisB, std::abs(axisB[0]) < 0.9 ? V3{ { 1, 0, 0 } } : V3{ { 0, 1, 0 } });
-  e1 = Unit(e1);
+  e1 = Normalized(e1);
   const V3 e2 = Cross(axisB, e1);
   const int rings = std::max(1, static_cast<int>(std::ceil(2.0 * lengthB / reachB)));
   for (int k = 0; k <= rings; ++k)
@@ -113,7 +106,7 @@ std::vector<double> ClearLengths(vtkPolyData* surface,
       surface->GetPoint(v, p.data());
       reach[k] = std::max(reach[k], Norm(Sub(p, end.Centre)));
     }
-    axis[k] = Unit(end.Normal);
+    axis[k] = Normalized(end.Normal);
     if (Norm(axis[k]) == 0.0 || !(end.Radius > 0) || !std::isfinite(end.Radius))
     {
       throw InputError("flow extensions: an end has no normal or no radius");
@@ -235,7 +228,7 @@ std::vector<FlowExtensionEnd> OpenEnds(vtkPolyData* surface)
     }
     end.Centre = c;
     end.Radius = std::sqrt(Norm(area) / M_PI);
-    end.Normal = Unit(area);
+    end.Normal = Normalized(area);
     if (Dot(end.Normal, Sub(c, mean)) < 0)
     {
       end.Normal = { { -end.Normal[0], -end.Normal[1], -end.Normal[2] } };
@@ -297,7 +290,7 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
     const FlowExtensionEnd& end = ends[index];
     const double factor = lengths[index] / end.Radius;
     const std::size_t m = end.Rim.size();
-    const V3 n = Unit(end.Normal);
+    const V3 n = Normalized(end.Normal);
     ExtendedEnd out;
     out.Normal = n;
     out.Radius = end.Radius;
@@ -335,10 +328,10 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
     }
     // The rim's radius as a function of the angle about n (the rim seen from its centre),
     // and its sense of travel.
-    V3 e1 = Unit(q[0]);
+    V3 e1 = Normalized(q[0]);
     if (Norm(e1) == 0.0)
     {
-      e1 = Unit(Cross(n, std::abs(n[0]) < 0.9 ? V3{ { 1, 0, 0 } } : V3{ { 0, 1, 0 } }));
+      e1 = Normalized(Cross(n, std::abs(n[0]) < 0.9 ? V3{ { 1, 0, 0 } } : V3{ { 0, 1, 0 } }));
     }
     const V3 e2 = Cross(n, e1);
     double turn = 0.0;

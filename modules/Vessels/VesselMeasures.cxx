@@ -1,5 +1,6 @@
 #include "VesselMeasures.h"
 
+#include "Vec3.h"
 #include "VesselArrayNames.h"
 
 #include <vtkCellArray.h>
@@ -22,43 +23,25 @@ namespace bender
 namespace
 {
 
-inline Point3 Sub(const Point3& a, const Point3& b)
-{
-  return { { a[0] - b[0], a[1] - b[1], a[2] - b[2] } };
-}
-inline double Dot(const Point3& a, const Point3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-inline double Norm(const Point3& a)
-{
-  return std::sqrt(Dot(a, a));
-}
-inline Point3 Normalized(const Point3& a)
-{
-  const double n = Norm(a);
-  return n > 0 ? Point3{ { a[0] / n, a[1] / n, a[2] / n } } : Point3{ { 0, 0, 0 } };
-}
-double AngleDegrees(const Point3& a, const Point3& b)
-{
-  const double na = Norm(a), nb = Norm(b);
-  if (na <= 0 || nb <= 0)
-  {
-    return 0.0;
-  }
-  const double c = std::max(-1.0, std::min(1.0, Dot(a, b) / (na * nb)));
-  return std::acos(c) * 180.0 / 3.14159265358979323846;
-}
-
 int CellValue(vtkPolyData* data, const char* name, vtkIdType cell, int fallback)
 {
   vtkDataArray* a = data->GetCellData()->GetArray(name);
   return a ? static_cast<int>(a->GetComponent(cell, 0)) : fallback;
 }
 
-// Direction of the polyline at its start (forward) or end, averaged over `span` of arc length:
-// the chord from the end point to the point `span` away.
-Point3 EndDirection(const std::vector<Point3>& p,
+std::vector<double> ArcLengths(const std::vector<Point3>& p)
+{
+  std::vector<double> s(p.size(), 0.0);
+  for (std::size_t i = 1; i < p.size(); ++i)
+  {
+    s[i] = s[i - 1] + Norm(Sub(p[i], p[i - 1]));
+  }
+  return s;
+}
+
+// Direction of the polyline at its start (forward) or end, over `span` of arc length: the
+// chord from the end point to the first point at least `span` away.
+Point3 ChordDirection(const std::vector<Point3>& p,
   const std::vector<double>& s,
   double span,
   bool atStart)
@@ -82,6 +65,113 @@ Point3 EndDirection(const std::vector<Point3>& p,
 }
 
 } // namespace
+
+double AngleDegrees(const Point3& a, const Point3& b)
+{
+  const double na = Norm(a), nb = Norm(b);
+  if (na <= 0 || nb <= 0)
+  {
+    return 0.0;
+  }
+  const double c = std::max(-1.0, std::min(1.0, Dot(a, b) / (na * nb)));
+  return std::acos(c) * 180.0 / 3.14159265358979323846;
+}
+
+double EndWindow(const std::vector<Point3>& points, const std::vector<double>& radii)
+{
+  if (points.size() < 2 || radii.empty())
+  {
+    return 0.0;
+  }
+  double meanR = 0.0;
+  for (double r : radii)
+  {
+    meanR += r;
+  }
+  meanR /= static_cast<double>(radii.size());
+  return std::min(meanR, ArcLengths(points).back() / 3.0);
+}
+
+std::array<Point3, 2> EndDirections(const std::vector<Point3>& points,
+  const std::vector<double>& radii)
+{
+  if (points.size() < 2)
+  {
+    return { { Point3{ { 0, 0, 0 } }, Point3{ { 0, 0, 0 } } } };
+  }
+  if (points.size() < 3)
+  {
+    const Point3 chord = Normalized(Sub(points[1], points[0]));
+    return { { chord, chord } };
+  }
+  const auto frames = ComputeCurveFrames(points, std::max(EndWindow(points, radii), 1e-9));
+  return { { frames.front().Tangent, frames.back().Tangent } };
+}
+
+BranchMeasures MeasureStretch(const std::vector<Point3>& p,
+  const std::vector<double>& r,
+  const std::vector<double>& curvatureIn)
+{
+  BranchMeasures m;
+  if (p.size() < 2 || r.size() != p.size())
+  {
+    return m;
+  }
+  const std::vector<double> s = ArcLengths(p);
+  double meanR = 0.0;
+  for (double v : r)
+  {
+    meanR += v;
+  }
+  meanR /= static_cast<double>(r.size());
+  // Curvature as given, else from local cubic fits over the mean radius.
+  std::vector<double> curvature = curvatureIn;
+  if (curvature.size() != p.size())
+  {
+    const auto frames = ComputeCurveFrames(p, std::max(meanR, 1e-9));
+    curvature.assign(p.size(), 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      curvature[i] = frames[i].Curvature;
+    }
+  }
+  m.Length = s.back();
+  m.Start = p.front();
+  m.End = p.back();
+  m.Chord = Norm(Sub(p.back(), p.front()));
+  m.Tortuosity = m.Chord > 0 ? m.Length / m.Chord : 0.0;
+  m.MinRadius = r[0];
+  m.MaxRadius = r[0];
+  double weightedR = 0.0, weightedK = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    if (r[i] < m.MinRadius)
+    {
+      m.MinRadius = r[i];
+      m.MinRadiusPosition = p[i];
+      m.MinRadiusAbscissa = s[i];
+    }
+    if (i == 0)
+    {
+      m.MinRadiusPosition = p[0];
+    }
+    m.MaxRadius = std::max(m.MaxRadius, r[i]);
+    m.MaxCurvature = std::max(m.MaxCurvature, curvature[i]);
+    if (i > 0)
+    {
+      const double ds = s[i] - s[i - 1];
+      weightedR += 0.5 * (r[i] + r[i - 1]) * ds;
+      weightedK += 0.5 * (curvature[i] + curvature[i - 1]) * ds;
+    }
+  }
+  m.MeanRadius = m.Length > 0 ? weightedR / m.Length : r[0];
+  m.MeanCurvature = m.Length > 0 ? weightedK / m.Length : 0.0;
+  const std::array<Point3, 2> ends = EndDirections(p, r);
+  m.StartTangent = ends[0];
+  m.EndTangent = ends[1];
+  m.BendAngle = AngleDegrees(m.StartTangent, m.EndTangent);
+  return m;
+}
 
 VesselMeasurements MeasureBranches(vtkPolyData* branches)
 {
@@ -123,88 +213,21 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches)
       r[i] = radius->GetComponent(ids[i], 0);
     }
     // Curvature from the arrays when present, else from local cubic fits.
-    std::vector<double> curvature(p.size(), 0.0);
-    vtkDataArray* curvatureArray = branches->GetPointData()->GetArray(VesselArrays::Curvature);
-    std::vector<double> s(p.size(), 0.0);
-    for (std::size_t i = 1; i < p.size(); ++i)
+    std::vector<double> curvature;
+    if (vtkDataArray* k = branches->GetPointData()->GetArray(VesselArrays::Curvature))
     {
-      s[i] = s[i - 1] + Norm(Sub(p[i], p[i - 1]));
-    }
-    double meanR = 0.0;
-    for (double v : r)
-    {
-      meanR += v;
-    }
-    meanR /= static_cast<double>(r.size());
-    if (curvatureArray)
-    {
+      curvature.resize(p.size());
       for (std::size_t i = 0; i < p.size(); ++i)
       {
-        curvature[i] = curvatureArray->GetComponent(ids[i], 0);
+        curvature[i] = k->GetComponent(ids[i], 0);
       }
     }
-    else
-    {
-      const auto frames = ComputeCurveFrames(p, std::max(meanR, 1e-9));
-      for (std::size_t i = 0; i < p.size(); ++i)
-      {
-        curvature[i] = frames[i].Curvature;
-      }
-    }
-    BranchMeasures m;
+    BranchMeasures m = MeasureStretch(p, r, curvature);
     m.BranchId = CellValue(branches, VesselArrays::BranchId, cellId, static_cast<int>(cellId));
     m.ParentBranchId = CellValue(branches, VesselArrays::ParentBranchId, cellId, -1);
     m.StartBifurcationId = CellValue(branches, VesselArrays::StartBifurcationId, cellId, -1);
     m.EndBifurcationId = CellValue(branches, VesselArrays::EndBifurcationId, cellId, -1);
     m.EndpointId = CellValue(branches, VesselArrays::EndpointId, cellId, -1);
-    m.Length = s.back();
-    m.Start = p.front();
-    m.End = p.back();
-    m.Chord = Norm(Sub(p.back(), p.front()));
-    m.Tortuosity = m.Chord > 0 ? m.Length / m.Chord : 0.0;
-    m.MinRadius = r[0];
-    m.MaxRadius = r[0];
-    double weightedR = 0.0, weightedK = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i)
-    {
-      if (r[i] < m.MinRadius)
-      {
-        m.MinRadius = r[i];
-        m.MinRadiusPosition = p[i];
-        m.MinRadiusAbscissa = s[i];
-      }
-      if (i == 0)
-      {
-        m.MinRadiusPosition = p[0];
-      }
-      m.MaxRadius = std::max(m.MaxRadius, r[i]);
-      m.MaxCurvature = std::max(m.MaxCurvature, curvature[i]);
-      if (i > 0)
-      {
-        const double ds = s[i] - s[i - 1];
-        weightedR += 0.5 * (r[i] + r[i - 1]) * ds;
-        weightedK += 0.5 * (curvature[i] + curvature[i - 1]) * ds;
-      }
-    }
-    m.MeanRadius = m.Length > 0 ? weightedR / m.Length : r[0];
-    m.MeanCurvature = m.Length > 0 ? weightedK / m.Length : 0.0;
-    // End tangents over one mean radius (at most a third of the branch).
-    const double span = std::min(meanR, m.Length / 3.0);
-    m.StartTangent = EndDirection(p, s, span, true);
-    m.EndTangent = EndDirection(p, s, span, false);
-    vtkDataArray* tangent = branches->GetPointData()->GetArray(VesselArrays::FrenetTangent);
-    if (tangent && tangent->GetNumberOfComponents() == 3)
-    {
-      Point3 t0, t1;
-      tangent->GetTuple(ids[0], t0.data());
-      tangent->GetTuple(ids[npts - 1], t1.data());
-      if (Norm(t0) > 0.5 && Norm(t1) > 0.5)
-      {
-        m.StartTangent = Normalized(t0);
-        m.EndTangent = Normalized(t1);
-      }
-    }
-    m.BendAngle = AngleDegrees(m.StartTangent, m.EndTangent);
     out.Branches.push_back(m);
     allPoints.push_back(p);
   }
@@ -263,12 +286,8 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches)
     if (parent != byId.end())
     {
       const auto& p = allPoints[parent->second];
-      std::vector<double> s(p.size(), 0.0);
-      for (std::size_t k = 1; k < p.size(); ++k)
-      {
-        s[k] = s[k - 1] + Norm(Sub(p[k], p[k - 1]));
-      }
-      parentDirection = EndDirection(p, s, 2.0 * out.Branches[parent->second].MeanRadius, false);
+      const std::vector<double> s = ArcLengths(p);
+      parentDirection = ChordDirection(p, s, 2.0 * out.Branches[parent->second].MeanRadius, false);
       if (bifPoints == nullptr)
       {
         bif.Position = p.back();
@@ -279,12 +298,8 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches)
     {
       const std::size_t c = byId[child];
       const auto& p = allPoints[c];
-      std::vector<double> s(p.size(), 0.0);
-      for (std::size_t k = 1; k < p.size(); ++k)
-      {
-        s[k] = s[k - 1] + Norm(Sub(p[k], p[k - 1]));
-      }
-      const Point3 d = EndDirection(p, s, 2.0 * out.Branches[c].MeanRadius, true);
+      const std::vector<double> s = ArcLengths(p);
+      const Point3 d = ChordDirection(p, s, 2.0 * out.Branches[c].MeanRadius, true);
       childDirections.push_back(d);
       bif.ParentChildAngles.push_back(AngleDegrees(parentDirection, d));
     }

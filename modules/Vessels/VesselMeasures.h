@@ -7,6 +7,7 @@
 
 #include "VesselCenterlines.h"
 
+#include <array>
 #include <set>
 #include <string>
 #include <vector>
@@ -57,11 +58,37 @@ struct VesselMeasurements
   std::string Message;
 };
 
-/// Measures every polyline cell of `branches`. Needs point data MaximumInscribedSphereRadius;
-/// uses Curvature and FrenetTangent when present (recomputed from the points otherwise) and the
-/// cell data of ComputeCenterlines' branch output when present (each cell its own branch
-/// otherwise). Tangent directions at the ends are averaged over one local radius so that the
-/// bend angle does not depend on a single sample. Throws std::invalid_argument for null input.
+/// Angle in degrees between two directions; 0 when either is the zero vector.
+double AngleDegrees(const Point3& a, const Point3& b);
+
+///@{ The end-window rule: the one way every branch length, end tangent and bend angle is
+/// measured, by MeasureBranches (the plan's table, `bender-cli measure`, the JSON) and by the
+/// live measures of the branch held under the ribbon (VesselSession::MeasureHeld), so that the
+/// live panel and the plan's table agree on the same stretch. The direction at each end of a
+/// centerline stretch is the unit tangent at its end sample of the least-squares cubic fit over
+/// one window of arc length (ComputeCurveFrames: at least seven samples), pointing from the
+/// start towards the end; the window is the stretch's mean inscribed radius (the plain mean of
+/// `radii`), at most a third of its length. A stretch of two samples takes its chord at both
+/// ends. The bend angle is the angle between the start and end directions.
+double EndWindow(const std::vector<Point3>& points, const std::vector<double>& radii);
+std::array<Point3, 2> EndDirections(const std::vector<Point3>& points,
+  const std::vector<double>& radii);
+///@}
+
+/// The measures of one centerline stretch: `points` from its start to its end (at least two),
+/// `radii` the inscribed radius at each (mm), `curvature` at each (1/mm; empty: from local
+/// cubic fits over the mean radius). Length, chord, tortuosity, radii, curvature, end tangents
+/// and bend angle (the end-window rule above); ids are left at -1, Outlets empty. Too few
+/// points or radii of another count give the default (zero) measures.
+BranchMeasures MeasureStretch(const std::vector<Point3>& points,
+  const std::vector<double>& radii,
+  const std::vector<double>& curvature = {});
+
+/// Measures every polyline cell of `branches` with MeasureStretch. Needs point data
+/// MaximumInscribedSphereRadius; uses Curvature when present (recomputed from the points
+/// otherwise) and the cell data of ComputeCenterlines' branch output when present (each cell
+/// its own branch otherwise). The directions of the branches at a bifurcation (its angles) are
+/// chords over twice each branch's mean radius. Throws std::invalid_argument for null input.
 VesselMeasurements MeasureBranches(vtkPolyData* branches);
 
 struct BranchChange

@@ -25,6 +25,12 @@ TEST(StringUtil, ExtensionsAndNames)
   EXPECT_EQ(bender::DisplayName("aneurysm.stl"), "aneurysm.stl");
 }
 
+TEST(StringUtil, PointsInMessages)
+{
+  EXPECT_EQ(bender::FormatPoint({ { 1.0, -2.5, 0.0 } }), "(1, -2.5, 0)");
+  EXPECT_EQ(bender::FormatPoint({ { 12.34567, 1e-7, 123456.0 } }), "(12.35, 1e-07, 1.235e+05)");
+}
+
 TEST(StringUtil, AffixesAndTrim)
 {
   EXPECT_TRUE(bender::StartsWith("solid wall", "solid"));

@@ -3,10 +3,13 @@
 // equals the angle between the plan's initial and final end tangents within 2 degrees).
 
 #include "BenderErrors.h"
+#include "BenderSession.h"
 #include "CenterlineRibbonPlacement.h"
 #include "DemoPipeline.h"
 #include "MeshIO.h"
 #include "VesselArrayNames.h"
+#include "VesselMeasureTable.h"
+#include "VesselSession.h"
 #include "VesselTestUtilities.h"
 #include "VesselWorkflows.h"
 #include "WarpPlanIO.h"
@@ -18,6 +21,8 @@
 #include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -317,4 +322,99 @@ TEST(VesselWorkflow, RibbonOnTheCenterlineFromTwoPicks)
   EXPECT_THROW(PlaceRibbonOnCenterline(paths, sac, wallPick(150)), RibbonPlacementError);
   EXPECT_THROW(PlaceRibbonOnCenterline(paths, wallPick(30), wallPick(31)), RibbonPlacementError);
   EXPECT_THROW(PlaceRibbonOnCenterline(nullptr, wallPick(30), wallPick(150)), RibbonPlacementError);
+}
+
+// A measure registered in the vessel measure table appears in every list the CLI prints
+// (the JSON of `centerline --json` and `measure --json`, per branch and in the change, and
+// the text tables of `measure`) without a change to the callers, and leaves them with it.
+TEST(VesselWorkflow, ARegisteredMeasureAppearsInTheJsonAndTheTextTables)
+{
+  const test::Curve axis = [](double t) { return Point3{ { 0.0, 0.3 * t, t } }; };
+  MeasureWorkflowResult result;
+  result.before.surface = test::SweptTube(axis, 0.0, 30.0, 61, 32, 2.0);
+  result.before.centerlines = ComputeCenterlines(result.before.surface);
+  ASSERT_TRUE(result.before.centerlines.Ok) << result.before.centerlines.Message;
+  result.before.measures = MeasureBranches(result.before.centerlines.Branches);
+  ASSERT_EQ(result.before.measures.Branches.size(), 1u);
+  result.after = result.before;
+  BranchComparison same;
+  same.before = result.before.measures.Branches[0];
+  same.after = result.after->measures.Branches[0];
+  result.branches.push_back(same);
+  const double length = result.before.measures.Branches[0].Length;
+
+  RegisterVesselMeasure(
+    { "twiceTheLength", "Twice the length", "mm", 3, [](const BranchMeasures& b) {
+       return 2.0 * b.Length;
+     } });
+  const auto json = nlohmann::json::parse(MeasurementsToJson(result));
+  const auto centerlineJson = nlohmann::json::parse(CenterlinesToJson(result.before));
+  const std::string text = MeasurementsToText(result);
+  EXPECT_TRUE(UnregisterVesselMeasure("twiceTheLength"));
+
+  EXPECT_NEAR(json["before"]["branches"][0]["twiceTheLength"].get<double>(), 2 * length, 1e-4);
+  EXPECT_NEAR(json["after"]["branches"][0]["twiceTheLength"].get<double>(), 2 * length, 1e-4);
+  EXPECT_EQ(json["comparison"][0]["change"]["twiceTheLength"].get<double>(), 0.0);
+  EXPECT_NEAR(centerlineJson["branches"][0]["twiceTheLength"].get<double>(), 2 * length, 1e-4);
+  EXPECT_NE(text.find("Twice the length (mm)"), std::string::npos) << text;
+  char value[32];
+  std::snprintf(value, sizeof(value), "%.3f", 2 * length);
+  EXPECT_NE(text.find(value), std::string::npos) << text;
+  EXPECT_NE(text.find("+0.000"), std::string::npos) << text;
+  // Every row of the table is in the JSON; unregistered, the dummy is gone.
+  for (const VesselMeasure& m : VesselMeasureTable())
+  {
+    EXPECT_TRUE(centerlineJson["branches"][0].contains(m.Key)) << m.Key;
+  }
+  EXPECT_EQ(CenterlinesToJson(result.before).find("twiceTheLength"), std::string::npos);
+  EXPECT_EQ(MeasurementsToText(result).find("Twice the length"), std::string::npos);
+}
+
+// The demo's bend on the demo surface: the live measures of the branch held under the ribbon
+// (the panel) and the plan table's measures (MeasureBranches) of the same stretch agree, before
+// the bend and during it: both follow the one end-window rule (VesselMeasures.h).
+TEST(VesselWorkflow, LiveMeasuresAndThePlanTableAgreeOnTheDemo)
+{
+  const WarpPlan plan = ReadWarpPlan(DemoPlan);
+  ASSERT_EQ(plan.warps.size(), 1u);
+  const WarpSpec& demo = plan.warps[0];
+  BenderSession session;
+  ASSERT_TRUE(session.LoadSurface(Aneurysm));
+  VesselSession vessels;
+  auto job = vessels.BeginCenterlines(session);
+  ASSERT_TRUE(job);
+  job->Run({});
+  std::string message;
+  ASSERT_TRUE(vessels.Finish(*job, message)) << message;
+  ASSERT_TRUE(vessels.HoldBranch(demo.initial, session.GetSurface()));
+  const auto agree = [](const HeldBranchMeasures& live, vtkPolyData* stretch)
+  {
+    ASSERT_TRUE(live.Valid);
+    ASSERT_NE(stretch, nullptr);
+    const VesselMeasurements table = MeasureBranches(stretch);
+    ASSERT_EQ(table.Branches.size(), 1u);
+    for (const VesselMeasure& m : VesselMeasureTable())
+    {
+      EXPECT_NEAR(m.Get(live), m.Get(table.Branches[0]), 1e-9 * (1.0 + std::abs(m.Get(live))))
+        << m.Key;
+    }
+  };
+  const HeldBranchMeasures before = vessels.MeasureHeld();
+  agree(before, vessels.HeldStretch());
+
+  WarpParameters parameters = session.GetParameters();
+  parameters.radius = demo.radius;
+  ASSERT_TRUE(session.SetParameters(parameters));
+  ASSERT_TRUE(session.Grab(demo.initial));
+  ASSERT_TRUE(session.MoveFinal(demo.final)) << session.GetLiveProblem();
+  const WarpSpec live = LiveWarpOf(session);
+  const HeldBranchMeasures now = vessels.MeasureHeld(live);
+  agree(now, vessels.HeldStretch(live));
+  std::printf("demo held stretch: length %.2f -> %.2f mm, bend %.2f -> %.2f deg\n",
+    before.Length,
+    now.Length,
+    before.BendAngle,
+    now.BendAngle);
+  EXPECT_GT(std::abs(now.BendAngle - before.BendAngle), 10.0) << "the demo bends the branch";
+  session.CancelGrab("test done");
 }
