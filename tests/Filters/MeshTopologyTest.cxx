@@ -1,4 +1,4 @@
-// MeshTopology: triangles of a polydata, union-find, edges, boundary loops, components.
+// MeshTopology: triangles of a polydata, edges, boundary loops, components.
 
 #include "MeshTopology.h"
 
@@ -25,20 +25,6 @@ vtkSmartPointer<vtkPolyData> Triangulated(vtkAlgorithm* source)
   tri->SetInputConnection(source->GetOutputPort());
   tri->Update();
   return tri->GetOutput();
-}
-
-TEST(UnionFind, JoinsAndCountsSets)
-{
-  bender::UnionFind sets(6);
-  EXPECT_EQ(sets.Sets(), 6u);
-  EXPECT_TRUE(sets.Join(4, 2));
-  EXPECT_TRUE(sets.Join(2, 5));
-  EXPECT_FALSE(sets.Join(5, 4));
-  EXPECT_EQ(sets.Sets(), 4u);
-  EXPECT_EQ(sets.Find(5), 2u); // the smallest element represents its set
-  EXPECT_EQ(sets.Find(4), 2u);
-  EXPECT_EQ(sets.Find(0), 0u);
-  EXPECT_NE(sets.Find(1), sets.Find(3));
 }
 
 TEST(MeshTopology, CollectTrianglesFansPolygonsAndConvertsStrips)
