@@ -44,6 +44,7 @@ std::vector<Point3> Arc(double bend, double angle, double step)
 vtkSmartPointer<vtkPolyData> Polyline(const std::vector<Point3>& p, const std::vector<double>& r)
 {
   vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
   vtkNew<vtkDoubleArray> radius;
   radius->SetName(VesselArrays::MaximumInscribedSphereRadius);
   vtkNew<vtkCellArray> lines;
