@@ -16,11 +16,6 @@ namespace bender
 
 namespace
 {
-Vec3 ToVec3(const std::array<double, 3>& p)
-{
-  return { p[0], p[1], p[2] };
-}
-
 Vec3 Corner(const std::vector<std::array<double, 3>>& points, vtkIdType id)
 {
   return ToVec3(points[static_cast<std::size_t>(id)]);
