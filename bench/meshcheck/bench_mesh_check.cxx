@@ -1,5 +1,5 @@
 // bench_mesh_check: the mesh check's self-intersection search (its own uniform grid of triangle
-// bounding boxes, modules/Filters/BenderMeshCheck.cxx) against the same search written with
+// bounding boxes, modules/Filters/MeshSelfIntersections.cxx) against the same search written with
 // VTK's vtkStaticCellLocator, in the same run, on the same meshes:
 // - the demo vessel (the segmented demo volume, about 55 k triangles, no self-intersection);
 // - the demo vessel with a copy of itself moved by 1 mm (about 110 k triangles, thousands of

@@ -82,9 +82,9 @@ bool TrianglesIntersect(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>&
 // The self-intersection search over a uniform grid of triangle bounding boxes, each pair of
 // overlapping boxes tested once, cells in parallel. Kept instead of vtkStaticCellLocator:
 // MeshCheck.SelfIntersectionPairsMatchAnAllPairsSearch proves it finds exactly the pairs of
-// an all-pairs search, and on the million-triangle sphere of MeshCheck.MillionTrianglesInSeconds
-// one FindCellsWithinBounds query per triangle took 338 s against 6 s for this grid
-// (measured once on the shared, loaded build machine; VTK 9.1).
+// an all-pairs search, and bench_mesh_check times both in the same run, with the same pairs
+// found: the locator with one FindCellsWithinBounds query per triangle is 23-37x slower on the
+// demo vessel (VTK 9.1; docs/performance.md).
 struct IntersectionWorker
 {
   const std::vector<std::int64_t>& Tris;

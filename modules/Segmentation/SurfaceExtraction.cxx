@@ -405,8 +405,8 @@ std::vector<double> WindowedSincCoefficients(int iterations, double passBand)
 /// iteration runs in parallel (vtkSMPTools) on a compact neighbour table. Returns null when the
 /// surface is not such a surface (the caller then uses VTK's filter).
 /// Kept instead of VTK's filter because it gives the same points (within 1e-4 mm:
-/// SurfaceExtraction.SmoothingMatchesVtkWindowedSinc) about twice as fast on the vessel
-/// surfaces (docs/segmentation.md, performance table).
+/// SurfaceExtraction.SmoothingMatchesVtkWindowedSinc) 1.7-2.7x as fast on the vessel surfaces
+/// (bench_segmentation --smoothing-only, both in the same run; docs/performance.md).
 vtkSmartPointer<vtkPolyData> SmoothClosedSurface(vtkPolyData* surface,
   int iterations,
   double passBand,
