@@ -156,6 +156,20 @@ BENDER_SIMD_INLINE void WarpAt(const Path& pi,
   outz = still ? z : (translation ? z + hz * f : mz);
 }
 
+/// WarpAt for lane k of a block, with projection parameter s and the rotation r (r0 or r1).
+BENDER_SIMD_INLINE void WarpLane(const Path& pi,
+  const Path& pf,
+  const Block& b,
+  int k,
+  double s,
+  const double (&r)[4][Lanes],
+  double& x,
+  double& y,
+  double& z)
+{
+  WarpAt(pi, pf, s, r[0][k], r[1][k], r[2][k], r[3][k], b.f[k], b.px[k], b.py[k], b.pz[k], x, y, z);
+}
+
 BENDER_SIMD_INLINE void RunBody(const Path* paths, Block& b, bool pairs)
 {
   // Local copies: the stores into b cannot alias them, so their loads leave the loop and the
@@ -166,20 +180,7 @@ BENDER_SIMD_INLINE void RunBody(const Path* paths, Block& b, bool pairs)
   for (int k = 0; k < Lanes; ++k)
   {
     double x, y, z;
-    WarpAt(pi,
-      pf,
-      b.s0[k],
-      b.r0[0][k],
-      b.r0[1][k],
-      b.r0[2][k],
-      b.r0[3][k],
-      b.f[k],
-      b.px[k],
-      b.py[k],
-      b.pz[k],
-      x,
-      y,
-      z);
+    WarpLane(pi, pf, b, k, b.s0[k], b.r0, x, y, z);
     b.ox[k] = x;
     b.oy[k] = y;
     b.oz[k] = z;
@@ -193,20 +194,7 @@ BENDER_SIMD_INLINE void RunBody(const Path* paths, Block& b, bool pairs)
   for (int k = 0; k < Lanes; ++k)
   {
     double x, y, z;
-    WarpAt(pi,
-      pf,
-      b.s1[k],
-      b.r1[0][k],
-      b.r1[1][k],
-      b.r1[2][k],
-      b.r1[3][k],
-      b.f[k],
-      b.px[k],
-      b.py[k],
-      b.pz[k],
-      x,
-      y,
-      z);
+    WarpLane(pi, pf, b, k, b.s1[k], b.r1, x, y, z);
     const double l0 = b.lambda0[k];
     const bool two = l0 < 1.0;
     b.ox[k] = two ? b.ox[k] * l0 + x * (1.0 - l0) : b.ox[k];

@@ -16,6 +16,17 @@ struct Frame
   Vec3 B{ 0, 0, 1 };
 };
 
+/// The frame with tangent T and normal N at the origin, completed by B = T x N (T and N are
+/// taken as given: unit and orthogonal).
+inline Frame FrameOfTangentNormal(const Vec3& T, const Vec3& N)
+{
+  Frame frame;
+  frame.T = T;
+  frame.N = N;
+  frame.B = Cross(T, N);
+  return frame;
+}
+
 } // namespace bender
 
 #endif

@@ -167,27 +167,19 @@ RibbonWarp::FramePath::FramePath(const Ribbon& ribbon)
   // Arc 1: N = Rot(n1, theta1 u) Rot(T0, tau s) N0, T = Rot(n1, theta1 u) T0.
   Piece& p1 = this->pieces[0];
   p1.arc = w.FirstArc();
-  Frame m0;
-  m0.T = w.StartTangent();
-  m0.N = ribbon.StartNormal();
-  m0.B = Cross(m0.T, m0.N);
-  p1.base = QuaternionOfFrame(m0);
+  p1.base = QuaternionOfFrame(FrameOfTangentNormal(w.StartTangent(), ribbon.StartNormal()));
   p1.twistOffset = 0.0;
   // Arc 2: N = Rot(n2, -theta2 (1 - u)) Rot(T1, -(1 - s) tau) N1
   //          = Rot(n2, theta2 u) Rot(Tj, tau s - tau) Rot(n2, -theta2) N1,
   // since Rot(n2, -theta2) carries T1 to the arc's start tangent Tj.
   Piece& p2 = this->pieces[1];
   p2.arc = w.SecondArc();
-  Frame m1;
-  m1.T = w.EndTangent();
-  m1.N = ribbon.EndNormal();
-  m1.B = Cross(m1.T, m1.N);
   const double h2 = -0.5 * p2.arc.angle;
   const Vec3 n2 = p2.arc.line ? Vec3{ 0.0, 0.0, 0.0 } : p2.arc.axis;
   const Quaternion back{
     std::cos(h2), std::sin(h2) * n2.x, std::sin(h2) * n2.y, std::sin(h2) * n2.z
   };
-  p2.base = back * QuaternionOfFrame(m1);
+  p2.base = back * QuaternionOfFrame(FrameOfTangentNormal(w.EndTangent(), ribbon.EndNormal()));
   p2.twistOffset = -this->tau;
 }
 

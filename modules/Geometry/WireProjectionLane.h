@@ -237,22 +237,11 @@ BENDER_SIMD_INLINE void Project(const FlatWire& w,
   const bool in2 = (hJ >= 0.0) & (h1 <= 0.0) & ok;
   k.clamped = k.clamped | (in2 & clamped);
   Offer(k, in2, radius, w.sJ + (1.0 - w.sJ) * u, DistanceTo(px, py, pz, qx, qy, qz), qx, qy, qz);
-  Offer(k,
-    h0 < 0.0,
-    radius,
-    0.0,
-    DistanceTo(px, py, pz, w.start[0], w.start[1], w.start[2]),
-    w.start[0],
-    w.start[1],
-    w.start[2]);
-  Offer(k,
-    h1 > 0.0,
-    radius,
-    1.0,
-    DistanceTo(px, py, pz, w.end[0], w.end[1], w.end[2]),
-    w.end[0],
-    w.end[1],
-    w.end[2]);
+  // The wire's two end points, at s = 0 and s = 1.
+  const auto offerEnd = [&](bool valid, double s, const double* e)
+  { Offer(k, valid, radius, s, DistanceTo(px, py, pz, e[0], e[1], e[2]), e[0], e[1], e[2]); };
+  offerEnd(h0 < 0.0, 0.0, w.start);
+  offerEnd(h1 > 0.0, 1.0, w.end);
 }
 
 /// Project for one point, the arcs' kinds read at run time.
@@ -338,6 +327,46 @@ struct Block
   alignas(64) double f[BlockSize], lambda0[BlockSize], flag[BlockSize];
 };
 
+/// One candidate projection of a point: valid or not, its parameter, distance and foot.
+struct Candidate
+{
+  bool valid;
+  double s, d, qx, qy, qz;
+};
+
+/// OfferTo on point i of a block: its kept projections (and, with Feet, their feet) are read
+/// from the block and written back.
+template<bool Feet>
+BENDER_SIMD_INLINE void OfferToBlock(const Candidate& c, double radius, Block& b, int i)
+{
+  double s0 = b.s0[i], d0 = b.d0[i], s1 = b.s1[i], d1 = b.d1[i];
+  double q0x = 0.0, q0y = 0.0, q0z = 0.0, q1x = 0.0, q1y = 0.0, q1z = 0.0;
+  if (Feet)
+  {
+    q0x = b.q0x[i];
+    q0y = b.q0y[i];
+    q0z = b.q0z[i];
+    q1x = b.q1x[i];
+    q1y = b.q1y[i];
+    q1z = b.q1z[i];
+  }
+  OfferTo(
+    c.valid, radius, c.s, c.d, c.qx, c.qy, c.qz, s0, d0, q0x, q0y, q0z, s1, d1, q1x, q1y, q1z);
+  b.s0[i] = s0;
+  b.d0[i] = d0;
+  b.s1[i] = s1;
+  b.d1[i] = d1;
+  if (Feet)
+  {
+    b.q0x[i] = q0x;
+    b.q0y[i] = q0y;
+    b.q0z[i] = q0z;
+    b.q1x[i] = q1x;
+    b.q1y[i] = q1y;
+    b.q1z[i] = q1z;
+  }
+}
+
 template<int A, bool Line, bool Feet>
 BENDER_SIMD_INLINE void ArcPass(const FlatWire& w, double radius, Block& b, int n)
 {
@@ -353,31 +382,7 @@ BENDER_SIMD_INLINE void ArcPass(const FlatWire& w, double radius, Block& b, int 
     const bool valid = A == 0 ? (h0 >= 0.0) & (hJ < 0.0) & ok : (hJ >= 0.0) & (h1 <= 0.0) & ok;
     const double s = A == 0 ? sJ * u : sJ + (1.0 - sJ) * u;
     const double d = DistanceTo(b.x[i], b.y[i], b.z[i], qx, qy, qz);
-    double s0 = b.s0[i], d0 = b.d0[i], s1 = b.s1[i], d1 = b.d1[i];
-    double q0x = 0.0, q0y = 0.0, q0z = 0.0, q1x = 0.0, q1y = 0.0, q1z = 0.0;
-    if (Feet)
-    {
-      q0x = b.q0x[i];
-      q0y = b.q0y[i];
-      q0z = b.q0z[i];
-      q1x = b.q1x[i];
-      q1y = b.q1y[i];
-      q1z = b.q1z[i];
-    }
-    OfferTo(valid, radius, s, d, qx, qy, qz, s0, d0, q0x, q0y, q0z, s1, d1, q1x, q1y, q1z);
-    b.s0[i] = s0;
-    b.d0[i] = d0;
-    b.s1[i] = s1;
-    b.d1[i] = d1;
-    if (Feet)
-    {
-      b.q0x[i] = q0x;
-      b.q0y[i] = q0y;
-      b.q0z[i] = q0z;
-      b.q1x[i] = q1x;
-      b.q1y[i] = q1y;
-      b.q1z[i] = q1z;
-    }
+    OfferToBlock<Feet>(Candidate{ valid, s, d, qx, qy, qz }, radius, b, i);
   }
 }
 
@@ -393,31 +398,7 @@ BENDER_SIMD_INLINE void EndPass(const FlatWire& w, double radius, Block& b, int 
   {
     const bool valid = AtEnd ? b.h1[i] > 0.0 : b.h0[i] < 0.0;
     const double d = DistanceTo(b.x[i], b.y[i], b.z[i], ex, ey, ez);
-    double s0 = b.s0[i], d0 = b.d0[i], s1 = b.s1[i], d1 = b.d1[i];
-    double q0x = 0.0, q0y = 0.0, q0z = 0.0, q1x = 0.0, q1y = 0.0, q1z = 0.0;
-    if (Feet)
-    {
-      q0x = b.q0x[i];
-      q0y = b.q0y[i];
-      q0z = b.q0z[i];
-      q1x = b.q1x[i];
-      q1y = b.q1y[i];
-      q1z = b.q1z[i];
-    }
-    OfferTo(valid, radius, s, d, ex, ey, ez, s0, d0, q0x, q0y, q0z, s1, d1, q1x, q1y, q1z);
-    b.s0[i] = s0;
-    b.d0[i] = d0;
-    b.s1[i] = s1;
-    b.d1[i] = d1;
-    if (Feet)
-    {
-      b.q0x[i] = q0x;
-      b.q0y[i] = q0y;
-      b.q0z[i] = q0z;
-      b.q1x[i] = q1x;
-      b.q1y[i] = q1y;
-      b.q1z[i] = q1z;
-    }
+    OfferToBlock<Feet>(Candidate{ valid, s, d, ex, ey, ez }, radius, b, i);
   }
 }
 

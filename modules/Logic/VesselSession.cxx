@@ -1,6 +1,7 @@
 #include "VesselSession.h"
 
 #include "BenderSession.h"
+#include "PolyDataCopy.h"
 #include "RibbonWarp.h"
 #include "Vec3.h"
 #include "VesselArrayNames.h"
@@ -24,13 +25,6 @@ namespace bender
 {
 namespace
 {
-
-vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* surface)
-{
-  auto copy = vtkSmartPointer<vtkPolyData>::New();
-  copy->DeepCopy(surface);
-  return copy;
-}
 
 /// The points of one polyline cell of `lines`.
 std::vector<vtkIdType> CellIds(vtkPolyData* lines, vtkIdType cell)
@@ -126,10 +120,10 @@ std::shared_ptr<CenterlineJob> VesselSession::BeginCenterlines(const BenderSessi
   {
     job->OriginalResult = this->OriginalResult;
   }
-  job->Original = Copy(original);
+  job->Original = DeepCopyOf(original);
   if (surface != original)
   {
-    job->Current = Copy(surface);
+    job->Current = DeepCopyOf(surface);
   }
   // A new surface (a load, a segmentation) drops what was shown for the previous one.
   if (!sameOriginal)

@@ -1,19 +1,11 @@
 #include "WarpHistory.h"
 
+#include "PolyDataCopy.h"
+
 #include <vtkPolyData.h>
 
 namespace bender
 {
-
-namespace
-{
-vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* surface)
-{
-  auto copy = vtkSmartPointer<vtkPolyData>::New();
-  copy->DeepCopy(surface);
-  return copy;
-}
-}
 
 void WarpHistory::Reset(vtkPolyData* original)
 {
@@ -22,7 +14,7 @@ void WarpHistory::Reset(vtkPolyData* original)
   this->Index = 0;
   if (original)
   {
-    this->Surfaces.push_back(Copy(original));
+    this->Surfaces.push_back(DeepCopyOf(original));
   }
 }
 
@@ -34,7 +26,7 @@ void WarpHistory::Commit(const WarpSpec& warp, vtkPolyData* result)
   }
   this->Surfaces.resize(this->Index + 1);
   this->Warps.resize(this->Index);
-  this->Surfaces.push_back(Copy(result));
+  this->Surfaces.push_back(DeepCopyOf(result));
   this->Warps.push_back(warp);
   ++this->Index;
 }
