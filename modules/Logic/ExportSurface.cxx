@@ -160,106 +160,94 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
   result.triangles = static_cast<long long>(mesh->GetNumberOfPolys());
   result.surface = mesh;
 
-  try
+  result.patches = ReadPatchLabels(mesh);
+  const ExportTransform transform(options.frame, options.unit);
+  std::vector<AtomicFile> files;
+  if (rules.measure)
   {
-    result.patches = ReadPatchLabels(mesh);
-    const ExportTransform transform(options.frame, options.unit);
-    std::vector<AtomicFile> files;
-    if (rules.measure)
+    AtomicFile sidecar = PatchSidecarFile(mesh, sidecarPath, transform, &result.sidecar);
+    result.measured = true;
+    if (rules.sidecar)
     {
-      AtomicFile sidecar = PatchSidecarFile(mesh, sidecarPath, transform, &result.sidecar);
-      result.measured = true;
-      if (rules.sidecar)
-      {
-        files.push_back(std::move(sidecar));
-      }
-    }
-    TetgenFormat tetgen = TetgenFormat::Smesh;
-    if (format.namedPatches)
-    {
-      StlExportOptions stlOptions;
-      stlOptions.patches = rules.patches;
-      stlOptions.frame = options.frame;
-      stlOptions.unit = options.unit;
-      if (!options.protectedPath.empty())
-      {
-        // With one file per patch the names derive from the output: none may be the input.
-        for (const std::string& planned : PlannedStlPaths(mesh, path, stlOptions))
-        {
-          if (SameFile(planned, options.protectedPath))
-          {
-            throw InputError(
-              planned + ": refusing to overwrite the input file; choose another output");
-          }
-        }
-      }
-      std::vector<AtomicFile> stlFiles = StlFiles(mesh, path, stlOptions);
-      files.insert(files.begin(), stlFiles.begin(), stlFiles.end());
-    }
-    else if (format.regionPoint && TetgenFormatForPath(path, tetgen))
-    {
-      files.insert(files.begin(),
-        TetgenFile(mesh,
-          path,
-          tetgen,
-          transform,
-          result.sidecar.hasInsidePoint ? result.sidecar.insidePoint.data() : nullptr));
-    }
-    else
-    {
-      vtkSmartPointer<vtkPolyData> written = mesh;
-      if (options.frame == StlFrame::RAS || options.unit != "mm" || format.patchLabels)
-      {
-        // RAS negates x and y (a half turn about z: orientation and volume are kept); metres
-        // divide by 1000.
-        written = vtkSmartPointer<vtkPolyData>::New();
-        written->DeepCopy(mesh);
-        vtkPoints* pts = written->GetPoints();
-        for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i)
-        {
-          double p[3], q[3];
-          pts->GetPoint(i, p);
-          transform.Apply(p, q);
-          pts->SetPoint(i, q);
-        }
-      }
-      if (format.patchLabels)
-      {
-        // The VTK form states its frame and unit in field data beside the patch names.
-        for (const auto& [name, value] :
-          { std::pair<const char*, std::string>{ "Unit", options.unit },
-            std::pair<const char*, std::string>{ "Frame", StlFrameName(options.frame) } })
-        {
-          vtkNew<vtkStringArray> array;
-          array->SetName(name);
-          array->InsertNextValue(value);
-          written->GetFieldData()->RemoveArray(name);
-          written->GetFieldData()->AddArray(array);
-        }
-      }
-      MeshWriteOptions writeOptions;
-      writeOptions.stlEncoding = rules.encoding;
-      writeOptions.header = ExportHeader(options.frame, options.unit);
-      files.insert(files.begin(), AtomicFile{ path, MeshProducer(written, writeOptions) });
-    }
-    std::string problem;
-    if (!AtomicWriteAll(files, problem))
-    {
-      throw InputError(problem);
-    }
-    for (const AtomicFile& file : files)
-    {
-      result.written.push_back(file.path);
+      files.push_back(std::move(sidecar));
     }
   }
-  catch (const InputError&)
+  TetgenFormat tetgen = TetgenFormat::Smesh;
+  if (format.namedPatches)
   {
-    throw;
+    StlExportOptions stlOptions;
+    stlOptions.patches = rules.patches;
+    stlOptions.frame = options.frame;
+    stlOptions.unit = options.unit;
+    if (!options.protectedPath.empty())
+    {
+      // With one file per patch the names derive from the output: none may be the input.
+      for (const std::string& planned : PlannedStlPaths(mesh, path, stlOptions))
+      {
+        if (SameFile(planned, options.protectedPath))
+        {
+          throw InputError(
+            planned + ": refusing to overwrite the input file; choose another output");
+        }
+      }
+    }
+    std::vector<AtomicFile> stlFiles = StlFiles(mesh, path, stlOptions);
+    files.insert(files.begin(), stlFiles.begin(), stlFiles.end());
   }
-  catch (const std::exception& e)
+  else if (format.regionPoint && TetgenFormatForPath(path, tetgen))
   {
-    // MeshIOError, StlExportError: one line naming the file already.
-    throw InputError(e.what());
+    files.insert(files.begin(),
+      TetgenFile(mesh,
+        path,
+        tetgen,
+        transform,
+        result.sidecar.hasInsidePoint ? result.sidecar.insidePoint.data() : nullptr));
+  }
+  else
+  {
+    vtkSmartPointer<vtkPolyData> written = mesh;
+    if (options.frame == StlFrame::RAS || options.unit != "mm" || format.patchLabels)
+    {
+      // RAS negates x and y (a half turn about z: orientation and volume are kept); metres
+      // divide by 1000.
+      written = vtkSmartPointer<vtkPolyData>::New();
+      written->DeepCopy(mesh);
+      vtkPoints* pts = written->GetPoints();
+      for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i)
+      {
+        double p[3], q[3];
+        pts->GetPoint(i, p);
+        transform.Apply(p, q);
+        pts->SetPoint(i, q);
+      }
+    }
+    if (format.patchLabels)
+    {
+      // The VTK form states its frame and unit in field data beside the patch names.
+      for (const auto& [name, value] :
+        { std::pair<const char*, std::string>{ "Unit", options.unit },
+          std::pair<const char*, std::string>{ "Frame", StlFrameName(options.frame) } })
+      {
+        vtkNew<vtkStringArray> array;
+        array->SetName(name);
+        array->InsertNextValue(value);
+        written->GetFieldData()->RemoveArray(name);
+        written->GetFieldData()->AddArray(array);
+      }
+    }
+    MeshWriteOptions writeOptions;
+    writeOptions.stlEncoding = rules.encoding;
+    writeOptions.header = ExportHeader(options.frame, options.unit);
+    files.insert(files.begin(), AtomicFile{ path, MeshProducer(written, writeOptions) });
+  }
+  std::string problem;
+  if (!AtomicWriteAll(files, problem))
+  {
+    throw InputError(problem);
+  }
+  for (const AtomicFile& file : files)
+  {
+    result.written.push_back(file.path);
   }
   return result;
 }

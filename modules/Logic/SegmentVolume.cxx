@@ -102,15 +102,7 @@ SegmentVolumeResult SegmentVolume(const SegmentVolumeOptions& options)
 
 Phantom MakePhantomVolume(const PhantomVolumeOptions& options)
 {
-  vtkSmartPointer<vtkPolyData> surface;
-  try
-  {
-    surface = ReadMesh(options.input);
-  }
-  catch (const std::exception& e)
-  {
-    throw InputError(e.what());
-  }
+  vtkSmartPointer<vtkPolyData> surface = ReadMesh(options.input); // MeshIOError: an InputError
   Phantom phantom = MakeVesselPhantom(surface, options.phantom, options.progress);
   if (!options.output.empty())
   {

@@ -224,15 +224,7 @@ MeasureWorkflowResult MeasureVessels(const MeasureWorkflowOptions& options)
   }
   else if (!options.plan.empty())
   {
-    WarpPlan plan;
-    try
-    {
-      plan = ReadWarpPlan(options.plan);
-    }
-    catch (const std::exception& e)
-    {
-      throw InputError(e.what());
-    }
+    const WarpPlan plan = ReadWarpPlan(options.plan); // WarpPlanError: an InputError
     ApplyPlanOptions applyOptions;
     applyOptions.planName = DisplayName(options.plan);
     after = ApplyPlan(result.before.surface, plan, applyOptions).output;
