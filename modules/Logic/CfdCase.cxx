@@ -96,9 +96,10 @@ void CheckOption(bool ok, const std::string& what)
   }
 }
 
-} // namespace
-
-CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& options)
+// WriteOpenFoamCase with the patch table of `surface` when already read (null: read here).
+CfdCaseResult WriteCase(vtkPolyData* surface,
+  const std::vector<PatchLabel>* known,
+  const CfdCaseOptions& options)
 {
   const std::string name = SurfaceName(options);
   CheckOption(!options.caseDirectory.empty(), "give the case folder");
@@ -166,7 +167,9 @@ CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& opti
     throw InputError(name + ": the triangles are not consistently oriented (" +
       std::to_string(report.inconsistentEdges) + " edges)");
   }
-  const std::vector<PatchLabel> labels = ReadPatchLabels(surface);
+  const LabelledSurface labelled =
+    known ? LabelledSurface{ surface, *known } : ReadLabelledSurface(surface);
+  const std::vector<PatchLabel>& labels = labelled.patches;
   std::vector<CfdPatch> patches = MeasurePatches(surface, labels, name);
   std::string names;
   std::vector<std::size_t> ends;
@@ -295,7 +298,7 @@ CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& opti
     exportOptions.stlEncoding = StlEncoding::Ascii;
     exportOptions.patches = StlPatchMode::Solids;
     exportOptions.sourceName = options.sourceName;
-    ExportSurface(surface, exportOptions);
+    ExportSurface(labelled, exportOptions);
     result.written.push_back("constant/triSurface/" + stl);
     const std::vector<std::pair<std::string, std::string>> files = {
       { "system/blockMeshDict", BlockMeshDict(origin, hb, result.backgroundCells) },
@@ -361,6 +364,17 @@ CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& opti
     fs::remove_all(old, ec);
   }
   return result;
+}
+} // namespace
+
+CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& options)
+{
+  return WriteCase(surface, nullptr, options);
+}
+
+CfdCaseResult WriteOpenFoamCase(const LabelledSurface& surface, const CfdCaseOptions& options)
+{
+  return WriteCase(surface.surface, &surface.patches, options);
 }
 
 } // namespace bender

@@ -10,6 +10,7 @@
 // outlets). The case is in metres (the STL is written by ExportSurface with unit "m"), SI
 // throughout; OpenFOAM's p is kinematic (p / rho), reported here in Pa with rho.
 
+#include "LabelledSurface.h"
 #include "PatchLabels.h"
 #include "Progress.h"
 
@@ -95,6 +96,9 @@ struct CfdCaseResult
 /// ends, no inlet (or an unknown --inlet), options out of range, an existing non-empty
 /// folder without force, an unwritable folder.
 CfdCaseResult WriteOpenFoamCase(vtkPolyData* surface, const CfdCaseOptions& options);
+/// WriteOpenFoamCase with the patch table already read (ReadLabelledSurface, after the clip):
+/// the same case, the labels parsed once for the checks, the measures and the export.
+CfdCaseResult WriteOpenFoamCase(const LabelledSurface& surface, const CfdCaseOptions& options);
 
 /// Where OpenFOAM is: empty when simpleFoam, blockMesh, surfaceFeatureExtract, snappyHexMesh
 /// and checkMesh are on PATH (and mpirun when processors > 1); else what is missing, one line.

@@ -56,9 +56,9 @@ FileProducer MeshProducer(vtkSmartPointer<vtkPolyData> mesh, MeshWriteOptions wr
   };
 }
 
-bool HasEndPatches(vtkPolyData* surface)
+bool HasEndPatches(const std::vector<PatchLabel>& labels)
 {
-  for (const PatchLabel& label : ReadPatchLabels(surface))
+  for (const PatchLabel& label : labels)
   {
     if (label.id != kWallEntityId)
     {
@@ -67,9 +67,10 @@ bool HasEndPatches(vtkPolyData* surface)
   }
   return false;
 }
-} // namespace
-
-ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptions& options)
+// ExportSurface with the patch table of `surface` when already read (null: read here).
+ExportSurfaceResult ExportSurfaceWith(vtkPolyData* surface,
+  const std::vector<PatchLabel>* known,
+  const ExportSurfaceOptions& options)
 {
   const std::string& path = options.output;
   if (path.empty())
@@ -130,7 +131,7 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
     bool labelledEnds = false;
     try
     {
-      labelledEnds = HasEndPatches(surface);
+      labelledEnds = HasEndPatches(known ? *known : ReadPatchLabels(surface));
     }
     catch (const InputError& e)
     {
@@ -160,7 +161,7 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
   result.triangles = static_cast<long long>(mesh->GetNumberOfPolys());
   result.surface = mesh;
 
-  result.patches = ReadPatchLabels(mesh);
+  result.patches = known && mesh.Get() == surface ? *known : ReadPatchLabels(mesh);
   const ExportTransform transform(options.frame, options.unit);
   std::vector<AtomicFile> files;
   if (rules.measure)
@@ -250,6 +251,18 @@ ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptio
     result.written.push_back(file.path);
   }
   return result;
+}
+} // namespace
+
+ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptions& options)
+{
+  return ExportSurfaceWith(surface, nullptr, options);
+}
+
+ExportSurfaceResult ExportSurface(const LabelledSurface& surface,
+  const ExportSurfaceOptions& options)
+{
+  return ExportSurfaceWith(surface.surface, &surface.patches, options);
 }
 
 } // namespace bender

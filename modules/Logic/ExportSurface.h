@@ -4,6 +4,7 @@
 #include "BenderErrors.h"
 #include "BenderMeshCheck.h"
 #include "BenderStlExport.h"
+#include "LabelledSurface.h"
 #include "MeshIO.h"
 #include "PatchSidecar.h"
 #include "TetgenExport.h"
@@ -85,6 +86,9 @@ MeshCheckReport CheckForExport(vtkPolyData* surface, vtkPolyData* before);
 /// input, patches for a format other than .stl, an unknown unit, --cap with nothing to cap,
 /// capping failure, bad labels, an unwritable file.
 ExportSurfaceResult ExportSurface(vtkPolyData* surface, const ExportSurfaceOptions& options);
+/// ExportSurface with the patch table already read: the same files and result.
+ExportSurfaceResult ExportSurface(const LabelledSurface& surface,
+  const ExportSurfaceOptions& options);
 
 } // namespace bender
 

@@ -1,5 +1,6 @@
 #include "PatchLabels.h"
 #include "BenderErrors.h"
+#include "LabelledSurface.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -149,4 +150,43 @@ TEST(PatchLabels, CorruptFieldDataNamesAreRefused)
   EXPECT_THROW(bender::ReadPatchLabels(mesh), bender::InputError);
   names->SetValue(1, "bad name;rm");
   EXPECT_THROW(bender::ReadPatchLabels(mesh), bender::InputError);
+}
+
+TEST(LabelledSurface, ReadsTheTableWrittenWithTheSurface)
+{
+  auto mesh = Triangles(4);
+  const std::vector<bender::PatchLabel> written = { { 1, "wall", bender::PatchType::Wall },
+    { 2, "inlet", bender::PatchType::Inlet },
+    { 3, "outlet_1", bender::PatchType::Outlet } };
+  bender::WritePatchLabels(mesh, { 1, 2, 1, 3 }, written);
+  const bender::LabelledSurface labelled = bender::ReadLabelledSurface(mesh);
+  EXPECT_EQ(labelled.surface.Get(), mesh.Get());
+  ASSERT_EQ(labelled.patches.size(), written.size());
+  for (std::size_t i = 0; i < written.size(); ++i)
+  {
+    EXPECT_EQ(labelled.patches[i].id, written[i].id);
+    EXPECT_EQ(labelled.patches[i].name, written[i].name);
+    EXPECT_EQ(labelled.patches[i].type, written[i].type);
+  }
+}
+
+TEST(LabelledSurface, BadLabelsAreRefusedInOneLineNamingTheArray)
+{
+  auto mesh = Triangles(2);
+  vtkNew<vtkDoubleArray> ids;
+  ids->SetName(bender::kCellEntityIdsArrayName);
+  ids->InsertNextValue(1);
+  ids->InsertNextValue(0);
+  mesh->GetCellData()->AddArray(ids);
+  try
+  {
+    bender::ReadLabelledSurface(mesh);
+    FAIL() << "a label below 1 was accepted";
+  }
+  catch (const bender::InputError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(bender::kCellEntityIdsArrayName), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
 }

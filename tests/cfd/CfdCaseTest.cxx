@@ -7,6 +7,7 @@
 #include "CfdTestUtilities.h"
 #include "CliCommands.h"
 #include "InsidePoint.h"
+#include "LabelledSurface.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
 #include "RunDemo.h"
@@ -202,6 +203,25 @@ TEST(CfdCase, WritesACompleteCaseInMetres)
   EXPECT_NE(allrun.find("mpirun -np \"$processors\" simpleFoam -parallel"), std::string::npos);
   EXPECT_NE(allrun.find("snappyHexMesh -overwrite"), std::string::npos);
   EXPECT_EQ(Entries(folder.Path()), 1u) << "no temporary folder left beside the case";
+}
+
+TEST(CfdCase, TheCaseOfALabelledSurfaceIsTheCaseOfThePlainSurface)
+{
+  bender::test::TemporaryFolder folder("cfd-case-labelled");
+  bender::CfdCaseOptions options;
+  options.caseDirectory = folder.Path() + "/plain";
+  const bender::CfdCaseResult plain = bender::WriteOpenFoamCase(Aneurysm(), options);
+  options.caseDirectory = folder.Path() + "/labelled";
+  const bender::CfdCaseResult labelled =
+    bender::WriteOpenFoamCase(bender::ReadLabelledSurface(Aneurysm()), options);
+  ASSERT_EQ(plain.written, labelled.written);
+  for (const std::string& file : plain.written)
+  {
+    const std::string a = ReadText(folder.Path() + "/plain/" + file);
+    const std::string b = ReadText(folder.Path() + "/labelled/" + file);
+    EXPECT_FALSE(a.empty()) << file;
+    EXPECT_EQ(a, b) << file;
+  }
 }
 
 TEST(CfdCase, VelocityInletAndNamedInlet)
