@@ -151,25 +151,24 @@ vtkIdType CountInvertedTriangles(const std::vector<std::int64_t>& tris,
     }
     double u[3][3], w[3], vt[3][3];
     vtkMath::SingularValueDecomposition3x3(h, u, w, vt);
-    // vtkMath gives H = U W VT with proper rotations U and VT; when det H < 0 all of w are
-    // negative. Then H = (-U) |W| VT, and the best proper rotation (Kabsch) is
-    // V D (-U)^T with D = diag(1, 1, -1) on the smallest singular value.
-    double sign[3] = { 1.0, 1.0, 1.0 };
-    if (w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0)
+    // vtkMath gives H = U W VT with rotations U and VT and signed singular values w; which of
+    // them are negative varies (on a flat neighbourhood the smallest is +-1e-17, whatever the
+    // sign of the others). With S = diag(sign w), H = (U S) |W| VT has non-negative values,
+    // and the best proper rotation (Kabsch) is V D (U S)^T with D = diag(1, 1, det(V (U S)^T))
+    // on the smallest value.
+    double sign[3];
+    int smallest = 0;
+    for (int k = 0; k < 3; ++k)
     {
-      int smallest = 0;
-      for (int k = 1; k < 3; ++k)
+      sign[k] = w[k] < 0.0 ? -1.0 : 1.0;
+      if (std::abs(w[k]) < std::abs(w[smallest]))
       {
-        if (std::abs(w[k]) < std::abs(w[smallest]))
-        {
-          smallest = k;
-        }
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        sign[k] = k == smallest ? 1.0 : -1.0; // D times the -1 of -U
+        smallest = k;
       }
     }
+    const double proper =
+      vtkMath::Determinant3x3(u) * vtkMath::Determinant3x3(vt) * sign[0] * sign[1] * sign[2];
+    sign[smallest] *= proper < 0.0 ? -1.0 : 1.0;
     double rot[3][3]; // R = V S U^T maps before to after
     for (int r = 0; r < 3; ++r)
     {
