@@ -4,12 +4,14 @@
 // Shared by the libFuzzer harnesses: a per-process scratch file for the readers that take a
 // path, and the check that an error message is one clean line.
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -54,6 +56,47 @@ inline std::string WriteInput(const std::string& name, const std::uint8_t* data,
     std::abort();
   }
   return path;
+}
+
+/// An input split for the stream harnesses: `count` bytes after the first give the sizes
+/// (each byte + 1) of the chunks in which the rest, the stream, is fed (cycled; no size: the
+/// whole stream at once).
+struct ChunkedInput
+{
+  std::vector<std::size_t> sizes;
+  const std::uint8_t* stream = nullptr;
+  std::size_t size = 0;
+};
+
+/// `data` holds at least one byte (the harness's control byte).
+inline ChunkedInput SplitChunks(const std::uint8_t* data, std::size_t size, std::size_t count)
+{
+  ChunkedInput in;
+  count = std::min(count, size - 1);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    in.sizes.push_back(std::size_t(data[1 + i]) + 1);
+  }
+  in.stream = data + 1 + count;
+  in.size = size - 1 - count;
+  return in;
+}
+
+/// Calls feed(bytes, n) over the stream, chunk after chunk.
+template<typename Feed>
+void FeedInChunks(const std::uint8_t* stream,
+  std::size_t size,
+  const std::vector<std::size_t>& sizes,
+  const Feed& feed)
+{
+  std::size_t next = 0;
+  for (std::size_t at = 0; at < size;)
+  {
+    const std::size_t piece = sizes.empty() ? size : sizes[next++ % sizes.size()];
+    const std::size_t n = std::min(piece, size - at);
+    feed(stream + at, n);
+    at += n;
+  }
 }
 
 /// Every message the project shows must be one line of printable ASCII without escape

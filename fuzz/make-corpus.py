@@ -148,3 +148,76 @@ seed("fuzz_message", "vtk.txt", "ERROR: In ./IO/XML/vtkXMLReader.cxx, line 521\n
 seed("fuzz_message", "itk.txt", "\x1b[1;31mITK ERROR: MetaImageIO(0x55d0c3a0): File cannot be read\x1b[0m\n[nrrd] nrrdLoad: trouble\n")
 seed("fuzz_fastrak", "binary-record", b"\x00" + b"01 " + struct.pack("<7f", 1, 2, 3, 1, 0, 0, 0) + b" 0 ")
 seed("fuzz_fastrak", "ascii-record", b"\x01" + b"01   30.01 -150.70   12.00 1.0000 0.0000 0.0000 0.0000 0 ")
+
+# --- Fastrak under arbitrary chunking: first byte = format | units << 1 | (chunk bytes) << 2
+fastrak_binary = b"".join(b"0%d " % s + struct.pack("<7f", 10.5 * s, -3, 2, 1, 0, 0, 0) + b" %d " % (s - 1) for s in (1, 2))
+fastrak_ascii = b"01   30.01 -150.70   12.00 1.0000 0.0000 0.0000 0.0000 0 \r\n02    1.00    2.00    3.00 0.7071 0.7071 0.0000 0.0000 1 \r\n"
+seed("fuzz_fastrak_chunks", "binary-split-1-7-33", bytes([0 | 3 << 2, 0, 6, 32]) + fastrak_binary * 3)
+seed("fuzz_fastrak_chunks", "ascii-split-5-54", bytes([1 | 2 << 2, 4, 53]) + fastrak_ascii * 2)
+seed("fuzz_fastrak_chunks", "binary-garbage-between", bytes([0 | 1 << 2, 16]) + b"\xff0\x001" + fastrak_binary + b"02x" + fastrak_binary)
+
+# --- OpenIGTLink: first byte = (chunk bytes) | (body limit: 0 64 MiB, 1 1024, 2 48, 3 0) << 4,
+# then the chunk sizes minus one, then the stream. The CRC is the protocol's CRC-64 (ECMA-182
+# polynomial, no reflection, initial value 0), as igtl_util's crc64.
+def crc64(data):
+    crc = 0
+    for byte in data:
+        crc ^= byte << 56
+        for _ in range(8):
+            crc = ((crc << 1) ^ 0x42F0E1EBA9EA3693) if crc & (1 << 63) else crc << 1
+            crc &= (1 << 64) - 1
+    return crc
+
+def igtl(kind, name, content, version=1, metadata=(), timestamp=0, message_id=0, announce=None):
+    body = content
+    if version == 2:
+        values = b"".join(k + v for k, v in metadata)
+        index = (struct.pack(">H", len(metadata)) + b"".join(struct.pack(">HHI", len(k), 3, len(v)) for k, v in metadata)) if metadata else b""
+        body = struct.pack(">HHII", 12, len(index), len(values), message_id) + content + index + values
+    size = len(body) if announce is None else announce
+    return struct.pack(">H12s20sQQQ", version, kind, name, timestamp, size, crc64(body)) + body
+
+def floats(*v):
+    return struct.pack(">%df" % len(v), *v)
+
+transform = floats(0, 1, 0, -1, 0, 0, 0, 0, 1, 10, 20, 30)  # rotation columns, then translation
+qtdata = b"".join(struct.pack(">20sBB", n, 5, 0) + floats(1, 2, 3, 0, 0, 0.6, 0.8) for n in (b"StylusToTracker", b"Stylus2ToTracker"))
+tdata = struct.pack(">20sBB", b"Stylus2ToTracker", 5, 0) + transform
+string = struct.pack(">HH", 3, 4) + b"down"
+status = struct.pack(">HQ20s", 4, 0, b"NotReady") + b"tool out of view\0"
+messages = {
+    "transform": igtl(b"TRANSFORM", b"StylusToTracker", transform, timestamp=(12 << 32) | 5),
+    "position-28": igtl(b"POSITION", b"Stylus2ToTracker", floats(1, 2, 3, 0, 0, 0, 1)),
+    "position-12": igtl(b"POSITION", b"StylusToTracker", floats(4, 5, 6)),
+    "qtdata": igtl(b"QTDATA", b"Tracker", qtdata),
+    "tdata": igtl(b"TDATA", b"Tracker", tdata),
+    "string-button": igtl(b"STRING", b"StylusToTracker", string),
+    "status": igtl(b"STATUS", b"Tracker", status),
+    "v2-transform-metadata": igtl(b"TRANSFORM", b"StylusToTracker", transform, 2, [(b"TransformStatus", b"OK"), (b"Source", b"PLUS")], message_id=7),
+    "v2-image-skipped": igtl(b"IMAGE", b"Image", bytes(200), 2, [(b"a", b"b")]),
+}
+for name, stream in messages.items():
+    seed("fuzz_igtl", name, bytes([0]) + stream)
+seed("fuzz_igtl", "all-split-1-13-58", bytes([3, 0, 12, 57]) + b"".join(messages.values()))
+damaged = bytearray(messages["transform"])
+damaged[70] ^= 0x40
+seed("fuzz_igtl", "garbage-crc-error-then-message", bytes([2, 4, 100]) + b"\xde\xad\x00\x01x" + bytes(damaged) + messages["position-28"] + b"\xff" * 60 + messages["qtdata"])
+seed("fuzz_igtl", "announces-2-to-60", bytes([1, 57]) + igtl(b"IMAGE", b"Image", b"", announce=1 << 60) + messages["transform"])
+seed("fuzz_igtl", "limit-48-image-refused", bytes([2 << 4]) + messages["transform"] + messages["v2-image-skipped"])
+# Described messages (first byte bit 6): kind (type index | version 2 << 3), name, content.
+def described(kind, name, content, metadata=()):
+    out = bytes([kind, len(name)]) + name + struct.pack(">H", len(content)) + content
+    if kind & 8:
+        out += bytes([len(metadata)]) + b"".join(bytes([len(k)]) + k + bytes([len(v)]) + v for k, v in metadata)
+    return out
+seed("fuzz_igtl", "described-all-types", bytes([0x40 | 2, 9, 30]) + described(0, b"StylusToTracker", transform) +
+     described(1, b"Stylus2ToTracker", floats(1, 2, 3, 0, 0, 0, 1)) + described(2, b"Tracker", qtdata) +
+     described(3, b"Tracker", tdata) + described(4, b"StylusToTracker", string) + described(5, b"Tracker", status) +
+     described(8 | 6, b"Image", bytes(30), [(b"k", b"v")]))
+# The captured bytes of Bender's own IgtlSender (fuzz/corpus/fuzz_igtl/igtl-send-*) are not
+# written here: `bender-cli igtl-send tests/data/io/tetra_ascii.stl --to HOST:PORT` (and with
+# `--plan tests/data/io/example.bender.json`) received by a plain TCP server, a control byte
+# in front (0, and 2 with chunk sizes 64 and 9).
+# Found by fuzz_igtl (issue 25): a STATUS text with bytes outside printable ASCII reached the
+# status line as they were; a QTDATA element name with control bytes reached the names shown.
+regression("fuzz_igtl", "qtdata-element-name-not-printable", bytes([0x40]) + described(2, b"Tracker", struct.pack(">20sBB", b"Stylus\x1b[31m", 5, 0) + floats(1, 2, 3, 0, 0, 0, 1)))

@@ -11,6 +11,7 @@ namespace bender
 
 IgtlDevice::IgtlDevice(Options options)
   : Opts(std::move(options))
+  , Decoder(Opts.maxBodyBytes)
 {
   const std::string prefix = "igtl:" + this->Opts.host + ":" + std::to_string(this->Opts.port);
   for (const std::string& name : this->Opts.toolNames)
@@ -79,7 +80,11 @@ void IgtlDevice::Close()
 
 void IgtlDevice::ReaderLoop()
 {
+  using Clock = std::chrono::steady_clock;
   std::vector<std::uint8_t> buffer(65536);
+  // Garbage counted at the last message, and when the held bytes last formed a message.
+  std::uint64_t garbageAtMessage = 0;
+  Clock::time_point progress = Clock::now();
   try
   {
     while (!this->StopRequested())
@@ -87,10 +92,6 @@ void IgtlDevice::ReaderLoop()
       std::size_t received = 0;
       const IgtlConnection::ReadResult result =
         this->Link.Read(buffer.data(), buffer.size(), received, this->Opts.readTimeout);
-      if (result == IgtlConnection::ReadResult::Timeout)
-      {
-        continue;
-      }
       if (result == IgtlConnection::ReadResult::Closed)
       {
         std::string message = "the server closed the connection";
@@ -105,13 +106,36 @@ void IgtlDevice::ReaderLoop()
           { TrackerEventType::Disconnected, 0, this->ReaderTime(), message });
         return;
       }
-      this->Decoder.Feed(buffer.data(), received);
-      while (std::optional<IgtlMessage> message = this->Decoder.Next())
+      if (result == IgtlConnection::ReadResult::Data)
       {
-        this->Handle(*message);
+        this->Decoder.Feed(buffer.data(), received);
+        while (std::optional<IgtlMessage> message = this->Decoder.Next())
+        {
+          this->Handle(*message);
+          garbageAtMessage = this->Decoder.Statistics().garbageBytes;
+          progress = Clock::now();
+        }
+        std::lock_guard<std::mutex> lock(this->StatsMutex);
+        this->Stats.decoder = this->Decoder.Statistics();
       }
-      std::lock_guard<std::mutex> lock(this->StatsMutex);
-      this->Stats.decoder = this->Decoder.Statistics();
+      const Clock::time_point now = Clock::now();
+      if (this->Decoder.Pending() == 0)
+      {
+        progress = now;
+      }
+      const std::string drop =
+        this->DropReason(this->Decoder.Statistics().garbageBytes - garbageAtMessage,
+          std::chrono::duration_cast<std::chrono::milliseconds>(now - progress));
+      if (!drop.empty())
+      {
+        this->Link.Shutdown();
+        this->ReaderEnded();
+        this->Store.PublishEvent({ TrackerEventType::ReadError,
+          0,
+          this->ReaderTime(),
+          "dropped the connection: " + drop });
+        return;
+      }
     }
   }
   catch (const std::exception& e)
@@ -121,6 +145,26 @@ void IgtlDevice::ReaderLoop()
     return;
   }
   this->ReaderEnded();
+}
+
+std::string IgtlDevice::DropReason(std::uint64_t sinceMessage,
+  std::chrono::milliseconds stalled) const
+{
+  if (!this->Decoder.Refusal().empty())
+  {
+    return this->Decoder.Refusal();
+  }
+  if (sinceMessage > this->Opts.maxGarbageBytes)
+  {
+    return std::to_string(sinceMessage) +
+      " bytes without a valid OpenIGTLink message (is this an OpenIGTLink server?)";
+  }
+  if (stalled > this->Opts.stallTimeout)
+  {
+    return "no complete message for " + std::to_string(stalled.count()) + " ms (" +
+      this->Decoder.PendingDescription() + ")";
+  }
+  return {};
 }
 
 void IgtlDevice::Handle(const IgtlMessage& message)

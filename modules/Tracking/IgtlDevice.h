@@ -54,6 +54,14 @@ struct IgtlStatistics
 ///   garbage and unknown types are skipped and counted; a connection closed by the peer (also
 ///   in the middle of a message, which the event message says) is a Disconnected event;
 ///   Close() and Open() reconnect.
+/// - Hostile or broken peers: the connection is dropped, with a ReadError event whose one line
+///   says why ("dropped the connection: ..."), when an in-step header announces a body above
+///   `maxBodyBytes` (see IgtlStreamDecoder::Refusal), when more than `maxGarbageBytes` arrive
+///   without a valid message, or when bytes stay pending without completing a message for
+///   `stallTimeout` (a peer trickling bytes). The decoder then never holds more than
+///   58 + maxBodyBytes bytes (IgtlStreamDecoder::BufferCap; IgtlStats().decoder.peakBuffered).
+///   A server that accepts and sends nothing is not dropped: it is idle, and Stop() still
+///   returns within `readTimeout`.
 class IgtlDevice : public TrackerDevice
 {
 public:
@@ -63,7 +71,10 @@ public:
     int port = 18944; ///< the OpenIGTLink default (PLUS and Slicer)
     std::array<std::string, 2> toolNames{ "StylusToTracker", "Stylus2ToTracker" };
     std::chrono::milliseconds connectTimeout{ 3000 };
-    std::chrono::milliseconds readTimeout{ 50 }; ///< reader poll; bounds Stop()
+    std::chrono::milliseconds readTimeout{ 50 };     ///< reader poll; bounds Stop()
+    std::uint64_t maxBodyBytes = 64ull << 20;        ///< largest message body held (64 MiB)
+    std::uint64_t maxGarbageBytes = 1ull << 20;      ///< bytes without a valid message (1 MiB)
+    std::chrono::milliseconds stallTimeout{ 10000 }; ///< pending bytes with no message
   };
 
   /// Throws TrackingConfigurationError for an empty or over-long (> 20 characters) tool name,
@@ -102,6 +113,9 @@ public:
 private:
   void ReaderLoop();
   void Handle(const IgtlMessage& message);
+  /// Why the peer must be dropped now ("" when it need not); `sinceMessage`: garbage bytes
+  /// since the last message, `stalled`: how long bytes have been pending without a message.
+  std::string DropReason(std::uint64_t sinceMessage, std::chrono::milliseconds stalled) const;
 
   Options Opts;
   IgtlConnection Link;

@@ -87,6 +87,23 @@ std::string Field(const std::uint8_t* p, std::size_t size)
   return std::string(reinterpret_cast<const char*>(p), n);
 }
 
+// A text from the peer made fit to show: up to the first NUL, at most 200 characters, bytes
+// outside printable ASCII replaced by '?'.
+std::string ShownText(const std::uint8_t* p, std::size_t size)
+{
+  constexpr std::size_t limit = 200;
+  std::string out;
+  for (std::size_t i = 0; i < size && p[i] != 0; ++i)
+  {
+    if (out.size() == limit)
+    {
+      return out + "...";
+    }
+    out.push_back(p[i] >= 0x20 && p[i] <= 0x7e ? char(p[i]) : '?');
+  }
+  return out;
+}
+
 std::uint64_t Crc(const std::uint8_t* data, std::size_t size)
 {
   // The library's crc64 takes a non-const pointer but does not write through it.
@@ -184,23 +201,36 @@ bool PlausibleBodySize(const std::uint8_t* header, std::uint64_t body)
 
 void IgtlStreamDecoder::Feed(const std::uint8_t* data, std::size_t size)
 {
-  this->Compact();
+  this->Release();
   this->Buffer.insert(this->Buffer.end(), data, data + size);
 }
 
-void IgtlStreamDecoder::Compact()
+void IgtlStreamDecoder::Release()
 {
-  if (this->Start > 0 && (this->Start >= 65536 || this->Start * 2 >= this->Buffer.size()))
+  if (this->Start > 0)
   {
     this->Buffer.erase(this->Buffer.begin(), this->Buffer.begin() + std::ptrdiff_t(this->Start));
     this->Start = 0;
+  }
+  // After a large message, give its room back rather than keep it for the whole session.
+  constexpr std::size_t keep = 1 << 20;
+  if (this->Buffer.capacity() > keep && this->Buffer.size() < this->Buffer.capacity() / 4)
+  {
+    std::vector<std::uint8_t> smaller;
+    smaller.reserve(std::max(keep, 2 * this->Buffer.size()));
+    smaller.assign(this->Buffer.begin(), this->Buffer.end());
+    this->Buffer.swap(smaller);
   }
 }
 
 void IgtlStreamDecoder::Reset()
 {
   this->Buffer.clear();
+  this->Buffer.shrink_to_fit();
   this->Start = 0;
+  this->Stats = {};
+  this->InStep = true;
+  this->Refused.clear();
 }
 
 bool IgtlStreamDecoder::HeaderAt(std::size_t offset) const
@@ -235,21 +265,29 @@ std::optional<IgtlMessage> IgtlStreamDecoder::Next()
     {
       ++this->Start;
       ++this->Stats.garbageBytes;
+      this->InStep = false;
       continue;
     }
     const std::uint8_t* h = this->Buffer.data() + this->Start;
     const std::uint64_t bodySize = ReadBig(h + 42, 8);
     if (bodySize > this->MaxBody || !PlausibleBodySize(h, bodySize))
     {
-      // Most likely garbage that looks like a header: hunt on from the next byte.
+      if (bodySize > this->MaxBody && this->InStep && this->Refused.empty())
+      {
+        this->Refused = Field(h + 2, TypeSize) + " message '" + Field(h + 14, NameSize) +
+          "' announces " + std::to_string(bodySize) + " body bytes, more than the " +
+          std::to_string(this->MaxBody) + " accepted";
+      }
+      // Otherwise most likely garbage that looks like a header: hunt on from the next byte.
       ++this->Stats.oversized;
       ++this->Start;
       ++this->Stats.garbageBytes;
+      this->InStep = false;
       continue;
     }
     if (this->Pending() < HeaderSize + bodySize)
     {
-      return std::nullopt;
+      break;
     }
     const std::uint8_t* body = h + HeaderSize;
     const std::uint64_t crc = ReadBig(h + 50, 8);
@@ -265,9 +303,11 @@ std::optional<IgtlMessage> IgtlStreamDecoder::Next()
       ++this->Stats.crcErrors;
       ++this->Stats.garbageBytes;
       ++this->Start;
+      this->InStep = false;
       continue;
     }
     this->Start += HeaderSize + std::size_t(bodySize);
+    this->InStep = true;
     if (message.headerVersion == 1)
     {
       message.content.assign(body, body + bodySize);
@@ -322,6 +362,8 @@ std::optional<IgtlMessage> IgtlStreamDecoder::Next()
     ++this->Stats.messages;
     return message;
   }
+  this->Release();
+  this->Stats.peakBuffered = std::max<std::uint64_t>(this->Stats.peakBuffered, this->Buffer.size());
   return std::nullopt;
 }
 
@@ -457,6 +499,11 @@ bool DecodeIgtlPoses(const IgtlMessage& message,
     for (std::size_t offset = 0; offset < c.size(); offset += element)
     {
       const std::uint8_t* e = c.data() + offset;
+      if (!PrintableField(e, NameSize, true))
+      {
+        return fail(
+          "element " + std::to_string(offset / element + 1) + ": name is not printable ASCII");
+      }
       IgtlToolPose pose;
       pose.name = Field(e, NameSize);
       std::string why;
@@ -514,8 +561,8 @@ std::optional<IgtlStatus> DecodeIgtlStatus(const IgtlMessage& message)
   IgtlStatus status;
   status.code = int(ReadBig(c.data(), 2));
   status.subcode = std::int64_t(ReadBig(c.data() + 2, 8));
-  status.errorName = Field(c.data() + 10, 20);
-  status.text = Field(c.data() + 30, c.size() - 30);
+  status.errorName = ShownText(c.data() + 10, 20);
+  status.text = ShownText(c.data() + 30, c.size() - 30);
   return status;
 }
 

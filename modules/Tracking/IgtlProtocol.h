@@ -39,6 +39,7 @@ struct IgtlDecoderStatistics
   std::uint64_t malformed = 0;    ///< v2 bodies whose extended header/metadata do not fit
   std::uint64_t garbageBytes = 0; ///< bytes skipped while hunting for a valid header
   std::uint64_t oversized = 0;    ///< headers announcing a body above the size limit
+  std::uint64_t peakBuffered = 0; ///< the most bytes held while waiting for more (Buffered())
 };
 
 /// Splits a TCP byte stream into OpenIGTLink messages.
@@ -51,6 +52,15 @@ struct IgtlDecoderStatistics
 /// a stream recovers from garbage. A message whose CRC does not match is counted (crcErrors)
 /// and the hunt resumes at the byte after its header's start (its bytes then count as
 /// garbage), so that a false header found in garbage never swallows the messages after it.
+///
+/// Memory: once Next() has returned nothing, the decoder holds only the bytes of the message
+/// it waits for (Buffered() == Pending()), fewer than BufferCap() = 58 + maxBodyBytes: a
+/// header and the body it announces. Bytes already passed on or skipped are released then.
+///
+/// In step: at the start of the stream and right after a message, the next bytes are a header
+/// if the peer speaks OpenIGTLink. A header found there that announces more than
+/// `maxBodyBytes` is not garbage but a peer sending what Bender will not hold: Refusal() then
+/// describes it (the decoder goes on hunting, as for garbage; IgtlDevice drops the connection).
 class IgtlStreamDecoder
 {
 public:
@@ -65,6 +75,15 @@ public:
 
   /// Bytes held that do not yet form a complete message (a partial header or body).
   std::size_t Pending() const { return this->Buffer.size() - this->Start; }
+  /// Bytes held in all, pending or not yet released (see the class comment).
+  std::size_t Buffered() const { return this->Buffer.size(); }
+  /// The most Buffered() can be once Next() has returned nothing: a header and the largest
+  /// body accepted.
+  std::uint64_t BufferCap() const { return 58 + this->MaxBody; }
+  /// Empty, or one line saying which in-step header announced a body above the limit
+  /// ("IMAGE message 'x' announces 1152921504606846976 body bytes, more than the 67108864
+  /// accepted"); kept until Reset().
+  const std::string& Refusal() const { return this->Refused; }
   /// When a valid header is held: its type, device name and the body bytes still missing.
   std::string PendingDescription() const;
   const IgtlDecoderStatistics& Statistics() const { return this->Stats; }
@@ -72,12 +91,14 @@ public:
 
 private:
   bool HeaderAt(std::size_t offset) const;
-  void Compact();
+  void Release();
 
   std::vector<std::uint8_t> Buffer;
   std::size_t Start = 0;
   std::uint64_t MaxBody;
   IgtlDecoderStatistics Stats;
+  bool InStep = true;
+  std::string Refused;
 };
 
 /// Builds one message's bytes: header version 1 when `metadata` is empty and `headerVersion`
@@ -102,8 +123,9 @@ struct IgtlToolPose
 /// Decodes the poses of a TRANSFORM (12 floats: the 3x3 rotation by columns, then the
 /// translation), POSITION (3, 6 or 7 floats: position then quaternion x, y, z[, w]), QTDATA
 /// (50-byte elements) or TDATA (70-byte elements) message. Returns false with `problem` set
-/// when the content has the wrong size, is not finite, or a rotation is not orthonormal
-/// within 1e-2 (e.g. a scaled calibration matrix); true with no poses for other types.
+/// when the content has the wrong size, is not finite, a rotation is not orthonormal within
+/// 1e-2 (e.g. a scaled calibration matrix), or an element's name is not printable ASCII padded
+/// with NULs (as a header's device name must be); true with no poses for other types.
 bool DecodeIgtlPoses(const IgtlMessage& message,
   std::vector<IgtlToolPose>& poses,
   std::string& problem);
@@ -111,7 +133,9 @@ bool DecodeIgtlPoses(const IgtlMessage& message,
 /// The text of a STRING message (encoding and length checked); nothing when malformed.
 std::optional<std::string> DecodeIgtlString(const IgtlMessage& message);
 
-/// STATUS: code (1 = OK), error name and status text; nothing when malformed.
+/// STATUS: code (1 = OK), error name and status text; nothing when malformed. The names and
+/// texts come from the peer and are shown: each is cut at its first NUL and at 200 characters
+/// ("..." then ends it), and every byte outside printable ASCII becomes '?'.
 struct IgtlStatus
 {
   int code = 0;

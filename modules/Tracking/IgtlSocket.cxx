@@ -2,6 +2,7 @@
 
 #include "TrackingErrors.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -57,6 +58,14 @@ void IgtlConnection::Close()
   }
 }
 
+void IgtlConnection::Shutdown()
+{
+  if (this->Fd >= 0)
+  {
+    ::shutdown(this->Fd, SHUT_RDWR);
+  }
+}
+
 void IgtlConnection::Connect(const std::string& host, int port, std::chrono::milliseconds timeout)
 {
   this->Close();
@@ -87,11 +96,24 @@ void IgtlConnection::Connect(const std::string& host, int port, std::chrono::mil
       error = errno;
       if (error == EINPROGRESS)
       {
-        pollfd p{ fd, POLLOUT, 0 };
-        const int ready = ::poll(&p, 1, int(timeout.count()));
+        // Waits for the handshake until the deadline, also across signals (a poll cut short
+        // by one must not pass for a connected socket).
+        const auto deadline = std::chrono::steady_clock::now() + timeout;
+        int ready = 0;
+        do
+        {
+          const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+          pollfd p{ fd, POLLOUT, 0 };
+          ready = ::poll(&p, 1, int(std::max<std::int64_t>(0, left.count())));
+        } while (ready < 0 && errno == EINTR);
         if (ready == 0)
         {
           error = ETIMEDOUT;
+        }
+        else if (ready < 0)
+        {
+          error = errno;
         }
         else
         {

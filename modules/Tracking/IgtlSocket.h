@@ -29,6 +29,9 @@ public:
   void Connect(const std::string& host, int port, std::chrono::milliseconds timeout);
   bool IsOpen() const { return this->Fd >= 0; }
   void Close();
+  /// Ends the connection both ways (the peer sees it closed) but keeps the socket until
+  /// Close(), so that a reader thread may call it while other threads ask IsOpen().
+  void Shutdown();
 
   enum class ReadResult
   {
