@@ -43,11 +43,11 @@ int RunCenterline(CenterlineArguments a)
   }
   std::printf("%s: %zu endpoints, %zu branches, %zu bifurcations -> %s\n",
     a.options.input.c_str(),
-    result.centerlines.Endpoints.size(),
-    result.measures.Branches.size(),
-    result.measures.Bifurcations.size(),
+    result.centerlines.endpoints.size(),
+    result.measures.branches.size(),
+    result.measures.bifurcations.size(),
     a.options.output.c_str());
-  for (const auto& w : result.centerlines.Warnings)
+  for (const auto& w : result.centerlines.warnings)
   {
     std::printf("warning: %s\n", w.c_str());
   }

@@ -50,7 +50,7 @@ std::string ReadEnd(const std::string& text, bender::ClipEndRequest& end)
   try
   {
     const bender::Point3 p = bender::ParsePoint(text.substr(0, colon), "--end");
-    end.Position = { { p[0], p[1], p[2] } };
+    end.position = { { p[0], p[1], p[2] } };
   }
   catch (const bender::InputError&)
   {
@@ -75,7 +75,7 @@ std::string ReadEnd(const std::string& text, bender::ClipEndRequest& end)
   {
     return "'" + text + "': DIST must be a number >= 0";
   }
-  end.Distance = d;
+  end.distance = d;
   return {};
 }
 
@@ -90,8 +90,8 @@ std::string ReadName(const std::string& text, bender::CfdEndName& entry)
       return "'" + text + "': expected x,y,z=NAME";
     }
     const bender::Point3 p = bender::ParsePoint(text.substr(0, equal), "--name");
-    entry.Position = { { p[0], p[1], p[2] } };
-    entry.Name = text.substr(equal + 1);
+    entry.position = { { p[0], p[1], p[2] } };
+    entry.name = text.substr(equal + 1);
     return {};
   }
   catch (const bender::InputError&)
@@ -102,23 +102,23 @@ std::string ReadName(const std::string& text, bender::CfdEndName& entry)
 
 void PrintEnds(const bender::PrepareForCfdResult& result)
 {
-  for (const bender::CfdEnd& end : result.Ends)
+  for (const bender::CfdEnd& end : result.ends)
   {
     std::printf("  %d %-16s %-6s centre (%.3f, %.3f, %.3f) normal (%.3f, %.3f, %.3f) "
                 "radius %.3f extension %.3f\n",
-      end.Id,
-      end.Name.c_str(),
-      bender::PatchTypeName(end.Type),
-      end.Centre[0],
-      end.Centre[1],
-      end.Centre[2],
-      end.Normal[0],
-      end.Normal[1],
-      end.Normal[2],
-      end.Radius,
-      end.ExtensionLength);
+      end.id,
+      end.name.c_str(),
+      bender::PatchTypeName(end.type),
+      end.centre[0],
+      end.centre[1],
+      end.centre[2],
+      end.normal[0],
+      end.normal[1],
+      end.normal[2],
+      end.radius,
+      end.extensionLength);
   }
-  for (const std::string& w : result.Warnings)
+  for (const std::string& w : result.warnings)
   {
     std::printf("warning: %s\n", w.c_str());
   }
@@ -133,27 +133,27 @@ int RunClip(ClipArguments a)
       "clip", a.output + ": refusing to overwrite an input file; choose another output");
   }
   bender::PrepareForCfdOptions& options = a.options;
-  options.InputName = a.input;
-  options.Clip = !a.noClip;
-  options.Cap = !a.noCap;
+  options.inputName = a.input;
+  options.clip = !a.noClip;
+  options.cap = !a.noCap;
   for (const std::string& text : a.ends)
   {
-    options.Ends.emplace_back();
-    ReadEnd(text, options.Ends.back());
+    options.ends.emplace_back();
+    ReadEnd(text, options.ends.back());
   }
   for (const std::string& text : a.names)
   {
-    options.Names.emplace_back();
-    ReadName(text, options.Names.back());
+    options.names.emplace_back();
+    ReadName(text, options.names.back());
   }
   const vtkSmartPointer<vtkPolyData> surface = bender::ReadMesh(a.input);
   if (!a.centerlines.empty())
   {
-    options.Centerlines = bender::ReadMesh(a.centerlines);
+    options.centerlines = bender::ReadMesh(a.centerlines);
   }
   const bender::PrepareForCfdResult result = bender::PrepareForCfd(surface, options);
-  bender::WriteMesh(result.Surface, a.output);
-  std::printf("%s: %zu ends -> %s\n", a.input.c_str(), result.Ends.size(), a.output.c_str());
+  bender::WriteMesh(result.surface, a.output);
+  std::printf("%s: %zu ends -> %s\n", a.input.c_str(), result.ends.size(), a.output.c_str());
   PrintEnds(result);
   return 0;
 }
@@ -206,11 +206,11 @@ void bender::AddClipCommand(CLI::App& cli)
     ->check(Check(ReadName, "x,y,z=NAME"));
   clip
     ->add_option(
-      "--extend-inlet", a->options.InletExtension, "inlet flow extension, F x its radius; 0: none")
+      "--extend-inlet", a->options.inletExtension, "inlet flow extension, F x its radius; 0: none")
     ->type_name("F")
     ->check(NumberIn(0, 100))
     ->capture_default_str();
-  clip->add_option("--extend-outlet", a->options.OutletExtension, "outlet flow extensions")
+  clip->add_option("--extend-outlet", a->options.outletExtension, "outlet flow extensions")
     ->type_name("F")
     ->check(NumberIn(0, 100))
     ->capture_default_str();

@@ -137,10 +137,10 @@ void CfdEndsOverlay::removeEnds()
 {
   for (EndActors& end : this->Ends)
   {
-    this->SurfaceLayer->RemoveActor(end.DiscActor);
-    this->SurfaceLayer->RemoveActor(end.RimActor);
-    this->TopLayer->RemoveActor(end.Handle);
-    this->TopLayer->RemoveViewProp(end.Text);
+    this->SurfaceLayer->RemoveActor(end.discActor);
+    this->SurfaceLayer->RemoveActor(end.rimActor);
+    this->TopLayer->RemoveActor(end.handle);
+    this->TopLayer->RemoveViewProp(end.text);
   }
   this->Ends.clear();
   this->Dragged = -1;
@@ -176,40 +176,40 @@ void CfdEndsOverlay::setEnds(const std::vector<bender::CenterlineEndPath>& paths
   for (std::size_t k = 0; k < paths.size(); ++k)
   {
     EndActors end;
-    end.Path = paths[k];
-    end.Distance = std::clamp(end.Path.DefaultDistance, 0.0, end.Path.MaximumDistance);
-    end.Label = QString("end %1").arg(k + 1);
-    end.Disc = vtkSmartPointer<vtkPolyData>::New();
+    end.path = paths[k];
+    end.distance = std::clamp(end.path.defaultDistance, 0.0, end.path.maximumDistance);
+    end.label = QString("end %1").arg(k + 1);
+    end.disc = vtkSmartPointer<vtkPolyData>::New();
     vtkNew<vtkPolyDataMapper> discMapper;
-    discMapper->SetInputData(end.Disc);
+    discMapper->SetInputData(end.disc);
     discMapper->ScalarVisibilityOff();
-    end.DiscActor = vtkSmartPointer<vtkActor>::New();
-    end.DiscActor->SetMapper(discMapper);
-    end.DiscActor->GetProperty()->SetOpacity(0.4);
-    end.DiscActor->GetProperty()->BackfaceCullingOff();
-    end.DiscActor->GetProperty()->SetAmbient(0.5);
-    end.DiscActor->GetProperty()->SetDiffuse(0.5);
-    end.DiscActor->PickableOff();
+    end.discActor = vtkSmartPointer<vtkActor>::New();
+    end.discActor->SetMapper(discMapper);
+    end.discActor->GetProperty()->SetOpacity(0.4);
+    end.discActor->GetProperty()->BackfaceCullingOff();
+    end.discActor->GetProperty()->SetAmbient(0.5);
+    end.discActor->GetProperty()->SetDiffuse(0.5);
+    end.discActor->PickableOff();
     // The rim: the disc's outline, opaque.
     vtkNew<vtkPolyDataMapper> rimMapper;
     rimMapper->ScalarVisibilityOff();
-    end.RimActor = vtkSmartPointer<vtkActor>::New();
-    end.RimActor->SetMapper(rimMapper);
-    end.RimActor->GetProperty()->SetLineWidth(2.5);
-    end.RimActor->GetProperty()->LightingOff();
-    end.RimActor->PickableOff();
+    end.rimActor = vtkSmartPointer<vtkActor>::New();
+    end.rimActor->SetMapper(rimMapper);
+    end.rimActor->GetProperty()->SetLineWidth(2.5);
+    end.rimActor->GetProperty()->LightingOff();
+    end.rimActor->PickableOff();
     vtkNew<vtkPolyDataMapper> handleMapper;
     handleMapper->SetInputConnection(sphere->GetOutputPort());
     handleMapper->ScalarVisibilityOff();
-    end.Handle = vtkSmartPointer<vtkActor>::New();
-    end.Handle->SetMapper(handleMapper);
-    end.Handle->GetProperty()->SetAmbient(0.4);
-    end.Handle->PickableOff();
-    end.Text = MakeText(OutletColour);
-    this->SurfaceLayer->AddActor(end.DiscActor);
-    this->SurfaceLayer->AddActor(end.RimActor);
-    this->TopLayer->AddActor(end.Handle);
-    this->TopLayer->AddViewProp(end.Text);
+    end.handle = vtkSmartPointer<vtkActor>::New();
+    end.handle->SetMapper(handleMapper);
+    end.handle->GetProperty()->SetAmbient(0.4);
+    end.handle->PickableOff();
+    end.text = MakeText(OutletColour);
+    this->SurfaceLayer->AddActor(end.discActor);
+    this->SurfaceLayer->AddActor(end.rimActor);
+    this->TopLayer->AddActor(end.handle);
+    this->TopLayer->AddViewProp(end.text);
     this->Ends.push_back(end);
     this->updateEnd(this->Ends.back());
   }
@@ -218,7 +218,7 @@ void CfdEndsOverlay::setEnds(const std::vector<bender::CenterlineEndPath>& paths
 
 const bender::CenterlineEndPath& CfdEndsOverlay::path(int end) const
 {
-  return this->Ends.at(static_cast<std::size_t>(end)).Path;
+  return this->Ends.at(static_cast<std::size_t>(end)).path;
 }
 
 void CfdEndsOverlay::setDistance(int end, double distance)
@@ -228,13 +228,13 @@ void CfdEndsOverlay::setDistance(int end, double distance)
     return;
   }
   EndActors& e = this->Ends[static_cast<std::size_t>(end)];
-  e.Distance = std::clamp(distance, 0.0, e.Path.MaximumDistance);
+  e.distance = std::clamp(distance, 0.0, e.path.maximumDistance);
   this->updateEnd(e);
 }
 
 double CfdEndsOverlay::distance(int end) const
 {
-  return end >= 0 && end < this->numberOfEnds() ? this->Ends[static_cast<std::size_t>(end)].Distance
+  return end >= 0 && end < this->numberOfEnds() ? this->Ends[static_cast<std::size_t>(end)].distance
                                                 : 0.0;
 }
 
@@ -245,14 +245,14 @@ void CfdEndsOverlay::setLabel(int end, const QString& label, bool inlet)
     return;
   }
   EndActors& e = this->Ends[static_cast<std::size_t>(end)];
-  e.Label = label;
-  e.Inlet = inlet;
+  e.label = label;
+  e.inlet = inlet;
   this->updateEnd(e);
 }
 
 QString CfdEndsOverlay::label(int end) const
 {
-  return end >= 0 && end < this->numberOfEnds() ? this->Ends[static_cast<std::size_t>(end)].Label
+  return end >= 0 && end < this->numberOfEnds() ? this->Ends[static_cast<std::size_t>(end)].label
                                                 : QString();
 }
 
@@ -263,22 +263,22 @@ bender::ClipPlane CfdEndsOverlay::plane(int end) const
     return {};
   }
   const EndActors& e = this->Ends[static_cast<std::size_t>(end)];
-  return bender::ClipPlaneAt(e.Path, e.Distance);
+  return bender::ClipPlaneAt(e.path, e.distance);
 }
 
 vtkPolyData* CfdEndsOverlay::disc(int end) const
 {
   return end >= 0 && end < this->numberOfEnds()
-    ? this->Ends[static_cast<std::size_t>(end)].Disc.GetPointer()
+    ? this->Ends[static_cast<std::size_t>(end)].disc.GetPointer()
     : nullptr;
 }
 
 void CfdEndsOverlay::updateEnd(EndActors& end)
 {
-  const bender::ClipPlane plane = bender::ClipPlaneAt(end.Path, end.Distance);
-  const double radius = DiscScale * plane.Radius;
-  const P3 u = Perpendicular(plane.Normal);
-  const P3 v = Cross(plane.Normal, u);
+  const bender::ClipPlane plane = bender::ClipPlaneAt(end.path, end.distance);
+  const double radius = DiscScale * plane.radius;
+  const P3 u = Perpendicular(plane.normal);
+  const P3 v = Cross(plane.normal, u);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   vtkNew<vtkCellArray> polygon;
@@ -289,33 +289,33 @@ void CfdEndsOverlay::updateEnd(EndActors& end)
   {
     const double a = 2.0 * M_PI * k / DiscSides;
     const double c = radius * std::cos(a), s = radius * std::sin(a);
-    points->InsertNextPoint(plane.Centre[0] + c * u[0] + s * v[0],
-      plane.Centre[1] + c * u[1] + s * v[1],
-      plane.Centre[2] + c * u[2] + s * v[2]);
+    points->InsertNextPoint(plane.centre[0] + c * u[0] + s * v[0],
+      plane.centre[1] + c * u[1] + s * v[1],
+      plane.centre[2] + c * u[2] + s * v[2]);
     polygon->InsertCellPoint(k);
     outline->InsertCellPoint(k);
   }
   outline->InsertCellPoint(0);
-  end.Disc->Initialize();
-  end.Disc->SetPoints(points);
-  end.Disc->SetPolys(polygon);
-  end.Disc->Modified();
+  end.disc->Initialize();
+  end.disc->SetPoints(points);
+  end.disc->SetPolys(polygon);
+  end.disc->Modified();
   vtkNew<vtkPolyData> rim;
   rim->SetPoints(points);
   rim->SetLines(outline);
-  vtkPolyDataMapper::SafeDownCast(end.RimActor->GetMapper())->SetInputData(rim);
-  const double* colour = end.Inlet ? InletColour : OutletColour;
-  end.DiscActor->GetProperty()->SetColor(colour[0], colour[1], colour[2]);
-  end.RimActor->GetProperty()->SetColor(colour[0], colour[1], colour[2]);
-  end.Handle->GetProperty()->SetColor(
+  vtkPolyDataMapper::SafeDownCast(end.rimActor->GetMapper())->SetInputData(rim);
+  const double* colour = end.inlet ? InletColour : OutletColour;
+  end.discActor->GetProperty()->SetColor(colour[0], colour[1], colour[2]);
+  end.rimActor->GetProperty()->SetColor(colour[0], colour[1], colour[2]);
+  end.handle->GetProperty()->SetColor(
     0.5 + 0.5 * colour[0], 0.5 + 0.5 * colour[1], 0.5 + 0.5 * colour[2]);
-  end.Handle->SetScale(HandleScale * plane.Radius);
-  end.Handle->SetPosition(plane.Centre[0], plane.Centre[1], plane.Centre[2]);
-  end.Text->SetInput(
-    QString("%1  %2 mm").arg(end.Label).arg(end.Distance, 0, 'f', 1).toUtf8().constData());
-  end.Text->GetTextProperty()->SetColor(
+  end.handle->SetScale(HandleScale * plane.radius);
+  end.handle->SetPosition(plane.centre[0], plane.centre[1], plane.centre[2]);
+  end.text->SetInput(
+    QString("%1  %2 mm").arg(end.label).arg(end.distance, 0, 'f', 1).toUtf8().constData());
+  end.text->GetTextProperty()->SetColor(
     colour[0] * 0.4 + 0.6, colour[1] * 0.4 + 0.6, colour[2] * 0.4 + 0.6);
-  PlaceText(end.Text, plane.Centre, 14.0, 8.0);
+  PlaceText(end.text, plane.centre, 14.0, 8.0);
 }
 
 void CfdEndsOverlay::setPatches(vtkPolyData* surface, const std::vector<bender::CfdEnd>& ends)
@@ -347,7 +347,7 @@ void CfdEndsOverlay::setPatches(vtkPolyData* surface, const std::vector<bender::
     bool inlet = false;
     for (const bender::CfdEnd& end : ends)
     {
-      inlet = inlet || (end.Id == id && end.Type == bender::PatchType::Inlet);
+      inlet = inlet || (end.id == id && end.type == bender::PatchType::Inlet);
     }
     vtkIdType npts;
     const vtkIdType* pts;
@@ -362,9 +362,9 @@ void CfdEndsOverlay::setPatches(vtkPolyData* surface, const std::vector<bender::
   this->CapData->Modified();
   for (const bender::CfdEnd& end : ends)
   {
-    auto text = MakeText(end.Type == bender::PatchType::Inlet ? InletColour : OutletColour);
-    text->SetInput(end.Name.c_str());
-    PlaceText(text, end.Centre, 10.0, 6.0);
+    auto text = MakeText(end.type == bender::PatchType::Inlet ? InletColour : OutletColour);
+    text->SetInput(end.name.c_str());
+    PlaceText(text, end.centre, 10.0, 6.0);
     this->TopLayer->AddViewProp(text);
     this->PatchTexts.push_back(text);
   }
@@ -397,7 +397,7 @@ int CfdEndsOverlay::numberOfDiscsShown() const
   int shown = 0;
   for (const EndActors& end : this->Ends)
   {
-    shown += end.DiscActor->GetVisibility() ? 1 : 0;
+    shown += end.discActor->GetVisibility() ? 1 : 0;
   }
   return shown;
 }
@@ -416,10 +416,10 @@ void CfdEndsOverlay::updateVisibility()
 {
   for (EndActors& end : this->Ends)
   {
-    for (vtkProp* prop : { static_cast<vtkProp*>(end.DiscActor),
-           static_cast<vtkProp*>(end.RimActor),
-           static_cast<vtkProp*>(end.Handle),
-           static_cast<vtkProp*>(end.Text) })
+    for (vtkProp* prop : { static_cast<vtkProp*>(end.discActor),
+           static_cast<vtkProp*>(end.rimActor),
+           static_cast<vtkProp*>(end.handle),
+           static_cast<vtkProp*>(end.text) })
     {
       prop->SetVisibility(this->Visible);
     }
@@ -438,9 +438,9 @@ bool CfdEndsOverlay::pathDisplayPosition(int end, double distance, double positi
     return false;
   }
   const bender::ClipPlane plane =
-    bender::ClipPlaneAt(this->Ends[static_cast<std::size_t>(end)].Path, distance);
+    bender::ClipPlaneAt(this->Ends[static_cast<std::size_t>(end)].path, distance);
   vtkRenderer* renderer = this->SurfaceLayer;
-  renderer->SetWorldPoint(plane.Centre[0], plane.Centre[1], plane.Centre[2], 1.0);
+  renderer->SetWorldPoint(plane.centre[0], plane.centre[1], plane.centre[2], 1.0);
   renderer->WorldToDisplay();
   const double* d = renderer->GetDisplayPoint();
   position[0] = d[0];
@@ -472,10 +472,10 @@ int CfdEndsOverlay::handleAt(int x, int y) const
     const bender::ClipPlane plane = this->plane(k);
     double tolerance = PickPixels;
     vtkRenderer* renderer = this->SurfaceLayer;
-    const P3 u = Perpendicular(plane.Normal);
-    const double r = HandleScale * plane.Radius;
+    const P3 u = Perpendicular(plane.normal);
+    const double r = HandleScale * plane.radius;
     renderer->SetWorldPoint(
-      plane.Centre[0] + r * u[0], plane.Centre[1] + r * u[1], plane.Centre[2] + r * u[2], 1.0);
+      plane.centre[0] + r * u[0], plane.centre[1] + r * u[1], plane.centre[2] + r * u[2], 1.0);
     renderer->WorldToDisplay();
     const double* rim = renderer->GetDisplayPoint();
     tolerance = std::max(tolerance, std::hypot(rim[0] - p[0], rim[1] - p[1]));
@@ -493,23 +493,23 @@ double CfdEndsOverlay::distanceAt(int end, int x, int y) const
 {
   // The centerline point whose screen position is nearest the mouse (over the path's range).
   const EndActors& e = this->Ends[static_cast<std::size_t>(end)];
-  const bender::CenterlineEndPath& path = e.Path;
+  const bender::CenterlineEndPath& path = e.path;
   vtkRenderer* renderer = this->SurfaceLayer;
   std::vector<std::array<double, 2>> screen;
   std::size_t count = 0;
   while (
-    count < path.Points.size() && (count == 0 || path.ArcLengths[count - 1] < path.MaximumDistance))
+    count < path.points.size() && (count == 0 || path.arcLengths[count - 1] < path.maximumDistance))
   {
     ++count;
   }
   for (std::size_t i = 0; i < count; ++i)
   {
-    renderer->SetWorldPoint(path.Points[i][0], path.Points[i][1], path.Points[i][2], 1.0);
+    renderer->SetWorldPoint(path.points[i][0], path.points[i][1], path.points[i][2], 1.0);
     renderer->WorldToDisplay();
     const double* d = renderer->GetDisplayPoint();
     screen.push_back({ { d[0], d[1] } });
   }
-  double best = e.Distance, bestD = std::numeric_limits<double>::infinity();
+  double best = e.distance, bestD = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i + 1 < screen.size(); ++i)
   {
     const double dx = screen[i + 1][0] - screen[i][0], dy = screen[i + 1][1] - screen[i][1];
@@ -520,10 +520,10 @@ double CfdEndsOverlay::distanceAt(int end, int x, int y) const
     if (d < bestD)
     {
       bestD = d;
-      best = path.ArcLengths[i] + t * (path.ArcLengths[i + 1] - path.ArcLengths[i]);
+      best = path.arcLengths[i] + t * (path.arcLengths[i + 1] - path.arcLengths[i]);
     }
   }
-  return std::clamp(best, 0.0, path.MaximumDistance);
+  return std::clamp(best, 0.0, path.maximumDistance);
 }
 
 void CfdEndsOverlay::OnMouse(vtkObject* caller, unsigned long event, void* clientData, void*)

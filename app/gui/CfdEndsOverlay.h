@@ -26,7 +26,7 @@ class vtkTextActor;
 /// the plane bender::ClipVesselEnds cuts by), a handle at its centre and a label (the end's
 /// name and role). Dragging a handle with the left button slides its disc along the end's
 /// centerline (bender::CenterlineEndPath), perpendicular to the local tangent, clamped to
-/// [0, CenterlineEndPath::MaximumDistance]: the mouse is followed by the centerline point whose
+/// [0, CenterlineEndPath::maximumDistance]: the mouse is followed by the centerline point whose
 /// screen position is nearest it. The drag is the overlay's (the camera, the ribbon widget and
 /// picking do not see it); a press away from every handle is left to them.
 ///
@@ -96,15 +96,15 @@ signals:
 private:
   struct EndActors
   {
-    bender::CenterlineEndPath Path;
-    double Distance = 0.0;
-    QString Label;
-    bool Inlet = false;
-    vtkSmartPointer<vtkPolyData> Disc;
-    vtkSmartPointer<vtkActor> DiscActor;
-    vtkSmartPointer<vtkActor> RimActor;
-    vtkSmartPointer<vtkActor> Handle;
-    vtkSmartPointer<vtkTextActor> Text;
+    bender::CenterlineEndPath path;
+    double distance = 0.0;
+    QString label;
+    bool inlet = false;
+    vtkSmartPointer<vtkPolyData> disc;
+    vtkSmartPointer<vtkActor> discActor;
+    vtkSmartPointer<vtkActor> rimActor;
+    vtkSmartPointer<vtkActor> handle;
+    vtkSmartPointer<vtkTextActor> text;
   };
   static void OnMouse(vtkObject* caller, unsigned long event, void* clientData, void*);
   void mouse(unsigned long event);

@@ -362,9 +362,9 @@ bool ExportFlow::prepareForCfd()
     centerlines->DeepCopy(known); // the job's own copy
   }
   bender::PrepareForCfdOptions options = this->Panel->prepareOptions();
-  options.Centerlines = centerlines;
+  options.centerlines = centerlines;
   const std::string name = this->Session.GetSurfaceName();
-  options.InputName = name.empty() ? "the surface" : name;
+  options.inputName = name.empty() ? "the surface" : name;
   const vtkMTimeType time = current->GetMTime();
   QPointer<ExportFlow> self(this);
   return this->Worker->run("Prepare for CFD",
@@ -419,7 +419,7 @@ void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult
     return;
   }
   const std::string name = this->Session.GetSurfaceName();
-  if (!this->Session.SetSurface(result->Surface, name, this->Session.GetSourcePath()))
+  if (!this->Session.SetSurface(result->surface, name, this->Session.GetSourcePath()))
   {
     this->Panel->showReport("Prepare for CFD: the prepared surface could not be loaded.");
     this->Worker->markFailed();
@@ -429,42 +429,42 @@ void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult
   this->PreparedCenterlines = centerlines;
   this->Prepared = this->Session.GetSurface();
   this->PreparedTime = this->Prepared ? this->Prepared->GetMTime() : 0;
-  this->Panel->showEnds(result->Ends);
+  this->Panel->showEnds(result->ends);
   if (this->Overlay)
   {
-    this->Overlay->setPatches(this->Prepared, result->Ends);
+    this->Overlay->setPatches(this->Prepared, result->ends);
     this->showOverlay();
     this->renderView();
   }
   QString report = QString("Prepared for CFD: %1 ends, capped and labelled (wall 1, ends 2..)\n")
-                     .arg(result->Ends.size());
-  for (const bender::CfdEnd& end : result->Ends)
+                     .arg(result->ends.size());
+  for (const bender::CfdEnd& end : result->ends)
   {
     report += QString("  %1 (%2, id %3): radius %4 mm, extension %5 mm")
-                .arg(QString::fromStdString(end.Name))
-                .arg(bender::PatchTypeName(end.Type))
-                .arg(end.Id)
-                .arg(end.Radius, 0, 'f', 2)
-                .arg(end.ExtensionLength, 0, 'f', 1);
-    if (end.ClipDistance >= 0)
+                .arg(QString::fromStdString(end.name))
+                .arg(bender::PatchTypeName(end.type))
+                .arg(end.id)
+                .arg(end.radius, 0, 'f', 2)
+                .arg(end.extensionLength, 0, 'f', 1);
+    if (end.clipDistance >= 0)
     {
-      report += QString(", cut %1 mm from the end").arg(end.ClipDistance, 0, 'f', 2);
+      report += QString(", cut %1 mm from the end").arg(end.clipDistance, 0, 'f', 2);
     }
     report += "\n";
   }
-  for (const std::string& warning : result->Warnings)
+  for (const std::string& warning : result->warnings)
   {
     report += "  warning: " + QString::fromStdString(warning) + "\n";
   }
   this->Panel->showReport(report);
   bool extended = false;
-  for (const bender::CfdEnd& end : result->Ends)
+  for (const bender::CfdEnd& end : result->ends)
   {
-    extended = extended || end.ExtensionLength > 0;
+    extended = extended || end.extensionLength > 0;
   }
   this->Session.AddMessage(bender::MessageSeverity::Info,
-    "Prepared for CFD: " + std::to_string(result->Ends.size()) + " ends" +
-      (result->Ends.front().ClipDistance >= 0 ? " clipped," : "") + (extended ? " extended," : "") +
+    "Prepared for CFD: " + std::to_string(result->ends.size()) + " ends" +
+      (result->ends.front().clipDistance >= 0 ? " clipped," : "") + (extended ? " extended," : "") +
       " capped and labelled (Export panel)");
 }
 

@@ -325,17 +325,17 @@ std::array<double, 3> ExportPanel::rowPosition(const EndRow& row) const
 {
   if (!this->BeforePrepare)
   {
-    return row.Prepared.ClipCentre;
+    return row.prepared.clipCentre;
   }
-  return bender::ClipPlaneAt(row.Path, std::max(0.0, row.Distance)).Centre;
+  return bender::ClipPlaneAt(row.path, std::max(0.0, row.distance)).centre;
 }
 
 bender::PrepareForCfdOptions ExportPanel::prepareOptions() const
 {
   bender::PrepareForCfdOptions options;
-  options.Clip = this->Clip->isChecked();
-  options.InletExtension = this->InletFactor->value();
-  options.OutletExtension = this->OutletFactor->value();
+  options.clip = this->Clip->isChecked();
+  options.inletExtension = this->InletFactor->value();
+  options.outletExtension = this->OutletFactor->value();
   // Before Prepare, what was edited; after, every end as listed (Prepare again makes the same
   // ends with the edits). Names and factors go by where the end is cut, cuts by the end.
   for (int row = 0; row < this->Ends->rowCount() && row < static_cast<int>(this->Rows.size());
@@ -345,25 +345,25 @@ bender::PrepareForCfdOptions ExportPanel::prepareOptions() const
     const std::array<double, 3> position = this->rowPosition(end);
     const QTableWidgetItem* name = this->Ends->item(row, NameColumn);
     const QTableWidgetItem* factor = this->Ends->item(row, FactorColumn);
-    if (!this->BeforePrepare || end.NameEdited)
+    if (!this->BeforePrepare || end.nameEdited)
     {
       bender::CfdEndName entry;
-      entry.Position = position;
-      entry.Name = name ? name->text().trimmed().toStdString() : end.AutoName;
-      entry.Inlet = end.Inlet;
-      options.Names.push_back(entry);
+      entry.position = position;
+      entry.name = name ? name->text().trimmed().toStdString() : end.autoName;
+      entry.inlet = end.inlet;
+      options.names.push_back(entry);
     }
     bool ok = false;
     const double value = factor ? factor->text().toDouble(&ok) : 0.0;
-    if (ok && (!this->BeforePrepare || end.FactorEdited))
+    if (ok && (!this->BeforePrepare || end.factorEdited))
     {
-      options.ExtensionFactors.push_back({ position, value });
+      options.extensionFactors.push_back({ position, value });
     }
-    if (options.Clip && end.Distance >= 0 && (!this->BeforePrepare || end.DistanceChosen))
+    if (options.clip && end.distance >= 0 && (!this->BeforePrepare || end.distanceChosen))
     {
       const std::array<double, 3> at =
-        this->BeforePrepare ? end.Path.Position : end.Prepared.CenterlineEnd;
-      options.Ends.push_back({ at, end.Distance });
+        this->BeforePrepare ? end.path.position : end.prepared.centerlineEnd;
+      options.ends.push_back({ at, end.distance });
     }
   }
   return options;
@@ -380,31 +380,31 @@ void ExportPanel::fillRow(int row)
     item->setFlags(item->flags() & ~Qt::ItemIsEditable);
     return item;
   };
-  const bender::CfdEnd& prepared = end.Prepared;
-  double radius = prepared.Radius;
-  double factor = prepared.Radius > 0 ? prepared.ExtensionLength / prepared.Radius : 0.0;
+  const bender::CfdEnd& prepared = end.prepared;
+  double radius = prepared.radius;
+  double factor = prepared.radius > 0 ? prepared.extensionLength / prepared.radius : 0.0;
   if (this->BeforePrepare)
   {
-    radius = bender::ClipPlaneAt(end.Path, std::max(0.0, end.Distance)).Radius;
-    factor = end.Inlet ? this->InletFactor->value() : this->OutletFactor->value();
+    radius = bender::ClipPlaneAt(end.path, std::max(0.0, end.distance)).radius;
+    factor = end.inlet ? this->InletFactor->value() : this->OutletFactor->value();
   }
-  if (!end.NameEdited || !this->Ends->item(row, NameColumn))
+  if (!end.nameEdited || !this->Ends->item(row, NameColumn))
   {
     this->Ends->setItem(
-      row, NameColumn, new QTableWidgetItem(QString::fromStdString(end.AutoName)));
+      row, NameColumn, new QTableWidgetItem(QString::fromStdString(end.autoName)));
   }
-  this->Ends->setItem(row, RoleColumn, fixed(end.Inlet ? "inlet" : "outlet"));
+  this->Ends->setItem(row, RoleColumn, fixed(end.inlet ? "inlet" : "outlet"));
   this->Ends->setItem(row, RadiusColumn, fixed(QString::number(radius, 'f', 2)));
-  if (!end.FactorEdited || !this->Ends->item(row, FactorColumn))
+  if (!end.factorEdited || !this->Ends->item(row, FactorColumn))
   {
     this->Ends->setItem(row, FactorColumn, new QTableWidgetItem(QString::number(factor, 'f', 1)));
   }
-  if (end.Distance >= 0)
+  if (end.distance >= 0)
   {
-    auto* cut = new QTableWidgetItem(QString::number(end.Distance, 'f', 2));
+    auto* cut = new QTableWidgetItem(QString::number(end.distance, 'f', 2));
     cut->setToolTip(QString("0 to %1 mm; %2")
-                      .arg(end.MaximumDistance, 0, 'f', 1)
-                      .arg(end.DistanceChosen ? "chosen" : "default: where the radius settles"));
+                      .arg(end.maximumDistance, 0, 'f', 1)
+                      .arg(end.distanceChosen ? "chosen" : "default: where the radius settles"));
     this->Ends->setItem(row, CutColumn, cut);
   }
   else
@@ -422,11 +422,11 @@ void ExportPanel::showEnds(const std::vector<bender::CfdEnd>& ends)
   for (const bender::CfdEnd& end : ends)
   {
     EndRow row;
-    row.Prepared = end;
-    row.AutoName = end.Name;
-    row.Inlet = end.Type == bender::PatchType::Inlet;
-    row.Distance = end.ClipDistance;
-    row.MaximumDistance = 1e9;
+    row.prepared = end;
+    row.autoName = end.name;
+    row.inlet = end.type == bender::PatchType::Inlet;
+    row.distance = end.clipDistance;
+    row.maximumDistance = 1e9;
     this->Rows.push_back(row);
   }
   this->Ends->setRowCount(static_cast<int>(this->Rows.size()));
@@ -447,10 +447,10 @@ void ExportPanel::showCenterlineEnds(const std::vector<bender::CenterlineEndPath
   for (const bender::CenterlineEndPath& path : paths)
   {
     EndRow row;
-    row.Path = path;
-    row.Distance = std::clamp(path.DefaultDistance, 0.0, path.MaximumDistance);
-    row.MaximumDistance = path.MaximumDistance;
-    radius.push_back(bender::ClipPlaneAt(path, row.Distance).Radius);
+    row.path = path;
+    row.distance = std::clamp(path.defaultDistance, 0.0, path.maximumDistance);
+    row.maximumDistance = path.maximumDistance;
+    radius.push_back(bender::ClipPlaneAt(path, row.distance).radius);
     this->Rows.push_back(row);
   }
   std::vector<std::size_t> order(paths.size());
@@ -464,8 +464,8 @@ void ExportPanel::showCenterlineEnds(const std::vector<bender::CenterlineEndPath
   for (std::size_t k = 0; k < order.size(); ++k)
   {
     EndRow& row = this->Rows[order[k]];
-    row.Inlet = k == 0;
-    row.AutoName = k == 0 ? "inlet" : "outlet_" + std::to_string(k);
+    row.inlet = k == 0;
+    row.autoName = k == 0 ? "inlet" : "outlet_" + std::to_string(k);
   }
   this->Ends->setRowCount(static_cast<int>(this->Rows.size()));
   for (int row = 0; row < static_cast<int>(this->Rows.size()); ++row)
@@ -488,12 +488,12 @@ void ExportPanel::setCutDistance(int row, double distance)
     return;
   }
   EndRow& end = this->Rows[static_cast<std::size_t>(row)];
-  if (end.Distance < 0)
+  if (end.distance < 0)
   {
     return;
   }
-  end.Distance = std::clamp(distance, 0.0, end.MaximumDistance);
-  end.DistanceChosen = true;
+  end.distance = std::clamp(distance, 0.0, end.maximumDistance);
+  end.distanceChosen = true;
   const QSignalBlocker block(this->Ends);
   this->fillRow(row);
 }
@@ -501,7 +501,7 @@ void ExportPanel::setCutDistance(int row, double distance)
 double ExportPanel::cutDistance(int row) const
 {
   return row >= 0 && row < static_cast<int>(this->Rows.size())
-    ? this->Rows[static_cast<std::size_t>(row)].Distance
+    ? this->Rows[static_cast<std::size_t>(row)].distance
     : -1.0;
 }
 
@@ -515,7 +515,7 @@ QString ExportPanel::endName(int row) const
 bool ExportPanel::endIsInlet(int row) const
 {
   return row >= 0 && row < static_cast<int>(this->Rows.size()) &&
-    (this->Rows[static_cast<std::size_t>(row)].Inlet || this->endName(row) == "inlet");
+    (this->Rows[static_cast<std::size_t>(row)].inlet || this->endName(row) == "inlet");
 }
 
 void ExportPanel::endEdited(int row, int column)
@@ -527,29 +527,29 @@ void ExportPanel::endEdited(int row, int column)
   EndRow& end = this->Rows[static_cast<std::size_t>(row)];
   if (column == NameColumn)
   {
-    end.NameEdited = true;
+    end.nameEdited = true;
     emit this->endNamesChanged();
   }
   else if (column == FactorColumn)
   {
-    end.FactorEdited = true;
+    end.factorEdited = true;
   }
-  else if (column == CutColumn && end.Distance >= 0)
+  else if (column == CutColumn && end.distance >= 0)
   {
     const QTableWidgetItem* item = this->Ends->item(row, CutColumn);
     bool ok = false;
     const double value = item ? item->text().trimmed().toDouble(&ok) : 0.0;
     if (ok && std::isfinite(value))
     {
-      end.Distance = std::clamp(value, 0.0, end.MaximumDistance);
-      end.DistanceChosen = true;
+      end.distance = std::clamp(value, 0.0, end.maximumDistance);
+      end.distanceChosen = true;
     }
     // Shown as taken (clamped, or the previous value for text that is no number).
     const QSignalBlocker block(this->Ends);
     this->fillRow(row);
     if (ok)
     {
-      emit this->cutDistanceEdited(row, end.Distance);
+      emit this->cutDistanceEdited(row, end.distance);
     }
   }
 }

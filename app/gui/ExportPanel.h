@@ -143,15 +143,15 @@ private:
   /// One row of the ends table.
   struct EndRow
   {
-    bender::CenterlineEndPath Path; ///< before Prepare
-    bender::CfdEnd Prepared;        ///< after Prepare
-    std::string AutoName;           ///< the name shown unless edited
-    bool Inlet = false;             ///< the row's role (predicted before Prepare)
-    double Distance = -1.0;         ///< the cut, mm from the end; < 0: not clipped
-    double MaximumDistance = 0.0;
-    bool NameEdited = false;
-    bool FactorEdited = false;
-    bool DistanceChosen = false;
+    bender::CenterlineEndPath path; ///< before Prepare
+    bender::CfdEnd prepared;        ///< after Prepare
+    std::string autoName;           ///< the name shown unless edited
+    bool inlet = false;             ///< the row's role (predicted before Prepare)
+    double distance = -1.0;         ///< the cut, mm from the end; < 0: not clipped
+    double maximumDistance = 0.0;
+    bool nameEdited = false;
+    bool factorEdited = false;
+    bool distanceChosen = false;
   };
   void endEdited(int row, int column);
   void defaultFactorsChanged();

@@ -38,11 +38,11 @@ QString Signed(double value, int decimals)
 QString Outlets(const bender::BranchMeasures& branch)
 {
   QStringList names;
-  for (int outlet : branch.Outlets)
+  for (int outlet : branch.outlets)
   {
     names << QString::number(outlet);
   }
-  return names.isEmpty() ? QString::number(branch.BranchId) : names.join(", ");
+  return names.isEmpty() ? QString::number(branch.branchId) : names.join(", ");
 }
 
 /// The rows of the measure table that the panel shows, in the table's order.
@@ -51,7 +51,7 @@ std::vector<const bender::VesselMeasure*> PanelMeasures()
   std::vector<const bender::VesselMeasure*> shown;
   for (const bender::VesselMeasure& m : bender::VesselMeasureTable())
   {
-    if (m.Panel)
+    if (m.panel)
     {
       shown.push_back(&m);
     }
@@ -80,7 +80,7 @@ MeasurementsPanel::MeasurementsPanel(MainActions* actions, QWidget* parent)
   for (const bender::VesselMeasure* m : shown)
   {
     heldRows << QString::fromStdString(bender::MeasureTitle(*m));
-    planColumns << QString::fromStdString(m->Label) << "after";
+    planColumns << QString::fromStdString(m->label) << "after";
   }
   this->Held = new QTableWidget(static_cast<int>(shown.size()), 3, this);
   this->Held->setObjectName("heldTable");
@@ -126,28 +126,28 @@ void MeasurementsPanel::showState(const bender::VesselSession& vessels, const QS
     int column = 1;
     for (const bender::VesselMeasure* m : shown)
     {
-      this->Plan->setItem(row, column++, Item(Number(b ? m->Get(*b) : nan, m->Decimals)));
+      this->Plan->setItem(row, column++, Item(Number(b ? m->get(*b) : nan, m->decimals)));
       this->Plan->setItem(
-        row, column++, a == b ? Item("=") : Item(Number(a ? m->Get(*a) : nan, m->Decimals)));
+        row, column++, a == b ? Item("=") : Item(Number(a ? m->get(*a) : nan, m->decimals)));
     }
   };
   if (comparison)
   {
-    this->Plan->setRowCount(static_cast<int>(comparison->Pairs.size()));
+    this->Plan->setRowCount(static_cast<int>(comparison->pairs.size()));
     int row = 0;
-    for (const bender::BranchChange& pair : comparison->Pairs)
+    for (const bender::BranchChange& pair : comparison->pairs)
     {
       showRow(row++,
-        pair.BeforeIndex >= 0 ? &comparison->Before.Branches[pair.BeforeIndex] : nullptr,
-        pair.AfterIndex >= 0 ? &comparison->After.Branches[pair.AfterIndex] : nullptr);
+        pair.beforeIndex >= 0 ? &comparison->before.branches[pair.beforeIndex] : nullptr,
+        pair.afterIndex >= 0 ? &comparison->after.branches[pair.afterIndex] : nullptr);
     }
   }
   else
   {
     // Nothing bent: the branches as they are (before = after).
-    this->Plan->setRowCount(static_cast<int>(measures.Branches.size()));
+    this->Plan->setRowCount(static_cast<int>(measures.branches.size()));
     int row = 0;
-    for (const bender::BranchMeasures& b : measures.Branches)
+    for (const bender::BranchMeasures& b : measures.branches)
     {
       showRow(row++, &b, &b);
     }
@@ -161,11 +161,11 @@ void MeasurementsPanel::showHeld(const bender::HeldBranchMeasures& before,
   int row = 0;
   for (const bender::VesselMeasure* m : PanelMeasures())
   {
-    const double b = before.Valid ? m->Get(before) : nan;
-    const double n = now.Valid ? m->Get(now) : nan;
-    this->Held->setItem(row, 0, Item(Number(b, m->Decimals)));
-    this->Held->setItem(row, 1, Item(Number(n, m->Decimals)));
-    this->Held->setItem(row, 2, Item(Signed(n - b, m->Decimals)));
+    const double b = before.valid ? m->get(before) : nan;
+    const double n = now.valid ? m->get(now) : nan;
+    this->Held->setItem(row, 0, Item(Number(b, m->decimals)));
+    this->Held->setItem(row, 1, Item(Number(n, m->decimals)));
+    this->Held->setItem(row, 2, Item(Signed(n - b, m->decimals)));
     ++row;
   }
 }

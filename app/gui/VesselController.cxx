@@ -142,7 +142,7 @@ void VesselController::moved()
     this->LinesWarped = true;
   }
   const bender::HeldBranchMeasures live = this->Vessels.MeasureHeld(warp);
-  if (live.Valid && this->Vessels.IsHolding())
+  if (live.valid && this->Vessels.IsHolding())
   {
     this->Now = live;
   }

@@ -69,9 +69,9 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
     const bender::CenterlineResult result = bender::ComputeCenterlines(surface);
     const double total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const auto& t = result.Times;
+    const auto& t = result.times;
     const double values[8] = {
-      t.Preparation, t.Delaunay, t.Voronoi, t.Endpoints, t.Paths, t.Smoothing, t.Branches, total
+      t.preparation, t.delaunay, t.voronoi, t.endpoints, t.paths, t.smoothing, t.branches, total
     };
     for (int k = 0; k < 8; ++k)
     {
@@ -81,11 +81,11 @@ void Run(const std::string& name, vtkPolyData* surface, int repeats)
                 "vertices; prep %.3f delaunay %.3f voronoi %.3f endpoints %.3f paths %.3f "
                 "smoothing %.3f branches %.3f total %.3f s\n",
       r + 1,
-      result.Ok ? "ok" : result.Message.c_str(),
-      result.Endpoints.size(),
-      static_cast<long long>(result.Branches->GetNumberOfCells()),
-      result.NumberOfDelaunayPoints,
-      result.NumberOfVoronoiVertices,
+      result.ok ? "ok" : result.message.c_str(),
+      result.endpoints.size(),
+      static_cast<long long>(result.branches->GetNumberOfCells()),
+      result.numberOfDelaunayPoints,
+      result.numberOfVoronoiVertices,
       values[0],
       values[1],
       values[2],
@@ -218,12 +218,12 @@ std::vector<std::vector<Point3>> Polylines(vtkPolyData* lines)
 
 struct Deviation
 {
-  double Millimetres = 0;
-  double OfRadius = 0; // largest distance / local inscribed radius
-  int Points = 0;
-  Point3 Worst{ { 0, 0, 0 } }; // where the largest distance / radius is
-  double WorstAbscissa = 0;    // its abscissa on its path (mm)
-  double WorstRadius = 0;      // its inscribed radius (mm)
+  double millimetres = 0;
+  double ofRadius = 0; // largest distance / local inscribed radius
+  int points = 0;
+  Point3 worst{ { 0, 0, 0 } }; // where the largest distance / radius is
+  double worstAbscissa = 0;    // its abscissa on its path (mm)
+  double worstRadius = 0;      // its inscribed radius (mm)
 };
 
 // Distances from the points of a's paths to b's paths, skipping points within `skip` x the
@@ -232,20 +232,20 @@ Deviation Compare(const bender::CenterlineResult& a, vtkPolyData* bPaths, double
 {
   Deviation d;
   double largest = 0;
-  std::vector<Point3> excluded(a.Bifurcations);
-  for (const auto& e : a.Endpoints)
+  std::vector<Point3> excluded(a.bifurcations);
+  for (const auto& e : a.endpoints)
   {
-    largest = std::max(largest, e.Radius);
-    excluded.push_back(e.Position);
+    largest = std::max(largest, e.radius);
+    excluded.push_back(e.position);
   }
   const auto lines = Polylines(bPaths);
   vtkDataArray* radius =
-    a.Paths->GetPointData()->GetArray(bender::VesselArrays::MaximumInscribedSphereRadius);
-  vtkDataArray* abscissa = a.Paths->GetPointData()->GetArray(bender::VesselArrays::Abscissa);
-  for (vtkIdType i = 0; i < a.Paths->GetNumberOfPoints(); ++i)
+    a.paths->GetPointData()->GetArray(bender::VesselArrays::MaximumInscribedSphereRadius);
+  vtkDataArray* abscissa = a.paths->GetPointData()->GetArray(bender::VesselArrays::Abscissa);
+  for (vtkIdType i = 0; i < a.paths->GetNumberOfPoints(); ++i)
   {
     Point3 p;
-    a.Paths->GetPoint(i, p.data());
+    a.paths->GetPoint(i, p.data());
     bool skipped = false;
     for (const auto& x : excluded)
     {
@@ -263,15 +263,15 @@ Deviation Compare(const bender::CenterlineResult& a, vtkPolyData* bPaths, double
         best = std::min(best, SegmentDistance(p, line[k], line[k + 1]));
       }
     }
-    d.Millimetres = std::max(d.Millimetres, best);
-    if (best / radius->GetTuple1(i) > d.OfRadius)
+    d.millimetres = std::max(d.millimetres, best);
+    if (best / radius->GetTuple1(i) > d.ofRadius)
     {
-      d.OfRadius = best / radius->GetTuple1(i);
-      d.Worst = p;
-      d.WorstRadius = radius->GetTuple1(i);
-      d.WorstAbscissa = abscissa->GetTuple1(i);
+      d.ofRadius = best / radius->GetTuple1(i);
+      d.worst = p;
+      d.worstRadius = radius->GetTuple1(i);
+      d.worstAbscissa = abscissa->GetTuple1(i);
     }
-    ++d.Points;
+    ++d.points;
   }
   return d;
 }
@@ -281,14 +281,14 @@ void Print(const char* what, const Deviation& d)
   std::printf("  %-34s %6.2f %% of the radius, %.3f mm (%d points); worst at (%.2f, %.2f, %.2f), "
               "abscissa %.2f mm, radius %.2f mm\n",
     what,
-    100.0 * d.OfRadius,
-    d.Millimetres,
-    d.Points,
-    d.Worst[0],
-    d.Worst[1],
-    d.Worst[2],
-    d.WorstAbscissa,
-    d.WorstRadius);
+    100.0 * d.ofRadius,
+    d.millimetres,
+    d.points,
+    d.worst[0],
+    d.worst[1],
+    d.worst[2],
+    d.worstAbscissa,
+    d.worstRadius);
 }
 
 void Invariance(const std::string& name, vtkPolyData* surface)
@@ -296,9 +296,9 @@ void Invariance(const std::string& name, vtkPolyData* surface)
   std::printf(
     "\n%s: invariance, away from the ends and bifurcations (2 end radii)\n", name.c_str());
   const bender::CenterlineResult base = bender::ComputeCenterlines(surface);
-  if (!base.Ok)
+  if (!base.ok)
   {
-    std::printf("  failed: %s\n", base.Message.c_str());
+    std::printf("  failed: %s\n", base.message.c_str());
     return;
   }
   vtkNew<vtkTransform> motion;
@@ -309,11 +309,11 @@ void Invariance(const std::string& name, vtkPolyData* surface)
   moveSurface->SetTransform(motion);
   moveSurface->Update();
   vtkNew<vtkTransformPolyDataFilter> moveLines;
-  moveLines->SetInputData(base.Paths);
+  moveLines->SetInputData(base.paths);
   moveLines->SetTransform(motion);
   moveLines->Update();
   const bender::CenterlineResult moved = bender::ComputeCenterlines(moveSurface->GetOutput());
-  if (moved.Ok)
+  if (moved.ok)
   {
     Print("rigid motion", Compare(moved, moveLines->GetOutput(), 2.0));
   }
@@ -322,18 +322,18 @@ void Invariance(const std::string& name, vtkPolyData* surface)
   finer->SetNumberOfSubdivisions(1);
   finer->Update();
   const bender::CenterlineResult fine = bender::ComputeCenterlines(finer->GetOutput());
-  if (fine.Ok)
+  if (fine.ok)
   {
-    Print("finer (linear subdivision x4)", Compare(fine, base.Paths, 2.0));
+    Print("finer (linear subdivision x4)", Compare(fine, base.paths, 2.0));
   }
   vtkNew<vtkQuadricDecimation> coarser;
   coarser->SetInputData(surface);
   coarser->SetTargetReduction(0.5);
   coarser->Update();
   const bender::CenterlineResult coarse = bender::ComputeCenterlines(coarser->GetOutput());
-  if (coarse.Ok)
+  if (coarse.ok)
   {
-    Print("coarser (quadric decimation / 2)", Compare(coarse, base.Paths, 2.0));
+    Print("coarser (quadric decimation / 2)", Compare(coarse, base.paths, 2.0));
   }
 }
 } // namespace
@@ -379,10 +379,10 @@ int main(int argc, char* argv[])
       Invariance("demo segmentation (closed)", demo.surface);
       const bender::CenterlineResult a = bender::ComputeCenterlines(demo.surface);
       const bender::CenterlineResult b = bender::ComputeCenterlines(source);
-      if (a.Ok && b.Ok)
+      if (a.ok && b.ok)
       {
         std::printf("\nphantom (demo segmentation) vs gmsh aneurysm\n");
-        Print("segmented to source", Compare(a, b.Paths, 2.0));
+        Print("segmented to source", Compare(a, b.paths, 2.0));
       }
     }
   }

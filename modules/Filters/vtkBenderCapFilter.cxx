@@ -276,15 +276,15 @@ bool TriangulateCap(const std::vector<P2>& rim, std::vector<P2>& interior, std::
 
 struct Loop
 {
-  std::vector<vtkIdType> Rim;
-  double Centre[3];
-  double Normal[3]; // the loop runs counter-clockwise about it
-  double E1[3], E2[3];
-  std::vector<P2> Rim2;
-  std::vector<P2> Interior;
-  std::vector<Tri> Tris;
-  double Area = 0.0;
-  double MaxRimDistance = 0.0;
+  std::vector<vtkIdType> rim;
+  double centre[3];
+  double normal[3]; // the loop runs counter-clockwise about it
+  double e1[3], e2[3];
+  std::vector<P2> rim2;
+  std::vector<P2> interior;
+  std::vector<Tri> tris;
+  double area = 0.0;
+  double maxRimDistance = 0.0;
 };
 } // namespace
 
@@ -329,16 +329,16 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
     int inlets = 0;
     for (const CapName& entry : this->Names)
     {
-      if (!bender::IsValidPatchName(entry.Name) || entry.Name == "wall")
+      if (!bender::IsValidPatchName(entry.name) || entry.name == "wall")
       {
-        return fail("invalid cap name '" + entry.Name +
+        return fail("invalid cap name '" + entry.name +
           "': use letters, digits and '_', not starting with a digit, not 'wall'");
       }
-      if (!seen.insert(entry.Name).second)
+      if (!seen.insert(entry.name).second)
       {
-        return fail("the cap name '" + entry.Name + "' is given twice");
+        return fail("the cap name '" + entry.name + "' is given twice");
       }
-      inlets += entry.Inlet ? 1 : 0;
+      inlets += entry.inlet ? 1 : 0;
     }
     if (inlets > 1)
     {
@@ -383,12 +383,12 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
       continue;
     }
     Loop loop;
-    loop.Rim.assign(chain.vertices.begin(), chain.vertices.end());
+    loop.rim.assign(chain.vertices.begin(), chain.vertices.end());
     // Least-squares plane: centroid and the smallest eigenvector of the covariance.
-    double* c = loop.Centre;
+    double* c = loop.centre;
     c[0] = c[1] = c[2] = 0.0;
-    const double m = static_cast<double>(loop.Rim.size());
-    for (vtkIdType v : loop.Rim)
+    const double m = static_cast<double>(loop.rim.size());
+    for (vtkIdType v : loop.rim)
     {
       for (int a = 0; a < 3; ++a)
       {
@@ -397,7 +397,7 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
     }
     double cov[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
     double diameter = 0.0;
-    for (vtkIdType v : loop.Rim)
+    for (vtkIdType v : loop.rim)
     {
       for (int a = 0; a < 3; ++a)
       {
@@ -416,44 +416,44 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
     // Eigenvalues sorted decreasing; columns of vecs are eigenvectors.
     for (int a = 0; a < 3; ++a)
     {
-      loop.E1[a] = vecs[a][0];
-      loop.E2[a] = vecs[a][1];
+      loop.e1[a] = vecs[a][0];
+      loop.e2[a] = vecs[a][1];
     }
-    vtkMath::Cross(loop.E1, loop.E2, loop.Normal);
-    vtkMath::Normalize(loop.Normal);
-    for (vtkIdType v : loop.Rim)
+    vtkMath::Cross(loop.e1, loop.e2, loop.normal);
+    vtkMath::Normalize(loop.normal);
+    for (vtkIdType v : loop.rim)
     {
       const double d[3] = { x[v][0] - c[0], x[v][1] - c[1], x[v][2] - c[2] };
-      loop.MaxRimDistance = std::max(loop.MaxRimDistance, std::abs(vtkMath::Dot(d, loop.Normal)));
-      loop.Rim2.push_back(P2{ { vtkMath::Dot(d, loop.E1), vtkMath::Dot(d, loop.E2) } });
+      loop.maxRimDistance = std::max(loop.maxRimDistance, std::abs(vtkMath::Dot(d, loop.normal)));
+      loop.rim2.push_back(P2{ { vtkMath::Dot(d, loop.e1), vtkMath::Dot(d, loop.e2) } });
     }
-    if (loop.MaxRimDistance > this->Planarity * diameter)
+    if (loop.maxRimDistance > this->Planarity * diameter)
     {
       ++this->NumberOfSkippedLoops;
       continue;
     }
     // Counter-clockwise about the normal.
     double twiceArea = 0.0;
-    for (std::size_t i = 0; i < loop.Rim2.size(); ++i)
+    for (std::size_t i = 0; i < loop.rim2.size(); ++i)
     {
-      const P2& a = loop.Rim2[i];
-      const P2& b = loop.Rim2[(i + 1) % loop.Rim2.size()];
+      const P2& a = loop.rim2[i];
+      const P2& b = loop.rim2[(i + 1) % loop.rim2.size()];
       twiceArea += a[0] * b[1] - a[1] * b[0];
     }
     if (twiceArea < 0)
     {
       for (int a = 0; a < 3; ++a)
       {
-        loop.E2[a] = -loop.E2[a];
-        loop.Normal[a] = -loop.Normal[a];
+        loop.e2[a] = -loop.e2[a];
+        loop.normal[a] = -loop.normal[a];
       }
-      for (P2& p : loop.Rim2)
+      for (P2& p : loop.rim2)
       {
         p[1] = -p[1];
       }
     }
-    loop.Area = 0.5 * std::abs(twiceArea);
-    if (!TriangulateCap(loop.Rim2, loop.Interior, loop.Tris))
+    loop.area = 0.5 * std::abs(twiceArea);
+    if (!TriangulateCap(loop.rim2, loop.interior, loop.tris))
     {
       ++this->NumberOfSkippedLoops;
       continue;
@@ -465,12 +465,12 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
     loops.end(),
     [](const Loop& a, const Loop& b)
     {
-      if (a.Area != b.Area)
+      if (a.area != b.area)
       {
-        return a.Area > b.Area;
+        return a.area > b.area;
       }
-      return *std::min_element(a.Rim.begin(), a.Rim.end()) <
-        *std::min_element(b.Rim.begin(), b.Rim.end());
+      return *std::min_element(a.rim.begin(), a.rim.end()) <
+        *std::min_element(b.rim.begin(), b.rim.end());
     });
 
   // Labels already on the input (a labelled surface capped again) are kept: its patches keep
@@ -509,21 +509,21 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
     std::size_t best = 0;
     for (std::size_t k = 1; k < loops.size(); ++k)
     {
-      if (vtkMath::Distance2BetweenPoints(entry.Point.data(), loops[k].Centre) <
-        vtkMath::Distance2BetweenPoints(entry.Point.data(), loops[best].Centre))
+      if (vtkMath::Distance2BetweenPoints(entry.point.data(), loops[k].centre) <
+        vtkMath::Distance2BetweenPoints(entry.point.data(), loops[best].centre))
       {
         best = k;
       }
     }
     if (!names[best].empty())
     {
-      const double* c = loops[best].Centre;
-      return fail("the cap names '" + names[best] + "' and '" + entry.Name +
+      const double* c = loops[best].centre;
+      return fail("the cap names '" + names[best] + "' and '" + entry.name +
         "' both point at the cap centred at (" + std::to_string(c[0]) + ", " +
         std::to_string(c[1]) + ", " + std::to_string(c[2]) + ")");
     }
-    names[best] = entry.Name;
-    if (entry.Inlet)
+    names[best] = entry.name;
+    if (entry.inlet)
     {
       inlet = static_cast<int>(best);
     }
@@ -591,57 +591,57 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
   {
     Loop& loop = loops[k];
     const int id = static_cast<int>(k) + firstCapId;
-    const double* c = loop.Centre;
+    const double* c = loop.centre;
     if (this->ProjectRim)
     {
-      for (vtkIdType v : loop.Rim)
+      for (vtkIdType v : loop.rim)
       {
         double p[3];
         points->GetPoint(v, p);
         const double d[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
-        const double off = vtkMath::Dot(d, loop.Normal);
+        const double off = vtkMath::Dot(d, loop.normal);
         for (int a = 0; a < 3; ++a)
         {
-          p[a] -= off * loop.Normal[a];
+          p[a] -= off * loop.normal[a];
         }
         points->SetPoint(v, p);
       }
     }
     vtkNew<vtkIdList> rimIds;
-    for (vtkIdType v : loop.Rim)
+    for (vtkIdType v : loop.rim)
     {
       rimIds->InsertNextId(v);
     }
-    std::vector<double> weights(loop.Rim.size(), 1.0 / static_cast<double>(loop.Rim.size()));
-    std::vector<vtkIdType> pointOf(loop.Rim.begin(), loop.Rim.end());
-    for (const P2& q : loop.Interior)
+    std::vector<double> weights(loop.rim.size(), 1.0 / static_cast<double>(loop.rim.size()));
+    std::vector<vtkIdType> pointOf(loop.rim.begin(), loop.rim.end());
+    for (const P2& q : loop.interior)
     {
-      const double p[3] = { c[0] + q[0] * loop.E1[0] + q[1] * loop.E2[0],
-        c[1] + q[0] * loop.E1[1] + q[1] * loop.E2[1],
-        c[2] + q[0] * loop.E1[2] + q[1] * loop.E2[2] };
+      const double p[3] = { c[0] + q[0] * loop.e1[0] + q[1] * loop.e2[0],
+        c[1] + q[0] * loop.e1[1] + q[1] * loop.e2[1],
+        c[2] + q[0] * loop.e1[2] + q[1] * loop.e2[2] };
       const vtkIdType id3 = points->InsertNextPoint(p);
       pd->InterpolatePoint(inPD, id3, rimIds, weights.data());
       pointOf.push_back(id3);
     }
     CapInfo info;
-    info.Id = id;
-    info.Name = names[k];
-    info.Inlet = static_cast<int>(k) == inlet;
-    info.RimPoints = static_cast<int>(loop.Rim.size());
-    info.MaxRimDistance = loop.MaxRimDistance;
-    info.MinAngle = 180.0;
-    info.MinInteriorAngle = 180.0;
-    const int m = static_cast<int>(loop.Rim.size());
+    info.id = id;
+    info.name = names[k];
+    info.inlet = static_cast<int>(k) == inlet;
+    info.rimPoints = static_cast<int>(loop.rim.size());
+    info.maxRimDistance = loop.maxRimDistance;
+    info.minAngle = 180.0;
+    info.minInteriorAngle = 180.0;
+    const int m = static_cast<int>(loop.rim.size());
     double centroid[2] = { 0, 0 };
     double area = 0.0;
-    for (const Tri& t : loop.Tris)
+    for (const Tri& t : loop.tris)
     {
-      auto at = [&](int v) -> const P2& { return v < m ? loop.Rim2[v] : loop.Interior[v - m]; };
+      auto at = [&](int v) -> const P2& { return v < m ? loop.rim2[v] : loop.interior[v - m]; };
       const double angle = MinAngle2(at(t[0]), at(t[1]), at(t[2]));
-      info.MinAngle = std::min(info.MinAngle, angle);
+      info.minAngle = std::min(info.minAngle, angle);
       if (t[0] >= m && t[1] >= m && t[2] >= m)
       {
-        info.MinInteriorAngle = std::min(info.MinInteriorAngle, angle);
+        info.minInteriorAngle = std::min(info.minInteriorAngle, angle);
       }
       const double a = 0.5 * Cross2(at(t[0]), at(t[1]), at(t[2]));
       area += a;
@@ -653,16 +653,16 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
       cells.push_back({ { pointOf[t[0]], pointOf[t[2]], pointOf[t[1]] } });
       ids.push_back(id);
     }
-    if (info.MinInteriorAngle == 180.0)
+    if (info.minInteriorAngle == 180.0)
     {
-      info.MinInteriorAngle = 0.0;
+      info.minInteriorAngle = 0.0;
     }
-    info.Area = area;
-    info.Radius = std::sqrt(area / M_PI);
+    info.area = area;
+    info.radius = std::sqrt(area / M_PI);
     for (int a = 0; a < 3; ++a)
     {
-      info.Centre[a] = c[a] + (centroid[0] * loop.E1[a] + centroid[1] * loop.E2[a]) / area;
-      info.Normal[a] = -loop.Normal[a];
+      info.centre[a] = c[a] + (centroid[0] * loop.e1[a] + centroid[1] * loop.e2[a]) / area;
+      info.normal[a] = -loop.normal[a];
     }
     this->Caps.push_back(info);
   }
@@ -699,7 +699,7 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
         }
         for (CapInfo& info : this->Caps)
         {
-          for (double& v : info.Normal)
+          for (double& v : info.normal)
           {
             v = -v;
           }
@@ -749,7 +749,7 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
   for (const CapInfo& info : this->Caps)
   {
     patches.push_back(
-      { info.Id, info.Name, info.Inlet ? bender::PatchType::Inlet : bender::PatchType::Outlet });
+      { info.id, info.name, info.inlet ? bender::PatchType::Inlet : bender::PatchType::Outlet });
   }
   try
   {

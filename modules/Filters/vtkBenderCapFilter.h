@@ -83,17 +83,17 @@ public:
   /** One cap of the last update. */
   struct CapInfo
   {
-    int Id = 0; ///< CellEntityIds value (2..n+1 on an unlabelled input)
-    std::string Name;
-    bool Inlet = false;
-    std::array<double, 3> Centre{ { 0, 0, 0 } }; ///< area centroid, on the cap's plane
-    std::array<double, 3> Normal{ { 0, 0, 1 } }; ///< unit, outwards (as the triangles face)
-    double Area = 0.0;
-    double Radius = 0.0;           ///< equivalent radius sqrt(Area / pi)
-    int RimPoints = 0;             ///< vertices of the rim
-    double MaxRimDistance = 0.0;   ///< largest distance of an input rim vertex to the plane
-    double MinInteriorAngle = 0.0; ///< degrees, over triangles with no rim vertex (0 if none)
-    double MinAngle = 0.0;         ///< degrees, over all the cap's triangles
+    int id = 0; ///< CellEntityIds value (2..n+1 on an unlabelled input)
+    std::string name;
+    bool inlet = false;
+    std::array<double, 3> centre{ { 0, 0, 0 } }; ///< area centroid, on the cap's plane
+    std::array<double, 3> normal{ { 0, 0, 1 } }; ///< unit, outwards (as the triangles face)
+    double area = 0.0;
+    double radius = 0.0;           ///< equivalent radius sqrt(Area / pi)
+    int rimPoints = 0;             ///< vertices of the rim
+    double maxRimDistance = 0.0;   ///< largest distance of an input rim vertex to the plane
+    double minInteriorAngle = 0.0; ///< degrees, over triangles with no rim vertex (0 if none)
+    double minAngle = 0.0;         ///< degrees, over all the cap's triangles
   };
   /** Caps added by the last update, in id order. */
   const std::vector<CapInfo>& GetCaps() const { return this->Caps; }
@@ -116,9 +116,9 @@ private:
 
   struct CapName
   {
-    std::array<double, 3> Point;
-    std::string Name;
-    bool Inlet = false;
+    std::array<double, 3> point;
+    std::string name;
+    bool inlet = false;
   };
 
   double Planarity = 0.1;

@@ -134,11 +134,11 @@ int vtkBenderRibbonSource::RequestData(vtkInformation*,
     for (int i = 0; i <= n; ++i)
     {
       const bender::Frame& f = frames[i];
-      Insert(pts, f.origin - f.N * this->Width);
-      Insert(pts, f.origin + f.N * this->Width);
+      Insert(pts, f.origin - f.n * this->Width);
+      Insert(pts, f.origin + f.n * this->Width);
       for (int k = 0; k < 2; ++k)
       {
-        normals->InsertNextTuple3(f.B.x, f.B.y, f.B.z);
+        normals->InsertNextTuple3(f.b.x, f.b.y, f.b.z);
         s->InsertNextValue(static_cast<double>(i) / n);
       }
       ids[2 * i] = 2 * i;
@@ -164,23 +164,23 @@ int vtkBenderRibbonSource::RequestData(vtkInformation*,
     vtkNew<vtkCellArray> polys;
     // Start cap: pole, then rings from the pole towards the equator at P0.
     const bender::Frame& f0 = frames.front();
-    Insert(pts, f0.origin - f0.T * r);
+    Insert(pts, f0.origin - f0.t * r);
     for (int k = 1; k < capRings; ++k)
     {
       const double a = 0.5 * Pi * k / capRings;
-      Ring(pts, f0.origin - f0.T * (r * std::cos(a)), f0.N, f0.B, r * std::sin(a), sides);
+      Ring(pts, f0.origin - f0.t * (r * std::cos(a)), f0.n, f0.b, r * std::sin(a), sides);
     }
     for (int i = 0; i <= n; ++i)
     {
-      Ring(pts, frames[i].origin, frames[i].N, frames[i].B, r, sides);
+      Ring(pts, frames[i].origin, frames[i].n, frames[i].b, r, sides);
     }
     const bender::Frame& f1 = frames.back();
     for (int k = capRings - 1; k >= 1; --k)
     {
       const double a = 0.5 * Pi * k / capRings;
-      Ring(pts, f1.origin + f1.T * (r * std::cos(a)), f1.N, f1.B, r * std::sin(a), sides);
+      Ring(pts, f1.origin + f1.t * (r * std::cos(a)), f1.n, f1.b, r * std::sin(a), sides);
     }
-    Insert(pts, f1.origin + f1.T * r);
+    Insert(pts, f1.origin + f1.t * r);
 
     const vtkIdType rings = (capRings - 1) + (n + 1) + (capRings - 1);
     // Fan from the start pole to the first ring.

@@ -11,9 +11,9 @@ namespace bender
 struct Frame
 {
   Vec3 origin;
-  Vec3 T{ 1, 0, 0 };
-  Vec3 N{ 0, 1, 0 };
-  Vec3 B{ 0, 0, 1 };
+  Vec3 t{ 1, 0, 0 };
+  Vec3 n{ 0, 1, 0 };
+  Vec3 b{ 0, 0, 1 };
 };
 
 /// The frame with tangent T and normal N at the origin, completed by B = T x N (T and N are
@@ -21,9 +21,9 @@ struct Frame
 inline Frame FrameOfTangentNormal(const Vec3& T, const Vec3& N)
 {
   Frame frame;
-  frame.T = T;
-  frame.N = N;
-  frame.B = Cross(T, N);
+  frame.t = T;
+  frame.n = N;
+  frame.b = Cross(T, N);
   return frame;
 }
 

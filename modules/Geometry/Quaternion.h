@@ -81,7 +81,7 @@ inline Quaternion QuaternionFromColumns(const Vec3& c0, const Vec3& c1, const Ve
 /// Orientation of a frame as a unit quaternion (maps the world axes to T, N, B).
 inline Quaternion QuaternionOfFrame(const Frame& f)
 {
-  return QuaternionFromColumns(f.T, f.N, f.B);
+  return QuaternionFromColumns(f.t, f.n, f.b);
 }
 
 } // namespace bender

@@ -82,21 +82,21 @@ Frame Ribbon::FrameAt(double s) const
     const double u = sJ > 0.0 ? s / sJ : 0.0;
     const Arc& arc = w.FirstArc();
     f.origin = arc.PointAt(u);
-    f.T = arc.TangentAt(u);
-    f.N = arc.TransportAt(u, Rotate(w.StartTangent(), s * this->Tau, this->N0));
+    f.t = arc.TangentAt(u);
+    f.n = arc.TransportAt(u, Rotate(w.StartTangent(), s * this->Tau, this->N0));
   }
   else
   {
     const double u = (s - sJ) / (1.0 - sJ);
     const Arc& arc = w.SecondArc();
     f.origin = arc.PointAt(u);
-    f.T = arc.TangentAt(u);
+    f.t = arc.TangentAt(u);
     // Rotate C1 by -(1 - s) tau about T1, then backwards about arc 2's axis by the angle
     // still to go to P1.
     const Vec3 twisted = Rotate(w.EndTangent(), -(1.0 - s) * this->Tau, this->N1);
-    f.N = arc.line ? twisted : Rotate(arc.axis, -arc.angle * (1.0 - u), twisted);
+    f.n = arc.line ? twisted : Rotate(arc.axis, -arc.angle * (1.0 - u), twisted);
   }
-  f.B = Cross(f.T, f.N);
+  f.b = Cross(f.t, f.n);
   return f;
 }
 

@@ -263,7 +263,7 @@ bool RibbonWarp::TryBuildSignTable(int samples)
         // Half a turn at s = 0: w >= 0 does not decide; the axis in C_0's own coordinates does.
         const Frame c = this->InitialRibbon.FrameAt(s);
         const Vec3 v = q.Vector();
-        const double comps[3] = { Dot(v, c.T), Dot(v, c.N), Dot(v, c.B) };
+        const double comps[3] = { Dot(v, c.t), Dot(v, c.n), Dot(v, c.b) };
         for (double comp : comps)
         {
           if (std::abs(comp) > 1e-9)

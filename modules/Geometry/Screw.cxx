@@ -25,7 +25,7 @@ struct ScrewParts
 {
   double h = 0.0;  // half angle, [0, pi]
   double sh = 0.0; // sin h = |v|
-  Vec3 K;
+  Vec3 k;
   double d = 0.0;
   Vec3 perp; // sin(h) M
   bool translation = false;
@@ -52,10 +52,10 @@ ScrewParts Decompose(const DualQuaternion& m)
   }
   p.sh = sv;
   p.h = std::atan2(sv, m.real.w);
-  p.K = v / sv;
+  p.k = v / sv;
   const double ch = m.real.w;
-  p.d = 2.0 * (ch * Dot(dv, p.K) - m.dual.w * sv);
-  p.perp = dv - p.K * (0.5 * p.d * ch);
+  p.d = 2.0 * (ch * Dot(dv, p.k) - m.dual.w * sv);
+  p.perp = dv - p.k * (0.5 * p.d * ch);
   return p;
 }
 } // namespace
@@ -69,18 +69,18 @@ Screw ScrewOf(const DualQuaternion& m)
   {
     const Vec3 t = (m.dual * Conjugate(m.real)).Vector() * 2.0;
     const double n = Norm(t);
-    s.K = n > 0.0 ? t / n : Vec3{ 1, 0, 0 };
+    s.k = n > 0.0 ? t / n : Vec3{ 1, 0, 0 };
     s.d = n;
     s.beta = p.translation ? 2.0 * p.h : 0.0;
-    s.A = Vec3{};
+    s.a = Vec3{};
     return s;
   }
-  s.K = p.K;
+  s.k = p.k;
   s.beta = 2.0 * p.h;
   s.d = p.d;
   // perp = sin(h) M with M = A x K the moment of the axis line; A = K x M is the axis point
   // closest to the origin.
-  s.A = Cross(p.K, p.perp / p.sh);
+  s.a = Cross(p.k, p.perp / p.sh);
   return s;
 }
 
@@ -112,8 +112,8 @@ Vec3 ApplyScrewFraction(const DualQuaternion& m, const Vec3& p, double f)
   const double sf = std::sin(hf);
   // m^f: real (cos hf, sin hf K), dual (-(f d/2) sin hf, (f d/2) cos hf K + sin hf M).
   const double ratio = sf / s.sh;
-  Quaternion r{ cf, sf * s.K.x, sf * s.K.y, sf * s.K.z };
-  const Vec3 dvec = s.K * (0.5 * f * s.d * cf) + s.perp * ratio;
+  Quaternion r{ cf, sf * s.k.x, sf * s.k.y, sf * s.k.z };
+  const Vec3 dvec = s.k * (0.5 * f * s.d * cf) + s.perp * ratio;
   Quaternion du{ -0.5 * f * s.d * sf, dvec.x, dvec.y, dvec.z };
   const Quaternion tq = du * Conjugate(r);
   return RotateByQuaternion(r, p) + tq.Vector() * 2.0;

@@ -21,10 +21,10 @@ struct DualQuaternion
 /// (beta == 0) K is the translation's direction and d its length.
 struct Screw
 {
-  Vec3 K{ 1, 0, 0 };
+  Vec3 k{ 1, 0, 0 };
   double beta = 0.0;
   double d = 0.0;
-  Vec3 A;               ///< a point on the axis (meaningless for a pure translation)
+  Vec3 a;               ///< a point on the axis (meaningless for a pure translation)
   bool flipped = false; ///< the lift chose the non-minimal twin (lifted w < 0)
 };
 

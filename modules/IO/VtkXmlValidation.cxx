@@ -25,14 +25,14 @@ namespace
 
 struct XmlTag
 {
-  std::string Name;
-  std::vector<std::pair<std::string, std::string>> Attributes;
-  bool Closing = false;
-  bool SelfClosing = false;
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> attributes;
+  bool closing = false;
+  bool selfClosing = false;
 
   const std::string* Get(const char* key) const
   {
-    for (const auto& [k, v] : this->Attributes)
+    for (const auto& [k, v] : this->attributes)
     {
       if (k == key)
       {
@@ -57,12 +57,12 @@ bool ReadTag(std::string_view data, std::size_t& pos, XmlTag& tag, std::string& 
   pos = end + 1;
   if (!body.empty() && body.front() == '/')
   {
-    tag.Closing = true;
+    tag.closing = true;
     body.remove_prefix(1);
   }
   if (!body.empty() && body.back() == '/')
   {
-    tag.SelfClosing = true;
+    tag.selfClosing = true;
     body.remove_suffix(1);
   }
   std::size_t i = 0;
@@ -70,7 +70,7 @@ bool ReadTag(std::string_view data, std::size_t& pos, XmlTag& tag, std::string& 
   {
     ++i;
   }
-  tag.Name = std::string(body.substr(0, i));
+  tag.name = std::string(body.substr(0, i));
   while (i < body.size())
   {
     while (i < body.size() && IsBlank(body[i]))
@@ -85,14 +85,14 @@ bool ReadTag(std::string_view data, std::size_t& pos, XmlTag& tag, std::string& 
     if (eq == std::string_view::npos || eq + 1 >= body.size() ||
       (body[eq + 1] != '"' && body[eq + 1] != '\''))
     {
-      problem = "malformed attribute in <" + QuoteBytes(tag.Name) + ">";
+      problem = "malformed attribute in <" + QuoteBytes(tag.name) + ">";
       return false;
     }
     const char quote = body[eq + 1];
     const std::size_t close = body.find(quote, eq + 2);
     if (close == std::string_view::npos)
     {
-      problem = "unterminated attribute in <" + QuoteBytes(tag.Name) + ">";
+      problem = "unterminated attribute in <" + QuoteBytes(tag.name) + ">";
       return false;
     }
     std::string key(body.substr(i, eq - i));
@@ -100,7 +100,7 @@ bool ReadTag(std::string_view data, std::size_t& pos, XmlTag& tag, std::string& 
     {
       key.pop_back();
     }
-    tag.Attributes.emplace_back(key, std::string(body.substr(eq + 2, close - eq - 2)));
+    tag.attributes.emplace_back(key, std::string(body.substr(eq + 2, close - eq - 2)));
     i = close + 1;
   }
   return true;
@@ -364,13 +364,13 @@ bool CheckVtkXml(std::string_view data,
     {
       return false;
     }
-    if (tag.Closing)
+    if (tag.closing)
     {
       continue;
     }
     if (!sawRoot)
     {
-      if (tag.Name != "VTKFile")
+      if (tag.name != "VTKFile")
       {
         problem = "not a VTK XML file (the root element is not <VTKFile>)";
         return false;
@@ -415,7 +415,7 @@ bool CheckVtkXml(std::string_view data,
       }
       continue;
     }
-    if (tag.Name == "Piece")
+    if (tag.name == "Piece")
     {
       if (++pieceCount > 1024)
       {
@@ -423,7 +423,7 @@ bool CheckVtkXml(std::string_view data,
         return false;
       }
       points = cells = 0;
-      for (const auto& [key, value] : tag.Attributes)
+      for (const auto& [key, value] : tag.attributes)
       {
         std::uint64_t n = 0;
         if (key.rfind("NumberOf", 0) == 0)
@@ -455,7 +455,7 @@ bool CheckVtkXml(std::string_view data,
       }
       continue;
     }
-    if (tag.Name == "ImageData")
+    if (tag.name == "ImageData")
     {
       const std::string* whole = tag.Get("WholeExtent");
       std::uint64_t tuples = 0;
@@ -466,14 +466,14 @@ bool CheckVtkXml(std::string_view data,
       }
       continue;
     }
-    if (tag.Name == "PointData" || tag.Name == "CellData" || tag.Name == "Points" ||
-      tag.Name == "Verts" || tag.Name == "Lines" || tag.Name == "Strips" || tag.Name == "Polys" ||
-      tag.Name == "FieldData")
+    if (tag.name == "PointData" || tag.name == "CellData" || tag.name == "Points" ||
+      tag.name == "Verts" || tag.name == "Lines" || tag.name == "Strips" || tag.name == "Polys" ||
+      tag.name == "FieldData")
     {
-      section = tag.Name;
+      section = tag.name;
       continue;
     }
-    if (tag.Name == "DataArray" || tag.Name == "Array")
+    if (tag.name == "DataArray" || tag.name == "Array")
     {
       const std::string* type = tag.Get("type");
       const int size = type ? XmlTypeSize(*type) : 0;
@@ -528,7 +528,7 @@ bool CheckVtkXml(std::string_view data,
       // Inline binary data (base64) of a compressed file starts with the same block header as
       // an appended block: a forged one made vtkXMLDataParser allocate 8 TB (found by hand after
       // the fuzzers' seeds had no inline arrays).
-      if (format && *format == "binary" && !offset && compressed && !tag.SelfClosing)
+      if (format && *format == "binary" && !offset && compressed && !tag.selfClosing)
       {
         const std::size_t textEnd = std::min(markup.find('<', pos), markup.size());
         const std::string_view text = markup.substr(pos, textEnd - pos);
@@ -550,7 +550,7 @@ bool CheckVtkXml(std::string_view data,
       const std::string* name = tag.Get("Name");
       const bool cellOffsets =
         (section == "Verts" || section == "Lines" || section == "Strips" || section == "Polys") &&
-        name && *name == "offsets" && !tag.SelfClosing && !offset;
+        name && *name == "offsets" && !tag.selfClosing && !offset;
       if (cellOffsets && (!format || *format == "ascii" || !compressed))
       {
         const std::size_t textEnd = std::min(markup.find('<', pos), markup.size());

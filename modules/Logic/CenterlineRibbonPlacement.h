@@ -27,7 +27,7 @@ struct CenterlineRibbonOptions
 };
 
 /// Places the ribbon between the centerline points nearest to `first` and `second`, on one of
-/// the per-outlet centerlines (CenterlineResult::Paths: polylines with
+/// the per-outlet centerlines (CenterlineResult::paths: polylines with
 /// MaximumInscribedSphereRadius, FrenetTangent and FrenetNormal). The ribbon runs from the first
 /// pick to the second. Throws RibbonPlacementError: no centerline, missing arrays, a non-finite
 /// pick, a pick not on a vessel (the sac), both picks at the same place (closer than one inscribed

@@ -25,14 +25,14 @@ double Distance2(const std::array<double, 3>& a, const std::array<double, 3>& b)
 
 struct End
 {
-  std::vector<long long> Rim;
-  std::array<double, 3> Centre, Normal;
-  double Radius = 0, Area = 0;
-  std::string Name;
-  bool Inlet = false;
-  double Factor = -1.0;
-  std::array<double, 3> CenterlineEnd{ { 0, 0, 0 } };
-  double ClipDistance = -1.0;
+  std::vector<long long> rim;
+  std::array<double, 3> centre, normal;
+  double radius = 0, area = 0;
+  std::string name;
+  bool inlet = false;
+  double factor = -1.0;
+  std::array<double, 3> centerlineEnd{ { 0, 0, 0 } };
+  double clipDistance = -1.0;
 };
 
 template<typename T>
@@ -41,7 +41,7 @@ std::size_t Nearest(const std::vector<End>& ends, const T& position)
   std::size_t best = 0;
   for (std::size_t k = 1; k < ends.size(); ++k)
   {
-    if (Distance2(ends[k].Centre, position) < Distance2(ends[best].Centre, position))
+    if (Distance2(ends[k].centre, position) < Distance2(ends[best].centre, position))
     {
       best = k;
     }
@@ -54,13 +54,13 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   const PrepareForCfdOptions& options,
   const ProgressReporter& progress)
 {
-  const std::string& input = options.InputName;
+  const std::string& input = options.inputName;
   auto error = [&input](const std::string& what) { return InputError(input + ": " + what); };
   if (!surface || surface->GetNumberOfPoints() == 0 || CollectTriangles(surface).empty())
   {
     throw error("the surface has no triangles");
   }
-  for (const double f : { options.InletExtension, options.OutletExtension })
+  for (const double f : { options.inletExtension, options.outletExtension })
   {
     if (!std::isfinite(f) || f < 0 || f > 100)
     {
@@ -72,38 +72,38 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   vtkSmartPointer<vtkPolyData> open;
   try
   {
-    if (options.Clip)
+    if (options.clip)
     {
-      vtkSmartPointer<vtkPolyData> centerlines = options.Centerlines;
+      vtkSmartPointer<vtkPolyData> centerlines = options.centerlines;
       if (!centerlines)
       {
         progress.Report("centerlines", 0.0);
         const CenterlineResult cl = ComputeCenterlines(surface);
-        if (!cl.Ok)
+        if (!cl.ok)
         {
-          throw InputError("no centerline to clip the ends by: " + cl.Message);
+          throw InputError("no centerline to clip the ends by: " + cl.message);
         }
-        centerlines = cl.Paths;
+        centerlines = cl.paths;
       }
       progress.ThrowIfCancelled("centerlines");
       progress.Report("clip", 0.2);
       ClipOptions clip;
-      clip.Ends = options.Ends;
+      clip.ends = options.ends;
       ClipResult clipped = ClipVesselEnds(surface, centerlines, clip);
-      result.Warnings = clipped.Warnings;
-      open = clipped.Surface;
-      for (const ClippedEnd& c : clipped.Ends)
+      result.warnings = clipped.warnings;
+      open = clipped.surface;
+      for (const ClippedEnd& c : clipped.ends)
       {
-        ends.push_back({ c.Rim,
-          c.Centre,
-          c.Normal,
-          c.Radius,
-          c.Area,
+        ends.push_back({ c.rim,
+          c.centre,
+          c.normal,
+          c.radius,
+          c.area,
           "",
           false,
           -1.0,
-          c.CenterlineEnd,
-          c.Distance });
+          c.centerlineEnd,
+          c.distance });
       }
     }
     else
@@ -111,20 +111,20 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
       open = surface;
       for (const FlowExtensionEnd& e : OpenEnds(surface))
       {
-        ends.push_back({ e.Rim,
-          e.Centre,
-          e.Normal,
-          e.Radius,
-          M_PI * e.Radius * e.Radius,
+        ends.push_back({ e.rim,
+          e.centre,
+          e.normal,
+          e.radius,
+          M_PI * e.radius * e.radius,
           "",
           false,
           -1.0,
-          e.Centre,
+          e.centre,
           -1.0 });
       }
       if (ends.empty())
       {
-        throw InputError(options.Cap ? "the surface has no open end to cap (clip its ends instead)"
+        throw InputError(options.cap ? "the surface has no open end to cap (clip its ends instead)"
                                      : "the surface has no open end");
       }
     }
@@ -143,7 +143,7 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(),
     order.end(),
-    [&ends](std::size_t a, std::size_t b) { return ends[a].Area > ends[b].Area; });
+    [&ends](std::size_t a, std::size_t b) { return ends[a].area > ends[b].area; });
   {
     std::vector<End> sorted;
     for (std::size_t k : order)
@@ -154,24 +154,24 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   }
   std::set<std::string> taken;
   int inlet = -1;
-  for (const CfdEndName& entry : options.Names)
+  for (const CfdEndName& entry : options.names)
   {
-    if (!IsValidPatchName(entry.Name) || entry.Name == "wall")
+    if (!IsValidPatchName(entry.name) || entry.name == "wall")
     {
-      throw error("invalid end name '" + entry.Name +
+      throw error("invalid end name '" + entry.name +
         "': use letters, digits and '_', not starting with a digit, not 'wall'");
     }
-    if (!taken.insert(entry.Name).second)
+    if (!taken.insert(entry.name).second)
     {
-      throw error("the end name '" + entry.Name + "' is given twice");
+      throw error("the end name '" + entry.name + "' is given twice");
     }
-    End& end = ends[Nearest(ends, entry.Position)];
-    if (!end.Name.empty())
+    End& end = ends[Nearest(ends, entry.position)];
+    if (!end.name.empty())
     {
-      throw error("the names '" + end.Name + "' and '" + entry.Name + "' choose the same end");
+      throw error("the names '" + end.name + "' and '" + entry.name + "' choose the same end");
     }
-    end.Name = entry.Name;
-    if (entry.Inlet || entry.Name == "inlet")
+    end.name = entry.name;
+    if (entry.inlet || entry.name == "inlet")
     {
       if (inlet >= 0)
       {
@@ -184,34 +184,34 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   {
     inlet = 0;
   }
-  ends[static_cast<std::size_t>(inlet)].Inlet = true;
+  ends[static_cast<std::size_t>(inlet)].inlet = true;
   int next = 1;
   for (End& end : ends)
   {
-    if (!end.Name.empty())
+    if (!end.name.empty())
     {
       continue;
     }
-    if (end.Inlet && !taken.count("inlet"))
+    if (end.inlet && !taken.count("inlet"))
     {
-      end.Name = "inlet";
+      end.name = "inlet";
     }
     else
     {
       do
       {
-        end.Name = "outlet_" + std::to_string(next++);
-      } while (taken.count(end.Name));
+        end.name = "outlet_" + std::to_string(next++);
+      } while (taken.count(end.name));
     }
-    taken.insert(end.Name);
+    taken.insert(end.name);
   }
-  for (const CfdEndFactor& f : options.ExtensionFactors)
+  for (const CfdEndFactor& f : options.extensionFactors)
   {
-    if (!std::isfinite(f.Factor) || f.Factor < 0 || f.Factor > 100)
+    if (!std::isfinite(f.factor) || f.factor < 0 || f.factor > 100)
     {
-      throw error("the flow-extension factor " + std::to_string(f.Factor) + " is not in [0, 100]");
+      throw error("the flow-extension factor " + std::to_string(f.factor) + " is not in [0, 100]");
     }
-    ends[Nearest(ends, f.Position)].Factor = f.Factor;
+    ends[Nearest(ends, f.position)].factor = f.factor;
   }
 
   // Flow extensions.
@@ -220,11 +220,11 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   std::vector<FlowExtensionEnd> request;
   for (const End& end : ends)
   {
-    request.push_back({ end.Rim, end.Centre, end.Normal, end.Radius, end.Factor, end.Inlet });
+    request.push_back({ end.rim, end.centre, end.normal, end.radius, end.factor, end.inlet });
   }
   FlowExtensionOptions extension;
-  extension.InletFactor = options.InletExtension;
-  extension.OutletFactor = options.OutletExtension;
+  extension.inletFactor = options.inletExtension;
+  extension.outletFactor = options.outletExtension;
   FlowExtensionResult extended;
   try
   {
@@ -234,39 +234,39 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   {
     throw error(e.what());
   }
-  result.Warnings.insert(result.Warnings.end(), extended.Warnings.begin(), extended.Warnings.end());
+  result.warnings.insert(result.warnings.end(), extended.warnings.begin(), extended.warnings.end());
 
   for (std::size_t k = 0; k < ends.size(); ++k)
   {
     CfdEnd out;
-    out.Name = ends[k].Name;
-    out.Id = static_cast<int>(k) + 2;
-    out.Type = ends[k].Inlet ? PatchType::Inlet : PatchType::Outlet;
-    out.Centre = extended.Ends[k].FarCentre;
-    out.Normal = extended.Ends[k].Normal;
-    out.Radius = ends[k].Radius;
-    out.Area = ends[k].Area;
-    out.ExtensionLength = extended.Ends[k].Length;
-    out.ClipCentre = ends[k].Centre;
-    out.CenterlineEnd = ends[k].CenterlineEnd;
-    out.ClipDistance = ends[k].ClipDistance;
-    result.Ends.push_back(out);
+    out.name = ends[k].name;
+    out.id = static_cast<int>(k) + 2;
+    out.type = ends[k].inlet ? PatchType::Inlet : PatchType::Outlet;
+    out.centre = extended.ends[k].farCentre;
+    out.normal = extended.ends[k].normal;
+    out.radius = ends[k].radius;
+    out.area = ends[k].area;
+    out.extensionLength = extended.ends[k].length;
+    out.clipCentre = ends[k].centre;
+    out.centerlineEnd = ends[k].centerlineEnd;
+    out.clipDistance = ends[k].clipDistance;
+    result.ends.push_back(out);
   }
-  if (!options.Cap)
+  if (!options.cap)
   {
-    result.Surface = extended.Surface;
+    result.surface = extended.surface;
     const std::vector<int> ids(
-      static_cast<std::size_t>(result.Surface->GetNumberOfPolys()), kWallEntityId);
-    WritePatchLabels(result.Surface, ids, { { kWallEntityId, "wall", PatchType::Wall } });
+      static_cast<std::size_t>(result.surface->GetNumberOfPolys()), kWallEntityId);
+    WritePatchLabels(result.surface, ids, { { kWallEntityId, "wall", PatchType::Wall } });
     return result;
   }
   progress.ThrowIfCancelled("flow extensions");
   progress.Report("caps", 0.7);
   vtkNew<vtkBenderCapFilter> cap;
-  cap->SetInputData(extended.Surface);
-  for (const CfdEnd& end : result.Ends)
+  cap->SetInputData(extended.surface);
+  for (const CfdEnd& end : result.ends)
   {
-    cap->AddCapName(end.Centre.data(), end.Name, end.Type == PatchType::Inlet);
+    cap->AddCapName(end.centre.data(), end.name, end.type == PatchType::Inlet);
   }
   cap->Update();
   if (!cap->GetLastError().empty())
@@ -280,25 +280,25 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
       std::to_string(ends.size()) + " ends (" + std::to_string(cap->GetNumberOfSkippedLoops()) +
       " open loops left)");
   }
-  result.Surface = cap->GetOutput();
+  result.surface = cap->GetOutput();
   // The cap filter numbers caps by area; take ids, centres and areas from its caps by name.
-  for (CfdEnd& end : result.Ends)
+  for (CfdEnd& end : result.ends)
   {
     for (const auto& info : cap->GetCaps())
     {
-      if (info.Name == end.Name)
+      if (info.name == end.name)
       {
-        end.Id = info.Id;
-        end.Centre = info.Centre;
-        end.Normal = info.Normal;
-        end.Area = info.Area;
-        end.Radius = info.Radius;
+        end.id = info.id;
+        end.centre = info.centre;
+        end.normal = info.normal;
+        end.area = info.area;
+        end.radius = info.radius;
       }
     }
   }
-  std::sort(result.Ends.begin(),
-    result.Ends.end(),
-    [](const CfdEnd& a, const CfdEnd& b) { return a.Id < b.Id; });
+  std::sort(result.ends.begin(),
+    result.ends.end(),
+    [](const CfdEnd& a, const CfdEnd& b) { return a.id < b.id; });
   return result;
 }
 

@@ -31,60 +31,60 @@ namespace bender
 
 struct CfdEndName
 {
-  std::array<double, 3> Position{ { 0, 0, 0 } };
-  std::string Name;   ///< a valid patch name (IsValidPatchName), not "wall"
-  bool Inlet = false; ///< this end is the inlet (also when Name is "inlet")
+  std::array<double, 3> position{ { 0, 0, 0 } };
+  std::string name;   ///< a valid patch name (IsValidPatchName), not "wall"
+  bool inlet = false; ///< this end is the inlet (also when Name is "inlet")
 };
 
 struct CfdEndFactor
 {
-  std::array<double, 3> Position{ { 0, 0, 0 } };
-  double Factor = 0.0; ///< flow-extension length / radius of the nearest end, [0, 100]
+  std::array<double, 3> position{ { 0, 0, 0 } };
+  double factor = 0.0; ///< flow-extension length / radius of the nearest end, [0, 100]
 };
 
 struct PrepareForCfdOptions
 {
   /// Centerlines of the surface (polylines with MaximumInscribedSphereRadius); null: computed.
-  vtkSmartPointer<vtkPolyData> Centerlines;
+  vtkSmartPointer<vtkPolyData> centerlines;
   /// Clip the vessel ends (default). Off: use the surface's open ends as they are.
-  bool Clip = true;
+  bool clip = true;
   /// Per-end clip positions or distances (see ClipEndRequest).
-  std::vector<ClipEndRequest> Ends;
-  std::vector<CfdEndName> Names;
-  double InletExtension = 10.0;               ///< flow-extension factor of the inlet, [0, 100]
-  double OutletExtension = 5.0;               ///< of the outlets, [0, 100]
-  std::vector<CfdEndFactor> ExtensionFactors; ///< per end, by position
-  bool Cap = true;
+  std::vector<ClipEndRequest> ends;
+  std::vector<CfdEndName> names;
+  double inletExtension = 10.0;               ///< flow-extension factor of the inlet, [0, 100]
+  double outletExtension = 5.0;               ///< of the outlets, [0, 100]
+  std::vector<CfdEndFactor> extensionFactors; ///< per end, by position
+  bool cap = true;
   /// Names the surface in error messages ("aneurysm.stl").
-  std::string InputName = "the surface";
+  std::string inputName = "the surface";
 };
 
 struct CfdEnd
 {
-  std::string Name;
-  int Id = 0; ///< CellEntityIds value of its cap (2..); the same numbering when not capped
-  PatchType Type = PatchType::Outlet;
-  std::array<double, 3> Centre{ { 0, 0, 0 } }; ///< of the cap (the far end of its extension)
-  std::array<double, 3> Normal{ { 0, 0, 1 } }; ///< unit, outwards
-  double Radius = 0.0;                         ///< equivalent radius sqrt(Area / pi)
-  double Area = 0.0;
-  double ExtensionLength = 0.0;
-  std::array<double, 3> ClipCentre{ { 0, 0, 0 } }; ///< centre of the vessel's own rim
-  /// With Clip: the vessel end on the centerline (CenterlineEndPath::Position) and the arc
+  std::string name;
+  int id = 0; ///< CellEntityIds value of its cap (2..); the same numbering when not capped
+  PatchType type = PatchType::Outlet;
+  std::array<double, 3> centre{ { 0, 0, 0 } }; ///< of the cap (the far end of its extension)
+  std::array<double, 3> normal{ { 0, 0, 1 } }; ///< unit, outwards
+  double radius = 0.0;                         ///< equivalent radius sqrt(Area / pi)
+  double area = 0.0;
+  double extensionLength = 0.0;
+  std::array<double, 3> clipCentre{ { 0, 0, 0 } }; ///< centre of the vessel's own rim
+  /// With Clip: the vessel end on the centerline (CenterlineEndPath::position) and the arc
   /// length from it to the cut (ClipEndRequest{CenterlineEnd, ClipDistance} cuts there again).
   /// Without Clip: ClipDistance is -1.
-  std::array<double, 3> CenterlineEnd{ { 0, 0, 0 } };
-  double ClipDistance = -1.0;
+  std::array<double, 3> centerlineEnd{ { 0, 0, 0 } };
+  double clipDistance = -1.0;
 };
 
 struct PrepareForCfdResult
 {
-  vtkSmartPointer<vtkPolyData> Surface; ///< labelled (PatchLabels.h)
-  std::vector<CfdEnd> Ends;             ///< by id
-  std::vector<std::string> Warnings;
+  vtkSmartPointer<vtkPolyData> surface; ///< labelled (PatchLabels.h)
+  std::vector<CfdEnd> ends;             ///< by id
+  std::vector<std::string> warnings;
 };
 
-/// Throws bender::InputError, one line starting with options.InputName: an empty surface, no
+/// Throws bender::InputError, one line starting with options.inputName: an empty surface, no
 /// centerline, a clip plane that cuts no vessel, fewer than two ends, Cap without Clip on a
 /// surface with no open end, bad names or factors. `progress`: the stages ("centerlines",
 /// "clip", "flow extensions", "caps") are reported and the cancel flag is polled between them

@@ -131,14 +131,14 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
     {
       say("Preparing the bent vessel for CFD (ends clipped, flow extensions, labelled caps)...");
       PrepareForCfdOptions prepare;
-      prepare.InputName = "the bent demo vessel";
+      prepare.inputName = "the bent demo vessel";
       const PrepareForCfdResult prepared = PrepareForCfd(bent, prepare);
-      for (const std::string& w : prepared.Warnings)
+      for (const std::string& w : prepared.warnings)
       {
         warn(w);
       }
       options.progress.ThrowIfCancelled("demo CFD");
-      const vtkSmartPointer<vtkPolyData> cfdBent = prepared.Surface;
+      const vtkSmartPointer<vtkPolyData> cfdBent = prepared.surface;
       ExportSurfaceOptions stl;
       stl.output = out("demo-cfd.stl");
       stl.protectedPath = vesselPath;

@@ -57,9 +57,9 @@ void CenterlineJob::Run(const ProgressReporter& progress)
     {
       this->Before = ComputeCenterlines(this->Original);
     }
-    if (!this->Before.Ok)
+    if (!this->Before.ok)
     {
-      this->Problem = "Centerlines: " + this->Before.Message;
+      this->Problem = "Centerlines: " + this->Before.message;
       return;
     }
     progress.ThrowIfCancelled("centerlines");
@@ -67,15 +67,15 @@ void CenterlineJob::Run(const ProgressReporter& progress)
     {
       progress.Report("centerlines of the bent vessel", 0.5);
       CenterlineOptions options;
-      options.Seeds = MatchedSeeds(this->Original, this->Current, this->Before.Endpoints);
+      options.seeds = MatchedSeeds(this->Original, this->Current, this->Before.endpoints);
       this->After = ComputeCenterlines(this->Current, options);
-      if (!this->After->Ok)
+      if (!this->After->ok)
       {
-        this->Problem = "Centerlines of the bent vessel: " + this->After->Message;
+        this->Problem = "Centerlines of the bent vessel: " + this->After->message;
         return;
       }
       progress.ThrowIfCancelled("centerlines");
-      this->Comparison = CompareVessels(this->Before.Branches, this->After->Branches);
+      this->Comparison = CompareVessels(this->Before.branches, this->After->branches);
     }
     progress.Report("centerlines", 1.0);
     this->Ok = true;
@@ -162,13 +162,13 @@ bool VesselSession::Finish(CenterlineJob& job, std::string& message)
   this->OriginalResult = job.Before;
   this->Shown = job.After ? *job.After : job.Before;
   this->Comparison = job.Comparison;
-  this->Measures = MeasureBranches(this->Shown->Branches);
+  this->Measures = MeasureBranches(this->Shown->branches);
   std::ostringstream text;
-  text << "Centerlines: " << this->Shown->Paths->GetNumberOfCells() << " path(s), "
-       << this->Measures.Branches.size() << " branch(es)";
-  if (!this->Shown->Warnings.empty())
+  text << "Centerlines: " << this->Shown->paths->GetNumberOfCells() << " path(s), "
+       << this->Measures.branches.size() << " branch(es)";
+  if (!this->Shown->warnings.empty())
   {
-    text << " (" << this->Shown->Warnings.front() << ")";
+    text << " (" << this->Shown->warnings.front() << ")";
   }
   message = text.str();
   return true;
@@ -176,12 +176,12 @@ bool VesselSession::Finish(CenterlineJob& job, std::string& message)
 
 vtkPolyData* VesselSession::GetPaths() const
 {
-  return this->Shown ? this->Shown->Paths.GetPointer() : nullptr;
+  return this->Shown ? this->Shown->paths.GetPointer() : nullptr;
 }
 
 vtkPolyData* VesselSession::GetBranches() const
 {
-  return this->Shown ? this->Shown->Branches.GetPointer() : nullptr;
+  return this->Shown ? this->Shown->branches.GetPointer() : nullptr;
 }
 
 void VesselSession::Clear()
@@ -406,8 +406,8 @@ HeldBranchMeasures VesselSession::MeasureBy(const WarpSpec* warp) const
     return m;
   }
   static_cast<BranchMeasures&>(m) = MeasureStretch(points, radii);
-  m.Samples = static_cast<int>(points.size());
-  m.Valid = std::isfinite(m.Length) && std::isfinite(m.BendAngle);
+  m.samples = static_cast<int>(points.size());
+  m.valid = std::isfinite(m.length) && std::isfinite(m.bendAngle);
   return m;
 }
 

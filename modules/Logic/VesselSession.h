@@ -36,8 +36,8 @@ class BenderSession;
 /// held with it (carried by the live warp), so MinRadius is the narrowest the bend makes it.
 struct HeldBranchMeasures : BranchMeasures
 {
-  bool Valid = false;
-  int Samples = 0;
+  bool valid = false;
+  int samples = 0;
 };
 
 /// Centerlines of one surface state, computed by a job: Begin on the session's thread (inputs

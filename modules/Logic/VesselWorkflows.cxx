@@ -61,21 +61,21 @@ const char* KindName(EndpointKind k)
 Json BranchJson(const BranchMeasures& b)
 {
   Json j;
-  j["id"] = b.BranchId;
-  j["parent"] = b.ParentBranchId;
-  j["outlets"] = Json(std::vector<int>(b.Outlets.begin(), b.Outlets.end()));
-  j["endpoint"] = b.EndpointId;
-  j["startBifurcation"] = b.StartBifurcationId;
-  j["endBifurcation"] = b.EndBifurcationId;
+  j["id"] = b.branchId;
+  j["parent"] = b.parentBranchId;
+  j["outlets"] = Json(std::vector<int>(b.outlets.begin(), b.outlets.end()));
+  j["endpoint"] = b.endpointId;
+  j["startBifurcation"] = b.startBifurcationId;
+  j["endBifurcation"] = b.endBifurcationId;
   for (const VesselMeasure& m : VesselMeasureTable())
   {
-    j[m.Key] = R4(m.Get(b));
+    j[m.key] = R4(m.get(b));
   }
-  j["minRadiusPosition"] = P(b.MinRadiusPosition);
-  j["start"] = P(b.Start);
-  j["end"] = P(b.End);
-  j["startTangent"] = P(b.StartTangent);
-  j["endTangent"] = P(b.EndTangent);
+  j["minRadiusPosition"] = P(b.minRadiusPosition);
+  j["start"] = P(b.start);
+  j["end"] = P(b.end);
+  j["startTangent"] = P(b.startTangent);
+  j["endTangent"] = P(b.endTangent);
   return j;
 }
 
@@ -83,39 +83,39 @@ Json ResultJson(const CenterlineWorkflowResult& r)
 {
   Json j;
   Json ends = Json::array();
-  for (const auto& e : r.centerlines.Endpoints)
+  for (const auto& e : r.centerlines.endpoints)
   {
-    ends.push_back({ { "position", P(e.Position) },
-      { "radius", R4(e.Radius) },
-      { "kind", KindName(e.Kind) },
-      { "inlet", e.Inlet },
-      { "reached", e.Reached } });
+    ends.push_back({ { "position", P(e.position) },
+      { "radius", R4(e.radius) },
+      { "kind", KindName(e.kind) },
+      { "inlet", e.inlet },
+      { "reached", e.reached } });
   }
   j["endpoints"] = ends;
   Json bifs = Json::array();
-  for (const auto& b : r.measures.Bifurcations)
+  for (const auto& b : r.measures.bifurcations)
   {
     Json angles = Json::array();
-    for (double a : b.ParentChildAngles)
+    for (double a : b.parentChildAngles)
     {
       angles.push_back(R4(a));
     }
-    bifs.push_back({ { "id", b.Id },
-      { "position", P(b.Position) },
-      { "parent", b.ParentBranchId },
-      { "children", b.ChildBranchIds },
+    bifs.push_back({ { "id", b.id },
+      { "position", P(b.position) },
+      { "parent", b.parentBranchId },
+      { "children", b.childBranchIds },
       { "parentChildAngles", angles },
-      { "childrenAngle", R4(b.ChildrenAngle) } });
+      { "childrenAngle", R4(b.childrenAngle) } });
   }
   j["bifurcations"] = bifs;
   Json branches = Json::array();
-  for (const auto& b : r.measures.Branches)
+  for (const auto& b : r.measures.branches)
   {
     branches.push_back(BranchJson(b));
   }
   j["branches"] = branches;
-  j["step"] = R4(r.centerlines.Step);
-  j["warnings"] = r.centerlines.Warnings;
+  j["step"] = R4(r.centerlines.step);
+  j["warnings"] = r.centerlines.warnings;
   return j;
 }
 
@@ -126,7 +126,7 @@ CenterlineWorkflowResult Compute(vtkPolyData* surface,
   CenterlineWorkflowResult result;
   result.surface = surface;
   CenterlineOptions options;
-  options.Seeds = seeds;
+  options.seeds = seeds;
   try
   {
     result.centerlines = ComputeCenterlines(surface, options);
@@ -135,11 +135,11 @@ CenterlineWorkflowResult Compute(vtkPolyData* surface,
   {
     throw InputError(name + ": " + e.what());
   }
-  if (!result.centerlines.Ok)
+  if (!result.centerlines.ok)
   {
-    throw InputError(name + ": " + result.centerlines.Message);
+    throw InputError(name + ": " + result.centerlines.message);
   }
-  result.measures = MeasureBranches(result.centerlines.Branches);
+  result.measures = MeasureBranches(result.centerlines.branches);
   return result;
 }
 } // namespace
@@ -197,7 +197,7 @@ CenterlineWorkflowResult ComputeCenterlinesOfFile(const CenterlineWorkflowOption
   {
     try
     {
-      WriteMesh(result.centerlines.Branches, options.output);
+      WriteMesh(result.centerlines.branches, options.output);
     }
     catch (const MeshIOError& e)
     {
@@ -235,25 +235,25 @@ MeasureWorkflowResult MeasureVessels(const MeasureWorkflowOptions& options)
     return result;
   }
   const std::vector<Point3> seeds =
-    MatchedSeeds(result.before.surface, after, result.before.centerlines.Endpoints);
+    MatchedSeeds(result.before.surface, after, result.before.centerlines.endpoints);
   result.after = Compute(after, afterName, seeds);
   const VesselComparison comparison =
-    CompareVessels(result.before.centerlines.Branches, result.after->centerlines.Branches);
-  for (const auto& pair : comparison.Pairs)
+    CompareVessels(result.before.centerlines.branches, result.after->centerlines.branches);
+  for (const auto& pair : comparison.pairs)
   {
     BranchComparison c;
-    if (pair.BeforeIndex >= 0)
+    if (pair.beforeIndex >= 0)
     {
-      c.before = comparison.Before.Branches[pair.BeforeIndex];
+      c.before = comparison.before.branches[pair.beforeIndex];
     }
-    if (pair.AfterIndex >= 0)
+    if (pair.afterIndex >= 0)
     {
-      c.after = comparison.After.Branches[pair.AfterIndex];
+      c.after = comparison.after.branches[pair.afterIndex];
     }
     if (c.before && c.after)
     {
-      c.startTurn = AngleDegrees(c.before->StartTangent, c.after->StartTangent);
-      c.endTurn = AngleDegrees(c.before->EndTangent, c.after->EndTangent);
+      c.startTurn = AngleDegrees(c.before->startTangent, c.after->startTangent);
+      c.endTurn = AngleDegrees(c.before->endTangent, c.after->endTangent);
     }
     else
     {
@@ -289,7 +289,7 @@ std::string MeasurementsToJson(const MeasureWorkflowResult& result)
         Json change;
         for (const VesselMeasure& m : VesselMeasureTable())
         {
-          change[m.Key] = R4(m.Get(*c.after) - m.Get(*c.before));
+          change[m.key] = R4(m.get(*c.after) - m.get(*c.before));
         }
         change["startTurn"] = R4(c.startTurn);
         change["endTurn"] = R4(c.endTurn);
@@ -308,7 +308,7 @@ std::string MeasurementsToText(const MeasureWorkflowResult& result)
   std::vector<const VesselMeasure*> columns;
   for (const VesselMeasure& m : VesselMeasureTable())
   {
-    if (m.Text)
+    if (m.text)
     {
       columns.push_back(&m);
     }
@@ -328,32 +328,32 @@ std::string MeasurementsToText(const MeasureWorkflowResult& result)
   };
   auto table = [&](const CenterlineWorkflowResult& r, const char* title)
   {
-    out << title << ": " << r.centerlines.Endpoints.size() << " endpoints, "
-        << r.measures.Branches.size() << " branches, " << r.measures.Bifurcations.size()
+    out << title << ": " << r.centerlines.endpoints.size() << " endpoints, "
+        << r.measures.branches.size() << " branches, " << r.measures.bifurcations.size()
         << " bifurcations\n";
     header("  branch parent");
     out << "\n";
-    for (const auto& b : r.measures.Branches)
+    for (const auto& b : r.measures.branches)
     {
-      std::snprintf(cell, sizeof(cell), "  %6d %6d", b.BranchId, b.ParentBranchId);
+      std::snprintf(cell, sizeof(cell), "  %6d %6d", b.branchId, b.parentBranchId);
       out << cell;
       for (const VesselMeasure* m : columns)
       {
-        std::snprintf(cell, sizeof(cell), "  %*.*f", width(*m), m->Decimals, m->Get(b));
+        std::snprintf(cell, sizeof(cell), "  %*.*f", width(*m), m->decimals, m->get(b));
         out << cell;
       }
       out << "\n";
     }
-    for (const auto& b : r.measures.Bifurcations)
+    for (const auto& b : r.measures.bifurcations)
     {
       std::snprintf(cell,
         sizeof(cell),
         "  bifurcation %d: angle between children %.1f deg\n",
-        b.Id,
-        b.ChildrenAngle);
+        b.id,
+        b.childrenAngle);
       out << cell;
     }
-    for (const auto& w : r.centerlines.Warnings)
+    for (const auto& w : r.centerlines.warnings)
     {
       out << "  warning: " << w << "\n";
     }
@@ -371,7 +371,7 @@ std::string MeasurementsToText(const MeasureWorkflowResult& result)
       {
         continue;
       }
-      std::snprintf(cell, sizeof(cell), "  %6d", c.before->BranchId);
+      std::snprintf(cell, sizeof(cell), "  %6d", c.before->branchId);
       out << cell;
       for (const VesselMeasure* m : columns)
       {
@@ -379,8 +379,8 @@ std::string MeasurementsToText(const MeasureWorkflowResult& result)
           sizeof(cell),
           "  %+*.*f",
           width(*m),
-          m->Decimals,
-          m->Get(*c.after) - m->Get(*c.before));
+          m->decimals,
+          m->get(*c.after) - m->get(*c.before));
         out << cell;
       }
       std::snprintf(cell, sizeof(cell), "  %10.1f  %10.1f\n", c.startTurn, c.endTurn);

@@ -42,39 +42,39 @@ void AppendSamples(const PathSamples& path,
 {
   for (std::size_t k = from; k <= to; ++k)
   {
-    const vtkIdType id = points->InsertNextPoint(path.Points[k].data());
-    radius->InsertNextValue(path.Radius[k]);
-    abscissa->InsertNextValue(path.Frames[k].Abscissa);
-    tangent->InsertNextTuple(path.Frames[k].Tangent.data());
-    normal->InsertNextTuple(path.Frames[k].Normal.data());
-    curvature->InsertNextValue(path.Frames[k].Curvature);
-    torsion->InsertNextValue(path.Frames[k].Torsion);
+    const vtkIdType id = points->InsertNextPoint(path.points[k].data());
+    radius->InsertNextValue(path.radius[k]);
+    abscissa->InsertNextValue(path.frames[k].abscissa);
+    tangent->InsertNextTuple(path.frames[k].tangent.data());
+    normal->InsertNextTuple(path.frames[k].normal.data());
+    curvature->InsertNextValue(path.frames[k].curvature);
+    torsion->InsertNextValue(path.frames[k].torsion);
     line->InsertNextId(id);
   }
 }
 
 struct PointArrays
 {
-  vtkNew<vtkPoints> Points;
-  vtkNew<vtkDoubleArray> Radius;
-  vtkNew<vtkDoubleArray> Abscissa;
-  vtkNew<vtkDoubleArray> Tangent;
-  vtkNew<vtkDoubleArray> Normal;
-  vtkNew<vtkDoubleArray> Curvature;
-  vtkNew<vtkDoubleArray> Torsion;
-  vtkNew<vtkCellArray> Lines;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> radius;
+  vtkNew<vtkDoubleArray> abscissa;
+  vtkNew<vtkDoubleArray> tangent;
+  vtkNew<vtkDoubleArray> normal;
+  vtkNew<vtkDoubleArray> curvature;
+  vtkNew<vtkDoubleArray> torsion;
+  vtkNew<vtkCellArray> lines;
 
   PointArrays()
   {
-    this->Points->SetDataTypeToDouble();
-    this->Radius->SetName(VesselArrays::MaximumInscribedSphereRadius);
-    this->Abscissa->SetName(VesselArrays::Abscissa);
-    this->Tangent->SetName(VesselArrays::FrenetTangent);
-    this->Tangent->SetNumberOfComponents(3);
-    this->Normal->SetName(VesselArrays::FrenetNormal);
-    this->Normal->SetNumberOfComponents(3);
-    this->Curvature->SetName(VesselArrays::Curvature);
-    this->Torsion->SetName(VesselArrays::Torsion);
+    this->points->SetDataTypeToDouble();
+    this->radius->SetName(VesselArrays::MaximumInscribedSphereRadius);
+    this->abscissa->SetName(VesselArrays::Abscissa);
+    this->tangent->SetName(VesselArrays::FrenetTangent);
+    this->tangent->SetNumberOfComponents(3);
+    this->normal->SetName(VesselArrays::FrenetNormal);
+    this->normal->SetNumberOfComponents(3);
+    this->curvature->SetName(VesselArrays::Curvature);
+    this->torsion->SetName(VesselArrays::Torsion);
   }
 
   void Add(const PathSamples& path, std::size_t from, std::size_t to)
@@ -83,28 +83,28 @@ struct PointArrays
     AppendSamples(path,
       from,
       to,
-      this->Points,
-      this->Radius,
-      this->Abscissa,
-      this->Tangent,
-      this->Normal,
-      this->Curvature,
-      this->Torsion,
+      this->points,
+      this->radius,
+      this->abscissa,
+      this->tangent,
+      this->normal,
+      this->curvature,
+      this->torsion,
       line);
-    this->Lines->InsertNextCell(line);
+    this->lines->InsertNextCell(line);
   }
 
   vtkSmartPointer<vtkPolyData> Build()
   {
     auto out = vtkSmartPointer<vtkPolyData>::New();
-    out->SetPoints(this->Points);
-    out->SetLines(this->Lines);
-    out->GetPointData()->AddArray(this->Radius);
-    out->GetPointData()->AddArray(this->Abscissa);
-    out->GetPointData()->AddArray(this->Tangent);
-    out->GetPointData()->AddArray(this->Normal);
-    out->GetPointData()->AddArray(this->Curvature);
-    out->GetPointData()->AddArray(this->Torsion);
+    out->SetPoints(this->points);
+    out->SetLines(this->lines);
+    out->GetPointData()->AddArray(this->radius);
+    out->GetPointData()->AddArray(this->abscissa);
+    out->GetPointData()->AddArray(this->tangent);
+    out->GetPointData()->AddArray(this->normal);
+    out->GetPointData()->AddArray(this->curvature);
+    out->GetPointData()->AddArray(this->torsion);
     return out;
   }
 };
@@ -131,21 +131,21 @@ void BuildBranches(const std::vector<PathSamples>& paths,
     const auto& a = paths[i];
     const auto& b = paths[j];
     const std::size_t window = static_cast<std::size_t>(std::ceil(4.0 * medianRadius / step)) + 2;
-    for (std::size_t k = 0; k < a.Points.size(); ++k)
+    for (std::size_t k = 0; k < a.points.size(); ++k)
     {
       const std::size_t lo = k > window ? k - window : 0;
-      const std::size_t hi = std::min(b.Points.size() - 1, k + window);
+      const std::size_t hi = std::min(b.points.size() - 1, k + window);
       double d = std::numeric_limits<double>::infinity();
-      for (std::size_t m = lo; m <= hi && lo < b.Points.size(); ++m)
+      for (std::size_t m = lo; m <= hi && lo < b.points.size(); ++m)
       {
-        d = std::min(d, Distance(a.Points[k], b.Points[m]));
+        d = std::min(d, Distance(a.points[k], b.points[m]));
       }
-      if (d > a.Radius[k])
+      if (d > a.radius[k])
       {
         return k;
       }
     }
-    return a.Points.size() - 1;
+    return a.points.size() - 1;
   };
   for (std::size_t i = 0; i < npaths; ++i)
   {
@@ -167,19 +167,19 @@ void BuildBranches(const std::vector<PathSamples>& paths,
     const auto& first = paths[group[0]];
     if (group.size() == 1)
     {
-      if (first.Points.size() - from < 2)
+      if (first.points.size() - from < 2)
       {
-        result.Warnings.push_back("the centerline to outlet " +
-          FormatPoint(result.Endpoints[first.Outlet].Position) +
+        result.warnings.push_back("the centerline to outlet " +
+          FormatPoint(result.endpoints[first.outlet].position) +
           " ends where it leaves the others; no branch of its own");
         return;
       }
-      branchArrays.Add(first, from, first.Points.size() - 1);
+      branchArrays.Add(first, from, first.points.size() - 1);
       branchId->InsertNextValue(id);
       parentId->InsertNextValue(parent);
       startBif->InsertNextValue(bifurcation);
       endBif->InsertNextValue(-1);
-      endpointId->InsertNextValue(first.Outlet);
+      endpointId->InsertNextValue(first.outlet);
       return;
     }
     std::size_t split = std::numeric_limits<std::size_t>::max();
@@ -191,14 +191,14 @@ void BuildBranches(const std::vector<PathSamples>& paths,
       }
     }
     split = std::max(split, from + 1);
-    split = std::min(split, first.Points.size() - 1);
-    const int bif = static_cast<int>(result.Bifurcations.size());
+    split = std::min(split, first.points.size() - 1);
+    const int bif = static_cast<int>(result.bifurcations.size());
     Point3 centre{ { 0, 0, 0 } };
     for (std::size_t g : group)
     {
-      centre = Add(centre, paths[g].Points[std::min(split, paths[g].Points.size() - 1)]);
+      centre = Add(centre, paths[g].points[std::min(split, paths[g].points.size() - 1)]);
     }
-    result.Bifurcations.push_back(Scale(centre, 1.0 / static_cast<double>(group.size())));
+    result.bifurcations.push_back(Scale(centre, 1.0 / static_cast<double>(group.size())));
     branchArrays.Add(first, from, split);
     branchId->InsertNextValue(id);
     parentId->InsertNextValue(parent);
@@ -241,29 +241,29 @@ void BuildBranches(const std::vector<PathSamples>& paths,
   std::vector<std::size_t> all(npaths);
   std::iota(all.begin(), all.end(), 0);
   build(all, 0, -1, -1);
-  result.Branches = branchArrays.Build();
-  result.Branches->GetCellData()->AddArray(branchId);
-  result.Branches->GetCellData()->AddArray(parentId);
-  result.Branches->GetCellData()->AddArray(startBif);
-  result.Branches->GetCellData()->AddArray(endBif);
-  result.Branches->GetCellData()->AddArray(endpointId);
+  result.branches = branchArrays.Build();
+  result.branches->GetCellData()->AddArray(branchId);
+  result.branches->GetCellData()->AddArray(parentId);
+  result.branches->GetCellData()->AddArray(startBif);
+  result.branches->GetCellData()->AddArray(endBif);
+  result.branches->GetCellData()->AddArray(endpointId);
   vtkNew<vtkDoubleArray> bifurcationPoints;
   bifurcationPoints->SetName(VesselArrays::BifurcationPoints);
   bifurcationPoints->SetNumberOfComponents(3);
-  for (const auto& b : result.Bifurcations)
+  for (const auto& b : result.bifurcations)
   {
     bifurcationPoints->InsertNextTuple(b.data());
   }
-  result.Branches->GetFieldData()->AddArray(bifurcationPoints);
+  result.branches->GetFieldData()->AddArray(bifurcationPoints);
 
   PointArrays pathArrays;
   auto centerlineId = MakeIntArray(VesselArrays::CenterlineId);
   for (const auto& path : paths)
   {
-    pathArrays.Add(path, 0, path.Points.size() - 1);
-    centerlineId->InsertNextValue(path.Outlet);
+    pathArrays.Add(path, 0, path.points.size() - 1);
+    centerlineId->InsertNextValue(path.outlet);
   }
-  result.Paths = pathArrays.Build();
+  result.paths = pathArrays.Build();
 }
 
 } // namespace centerline

@@ -38,12 +38,12 @@ bool AddVoronoiTips(const Graph& graph,
       const int u = stack.back();
       stack.pop_back();
       ++size;
-      for (int k = graph.Offsets[u]; k < graph.Offsets[u + 1]; ++k)
+      for (int k = graph.offsets[u]; k < graph.offsets[u + 1]; ++k)
       {
-        if (component[graph.Neighbours[k]] < 0)
+        if (component[graph.neighbours[k]] < 0)
         {
-          component[graph.Neighbours[k]] = label;
-          stack.push_back(graph.Neighbours[k]);
+          component[graph.neighbours[k]] = label;
+          stack.push_back(graph.neighbours[k]);
         }
       }
     }
@@ -57,7 +57,7 @@ bool AddVoronoiTips(const Graph& graph,
   int root = -1;
   for (int i = 0; i < graph.Size(); ++i)
   {
-    if (component[i] == largest && (root < 0 || graph.Radii[i] > graph.Radii[root]))
+    if (component[i] == largest && (root < 0 || graph.radii[i] > graph.radii[root]))
     {
       root = i;
     }
@@ -67,7 +67,7 @@ bool AddVoronoiTips(const Graph& graph,
     int best = -1;
     for (int i = 0; i < graph.Size(); ++i)
     {
-      if (std::isfinite(sp.Cost[i]) && (best < 0 || sp.Cost[i] > sp.Cost[best]))
+      if (std::isfinite(sp.cost[i]) && (best < 0 || sp.cost[i] > sp.cost[best]))
       {
         best = i;
       }
@@ -81,13 +81,13 @@ bool AddVoronoiTips(const Graph& graph,
   double trunkMaxRadius = 0.0;
   for (int v : trunk)
   {
-    trunkMaxRadius = std::max(trunkMaxRadius, graph.Radii[v]);
+    trunkMaxRadius = std::max(trunkMaxRadius, graph.radii[v]);
   }
-  const double k = options.BranchLengthToRadius;
-  if (!(fromA.Cost[tipB] >= k * trunkMaxRadius))
+  const double k = options.branchLengthToRadius;
+  if (!(fromA.cost[tipB] >= k * trunkMaxRadius))
   {
     std::ostringstream m;
-    m << "closed surface has no elongated part: its longest internal path (" << fromA.Cost[tipB]
+    m << "closed surface has no elongated part: its longest internal path (" << fromA.cost[tipB]
       << " mm) is shorter than " << k << " times its largest inscribed radius (" << trunkMaxRadius
       << " mm); a sphere or a blob, not a vessel";
     failure = m.str();
@@ -101,7 +101,7 @@ bool AddVoronoiTips(const Graph& graph,
   std::vector<double> trunkRadii;
   for (int v : trunk)
   {
-    trunkRadii.push_back(graph.Radii[v]);
+    trunkRadii.push_back(graph.radii[v]);
   }
   std::sort(trunkRadii.begin(), trunkRadii.end());
   const double stopRadius = trunkRadii[trunkRadii.size() / 10];
@@ -111,7 +111,7 @@ bool AddVoronoiTips(const Graph& graph,
   for (int iteration = 0; iteration < 64; ++iteration)
   {
     const int tip = farthest(sp);
-    if (tip < 0 || !(sp.Cost[tip] >= k * stopRadius))
+    if (tip < 0 || !(sp.cost[tip] >= k * stopRadius))
     {
       break;
     }
@@ -119,16 +119,16 @@ bool AddVoronoiTips(const Graph& graph,
     // Length beyond the junction's sphere over the largest radius beyond it: the junction
     // region of a bifurcation is wide and says nothing about the branch itself.
     const int junction = branch.front();
-    const double junctionRadius = graph.Radii[junction];
+    const double junctionRadius = graph.radii[junction];
     double maxRadius = 0.0;
     for (int v : branch)
     {
-      if (Distance(graph.Centres[v], graph.Centres[junction]) > junctionRadius)
+      if (Distance(graph.centres[v], graph.centres[junction]) > junctionRadius)
       {
-        maxRadius = std::max(maxRadius, graph.Radii[v]);
+        maxRadius = std::max(maxRadius, graph.radii[v]);
       }
     }
-    const double length = sp.Cost[tip] - junctionRadius;
+    const double length = sp.cost[tip] - junctionRadius;
     if (maxRadius >= 0.25 * junctionRadius && length >= k * maxRadius)
     {
       tipPaths.push_back(std::vector<int>(branch.rbegin(), branch.rend()));
@@ -149,21 +149,21 @@ bool AddVoronoiTips(const Graph& graph,
   for (const auto& path : tipPaths)
   {
     // Trim: the centre of the last sphere on the way in that, enlarged, contains the tip.
-    const Point3& tipPosition = graph.Centres[path.front()];
+    const Point3& tipPosition = graph.centres[path.front()];
     std::size_t keep = 0;
     for (std::size_t m = 0; m < path.size(); ++m)
     {
-      if (Distance(graph.Centres[path[m]], tipPosition) <=
-        options.EndTrimFactor * graph.Radii[path[m]])
+      if (Distance(graph.centres[path[m]], tipPosition) <=
+        options.endTrimFactor * graph.radii[path[m]])
       {
         keep = m;
       }
     }
     EndNode end;
-    end.Node = path[keep];
-    end.Endpoint.Kind = EndpointKind::VoronoiTip;
-    end.Endpoint.Position = graph.Centres[end.Node];
-    end.Endpoint.Radius = graph.Radii[end.Node];
+    end.node = path[keep];
+    end.endpoint.kind = EndpointKind::VoronoiTip;
+    end.endpoint.position = graph.centres[end.node];
+    end.endpoint.radius = graph.radii[end.node];
     ends.push_back(end);
   }
   return true;
@@ -178,9 +178,9 @@ bool FindEndpoints(const Wall& wall,
   std::vector<std::string>& warnings,
   std::string& failure)
 {
-  const Graph& graph = voronoi.Nodes;
-  const std::vector<double>& loopStartRadius = voronoi.LoopStartRadius;
-  const std::vector<int>& loopStartNode = voronoi.LoopStartNode;
+  const Graph& graph = voronoi.nodes;
+  const std::vector<double>& loopStartRadius = voronoi.loopStartRadius;
+  const std::vector<int>& loopStartNode = voronoi.loopStartNode;
   // The largest inscribed sphere that contains x (enlarged by 5 %), else the nearest centre.
   auto nodeFor = [&graph](const Point3& x)
   {
@@ -188,10 +188,10 @@ bool FindEndpoints(const Wall& wall,
     double bestRadius = -1.0, nearestDistance = std::numeric_limits<double>::infinity();
     for (int i = 0; i < graph.Size(); ++i)
     {
-      const double d = Distance(graph.Centres[i], x);
-      if (d <= 1.05 * graph.Radii[i] && graph.Radii[i] > bestRadius)
+      const double d = Distance(graph.centres[i], x);
+      if (d <= 1.05 * graph.radii[i] && graph.radii[i] > bestRadius)
       {
-        bestRadius = graph.Radii[i];
+        bestRadius = graph.radii[i];
         best = i;
       }
       if (d < nearestDistance)
@@ -202,37 +202,37 @@ bool FindEndpoints(const Wall& wall,
     }
     return best >= 0 ? best : nearest;
   };
-  if (!options.Seeds.empty())
+  if (!options.seeds.empty())
   {
-    for (std::size_t s = 0; s < options.Seeds.size(); ++s)
+    for (std::size_t s = 0; s < options.seeds.size(); ++s)
     {
       EndNode end;
-      end.Endpoint.Kind = EndpointKind::Seed;
-      end.Endpoint.Inlet = (s == 0);
-      const Point3& seed = options.Seeds[s];
+      end.endpoint.kind = EndpointKind::Seed;
+      end.endpoint.inlet = (s == 0);
+      const Point3& seed = options.seeds[s];
       int snapped = -1;
-      for (std::size_t l = 0; l < wall.Loops.size(); ++l)
+      for (std::size_t l = 0; l < wall.loops.size(); ++l)
       {
-        const auto& loop = wall.Loops[l];
-        if (loop.IsEnd && loopStartNode[l] >= 0 &&
-          Distance(seed, loop.Centre) <= 1.5 * loop.MeanRadius &&
-          (snapped < 0 || Distance(seed, loop.Centre) < Distance(seed, wall.Loops[snapped].Centre)))
+        const auto& loop = wall.loops[l];
+        if (loop.isEnd && loopStartNode[l] >= 0 &&
+          Distance(seed, loop.centre) <= 1.5 * loop.meanRadius &&
+          (snapped < 0 || Distance(seed, loop.centre) < Distance(seed, wall.loops[snapped].centre)))
         {
           snapped = static_cast<int>(l);
         }
       }
       if (snapped >= 0)
       {
-        end.Node = loopStartNode[snapped];
-        end.Endpoint.Position = wall.Loops[snapped].Centre;
-        end.Endpoint.Radius = wall.Loops[snapped].MeanRadius;
-        end.PrependPosition = true;
+        end.node = loopStartNode[snapped];
+        end.endpoint.position = wall.loops[snapped].centre;
+        end.endpoint.radius = wall.loops[snapped].meanRadius;
+        end.prependPosition = true;
       }
       else
       {
-        end.Node = nodeFor(seed);
-        end.Endpoint.Position = graph.Centres[end.Node];
-        end.Endpoint.Radius = graph.Radii[end.Node];
+        end.node = nodeFor(seed);
+        end.endpoint.position = graph.centres[end.node];
+        end.endpoint.radius = graph.radii[end.node];
       }
       ends.push_back(end);
     }
@@ -240,28 +240,28 @@ bool FindEndpoints(const Wall& wall,
   else
   {
     int holes = 0;
-    for (std::size_t l = 0; l < wall.Loops.size(); ++l)
+    for (std::size_t l = 0; l < wall.loops.size(); ++l)
     {
-      const auto& loop = wall.Loops[l];
+      const auto& loop = wall.loops[l];
       // A hole in the wall is flat too, but the lumen's sphere that touches its centre is much
       // larger than the hole; at a vessel end it is about the end's radius.
-      if (!loop.IsEnd || (loopStartNode[l] >= 0 && loopStartRadius[l] > 2.0 * loop.MeanRadius))
+      if (!loop.isEnd || (loopStartNode[l] >= 0 && loopStartRadius[l] > 2.0 * loop.meanRadius))
       {
         ++holes;
         continue;
       }
       if (loopStartNode[l] < 0)
       {
-        warnings.push_back("open end at " + FormatPoint(loop.Centre) +
+        warnings.push_back("open end at " + FormatPoint(loop.centre) +
           " touches no internal Voronoi vertex; ignored");
         continue;
       }
       EndNode end;
-      end.Node = loopStartNode[l];
-      end.Endpoint.Kind = EndpointKind::OpenEnd;
-      end.Endpoint.Position = loop.Centre;
-      end.Endpoint.Radius = loop.MeanRadius;
-      end.PrependPosition = true;
+      end.node = loopStartNode[l];
+      end.endpoint.kind = EndpointKind::OpenEnd;
+      end.endpoint.position = loop.centre;
+      end.endpoint.radius = loop.meanRadius;
+      end.prependPosition = true;
       ends.push_back(end);
     }
     if (holes > 0)
@@ -270,7 +270,7 @@ bool FindEndpoints(const Wall& wall,
         " boundary loop(s) taken for holes in the wall, not vessel ends (not planar, or much "
         "smaller than the lumen behind them)");
     }
-    if (!wall.Loops.empty() && ends.size() == 1)
+    if (!wall.loops.empty() && ends.size() == 1)
     {
       failure = "surface has a single open end and no other: give seeds for the "
                 "other end(s)";
@@ -284,7 +284,7 @@ bool FindEndpoints(const Wall& wall,
     std::size_t inlet = 0;
     for (std::size_t i = 1; i < ends.size(); ++i)
     {
-      if (ends[i].Endpoint.Radius > ends[inlet].Endpoint.Radius)
+      if (ends[i].endpoint.radius > ends[inlet].endpoint.radius)
       {
         inlet = i;
       }
@@ -294,7 +294,7 @@ bool FindEndpoints(const Wall& wall,
       std::rotate(ends.begin(),
         ends.begin() + static_cast<std::ptrdiff_t>(inlet),
         ends.begin() + static_cast<std::ptrdiff_t>(inlet) + 1);
-      ends[0].Endpoint.Inlet = true;
+      ends[0].endpoint.inlet = true;
     }
   }
   return true;

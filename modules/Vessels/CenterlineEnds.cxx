@@ -54,11 +54,11 @@ std::vector<Profile> Polylines(vtkPolyData* centerlines, std::string& problem)
     Profile p;
     if (startBifurcation && startBifurcation->GetNumberOfTuples() > cell)
     {
-      p.AtBifurcation = startBifurcation->GetTuple1(cell) >= 0;
+      p.atBifurcation = startBifurcation->GetTuple1(cell) >= 0;
     }
     if (endBifurcation && endBifurcation->GetNumberOfTuples() > cell)
     {
-      p.EndAtBifurcation = endBifurcation->GetTuple1(cell) >= 0;
+      p.endAtBifurcation = endBifurcation->GetTuple1(cell) >= 0;
     }
     for (vtkIdType k = 0; k < npts; ++k)
     {
@@ -71,15 +71,15 @@ std::vector<Profile> Polylines(vtkPolyData* centerlines, std::string& problem)
         problem = "the centerlines have a non-finite point or a radius <= 0";
         return {};
       }
-      if (!p.X.empty() && Distance(x, p.X.back()) == 0.0)
+      if (!p.x.empty() && Distance(x, p.x.back()) == 0.0)
       {
         continue;
       }
-      p.S.push_back(p.X.empty() ? 0.0 : p.S.back() + Distance(x, p.X.back()));
-      p.X.push_back(x);
-      p.R.push_back(r);
+      p.s.push_back(p.x.empty() ? 0.0 : p.s.back() + Distance(x, p.x.back()));
+      p.x.push_back(x);
+      p.r.push_back(r);
     }
-    if (p.X.size() >= 2)
+    if (p.x.size() >= 2)
     {
       lines.push_back(std::move(p));
     }
@@ -94,13 +94,13 @@ std::vector<Profile> Polylines(vtkPolyData* centerlines, std::string& problem)
 Profile Reversed(const Profile& p)
 {
   Profile q;
-  q.AtBifurcation = p.EndAtBifurcation;
-  q.EndAtBifurcation = p.AtBifurcation;
-  q.X.assign(p.X.rbegin(), p.X.rend());
-  q.R.assign(p.R.rbegin(), p.R.rend());
-  for (std::size_t i = 0; i < q.X.size(); ++i)
+  q.atBifurcation = p.endAtBifurcation;
+  q.endAtBifurcation = p.atBifurcation;
+  q.x.assign(p.x.rbegin(), p.x.rend());
+  q.r.assign(p.r.rbegin(), p.r.rend());
+  for (std::size_t i = 0; i < q.x.size(); ++i)
   {
-    q.S.push_back(i == 0 ? 0.0 : q.S.back() + Distance(q.X[i], q.X[i - 1]));
+    q.s.push_back(i == 0 ? 0.0 : q.s.back() + Distance(q.x[i], q.x[i - 1]));
   }
   return q;
 }
@@ -135,8 +135,8 @@ std::vector<EndGroup> EndGroups(vtkPolyData* centerlines)
     for (std::size_t j = i + 1; j < candidates.size(); ++j)
     {
       if (group[j] < 0 &&
-        Distance(candidates[i].X[0], candidates[j].X[0]) <=
-          0.25 * std::min(candidates[i].R[0], candidates[j].R[0]))
+        Distance(candidates[i].x[0], candidates[j].x[0]) <=
+          0.25 * std::min(candidates[i].r[0], candidates[j].r[0]))
       {
         group[j] = group[i];
         members.back().push_back(j);
@@ -148,7 +148,7 @@ std::vector<EndGroup> EndGroups(vtkPolyData* centerlines)
     bool bifurcation = false;
     for (std::size_t k : m)
     {
-      bifurcation = bifurcation || candidates[k].AtBifurcation;
+      bifurcation = bifurcation || candidates[k].atBifurcation;
     }
     for (std::size_t a = 0; a < m.size() && !bifurcation; ++a)
     {
@@ -156,8 +156,8 @@ std::vector<EndGroup> EndGroups(vtkPolyData* centerlines)
       {
         const Profile& p = candidates[m[a]];
         const Profile& q = candidates[m[b]];
-        const double w = std::min({ p.R[0], p.Length(), q.Length() });
-        bifurcation = Dot(Sub(p.At(w), p.X[0]), Sub(q.At(w), q.X[0])) < 0.0;
+        const double w = std::min({ p.r[0], p.Length(), q.Length() });
+        bifurcation = Dot(Sub(p.At(w), p.x[0]), Sub(q.At(w), q.x[0])) < 0.0;
       }
     }
     // A polyline end near another polyline that does not start or end with it (a branch
@@ -174,9 +174,9 @@ std::vector<EndGroup> EndGroups(vtkPolyData* centerlines)
       {
         continue;
       }
-      for (const V3& x : lines[l].X)
+      for (const V3& x : lines[l].x)
       {
-        if (Distance(x, first.X[0]) <= first.R[0])
+        if (Distance(x, first.x[0]) <= first.r[0])
         {
           bifurcation = true;
           break;
@@ -188,14 +188,14 @@ std::vector<EndGroup> EndGroups(vtkPolyData* centerlines)
       continue;
     }
     EndGroup g;
-    g.Position = first.X[0];
-    g.Radius = first.R[0];
+    g.position = first.x[0];
+    g.radius = first.r[0];
     for (std::size_t k : m)
     {
-      g.Profiles.push_back(candidates[k]);
-      if (candidates[k].Length() > g.Longest.Length())
+      g.profiles.push_back(candidates[k]);
+      if (candidates[k].Length() > g.longest.Length())
       {
-        g.Longest = candidates[k];
+        g.longest = candidates[k];
       }
     }
     groups.push_back(std::move(g));
@@ -217,51 +217,51 @@ double SettledDistance(const Profile& p)
     std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
     return v[v.size() / 2];
   };
-  const double whole = median(p.R);
+  const double whole = median(p.r);
   std::vector<double> near;
-  for (std::size_t i = 0; i < p.X.size() && p.S[i] <= std::min(0.5 * p.Length(), 4.0 * whole); ++i)
+  for (std::size_t i = 0; i < p.x.size() && p.s[i] <= std::min(0.5 * p.Length(), 4.0 * whole); ++i)
   {
-    near.push_back(p.R[i]);
+    near.push_back(p.r[i]);
   }
   const double typical = near.empty() ? whole : median(near);
-  const double r0 = std::max(p.R[0], typical);
+  const double r0 = std::max(p.r[0], typical);
   const double start = std::min(r0, 0.5 * p.Length());
   const double limit = std::max(start, std::min(0.5 * p.Length(), 10.0 * r0));
   double best = start, bestVariation = std::numeric_limits<double>::infinity();
   double firstSettled = -1.0;
-  for (std::size_t i = 0; i < p.X.size(); ++i)
+  for (std::size_t i = 0; i < p.x.size(); ++i)
   {
-    if (p.S[i] < start)
+    if (p.s[i] < start)
     {
       continue;
     }
-    if (p.S[i] > limit)
+    if (p.s[i] > limit)
     {
       break;
     }
-    const double r = p.R[i];
+    const double r = p.r[i];
     double variation = 0.0;
-    for (std::size_t j = i; j < p.X.size() && p.S[j] <= p.S[i] + 2.0 * r; ++j)
+    for (std::size_t j = i; j < p.x.size() && p.s[j] <= p.s[i] + 2.0 * r; ++j)
     {
-      variation = std::max(variation, std::abs(p.R[j] - r));
+      variation = std::max(variation, std::abs(p.r[j] - r));
     }
     // The direction has settled too: the tangent turns by less than 5 degrees over the window
     // (a closed end's centerline veers towards the end's corner or tip).
-    const V3 t0 = p.Tangent(p.S[i]);
-    const V3 t1 = p.Tangent(std::min(p.S[i] + 2.0 * r, p.Length()));
+    const V3 t0 = p.Tangent(p.s[i]);
+    const V3 t1 = p.Tangent(std::min(p.s[i] + 2.0 * r, p.Length()));
     const bool straight = Dot(t0, t1) >= std::cos(5.0 * M_PI / 180.0);
     if (variation <= 0.1 * r && straight)
     {
-      return p.S[i];
+      return p.s[i];
     }
     if (variation <= 0.1 * r && firstSettled < 0)
     {
-      firstSettled = p.S[i];
+      firstSettled = p.s[i];
     }
     if (variation / r < bestVariation)
     {
       bestVariation = variation / r;
-      best = p.S[i];
+      best = p.s[i];
     }
   }
   return firstSettled >= 0 ? firstSettled : best;
@@ -276,7 +276,7 @@ std::vector<CenterlineEnd> FindCenterlineEnds(vtkPolyData* centerlines)
   std::vector<CenterlineEnd> ends;
   for (const EndGroup& g : EndGroups(centerlines))
   {
-    ends.push_back({ g.Position, g.Radius });
+    ends.push_back({ g.position, g.radius });
   }
   return ends;
 }
@@ -286,9 +286,9 @@ namespace
 Profile ProfileOf(const CenterlineEndPath& path)
 {
   Profile p;
-  p.X = path.Points;
-  p.S = path.ArcLengths;
-  p.R = path.Radii;
+  p.x = path.points;
+  p.s = path.arcLengths;
+  p.r = path.radii;
   return p;
 }
 } // namespace
@@ -299,13 +299,13 @@ std::vector<CenterlineEndPath> FindCenterlineEndPaths(vtkPolyData* centerlines)
   for (const EndGroup& g : EndGroups(centerlines))
   {
     CenterlineEndPath path;
-    path.Position = g.Position;
-    path.Radius = g.Radius;
-    path.Points = g.Longest.X;
-    path.ArcLengths = g.Longest.S;
-    path.Radii = g.Longest.R;
-    path.DefaultDistance = SettledDistance(g.Longest);
-    path.MaximumDistance = 0.5 * g.Longest.Length();
+    path.position = g.position;
+    path.radius = g.radius;
+    path.points = g.longest.x;
+    path.arcLengths = g.longest.s;
+    path.radii = g.longest.r;
+    path.defaultDistance = SettledDistance(g.longest);
+    path.maximumDistance = 0.5 * g.longest.Length();
     paths.push_back(std::move(path));
   }
   return paths;
@@ -314,39 +314,39 @@ std::vector<CenterlineEndPath> FindCenterlineEndPaths(vtkPolyData* centerlines)
 ClipPlane ClipPlaneAt(const CenterlineEndPath& path, double distance)
 {
   ClipPlane plane;
-  if (path.Points.size() < 2 || path.ArcLengths.size() != path.Points.size() ||
-    path.Radii.size() != path.Points.size())
+  if (path.points.size() < 2 || path.arcLengths.size() != path.points.size() ||
+    path.radii.size() != path.points.size())
   {
     return plane;
   }
   const Profile p = ProfileOf(path);
   const double s = std::clamp(std::isfinite(distance) ? distance : 0.0, 0.0, p.Length());
-  plane.Centre = p.At(s, &plane.Radius);
+  plane.centre = p.At(s, &plane.radius);
   const V3 t = p.Tangent(s);
-  plane.Normal = { { -t[0], -t[1], -t[2] } };
+  plane.normal = { { -t[0], -t[1], -t[2] } };
   return plane;
 }
 
 double NearestDistanceOnPath(const CenterlineEndPath& path, const ClipPoint& point)
 {
   double best = 0.0, bestD = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < path.Points.size() && i + 1 < path.ArcLengths.size(); ++i)
+  for (std::size_t i = 0; i + 1 < path.points.size() && i + 1 < path.arcLengths.size(); ++i)
   {
-    if (path.ArcLengths[i] > path.MaximumDistance)
+    if (path.arcLengths[i] > path.maximumDistance)
     {
       break;
     }
-    const V3 d = Sub(path.Points[i + 1], path.Points[i]);
+    const V3 d = Sub(path.points[i + 1], path.points[i]);
     const double dd = Dot(d, d);
-    const double t = dd > 0 ? std::clamp(Dot(Sub(point, path.Points[i]), d) / dd, 0.0, 1.0) : 0.0;
-    const double distance = Distance(Lerp(path.Points[i], path.Points[i + 1], t), point);
+    const double t = dd > 0 ? std::clamp(Dot(Sub(point, path.points[i]), d) / dd, 0.0, 1.0) : 0.0;
+    const double distance = Distance(Lerp(path.points[i], path.points[i + 1], t), point);
     if (distance < bestD)
     {
       bestD = distance;
-      best = path.ArcLengths[i] + t * (path.ArcLengths[i + 1] - path.ArcLengths[i]);
+      best = path.arcLengths[i] + t * (path.arcLengths[i + 1] - path.arcLengths[i]);
     }
   }
-  return std::clamp(best, 0.0, path.MaximumDistance);
+  return std::clamp(best, 0.0, path.maximumDistance);
 }
 
 } // namespace bender

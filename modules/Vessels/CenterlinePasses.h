@@ -59,23 +59,23 @@ inline std::uint64_t EdgeKey(vtkIdType a, vtkIdType b)
 // ---- 1. the oriented wall (CenterlineWall.cxx) ----------------------------------------------
 struct BoundaryLoop
 {
-  std::vector<vtkIdType> Ids; // loop vertices in boundary-edge order
-  Point3 Centre{ { 0, 0, 0 } };
-  Point3 CapNormal{ { 0, 0, 0 } }; // outward when the wall's normals point outward
-  double MeanRadius = 0.0;
-  bool IsEnd = false;            // planar-ish: a vessel end, not a hole
-  vtkIdType CentreSampleId = -1; // id of the centre among the Delaunay points
+  std::vector<vtkIdType> ids; // loop vertices in boundary-edge order
+  Point3 centre{ { 0, 0, 0 } };
+  Point3 capNormal{ { 0, 0, 0 } }; // outward when the wall's normals point outward
+  double meanRadius = 0.0;
+  bool isEnd = false;            // planar-ish: a vessel end, not a hole
+  vtkIdType centreSampleId = -1; // id of the centre among the Delaunay points
 };
 
 struct Wall
 {
-  std::vector<Point3> Points;
-  std::vector<std::array<vtkIdType, 3>> Triangles;
-  std::vector<Point3> Normals; // per point, outward, unit (zero for unused points)
-  std::vector<BoundaryLoop> Loops;
-  double MeanEdge = 0.0;
-  double Diagonal = 0.0;
-  vtkSmartPointer<vtkPolyData> Surface; // oriented outward, for distance queries
+  std::vector<Point3> points;
+  std::vector<std::array<vtkIdType, 3>> triangles;
+  std::vector<Point3> normals; // per point, outward, unit (zero for unused points)
+  std::vector<BoundaryLoop> loops;
+  double meanEdge = 0.0;
+  double diagonal = 0.0;
+  vtkSmartPointer<vtkPolyData> surface; // oriented outward, for distance queries
 };
 
 /// The surface's triangles with merged points, consistently oriented outward (by the signed
@@ -107,22 +107,22 @@ bool Tetrahedralise(std::vector<Point3>& points,
 
 struct Graph
 {
-  std::vector<Point3> Centres;
-  std::vector<double> Radii;
-  std::vector<int> Offsets; // CSR
-  std::vector<int> Neighbours;
-  std::vector<double> Lengths; // of the edges, as Neighbours
+  std::vector<Point3> centres;
+  std::vector<double> radii;
+  std::vector<int> offsets; // CSR
+  std::vector<int> neighbours;
+  std::vector<double> lengths; // of the edges, as Neighbours
 
-  int Size() const { return static_cast<int>(this->Centres.size()); }
+  int Size() const { return static_cast<int>(this->centres.size()); }
 };
 
 /// The internal Voronoi graph and, for each boundary loop, its largest sphere touching the
 /// loop's centre sample (-1: none) and that sphere's node.
 struct VoronoiGraph
 {
-  Graph Nodes;
-  std::vector<double> LoopStartRadius;
-  std::vector<int> LoopStartNode;
+  Graph nodes;
+  std::vector<double> loopStartRadius;
+  std::vector<int> loopStartNode;
 };
 
 /// Internal Voronoi vertices: circumcentres on the inner side of all four vertex normals, two
@@ -135,9 +135,9 @@ VoronoiGraph BuildVoronoiGraph(const Wall& wall,
 
 struct ShortestPaths
 {
-  std::vector<double> Cost;
-  std::vector<int> Previous;
-  std::vector<int> Origin; // the source each node was reached from
+  std::vector<double> cost;
+  std::vector<int> previous;
+  std::vector<int> origin; // the source each node was reached from
 };
 
 enum class Weight
@@ -157,9 +157,9 @@ std::vector<int> Backtrace(const ShortestPaths& sp, int target);
 // ---- 4. endpoints (CenterlineEndpoints.cxx) --------------------------------------------------
 struct EndNode
 {
-  int Node = -1;
-  CenterlineEndpoint Endpoint;
-  bool PrependPosition = false; // the path starts/ends at Endpoint.Position, off the graph
+  int node = -1;
+  CenterlineEndpoint endpoint;
+  bool prependPosition = false; // the path starts/ends at endpoint.position, off the graph
 };
 
 /// The vessel ends as nodes of the graph, the inlet first: the user's seeds, else the open
@@ -232,14 +232,14 @@ std::vector<Point3> RecentrePath(std::vector<Point3> points,
 // ---- 7. branches (CenterlineBranches.cxx) ----------------------------------------------------
 struct PathSamples
 {
-  std::vector<Point3> Points;
-  std::vector<double> Radius;
-  std::vector<CurveSample> Frames;
-  int Outlet = -1;
+  std::vector<Point3> points;
+  std::vector<double> radius;
+  std::vector<CurveSample> frames;
+  int outlet = -1;
 };
 
 /// Splits the paths into branches where they separate by more than the local inscribed radius
-/// and fills result.Branches, result.Paths and result.Bifurcations (remarks to its Warnings).
+/// and fills result.branches, result.paths and result.bifurcations (remarks to its warnings).
 void BuildBranches(const std::vector<PathSamples>& paths,
   double medianRadius,
   double step,

@@ -33,10 +33,10 @@ enum class SectionKind
 
 struct Section
 {
-  SectionKind Kind = SectionKind::Failed;
-  Point3 Centroid{ { 0, 0, 0 } };
-  double Roundness = 0;  ///< largest over smallest distance from the centroid to the loop
-  double MeanRadius = 0; ///< sqrt(area / pi)
+  SectionKind kind = SectionKind::Failed;
+  Point3 centroid{ { 0, 0, 0 } };
+  double roundness = 0;  ///< largest over smallest distance from the centroid to the loop
+  double meanRadius = 0; ///< sqrt(area / pi)
 };
 
 // The cross-section of the lumen through p in the plane normal to t: the loop of the wall's
@@ -63,7 +63,7 @@ Section CutSection(WallDistance& distance,
   vtkIdType start = -1;
   if (!distance.Ray(p, e1, reach, hit, start) || start < 0)
   {
-    section.Kind = SectionKind::Escaped;
+    section.kind = SectionKind::Escaped;
     return section;
   }
   auto height = [&](vtkIdType id)
@@ -143,7 +143,7 @@ Section CutSection(WallDistance& distance,
     const vtkIdType next = found->second[0] == current ? found->second[1] : found->second[0];
     if (next < 0)
     {
-      section.Kind = SectionKind::Escaped;
+      section.kind = SectionKind::Escaped;
       return section;
     }
     if (!crossingEdges(next, pair))
@@ -191,10 +191,10 @@ Section CutSection(WallDistance& distance,
     nearest = std::min(nearest, std::hypot(a[0] + u * dx - cx, a[1] + u * dy - cy));
     farthest = std::max(farthest, std::hypot(a[0] - cx, a[1] - cy));
   }
-  section.Kind = SectionKind::Closed;
-  section.Centroid = Add(p, Add(Scale(e1, cx), Scale(e2, cy)));
-  section.Roundness = nearest > 0 ? farthest / nearest : std::numeric_limits<double>::infinity();
-  section.MeanRadius = std::sqrt(0.5 * std::abs(area) / 3.14159265358979323846);
+  section.kind = SectionKind::Closed;
+  section.centroid = Add(p, Add(Scale(e1, cx), Scale(e2, cy)));
+  section.roundness = nearest > 0 ? farthest / nearest : std::numeric_limits<double>::infinity();
+  section.meanRadius = std::sqrt(0.5 * std::abs(area) / 3.14159265358979323846);
   return section;
 }
 
@@ -218,20 +218,20 @@ constexpr double BridgeLength = 0.5;
 // 1.5 measures 1.22), tapered.
 double SectionWeight(const Section& s, const Point3& p)
 {
-  if (s.Kind != SectionKind::Closed || !(s.MeanRadius > 0))
+  if (s.kind != SectionKind::Closed || !(s.meanRadius > 0))
   {
     return 0.0;
   }
   const double round =
-    std::clamp((NotRoundSection - s.Roundness) / (NotRoundSection - RoundSection), 0.0, 1.0);
-  const double move = Distance(s.Centroid, p) / s.MeanRadius;
+    std::clamp((NotRoundSection - s.roundness) / (NotRoundSection - RoundSection), 0.0, 1.0);
+  const double move = Distance(s.centroid, p) / s.meanRadius;
   const double near = std::clamp((0.65 - move) / 0.2, 0.0, 1.0);
   return round * near;
 }
 
 double WidthWeight(const Section& s, double inscribed)
 {
-  return inscribed > 0 ? std::clamp((1.6 - s.MeanRadius / inscribed) / 0.25, 0.0, 1.0) : 0.0;
+  return inscribed > 0 ? std::clamp((1.6 - s.meanRadius / inscribed) / 0.25, 0.0, 1.0) : 0.0;
 }
 
 } // namespace
@@ -376,13 +376,13 @@ std::vector<Point3> RecentrePath(std::vector<Point3> points,
         // The section's width against the inscribed sphere at its centroid.
         bool centroidInside = true;
         Point3 closest;
-        const double inscribed = distance.Query(s.Centroid, centroidInside, closest);
+        const double inscribed = distance.Query(s.centroid, centroidInside, closest);
         weights[i] *= WidthWeight(s, centroidInside ? inscribed : 0.0);
       }
-      targets[i] = s.Centroid;
+      targets[i] = s.centroid;
       // Sections running out through an open end are not trusted but do not make their
       // neighbours suspect.
-      eroding[i] = s.Kind == SectionKind::Escaped ? 1.0 : weights[i];
+      eroding[i] = s.kind == SectionKind::Escaped ? 1.0 : weights[i];
     }
     // A section within a quarter radius of one that is not trusted is not trusted more
     // than it (a soft erosion): an isolated round-looking section in a bifurcation region,

@@ -42,43 +42,43 @@ bool Tetrahedralise(std::vector<Point3>& points,
 void AddSources(const Graph& g, ShortestPaths& sp, const std::vector<int>& sources, Weight weight)
 {
   const int n = g.Size();
-  if (sp.Cost.empty())
+  if (sp.cost.empty())
   {
-    sp.Cost.assign(n, std::numeric_limits<double>::infinity());
-    sp.Previous.assign(n, -1);
-    sp.Origin.assign(n, -1);
+    sp.cost.assign(n, std::numeric_limits<double>::infinity());
+    sp.previous.assign(n, -1);
+    sp.origin.assign(n, -1);
   }
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
   for (int s : sources)
   {
-    sp.Cost[s] = 0.0;
-    sp.Previous[s] = -1;
-    sp.Origin[s] = s;
+    sp.cost[s] = 0.0;
+    sp.previous[s] = -1;
+    sp.origin[s] = s;
     queue.emplace(0.0, s);
   }
   while (!queue.empty())
   {
     const auto [cost, u] = queue.top();
     queue.pop();
-    if (cost > sp.Cost[u])
+    if (cost > sp.cost[u])
     {
       continue;
     }
-    for (int k = g.Offsets[u]; k < g.Offsets[u + 1]; ++k)
+    for (int k = g.offsets[u]; k < g.offsets[u + 1]; ++k)
     {
-      const int v = g.Neighbours[k];
-      double w = g.Lengths[k];
+      const int v = g.neighbours[k];
+      double w = g.lengths[k];
       if (weight == Weight::LengthOverRadius)
       {
-        w *= 0.5 * (1.0 / g.Radii[u] + 1.0 / g.Radii[v]);
+        w *= 0.5 * (1.0 / g.radii[u] + 1.0 / g.radii[v]);
       }
-      if (cost + w < sp.Cost[v])
+      if (cost + w < sp.cost[v])
       {
-        sp.Cost[v] = cost + w;
-        sp.Previous[v] = u;
-        sp.Origin[v] = sp.Origin[u];
-        queue.emplace(sp.Cost[v], v);
+        sp.cost[v] = cost + w;
+        sp.previous[v] = u;
+        sp.origin[v] = sp.origin[u];
+        queue.emplace(sp.cost[v], v);
       }
     }
   }
@@ -94,7 +94,7 @@ ShortestPaths Dijkstra(const Graph& g, const std::vector<int>& sources, Weight w
 std::vector<int> Backtrace(const ShortestPaths& sp, int target)
 {
   std::vector<int> nodes;
-  for (int v = target; v >= 0; v = sp.Previous[v])
+  for (int v = target; v >= 0; v = sp.previous[v])
   {
     nodes.push_back(v);
   }
@@ -109,13 +109,13 @@ VoronoiGraph BuildVoronoiGraph(const Wall& wall,
   const std::vector<Tetra>& across)
 {
   VoronoiGraph voronoi;
-  Graph& graph = voronoi.Nodes;
-  std::vector<double> loopStartRadius(wall.Loops.size(), -1.0);
-  std::vector<int> loopStartNode(wall.Loops.size(), -1);
+  Graph& graph = voronoi.nodes;
+  std::vector<double> loopStartRadius(wall.loops.size(), -1.0);
+  std::vector<int> loopStartNode(wall.loops.size(), -1);
   std::unordered_map<vtkIdType, int> centreToLoop;
-  for (std::size_t l = 0; l < wall.Loops.size(); ++l)
+  for (std::size_t l = 0; l < wall.loops.size(); ++l)
   {
-    centreToLoop[wall.Loops[l].CentreSampleId] = static_cast<int>(l);
+    centreToLoop[wall.loops[l].centreSampleId] = static_cast<int>(l);
   }
   // The graph's node of each tetrahedron (-1: its circumcentre is not an internal vertex).
   std::vector<int> nodeOf(tetras.size(), -1);
@@ -145,7 +145,7 @@ VoronoiGraph BuildVoronoiGraph(const Wall& wall,
         1.0 / det);
       const Point3 centre = Add(p0, x);
       const double radius = Norm(x);
-      if (!(radius > 0) || radius > wall.Diagonal)
+      if (!(radius > 0) || radius > wall.diagonal)
       {
         continue;
       }
@@ -160,8 +160,8 @@ VoronoiGraph BuildVoronoiGraph(const Wall& wall,
         continue;
       }
       const int node = graph.Size();
-      graph.Centres.push_back(centre);
-      graph.Radii.push_back(radius);
+      graph.centres.push_back(centre);
+      graph.radii.push_back(radius);
       nodeOf[t] = node;
       for (int k = 0; k < 4; ++k)
       {
@@ -188,34 +188,34 @@ VoronoiGraph BuildVoronoiGraph(const Wall& wall,
         }
       }
     }
-    graph.Offsets.assign(graph.Size() + 1, 0);
+    graph.offsets.assign(graph.Size() + 1, 0);
     for (const auto& e : edges)
     {
-      ++graph.Offsets[e.first + 1];
-      ++graph.Offsets[e.second + 1];
+      ++graph.offsets[e.first + 1];
+      ++graph.offsets[e.second + 1];
     }
     for (int i = 0; i < graph.Size(); ++i)
     {
-      graph.Offsets[i + 1] += graph.Offsets[i];
+      graph.offsets[i + 1] += graph.offsets[i];
     }
-    graph.Neighbours.resize(graph.Offsets.back());
-    std::vector<int> fill(graph.Offsets.begin(), graph.Offsets.end() - 1);
+    graph.neighbours.resize(graph.offsets.back());
+    std::vector<int> fill(graph.offsets.begin(), graph.offsets.end() - 1);
     for (const auto& e : edges)
     {
-      graph.Neighbours[fill[e.first]++] = e.second;
-      graph.Neighbours[fill[e.second]++] = e.first;
+      graph.neighbours[fill[e.first]++] = e.second;
+      graph.neighbours[fill[e.second]++] = e.first;
     }
-    graph.Lengths.resize(graph.Neighbours.size());
+    graph.lengths.resize(graph.neighbours.size());
     for (int u = 0; u < graph.Size(); ++u)
     {
-      for (int k = graph.Offsets[u]; k < graph.Offsets[u + 1]; ++k)
+      for (int k = graph.offsets[u]; k < graph.offsets[u + 1]; ++k)
       {
-        graph.Lengths[k] = Distance(graph.Centres[u], graph.Centres[graph.Neighbours[k]]);
+        graph.lengths[k] = Distance(graph.centres[u], graph.centres[graph.neighbours[k]]);
       }
     }
   }
-  voronoi.LoopStartRadius = std::move(loopStartRadius);
-  voronoi.LoopStartNode = std::move(loopStartNode);
+  voronoi.loopStartRadius = std::move(loopStartRadius);
+  voronoi.loopStartNode = std::move(loopStartNode);
   return voronoi;
 }
 

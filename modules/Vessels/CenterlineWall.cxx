@@ -28,8 +28,8 @@ namespace
 std::vector<BoundaryLoop> FindLoops(const Wall& wall, int& openChains)
 {
   std::unordered_map<std::uint64_t, int> count;
-  count.reserve(wall.Triangles.size() * 3);
-  for (const auto& t : wall.Triangles)
+  count.reserve(wall.triangles.size() * 3);
+  for (const auto& t : wall.triangles)
   {
     for (int e = 0; e < 3; ++e)
     {
@@ -37,7 +37,7 @@ std::vector<BoundaryLoop> FindLoops(const Wall& wall, int& openChains)
     }
   }
   std::unordered_multimap<vtkIdType, vtkIdType> next;
-  for (const auto& t : wall.Triangles)
+  for (const auto& t : wall.triangles)
   {
     for (int e = 0; e < 3; ++e)
     {
@@ -66,7 +66,7 @@ std::vector<BoundaryLoop> FindLoops(const Wall& wall, int& openChains)
       }
       const vtkIdType to = found->second;
       next.erase(found);
-      loop.Ids.push_back(current);
+      loop.ids.push_back(current);
       current = to;
       if (current == start)
       {
@@ -74,7 +74,7 @@ std::vector<BoundaryLoop> FindLoops(const Wall& wall, int& openChains)
         break;
       }
     }
-    if (closed && loop.Ids.size() >= 3)
+    if (closed && loop.ids.size() >= 3)
     {
       loops.push_back(std::move(loop));
     }
@@ -86,37 +86,37 @@ std::vector<BoundaryLoop> FindLoops(const Wall& wall, int& openChains)
   // Loop geometry: centre (edge-length weighted), mean radius, cap normal, planarity.
   for (auto& loop : loops)
   {
-    const std::size_t n = loop.Ids.size();
+    const std::size_t n = loop.ids.size();
     Point3 c{ { 0, 0, 0 } };
     double total = 0.0;
     for (std::size_t i = 0; i < n; ++i)
     {
-      const Point3& a = wall.Points[loop.Ids[i]];
-      const Point3& b = wall.Points[loop.Ids[(i + 1) % n]];
+      const Point3& a = wall.points[loop.ids[i]];
+      const Point3& b = wall.points[loop.ids[(i + 1) % n]];
       const double l = Distance(a, b);
       c = Add(c, Scale(Add(a, b), 0.5 * l));
       total += l;
     }
-    loop.Centre = total > 0 ? Scale(c, 1.0 / total) : wall.Points[loop.Ids[0]];
+    loop.centre = total > 0 ? Scale(c, 1.0 / total) : wall.points[loop.ids[0]];
     Point3 area{ { 0, 0, 0 } };
     double radius = 0.0, diameter = 0.0;
     for (std::size_t i = 0; i < n; ++i)
     {
-      const Point3& a = wall.Points[loop.Ids[i]];
-      const Point3& b = wall.Points[loop.Ids[(i + 1) % n]];
+      const Point3& a = wall.points[loop.ids[i]];
+      const Point3& b = wall.points[loop.ids[(i + 1) % n]];
       // The cap triangle (centre, b, a) uses the edge the other way round from the wall.
-      area = Add(area, Cross(Sub(b, loop.Centre), Sub(a, loop.Centre)));
-      radius += Distance(a, loop.Centre);
-      diameter = std::max(diameter, 2.0 * Distance(a, loop.Centre));
+      area = Add(area, Cross(Sub(b, loop.centre), Sub(a, loop.centre)));
+      radius += Distance(a, loop.centre);
+      diameter = std::max(diameter, 2.0 * Distance(a, loop.centre));
     }
-    loop.MeanRadius = radius / static_cast<double>(n);
-    loop.CapNormal = UnitVector(area);
+    loop.meanRadius = radius / static_cast<double>(n);
+    loop.capNormal = UnitVector(area);
     double off = 0.0;
-    for (vtkIdType id : loop.Ids)
+    for (vtkIdType id : loop.ids)
     {
-      off = std::max(off, std::abs(Dot(Sub(wall.Points[id], loop.Centre), loop.CapNormal)));
+      off = std::max(off, std::abs(Dot(Sub(wall.points[id], loop.centre), loop.capNormal)));
     }
-    loop.IsEnd = Norm(area) > 0 && off <= 0.1 * diameter;
+    loop.isEnd = Norm(area) > 0 && off <= 0.1 * diameter;
   }
   return loops;
 }
@@ -140,10 +140,10 @@ constexpr double DelaunaySpacing = 0.0;
 
 std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
 {
-  const std::size_t n = wall.Points.size();
+  const std::size_t n = wall.points.size();
   std::vector<vtkIdType> kept;
   std::vector<std::vector<vtkIdType>> neighbours(n);
-  for (const auto& t : wall.Triangles)
+  for (const auto& t : wall.triangles)
   {
     for (int e = 0; e < 3; ++e)
     {
@@ -152,9 +152,9 @@ std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
     }
   }
   std::vector<bool> onBoundary(n, false);
-  for (const auto& loop : wall.Loops)
+  for (const auto& loop : wall.loops)
   {
-    for (vtkIdType id : loop.Ids)
+    for (vtkIdType id : loop.ids)
     {
       onBoundary[id] = true;
     }
@@ -175,8 +175,8 @@ std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
   {
     for (vtkIdType j : neighbours[i])
     {
-      const double l = Distance(wall.Points[i], wall.Points[j]);
-      const double c = std::clamp(Dot(wall.Normals[i], wall.Normals[j]), -1.0, 1.0);
+      const double l = Distance(wall.points[i], wall.points[j]);
+      const double c = std::clamp(Dot(wall.normals[i], wall.normals[j]), -1.0, 1.0);
       if (l > 0)
       {
         curvature[i] = std::max(curvature[i], std::acos(c) / l);
@@ -184,7 +184,7 @@ std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
     }
   }
   std::vector<double> spacing(n, std::numeric_limits<double>::infinity());
-  const double largest = 0.05 * wall.Diagonal;
+  const double largest = 0.05 * wall.diagonal;
   for (std::size_t i = 0; i < n; ++i)
   {
     if (neighbours[i].empty())
@@ -198,7 +198,7 @@ std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
     }
     const double k = sum / static_cast<double>(neighbours[i].size() + 1);
     spacing[i] = k > 0 ? std::min(largest, factor / k) : largest;
-    spacing[i] = std::max(spacing[i], wall.MeanEdge);
+    spacing[i] = std::max(spacing[i], wall.meanEdge);
   }
   // Gradation: spacing[i] <= spacing[j] + 0.25 |ij| (Dijkstra from every point).
   {
@@ -221,7 +221,7 @@ std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
       }
       for (vtkIdType j : neighbours[i])
       {
-        const double g = h + 0.25 * Distance(wall.Points[i], wall.Points[j]);
+        const double g = h + 0.25 * Distance(wall.points[i], wall.points[j]);
         if (g < spacing[j])
         {
           spacing[j] = g;
@@ -239,19 +239,19 @@ std::vector<vtkIdType> ThinWall(const Wall& wall, double factor)
     {
       continue;
     }
-    if (onBoundary[i] || spacing[i] < 1.5 * wall.MeanEdge)
+    if (onBoundary[i] || spacing[i] < 1.5 * wall.meanEdge)
     {
       kept.push_back(static_cast<vtkIdType>(i));
       continue;
     }
     const int level = std::min(
-      40, static_cast<int>(std::floor(std::log(spacing[i] / wall.MeanEdge) / std::log(1.5))));
-    const double size = wall.MeanEdge * std::pow(1.5, level);
+      40, static_cast<int>(std::floor(std::log(spacing[i] / wall.meanEdge) / std::log(1.5))));
+    const double size = wall.meanEdge * std::pow(1.5, level);
     std::uint64_t key = static_cast<std::uint64_t>(level);
     double offset = 0.0;
     for (int c = 0; c < 3; ++c)
     {
-      const double x = wall.Points[i][c] / size;
+      const double x = wall.points[i][c] / size;
       const double cell = std::floor(x);
       offset += (x - cell - 0.5) * (x - cell - 0.5);
       // 19 bits per axis (the wall's diagonal over the smallest cell is far below 2^18).
@@ -314,12 +314,12 @@ bool BuildWall(vtkPolyData* surface,
     orient->Update();
     vtkPolyData* oriented = orient->GetOutput();
     const vtkIdType np = oriented->GetNumberOfPoints();
-    wall.Points.resize(np);
+    wall.points.resize(np);
     for (vtkIdType i = 0; i < np; ++i)
     {
-      oriented->GetPoint(i, wall.Points[i].data());
-      if (!std::isfinite(wall.Points[i][0]) || !std::isfinite(wall.Points[i][1]) ||
-        !std::isfinite(wall.Points[i][2]))
+      oriented->GetPoint(i, wall.points[i].data());
+      if (!std::isfinite(wall.points[i][0]) || !std::isfinite(wall.points[i][1]) ||
+        !std::isfinite(wall.points[i][2]))
       {
         failure = "surface has a non-finite point coordinate";
         return false;
@@ -336,31 +336,31 @@ bool BuildWall(vtkPolyData* surface,
       {
         continue;
       }
-      const Point3& a = wall.Points[ids[0]];
-      const Point3& b = wall.Points[ids[1]];
-      const Point3& c = wall.Points[ids[2]];
+      const Point3& a = wall.points[ids[0]];
+      const Point3& b = wall.points[ids[1]];
+      const Point3& c = wall.points[ids[2]];
       if (Norm(Cross(Sub(b, a), Sub(c, a))) <= 0)
       {
         continue;
       }
-      wall.Triangles.push_back({ { ids[0], ids[1], ids[2] } });
+      wall.triangles.push_back({ { ids[0], ids[1], ids[2] } });
       edges += Distance(a, b) + Distance(b, c) + Distance(c, a);
     }
-    if (wall.Triangles.size() < 4)
+    if (wall.triangles.size() < 4)
     {
-      failure = "surface has " + std::to_string(wall.Triangles.size()) +
+      failure = "surface has " + std::to_string(wall.triangles.size()) +
         " non-degenerate triangle(s): no lumen to find centerlines in";
       return false;
     }
-    wall.MeanEdge = edges / (3.0 * static_cast<double>(wall.Triangles.size()));
+    wall.meanEdge = edges / (3.0 * static_cast<double>(wall.triangles.size()));
     double bounds[6];
     oriented->GetBounds(bounds);
-    wall.Diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    wall.diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
       (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
       (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   }
   int openChains = 0;
-  wall.Loops = FindLoops(wall, openChains);
+  wall.loops = FindLoops(wall, openChains);
   if (openChains > 0)
   {
     warnings.push_back(std::to_string(openChains) +
@@ -369,57 +369,57 @@ bool BuildWall(vtkPolyData* surface,
 
   // Orientation: the signed volume of the wall closed by flat fans over its loops.
   double volume = 0.0;
-  for (const auto& t : wall.Triangles)
+  for (const auto& t : wall.triangles)
   {
-    volume += Dot(wall.Points[t[0]], Cross(wall.Points[t[1]], wall.Points[t[2]]));
+    volume += Dot(wall.points[t[0]], Cross(wall.points[t[1]], wall.points[t[2]]));
   }
-  for (const auto& loop : wall.Loops)
+  for (const auto& loop : wall.loops)
   {
-    const std::size_t n = loop.Ids.size();
+    const std::size_t n = loop.ids.size();
     for (std::size_t i = 0; i < n; ++i)
     {
-      const Point3& a = wall.Points[loop.Ids[i]];
-      const Point3& b = wall.Points[loop.Ids[(i + 1) % n]];
-      volume += Dot(loop.Centre, Cross(b, a));
+      const Point3& a = wall.points[loop.ids[i]];
+      const Point3& b = wall.points[loop.ids[(i + 1) % n]];
+      volume += Dot(loop.centre, Cross(b, a));
     }
   }
   volume /= 6.0;
-  if (!(std::abs(volume) > 1e-9 * wall.Diagonal * wall.Diagonal * wall.Diagonal))
+  if (!(std::abs(volume) > 1e-9 * wall.diagonal * wall.diagonal * wall.diagonal))
   {
     failure = "surface encloses no volume (flat or a single sheet): no lumen";
     return false;
   }
   const double orientation = volume > 0 ? 1.0 : -1.0;
-  wall.Normals.assign(wall.Points.size(), Point3{ { 0, 0, 0 } });
-  for (const auto& t : wall.Triangles)
+  wall.normals.assign(wall.points.size(), Point3{ { 0, 0, 0 } });
+  for (const auto& t : wall.triangles)
   {
     const Point3 n = Scale(
-      Cross(Sub(wall.Points[t[1]], wall.Points[t[0]]), Sub(wall.Points[t[2]], wall.Points[t[0]])),
+      Cross(Sub(wall.points[t[1]], wall.points[t[0]]), Sub(wall.points[t[2]], wall.points[t[0]])),
       orientation);
     for (int k = 0; k < 3; ++k)
     {
-      wall.Normals[t[k]] = Add(wall.Normals[t[k]], n);
+      wall.normals[t[k]] = Add(wall.normals[t[k]], n);
     }
   }
-  for (auto& n : wall.Normals)
+  for (auto& n : wall.normals)
   {
     n = UnitVector(n);
   }
-  for (auto& loop : wall.Loops)
+  for (auto& loop : wall.loops)
   {
-    loop.CapNormal = Scale(loop.CapNormal, orientation);
+    loop.capNormal = Scale(loop.capNormal, orientation);
   }
   {
     auto surfaceCopy = vtkSmartPointer<vtkPolyData>::New();
     vtkNew<vtkPoints> pts;
     pts->SetDataTypeToDouble();
-    pts->SetNumberOfPoints(static_cast<vtkIdType>(wall.Points.size()));
-    for (std::size_t i = 0; i < wall.Points.size(); ++i)
+    pts->SetNumberOfPoints(static_cast<vtkIdType>(wall.points.size()));
+    for (std::size_t i = 0; i < wall.points.size(); ++i)
     {
-      pts->SetPoint(static_cast<vtkIdType>(i), wall.Points[i].data());
+      pts->SetPoint(static_cast<vtkIdType>(i), wall.points[i].data());
     }
     vtkNew<vtkCellArray> tris;
-    for (const auto& t : wall.Triangles)
+    for (const auto& t : wall.triangles)
     {
       const vtkIdType ids[3] = {
         t[0], orientation > 0 ? t[1] : t[2], orientation > 0 ? t[2] : t[1]
@@ -428,7 +428,7 @@ bool BuildWall(vtkPolyData* surface,
     }
     surfaceCopy->SetPoints(pts);
     surfaceCopy->SetPolys(tris);
-    wall.Surface = surfaceCopy;
+    wall.surface = surfaceCopy;
   }
   return true;
 }
@@ -437,25 +437,25 @@ void DelaunaySamples(Wall& wall, std::vector<Point3>& samples, std::vector<Point
 {
   for (vtkIdType id : ThinWall(wall, DelaunaySpacing))
   {
-    samples.push_back(wall.Points[id]);
-    sampleNormals.push_back(wall.Normals[id]);
+    samples.push_back(wall.points[id]);
+    sampleNormals.push_back(wall.normals[id]);
   }
-  for (auto& loop : wall.Loops)
+  for (auto& loop : wall.loops)
   {
-    loop.CentreSampleId = static_cast<vtkIdType>(samples.size());
-    samples.push_back(loop.Centre);
-    sampleNormals.push_back(loop.CapNormal);
-    const int rings = std::max(1, static_cast<int>(std::lround(loop.MeanRadius / wall.MeanEdge)));
-    const std::size_t n = loop.Ids.size();
+    loop.centreSampleId = static_cast<vtkIdType>(samples.size());
+    samples.push_back(loop.centre);
+    sampleNormals.push_back(loop.capNormal);
+    const int rings = std::max(1, static_cast<int>(std::lround(loop.meanRadius / wall.meanEdge)));
+    const std::size_t n = loop.ids.size();
     for (int k = 1; k < rings; ++k)
     {
       const double t = static_cast<double>(k) / rings;
       const std::size_t count = std::max<std::size_t>(3, static_cast<std::size_t>(n * t));
       for (std::size_t j = 0; j < count; ++j)
       {
-        const Point3& q = wall.Points[loop.Ids[j * n / count]];
-        samples.push_back(Add(loop.Centre, Scale(Sub(q, loop.Centre), t)));
-        sampleNormals.push_back(loop.CapNormal);
+        const Point3& q = wall.points[loop.ids[j * n / count]];
+        samples.push_back(Add(loop.centre, Scale(Sub(q, loop.centre), t)));
+        sampleNormals.push_back(loop.capNormal);
       }
     }
   }

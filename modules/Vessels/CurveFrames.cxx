@@ -146,8 +146,8 @@ std::vector<CurveSample> ComputeCurveFrames(const std::vector<Point3>& points,
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     CurveSample& c = out[i];
-    c.Position = points[i];
-    c.Abscissa = startAbscissa + s[i];
+    c.position = points[i];
+    c.abscissa = startAbscissa + s[i];
     if (points.size() < 2)
     {
       continue;
@@ -159,26 +159,26 @@ std::vector<CurveSample> ComputeCurveFrames(const std::vector<Point3>& points,
     {
       continue;
     }
-    c.Tangent = Scale(d1, 1.0 / speed);
+    c.tangent = Scale(d1, 1.0 / speed);
     const Point3 b = Cross(d1, d2);
     const double bn = Norm(b);
-    c.Curvature = bn / (speed * speed * speed);
-    c.Torsion = bn > 0 ? Dot(b, d3) / (bn * bn) : 0.0;
-    Point3 n = Sub(d2, Scale(c.Tangent, Dot(d2, c.Tangent)));
+    c.curvature = bn / (speed * speed * speed);
+    c.torsion = bn > 0 ? Dot(b, d3) / (bn * bn) : 0.0;
+    Point3 n = Sub(d2, Scale(c.tangent, Dot(d2, c.tangent)));
     // Where the line is (nearly) straight the Frenet normal is undefined: carry the previous
     // normal along (projected), or pick any perpendicular at the start.
-    if (Norm(n) < 1e-6 * (Norm(d2) + 1e-12) || c.Curvature * window < 1e-6)
+    if (Norm(n) < 1e-6 * (Norm(d2) + 1e-12) || c.curvature * window < 1e-6)
     {
-      n = Sub(previousNormal, Scale(c.Tangent, Dot(previousNormal, c.Tangent)));
+      n = Sub(previousNormal, Scale(c.tangent, Dot(previousNormal, c.tangent)));
       if (Norm(n) < 1e-6)
       {
         const Point3 axis =
-          std::abs(c.Tangent[0]) < 0.9 ? Point3{ { 1, 0, 0 } } : Point3{ { 0, 1, 0 } };
-        n = Cross(c.Tangent, Cross(axis, c.Tangent));
+          std::abs(c.tangent[0]) < 0.9 ? Point3{ { 1, 0, 0 } } : Point3{ { 0, 1, 0 } };
+        n = Cross(c.tangent, Cross(axis, c.tangent));
       }
     }
-    c.Normal = UnitVector(n);
-    previousNormal = c.Normal;
+    c.normal = UnitVector(n);
+    previousNormal = c.normal;
   }
   return out;
 }

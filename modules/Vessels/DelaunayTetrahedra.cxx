@@ -31,8 +31,8 @@ constexpr double FilterBound = 1e-14;
 
 struct Tetra
 {
-  int V[4]; // positively oriented; V[0] < 0: the slot is free
-  int N[4]; // N[k]: the tetrahedron across the face opposite V[k], -1 outside
+  int v[4]; // positively oriented; V[0] < 0: the slot is free
+  int n[4]; // N[k]: the tetrahedron across the face opposite V[k], -1 outside
 };
 
 class Triangulator
@@ -70,7 +70,7 @@ public:
     {
       return -1;
     }
-    ++Stats.ExactTests;
+    ++Stats.exactTests;
     auto i64 = [](double v) { return static_cast<std::int64_t>(v); };
     const std::int64_t e1 = i64(cy) * i64(dz) - i64(cz) * i64(dy);
     const std::int64_t e2 = i64(cz) * i64(dx) - i64(cx) * i64(dz);
@@ -92,7 +92,7 @@ public:
     // Tie: lift each point by epsilon^(rank), the largest index dominating. Raising the
     // query's lift puts it outside; raising vertex k's puts the query inside exactly when the
     // query lies on vertex k's side of the opposite face.
-    ++Stats.Perturbations;
+    ++Stats.perturbations;
     int order[5] = { v[0], v[1], v[2], v[3], e };
     std::sort(order, order + 5, [](int x, int y) { return x > y; });
     for (int id : order)
@@ -167,7 +167,7 @@ public:
     {
       return -1;
     }
-    ++Stats.ExactTests;
+    ++Stats.exactTests;
     std::int64_t I[4][3];
     for (int k = 0; k < 3; ++k)
     {
@@ -218,9 +218,9 @@ std::vector<std::array<vtkIdType, 4>> FaceNeighbours(
 {
   struct Face
   {
-    std::array<vtkIdType, 3> Ids;
-    vtkIdType Tet;
-    int Opposite;
+    std::array<vtkIdType, 3> ids;
+    vtkIdType tet;
+    int opposite;
   };
   std::vector<Face> faces;
   faces.reserve(4 * tetras.size());
@@ -234,22 +234,22 @@ std::vector<std::array<vtkIdType, 4>> FaceNeighbours(
       {
         if (j != k)
         {
-          f.Ids[m++] = tetras[t][j];
+          f.ids[m++] = tetras[t][j];
         }
       }
-      std::sort(f.Ids.begin(), f.Ids.end());
+      std::sort(f.ids.begin(), f.ids.end());
       faces.push_back(f);
     }
   }
-  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.Ids < b.Ids; });
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.ids < b.ids; });
   std::vector<std::array<vtkIdType, 4>> neighbours(
     tetras.size(), std::array<vtkIdType, 4>{ { -1, -1, -1, -1 } });
   for (std::size_t i = 0; i + 1 < faces.size(); ++i)
   {
-    if (faces[i].Ids == faces[i + 1].Ids)
+    if (faces[i].ids == faces[i + 1].ids)
     {
-      neighbours[faces[i].Tet][faces[i].Opposite] = faces[i + 1].Tet;
-      neighbours[faces[i + 1].Tet][faces[i + 1].Opposite] = faces[i].Tet;
+      neighbours[faces[i].tet][faces[i].opposite] = faces[i + 1].tet;
+      neighbours[faces[i + 1].tet][faces[i + 1].opposite] = faces[i].tet;
       ++i;
     }
   }
@@ -312,7 +312,7 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   // spans its corners with a 2 % margin.
   const double circumradius = 3.0 * diagonal;
   const double step = 1.02 * circumradius / GridHalf;
-  stats.GridStep = step;
+  stats.gridStep = step;
   std::vector<std::array<double, 3>> grid(n + 4);
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -343,7 +343,7 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
     Tetra t{ { a, b, c, d }, { -1, -1, -1, -1 } };
     if (predicates.Orient(a, b, c, d) < 0)
     {
-      std::swap(t.V[0], t.V[1]);
+      std::swap(t.v[0], t.v[1]);
     }
     tets.push_back(t);
   }
@@ -378,20 +378,20 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   std::vector<int> cavity, stack;
   struct BoundaryFace
   {
-    int V[4];    // the cavity tetrahedron's vertices, the new point at Face
-    int Face;    // which slot holds the new point
-    int Outside; // the tetrahedron beyond the face, -1 on the hull
-    int Back;    // the face of Outside that looks back
+    int v[4];    // the cavity tetrahedron's vertices, the new point at Face
+    int face;    // which slot holds the new point
+    int outside; // the tetrahedron beyond the face, -1 on the hull
+    int back;    // the face of Outside that looks back
   };
   std::vector<BoundaryFace> boundary;
   // The new tetrahedra are linked across the cavity boundary's edges through a small hash
   // table (open addressing, emptied by bumping its generation).
   struct EdgeSlot
   {
-    std::uint64_t Key = 0;
-    int Tet = -1; // -1: matched already
-    int Face = 0;
-    std::uint32_t Generation = 0;
+    std::uint64_t key = 0;
+    int tet = -1; // -1: matched already
+    int face = 0;
+    std::uint32_t generation = 0;
   };
   std::vector<EdgeSlot> edgeTable(64); // grows with the largest cavity (often, so it is exercised)
   std::uint32_t generation = 0;
@@ -414,11 +414,11 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
       for (int j = 0; j < 4 && next < 0; ++j)
       {
         const int f = (first + j) & 3;
-        int w[4] = { T.V[0], T.V[1], T.V[2], T.V[3] };
+        int w[4] = { T.v[0], T.v[1], T.v[2], T.v[3] };
         w[f] = p;
         if (predicates.Orient(w[0], w[1], w[2], w[3]) < 0)
         {
-          next = T.N[f];
+          next = T.n[f];
           if (next < 0)
           {
             error = "internal error: a point walked out of the enclosing tetrahedron";
@@ -443,11 +443,11 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
       bool duplicate = false;
       for (int k = 0; k < 4; ++k)
       {
-        duplicate = duplicate || grid[T.V[k]] == grid[p];
+        duplicate = duplicate || grid[T.v[k]] == grid[p];
       }
       if (duplicate)
       {
-        ++stats.Duplicates;
+        ++stats.duplicates;
         continue;
       }
     }
@@ -472,11 +472,11 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
       cavity.push_back(c);
       for (int f = 0; f < 4; ++f)
       {
-        const int u = tets[c].N[f];
+        const int u = tets[c].n[f];
         bool isBoundary = u < 0;
         if (u >= 0 && mark[u] != in)
         {
-          if (mark[u] != out && predicates.InSphere(tets[u].V, p))
+          if (mark[u] != out && predicates.InSphere(tets[u].v, p))
           {
             mark[u] = in;
             stack.push_back(u);
@@ -490,21 +490,21 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
         if (isBoundary)
         {
           BoundaryFace b;
-          std::copy(tets[c].V, tets[c].V + 4, b.V);
-          b.V[f] = p;
-          b.Face = f;
-          b.Outside = u;
-          b.Back = -1;
+          std::copy(tets[c].v, tets[c].v + 4, b.v);
+          b.v[f] = p;
+          b.face = f;
+          b.outside = u;
+          b.back = -1;
           if (u >= 0)
           {
             for (int g = 0; g < 4; ++g)
             {
-              if (tets[u].N[g] == c)
+              if (tets[u].n[g] == c)
               {
-                b.Back = g;
+                b.back = g;
               }
             }
-            if (b.Back < 0)
+            if (b.back < 0)
             {
               error = "internal error: inconsistent neighbours";
               return false;
@@ -518,7 +518,7 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
     // 3. Replace the cavity by the boundary faces joined to p.
     for (int c : cavity)
     {
-      tets[c].V[0] = -1;
+      tets[c].v[0] = -1;
       freeSlots.push_back(c);
     }
     if (edgeTable.size() < 4 * boundary.size())
@@ -556,15 +556,15 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
         }
       }
       Tetra& T = tets[id];
-      std::copy(b.V, b.V + 4, T.V);
-      T.N[b.Face] = b.Outside;
-      if (b.Outside >= 0)
+      std::copy(b.v, b.v + 4, T.v);
+      T.n[b.face] = b.outside;
+      if (b.outside >= 0)
       {
-        tets[b.Outside].N[b.Back] = id;
+        tets[b.outside].n[b.back] = id;
       }
       for (int k = 0; k < 4; ++k)
       {
-        if (k == b.Face)
+        if (k == b.face)
         {
           continue;
         }
@@ -572,30 +572,30 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
         int e[2], m = 0;
         for (int j = 0; j < 4; ++j)
         {
-          if (j != k && j != b.Face)
+          if (j != k && j != b.face)
           {
-            e[m++] = b.V[j];
+            e[m++] = b.v[j];
           }
         }
         const auto x = static_cast<std::uint64_t>(std::min(e[0], e[1]));
         const auto y = static_cast<std::uint64_t>(std::max(e[0], e[1]));
         const std::uint64_t key = (x << 32) | y;
         std::size_t h = static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ULL) >> 40) & mask;
-        while (edgeTable[h].Generation == generation && edgeTable[h].Key != key)
+        while (edgeTable[h].generation == generation && edgeTable[h].key != key)
         {
           h = (h + 1) & mask;
         }
         EdgeSlot& slot = edgeTable[h];
-        if (slot.Generation != generation)
+        if (slot.generation != generation)
         {
           slot = { key, id, k, generation };
           ++pending;
         }
-        else if (slot.Tet >= 0)
+        else if (slot.tet >= 0)
         {
-          T.N[k] = slot.Tet;
-          tets[slot.Tet].N[slot.Face] = id;
-          slot.Tet = -1;
+          T.n[k] = slot.tet;
+          tets[slot.tet].n[slot.face] = id;
+          slot.tet = -1;
           --pending;
         }
         else
@@ -617,10 +617,10 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   for (std::size_t i = 0; i < tets.size(); ++i)
   {
     const Tetra& T = tets[i];
-    if (T.V[0] >= 0 && T.V[0] < limit && T.V[1] < limit && T.V[2] < limit && T.V[3] < limit)
+    if (T.v[0] >= 0 && T.v[0] < limit && T.v[1] < limit && T.v[2] < limit && T.v[3] < limit)
     {
       index[i] = static_cast<vtkIdType>(tetras.size());
-      tetras.push_back({ { T.V[0], T.V[1], T.V[2], T.V[3] } });
+      tetras.push_back({ { T.v[0], T.v[1], T.v[2], T.v[3] } });
     }
   }
   if (neighbours)
@@ -633,7 +633,7 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
         std::array<vtkIdType, 4> across;
         for (int k = 0; k < 4; ++k)
         {
-          across[k] = tets[i].N[k] >= 0 ? index[tets[i].N[k]] : -1;
+          across[k] = tets[i].n[k] >= 0 ? index[tets[i].n[k]] : -1;
         }
         neighbours->push_back(across);
       }

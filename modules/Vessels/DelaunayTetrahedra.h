@@ -36,16 +36,16 @@ namespace bender
 
 struct DelaunayStatistics
 {
-  vtkIdType Duplicates = 0;    ///< points equal (on the grid) to an earlier one, left out
-  vtkIdType ExactTests = 0;    ///< predicates the double-precision filter could not decide
-  vtkIdType Perturbations = 0; ///< exact ties broken by the symbolic perturbation
-  double GridStep = 0.0;       ///< the snapping step, in the points' unit
+  vtkIdType duplicates = 0;    ///< points equal (on the grid) to an earlier one, left out
+  vtkIdType exactTests = 0;    ///< predicates the double-precision filter could not decide
+  vtkIdType perturbations = 0; ///< exact ties broken by the symbolic perturbation
+  double gridStep = 0.0;       ///< the snapping step, in the points' unit
 };
 
 /// Delaunay tetrahedra of `points` (indices into it), each positively oriented (its fourth
 /// point on the side of the first three to which (b - a) x (c - a) points). The points are
 /// moved onto the integer grid the predicates use (by at most half a grid step,
-/// DelaunayStatistics::GridStep, about 1.5e-6 of the bounding-box diagonal), so that
+/// DelaunayStatistics::gridStep, about 1.5e-6 of the bounding-box diagonal), so that
 /// circumcentres computed afterwards belong to the triangulated positions. Returns false with
 /// a one-line reason when there are fewer than four distinct points, non-finite coordinates,
 /// or the points are all co-planar.

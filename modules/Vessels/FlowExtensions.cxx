@@ -50,9 +50,9 @@ bool Sweeps(const FlowExtensionEnd& a,
       V3 p;
       for (int e = 0; e < 3; ++e)
       {
-        p[e] = b.Centre[e] + d * axisB[e] + r * (std::cos(angle) * e1[e] + std::sin(angle) * e2[e]);
+        p[e] = b.centre[e] + d * axisB[e] + r * (std::cos(angle) * e1[e] + std::sin(angle) * e2[e]);
       }
-      const V3 q = Sub(p, a.Centre);
+      const V3 q = Sub(p, a.centre);
       const double along = Dot(q, axisA);
       if (along <= 0 || along > lengthA)
       {
@@ -86,17 +86,17 @@ std::vector<double> ClearLengths(vtkPolyData* surface,
   {
     const FlowExtensionEnd& end = ends[k];
     const double factor =
-      end.Factor >= 0 ? end.Factor : (end.Inlet ? options.InletFactor : options.OutletFactor);
+      end.factor >= 0 ? end.factor : (end.inlet ? options.inletFactor : options.outletFactor);
     if (!std::isfinite(factor) || factor > 100)
     {
       throw InputError(
         "flow extensions: the length factor " + std::to_string(factor) + " is not in [0, 100]");
     }
-    if (end.Rim.size() < 3)
+    if (end.rim.size() < 3)
     {
       throw InputError("flow extensions: an end's rim has fewer than 3 points");
     }
-    for (long long v : end.Rim)
+    for (long long v : end.rim)
     {
       if (v < 0 || v >= surface->GetNumberOfPoints())
       {
@@ -104,14 +104,14 @@ std::vector<double> ClearLengths(vtkPolyData* surface,
       }
       V3 p;
       surface->GetPoint(v, p.data());
-      reach[k] = std::max(reach[k], Norm(Sub(p, end.Centre)));
+      reach[k] = std::max(reach[k], Norm(Sub(p, end.centre)));
     }
-    axis[k] = Normalized(end.Normal);
-    if (Norm(axis[k]) == 0.0 || !(end.Radius > 0) || !std::isfinite(end.Radius))
+    axis[k] = Normalized(end.normal);
+    if (Norm(axis[k]) == 0.0 || !(end.radius > 0) || !std::isfinite(end.radius))
     {
       throw InputError("flow extensions: an end has no normal or no radius");
     }
-    requested[k] = length[k] = factor * end.Radius;
+    requested[k] = length[k] = factor * end.radius;
   }
   // The surface.
   for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
@@ -120,16 +120,16 @@ std::vector<double> ClearLengths(vtkPolyData* surface,
     surface->GetPoint(i, p.data());
     for (std::size_t k = 0; k < ends.size(); ++k)
     {
-      const V3 d = Sub(p, ends[k].Centre);
+      const V3 d = Sub(p, ends[k].centre);
       const double along = Dot(d, axis[k]);
-      if (along <= 1e-9 * ends[k].Radius || along > length[k] + reach[k])
+      if (along <= 1e-9 * ends[k].radius || along > length[k] + reach[k])
       {
         continue;
       }
       const V3 radial{
         { d[0] - along * axis[k][0], d[1] - along * axis[k][1], d[2] - along * axis[k][2] }
       };
-      if (Norm(radial) < 1.2 * std::max(reach[k], ends[k].Radius))
+      if (Norm(radial) < 1.2 * std::max(reach[k], ends[k].radius))
       {
         length[k] = std::max(0.0, std::min(length[k], along - reach[k]));
       }
@@ -154,7 +154,7 @@ std::vector<double> ClearLengths(vtkPolyData* surface,
         {
           clear = false;
           std::size_t& longer = length[a] >= length[b] ? a : b;
-          length[longer] = length[longer] < 0.5 * ends[longer].Radius ? 0.0 : 0.9 * length[longer];
+          length[longer] = length[longer] < 0.5 * ends[longer].radius ? 0.0 : 0.9 * length[longer];
         }
       }
     }
@@ -169,8 +169,8 @@ std::vector<double> ClearLengths(vtkPolyData* surface,
     {
       std::ostringstream s;
       s.precision(3);
-      s << "the flow extension at (" << ends[k].Centre[0] << ", " << ends[k].Centre[1] << ", "
-        << ends[k].Centre[2] << ") is " << length[k] << " long instead of " << requested[k]
+      s << "the flow extension at (" << ends[k].centre[0] << ", " << ends[k].centre[1] << ", "
+        << ends[k].centre[2] << ") is " << length[k] << " long instead of " << requested[k]
         << ": a longer one would run into the vessel or another extension";
       warnings.push_back(s.str());
     }
@@ -205,17 +205,17 @@ std::vector<FlowExtensionEnd> OpenEnds(vtkPolyData* surface)
       continue;
     }
     FlowExtensionEnd end;
-    end.Rim.assign(chain.vertices.begin(), chain.vertices.end());
+    end.rim.assign(chain.vertices.begin(), chain.vertices.end());
     V3 area{ { 0, 0, 0 } }, c{ { 0, 0, 0 } };
     std::vector<V3> x;
-    for (long long v : end.Rim)
+    for (long long v : end.rim)
     {
       V3 p;
       surface->GetPoint(v, p.data());
       x.push_back(p);
       for (int e = 0; e < 3; ++e)
       {
-        c[e] += p[e] / static_cast<double>(end.Rim.size());
+        c[e] += p[e] / static_cast<double>(end.rim.size());
       }
     }
     for (std::size_t k = 0; k < x.size(); ++k)
@@ -226,21 +226,21 @@ std::vector<FlowExtensionEnd> OpenEnds(vtkPolyData* surface)
         area[e] += 0.5 * a[e];
       }
     }
-    end.Centre = c;
-    end.Radius = std::sqrt(Norm(area) / M_PI);
-    end.Normal = Normalized(area);
-    if (Dot(end.Normal, Sub(c, mean)) < 0)
+    end.centre = c;
+    end.radius = std::sqrt(Norm(area) / M_PI);
+    end.normal = Normalized(area);
+    if (Dot(end.normal, Sub(c, mean)) < 0)
     {
-      end.Normal = { { -end.Normal[0], -end.Normal[1], -end.Normal[2] } };
+      end.normal = { { -end.normal[0], -end.normal[1], -end.normal[2] } };
     }
     if (Norm(area) > largest)
     {
       largest = Norm(area);
       for (FlowExtensionEnd& other : ends)
       {
-        other.Inlet = false;
+        other.inlet = false;
       }
-      end.Inlet = true;
+      end.inlet = true;
     }
     ends.push_back(std::move(end));
   }
@@ -255,7 +255,7 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
   {
     throw InputError("flow extensions: the surface is empty");
   }
-  for (const double f : { options.InletFactor, options.OutletFactor })
+  for (const double f : { options.inletFactor, options.outletFactor })
   {
     if (!std::isfinite(f) || f < 0 || f > 100)
     {
@@ -284,29 +284,29 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
     polys->InsertNextCell(3, ids);
   }
   FlowExtensionResult result;
-  const std::vector<double> lengths = ClearLengths(surface, ends, options, result.Warnings);
+  const std::vector<double> lengths = ClearLengths(surface, ends, options, result.warnings);
   for (std::size_t index = 0; index < ends.size(); ++index)
   {
     const FlowExtensionEnd& end = ends[index];
-    const double factor = lengths[index] / end.Radius;
-    const std::size_t m = end.Rim.size();
-    const V3 n = Normalized(end.Normal);
+    const double factor = lengths[index] / end.radius;
+    const std::size_t m = end.rim.size();
+    const V3 n = Normalized(end.normal);
     ExtendedEnd out;
-    out.Normal = n;
-    out.Radius = end.Radius;
-    out.Factor = factor;
-    out.Length = lengths[index];
-    out.RequestedLength =
-      (end.Factor >= 0 ? end.Factor : (end.Inlet ? options.InletFactor : options.OutletFactor)) *
-      end.Radius;
-    out.FarRim = end.Rim;
+    out.normal = n;
+    out.radius = end.radius;
+    out.factor = factor;
+    out.length = lengths[index];
+    out.requestedLength =
+      (end.factor >= 0 ? end.factor : (end.inlet ? options.inletFactor : options.outletFactor)) *
+      end.radius;
+    out.farRim = end.rim;
     for (int e = 0; e < 3; ++e)
     {
-      out.FarCentre[e] = end.Centre[e] + out.Length * n[e];
+      out.farCentre[e] = end.centre[e] + out.length * n[e];
     }
-    if (out.Length <= 0)
+    if (out.length <= 0)
     {
-      result.Ends.push_back(std::move(out));
+      result.ends.push_back(std::move(out));
       continue;
     }
     // The rim in the end's plane, and its target circle with even spacing in the rim's
@@ -316,8 +316,8 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
     for (std::size_t j = 0; j < m; ++j)
     {
       V3 p;
-      points->GetPoint(end.Rim[j], p.data());
-      const V3 d = Sub(p, end.Centre);
+      points->GetPoint(end.rim[j], p.data());
+      const V3 d = Sub(p, end.centre);
       const double off = Dot(d, n);
       q[j] = { { d[0] - off * n[0], d[1] - off * n[1], d[2] - off * n[2] } };
     }
@@ -361,24 +361,24 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
       return lo.second + (hi.second - lo.second) * std::clamp(t / span, 0.0, 1.0);
     };
     const double sense = turn >= 0 ? 1.0 : -1.0;
-    const int rings = std::max(2, static_cast<int>(std::lround(out.Length / spacing)));
-    const double blend = std::min(0.5 * out.Length, 2.0 * end.Radius);
+    const int rings = std::max(2, static_cast<int>(std::lround(out.length / spacing)));
+    const double blend = std::min(0.5 * out.length, 2.0 * end.radius);
     std::vector<vtkIdType> previous;
     for (int k = 1; k <= rings; ++k)
     {
       // Ring k: m points evenly spaced in angle, from the rim's shape to the circle.
-      const double d = out.Length * k / rings;
+      const double d = out.length * k / rings;
       const double u = std::min(1.0, d / blend);
       const double w = u * u * (3.0 - 2.0 * u);
       std::vector<vtkIdType> ring(m);
       for (std::size_t j = 0; j < m; ++j)
       {
         const double a = sense * 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(m);
-        const double radius = (1.0 - w) * rimRadius(a) + w * end.Radius;
+        const double radius = (1.0 - w) * rimRadius(a) + w * end.radius;
         V3 p;
         for (int e = 0; e < 3; ++e)
         {
-          p[e] = end.Centre[e] + d * n[e] + radius * (std::cos(a) * e1[e] + std::sin(a) * e2[e]);
+          p[e] = end.centre[e] + d * n[e] + radius * (std::cos(a) * e1[e] + std::sin(a) * e2[e]);
         }
         ring[j] = points->InsertNextPoint(p.data());
       }
@@ -395,7 +395,7 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
         };
         while (i < m || j < m)
         {
-          const vtkIdType a0 = end.Rim[i % m], a1 = end.Rim[(i + 1) % m];
+          const vtkIdType a0 = end.rim[i % m], a1 = end.rim[(i + 1) % m];
           const vtkIdType b0 = ring[j % m], b1 = ring[(j + 1) % m];
           const bool advanceRim =
             j == m || (i < m && Norm(Sub(at(a1), at(b0))) <= Norm(Sub(at(a0), at(b1))));
@@ -426,12 +426,12 @@ FlowExtensionResult AddFlowExtensions(vtkPolyData* surface,
       }
       previous = ring;
     }
-    out.FarRim.assign(previous.begin(), previous.end());
-    result.Ends.push_back(std::move(out));
+    out.farRim.assign(previous.begin(), previous.end());
+    result.ends.push_back(std::move(out));
   }
-  result.Surface = vtkSmartPointer<vtkPolyData>::New();
-  result.Surface->SetPoints(points);
-  result.Surface->SetPolys(polys);
+  result.surface = vtkSmartPointer<vtkPolyData>::New();
+  result.surface->SetPoints(points);
+  result.surface->SetPolys(polys);
   return result;
 }
 

@@ -37,41 +37,41 @@ using ExtensionPoint = std::array<double, 3>;
 struct FlowExtensionEnd
 {
   /// Rim point ids in the surface, in the order the wall's triangles run them.
-  std::vector<long long> Rim;
-  ExtensionPoint Centre{ { 0, 0, 0 } }; ///< of the rim
-  ExtensionPoint Normal{ { 0, 0, 1 } }; ///< outwards, unit
-  double Radius = 0.0;                  ///< equivalent radius of the rim
+  std::vector<long long> rim;
+  ExtensionPoint centre{ { 0, 0, 0 } }; ///< of the rim
+  ExtensionPoint normal{ { 0, 0, 1 } }; ///< outwards, unit
+  double radius = 0.0;                  ///< equivalent radius of the rim
   /// Extension length / Radius, >= 0 (0: no extension). < 0: the default (inlet or outlet).
-  double Factor = -1.0;
-  bool Inlet = false;
+  double factor = -1.0;
+  bool inlet = false;
 };
 
 struct FlowExtensionOptions
 {
-  double InletFactor = 10.0; ///< default Factor of the inlet, [0, 100]
-  double OutletFactor = 5.0; ///< default Factor of the outlets, [0, 100]
+  double inletFactor = 10.0; ///< default Factor of the inlet, [0, 100]
+  double outletFactor = 5.0; ///< default Factor of the outlets, [0, 100]
 };
 
 /// One extended end.
 struct ExtendedEnd
 {
-  std::vector<long long> FarRim;           ///< the far ring's point ids, same direction as Rim
-  ExtensionPoint FarCentre{ { 0, 0, 0 } }; ///< Centre + Length x Normal
-  ExtensionPoint Normal{ { 0, 0, 1 } };
-  double Radius = 0.0;
-  double Length = 0.0;          ///< the extension's length (may be less than requested)
-  double RequestedLength = 0.0; ///< Factor x Radius as asked
-  double Factor = 0.0;          ///< Length / Radius
+  std::vector<long long> farRim;           ///< the far ring's point ids, same direction as Rim
+  ExtensionPoint farCentre{ { 0, 0, 0 } }; ///< Centre + Length x Normal
+  ExtensionPoint normal{ { 0, 0, 1 } };
+  double radius = 0.0;
+  double length = 0.0;          ///< the extension's length (may be less than requested)
+  double requestedLength = 0.0; ///< Factor x Radius as asked
+  double factor = 0.0;          ///< Length / Radius
 };
 
 struct FlowExtensionResult
 {
   /// The input's points and triangles followed by the extensions' (open at the far rims;
   /// point and cell data are not kept).
-  vtkSmartPointer<vtkPolyData> Surface;
-  std::vector<ExtendedEnd> Ends; ///< in the order of the ends given
+  vtkSmartPointer<vtkPolyData> surface;
+  std::vector<ExtendedEnd> ends; ///< in the order of the ends given
   /// One line per extension made shorter than requested.
-  std::vector<std::string> Warnings;
+  std::vector<std::string> warnings;
 };
 
 /// The open ends of a surface as FlowExtensionEnd: its closed boundary loops, centre and

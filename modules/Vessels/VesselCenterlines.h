@@ -14,7 +14,7 @@
 //     connected when they share a face.
 //  2. Endpoints: the centres of the open boundary loops (the largest loop is the inlet), or on
 //     a closed surface the tips of the Voronoi graph's long branches (see
-//     CenterlineOptions::BranchLengthToRadius), or the user's seeds.
+//     CenterlineOptions::branchLengthToRadius), or the user's seeds.
 //  3. From the inlet, Dijkstra on the Voronoi graph with the cost integral of 1/R along the
 //     path gives the minimal path to every outlet, backtraced.
 //  4. Each path is resampled at a fixed step and smoothed; then, twice, the lumen's
@@ -54,23 +54,23 @@ struct CenterlineOptions
   /// Seeds (mm). Empty: endpoints found automatically. Otherwise the first seed is the inlet
   /// and the others the outlets; each snaps to the nearest open end within 1.5 loop radii,
   /// else to the largest inscribed sphere that contains it (or the nearest one).
-  std::vector<Point3> Seeds;
+  std::vector<Point3> seeds;
   /// Resampling step (mm), > 0; 0 (default) = 0.05 x the median inscribed radius on the paths.
-  double Step = 0.0;
+  double step = 0.0;
   /// Closed surfaces: a branch of the Voronoi graph (from where it joins the vessels already
   /// found to its tip) is taken for a vessel when, beyond the inscribed sphere at the junction,
   /// it is at least this many times as long as the largest inscribed radius along it, and that
   /// radius is at least a quarter of the junction's (thinner branches are spikes of the Voronoi
   /// diagram towards the wall). Bumps measure about 1 to 2 by this rule, the elongated sac of
   /// the gmsh aneurysm 3.5, its shortest vessel 7. [1, 20], default 4.
-  double BranchLengthToRadius = 4.0;
+  double branchLengthToRadius = 4.0;
   /// Closed surfaces: the centerline stops at the centre of the last inscribed sphere that,
   /// enlarged by this factor, still contains the Voronoi tip (a flat end's corner or a
   /// rounded end's centre), i.e. about one radius before the end. [1, 3], default 1.5.
-  double EndTrimFactor = 1.5;
+  double endTrimFactor = 1.5;
   /// Place the smoothed paths on the centroids of the cross-sections (default on; off: the
   /// smoothed Voronoi paths).
-  bool Recenter = true;
+  bool recenter = true;
 };
 
 enum class EndpointKind
@@ -82,45 +82,45 @@ enum class EndpointKind
 
 struct CenterlineEndpoint
 {
-  Point3 Position{ { 0, 0, 0 } };
-  double Radius = 0.0; ///< mm: loop mean radius or inscribed radius
-  EndpointKind Kind = EndpointKind::OpenEnd;
-  bool Inlet = false;
-  bool Reached = false; ///< a centerline ends here (the inlet: true when any path exists)
+  Point3 position{ { 0, 0, 0 } };
+  double radius = 0.0; ///< mm: loop mean radius or inscribed radius
+  EndpointKind kind = EndpointKind::OpenEnd;
+  bool inlet = false;
+  bool reached = false; ///< a centerline ends here (the inlet: true when any path exists)
 };
 
 struct CenterlineStageTimes
 {
-  double Preparation = 0; ///< seconds: cleaning, normals, loops, caps
-  double Delaunay = 0;
-  double Voronoi = 0; ///< circumcentres, inside test, graph
-  double Endpoints = 0;
-  double Paths = 0;     ///< Dijkstra and backtracing
-  double Smoothing = 0; ///< resampling, smoothing, re-centring, frames
-  double Branches = 0;
+  double preparation = 0; ///< seconds: cleaning, normals, loops, caps
+  double delaunay = 0;
+  double voronoi = 0; ///< circumcentres, inside test, graph
+  double endpoints = 0;
+  double paths = 0;     ///< Dijkstra and backtracing
+  double smoothing = 0; ///< resampling, smoothing, re-centring, frames
+  double branches = 0;
 };
 
 struct CenterlineResult
 {
   /// True when at least one centerline was computed. False: Message says why (one line).
-  bool Ok = false;
-  std::string Message;
+  bool ok = false;
+  std::string message;
   /// Non-fatal remarks (an unreachable outlet, a loop taken for a hole...).
-  std::vector<std::string> Warnings;
+  std::vector<std::string> warnings;
   /// Branches: one polyline cell per branch, point data MaximumInscribedSphereRadius,
   /// Abscissa, FrenetTangent, FrenetNormal, Curvature, Torsion; cell data BranchId,
   /// ParentBranchId, StartBifurcationId, EndBifurcationId, EndpointId; field data
   /// BifurcationPoints. Empty (not null) on failure.
-  vtkSmartPointer<vtkPolyData> Branches;
+  vtkSmartPointer<vtkPolyData> branches;
   /// One polyline per reached outlet from the inlet, same point data; cell data CenterlineIds
   /// (the outlet's endpoint index). Empty (not null) on failure.
-  vtkSmartPointer<vtkPolyData> Paths;
-  std::vector<CenterlineEndpoint> Endpoints;
-  std::vector<Point3> Bifurcations;
-  double Step = 0.0; ///< the resampling step used (mm)
-  CenterlineStageTimes Times;
-  int NumberOfDelaunayPoints = 0; ///< surface samples tetrahedralised (wall and caps)
-  int NumberOfVoronoiVertices = 0;
+  vtkSmartPointer<vtkPolyData> paths;
+  std::vector<CenterlineEndpoint> endpoints;
+  std::vector<Point3> bifurcations;
+  double step = 0.0; ///< the resampling step used (mm)
+  CenterlineStageTimes times;
+  int numberOfDelaunayPoints = 0; ///< surface samples tetrahedralised (wall and caps)
+  int numberOfVoronoiVertices = 0;
 };
 
 /// Computes the centerlines of a triangulated lumen surface (polygons are triangulated;
@@ -135,12 +135,12 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
 /// the tests; exposed for callers that build their own polylines.
 struct CurveSample
 {
-  Point3 Position{ { 0, 0, 0 } };
-  Point3 Tangent{ { 1, 0, 0 } };
-  Point3 Normal{ { 0, 1, 0 } };
-  double Curvature = 0;
-  double Torsion = 0;
-  double Abscissa = 0;
+  Point3 position{ { 0, 0, 0 } };
+  Point3 tangent{ { 1, 0, 0 } };
+  Point3 normal{ { 0, 1, 0 } };
+  double curvature = 0;
+  double torsion = 0;
+  double abscissa = 0;
 };
 std::vector<CurveSample> ComputeCurveFrames(const std::vector<Point3>& points,
   double window,

@@ -28,12 +28,12 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
     throw InputError("the surface is empty");
   }
   Mesh mesh;
-  mesh.X.resize(static_cast<std::size_t>(surface->GetNumberOfPoints()));
+  mesh.x.resize(static_cast<std::size_t>(surface->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
   {
-    surface->GetPoint(i, mesh.X[i].data());
-    if (!std::isfinite(mesh.X[i][0]) || !std::isfinite(mesh.X[i][1]) ||
-      !std::isfinite(mesh.X[i][2]))
+    surface->GetPoint(i, mesh.x[i].data());
+    if (!std::isfinite(mesh.x[i][0]) || !std::isfinite(mesh.x[i][1]) ||
+      !std::isfinite(mesh.x[i][2]))
     {
       throw InputError("the surface has non-finite (NaN or infinite) point coordinates");
     }
@@ -44,11 +44,11 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
     {
       if (flat[t] != flat[t + 1] && flat[t + 1] != flat[t + 2] && flat[t] != flat[t + 2])
       {
-        mesh.T.push_back({ { flat[t], flat[t + 1], flat[t + 2] } });
+        mesh.t.push_back({ { flat[t], flat[t + 1], flat[t + 2] } });
       }
     }
   }
-  if (mesh.T.empty())
+  if (mesh.t.empty())
   {
     throw InputError("the surface has no triangles");
   }
@@ -57,19 +57,19 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
   // What to cut at each end: (end group, distance, user chosen).
   struct Plan
   {
-    std::size_t Group;
-    const Profile* Along;
-    double Distance;
-    bool User;
+    std::size_t group;
+    const Profile* along;
+    double distance;
+    bool user;
   };
   std::vector<Plan> plans;
   for (std::size_t g = 0; g < groups.size(); ++g)
   {
-    plans.push_back({ g, &groups[g].Longest, SettledDistance(groups[g].Longest), false });
+    plans.push_back({ g, &groups[g].longest, SettledDistance(groups[g].longest), false });
   }
-  for (const ClipEndRequest& request : options.Ends)
+  for (const ClipEndRequest& request : options.ends)
   {
-    const V3 q = request.Position;
+    const V3 q = request.position;
     if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
     {
       throw InputError("a clip position is not finite");
@@ -77,21 +77,21 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
     std::size_t best = 0;
     double bestS = 0.0;
     const Profile* along = nullptr;
-    if (request.Distance >= 0)
+    if (request.distance >= 0)
     {
       for (std::size_t g = 1; g < groups.size(); ++g)
       {
-        if (Distance(groups[g].Position, q) < Distance(groups[best].Position, q))
+        if (Distance(groups[g].position, q) < Distance(groups[best].position, q))
         {
           best = g;
         }
       }
-      along = &groups[best].Longest;
-      bestS = request.Distance;
+      along = &groups[best].longest;
+      bestS = request.distance;
       if (bestS > 0.5 * along->Length())
       {
-        throw InputError("the clip distance " + std::to_string(request.Distance) + " at the end " +
-          FormatPoint(groups[best].Position) + " is more than half the centerline's length (" +
+        throw InputError("the clip distance " + std::to_string(request.distance) + " at the end " +
+          FormatPoint(groups[best].position) + " is more than half the centerline's length (" +
           std::to_string(along->Length()) + ")");
       }
     }
@@ -101,16 +101,16 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
       double bestD = std::numeric_limits<double>::infinity();
       for (std::size_t g = 0; g < groups.size(); ++g)
       {
-        for (const Profile& p : groups[g].Profiles)
+        for (const Profile& p : groups[g].profiles)
         {
-          for (std::size_t i = 0; i < p.X.size() && p.S[i] <= 0.5 * p.Length(); ++i)
+          for (std::size_t i = 0; i < p.x.size() && p.s[i] <= 0.5 * p.Length(); ++i)
           {
-            const double d = Distance(p.X[i], q);
+            const double d = Distance(p.x[i], q);
             if (d < bestD)
             {
               bestD = d;
               best = g;
-              bestS = p.S[i];
+              bestS = p.s[i];
               along = &p;
             }
           }
@@ -125,10 +125,10 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
           " away (radius " + std::to_string(r) + ")");
       }
     }
-    if (plans[best].User)
+    if (plans[best].user)
     {
       throw InputError(
-        "two clip positions choose the same vessel end " + FormatPoint(groups[best].Position));
+        "two clip positions choose the same vessel end " + FormatPoint(groups[best].position));
     }
     plans[best] = { best, along, bestS, true };
   }
@@ -136,13 +136,13 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
   ClipResult result;
   for (const Plan& plan : plans)
   {
-    const Profile& p = *plan.Along;
-    double s = plan.Distance;
+    const Profile& p = *plan.along;
+    double s = plan.distance;
     bool done = false;
     std::vector<std::int64_t> rim;
     V3 c{}, n{};
     double r = 0;
-    for (int attempt = 0; attempt < (plan.User ? 1 : 12) && !done; ++attempt)
+    for (int attempt = 0; attempt < (plan.user ? 1 : 12) && !done; ++attempt)
     {
       c = p.At(s, &r);
       const V3 t = p.Tangent(s);
@@ -160,31 +160,31 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
     if (!done)
     {
       throw InputError("the clip plane at " + FormatPoint(c) + " (" + std::to_string(s) +
-        " from the vessel end " + FormatPoint(groups[plan.Group].Position) +
+        " from the vessel end " + FormatPoint(groups[plan.group].position) +
         ") cuts no vessel cleanly: the cut does not close around the vessel");
     }
     ClippedEnd end;
-    end.Normal = n;
-    end.InscribedRadius = r;
-    end.CenterlineEnd = groups[plan.Group].Position;
-    end.Distance = s;
-    end.UserChosen = plan.User;
-    end.Rim.assign(rim.begin(), rim.end());
-    result.Ends.push_back(std::move(end));
+    end.normal = n;
+    end.inscribedRadius = r;
+    end.centerlineEnd = groups[plan.group].position;
+    end.distance = s;
+    end.userChosen = plan.user;
+    end.rim.assign(rim.begin(), rim.end());
+    result.ends.push_back(std::move(end));
   }
-  Compact(mesh, result.Ends, result.Warnings);
+  Compact(mesh, result.ends, result.warnings);
   // Rim measures: area and centroid of the planar polygon (fan from the first vertex).
-  for (ClippedEnd& end : result.Ends)
+  for (ClippedEnd& end : result.ends)
   {
     V3 area{ { 0, 0, 0 } }, centroid{ { 0, 0, 0 } };
     double total = 0.0;
-    for (std::size_t k = 1; k + 1 < end.Rim.size(); ++k)
+    for (std::size_t k = 1; k + 1 < end.rim.size(); ++k)
     {
-      const V3& a = mesh.X[end.Rim[0]];
-      const V3& b = mesh.X[end.Rim[k]];
-      const V3& cc = mesh.X[end.Rim[k + 1]];
+      const V3& a = mesh.x[end.rim[0]];
+      const V3& b = mesh.x[end.rim[k]];
+      const V3& cc = mesh.x[end.rim[k + 1]];
       const V3 cr = Cross(Sub(b, a), Sub(cc, a));
-      const double w = 0.5 * Dot(cr, end.Normal);
+      const double w = 0.5 * Dot(cr, end.normal);
       total += w;
       for (int e = 0; e < 3; ++e)
       {
@@ -192,28 +192,28 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
         centroid[e] += w * (a[e] + b[e] + cc[e]) / 3.0;
       }
     }
-    end.Area = std::abs(total);
-    end.Radius = std::sqrt(end.Area / M_PI);
+    end.area = std::abs(total);
+    end.radius = std::sqrt(end.area / M_PI);
     for (int e = 0; e < 3; ++e)
     {
-      end.Centre[e] = total != 0.0 ? centroid[e] / total : mesh.X[end.Rim[0]][e];
+      end.centre[e] = total != 0.0 ? centroid[e] / total : mesh.x[end.rim[0]][e];
     }
   }
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  for (const V3& x : mesh.X)
+  for (const V3& x : mesh.x)
   {
     points->InsertNextPoint(x.data());
   }
   vtkNew<vtkCellArray> polys;
-  for (const Tri& t : mesh.T)
+  for (const Tri& t : mesh.t)
   {
     const vtkIdType ids[3] = { t[0], t[1], t[2] };
     polys->InsertNextCell(3, ids);
   }
-  result.Surface = vtkSmartPointer<vtkPolyData>::New();
-  result.Surface->SetPoints(points);
-  result.Surface->SetPolys(polys);
+  result.surface = vtkSmartPointer<vtkPolyData>::New();
+  result.surface->SetPoints(points);
+  result.surface->SetPolys(polys);
   return result;
 }
 

@@ -29,7 +29,7 @@
 // min(half the centerline's length, 10 r0): the first s where the radius alone has settled,
 // else the s in [r0, that limit] where r varies least over its window. Open ends: the centerline
 // ends at the rim's centre, and the cut is at least one radius inside it; closed ends: the
-// centerline stops about one radius before the end (see CenterlineOptions::EndTrimFactor), so the
+// centerline stops about one radius before the end (see CenterlineOptions::endTrimFactor), so the
 // cut is about two radii from the end.
 //
 // Coordinates and units are those of the inputs (LPS mm for Bender's surfaces).
@@ -54,65 +54,65 @@ struct ClipEndRequest
   /// With Distance < 0: a point near the centerline where to cut; the cut is at the nearest
   /// centerline point, and the side towards the nearer vessel end (along the centerline) is
   /// removed.
-  ClipPoint Position{ { 0, 0, 0 } };
+  ClipPoint position{ { 0, 0, 0 } };
   /// mm from the vessel end along the centerline; < 0: see Position.
-  double Distance = -1.0;
+  double distance = -1.0;
 };
 
 struct ClipOptions
 {
   /// Ends with a user's position or distance; the others are cut at the default distance.
-  std::vector<ClipEndRequest> Ends;
+  std::vector<ClipEndRequest> ends;
 };
 
 /// One clipped end.
 struct ClippedEnd
 {
-  ClipPoint Centre{ { 0, 0, 0 } };        ///< area centroid of the rim, on the cut plane
-  ClipPoint Normal{ { 0, 0, 1 } };        ///< unit, outwards (from the vessel through the cut)
-  double Radius = 0.0;                    ///< equivalent radius sqrt(area / pi) of the rim
-  double Area = 0.0;                      ///< of the planar region inside the rim
-  double InscribedRadius = 0.0;           ///< of the centerline at the cut
-  ClipPoint CenterlineEnd{ { 0, 0, 0 } }; ///< the vessel end on the centerline
-  double Distance = 0.0;                  ///< along the centerline from its end to the cut
-  bool UserChosen = false;                ///< from ClipOptions::Ends
+  ClipPoint centre{ { 0, 0, 0 } };        ///< area centroid of the rim, on the cut plane
+  ClipPoint normal{ { 0, 0, 1 } };        ///< unit, outwards (from the vessel through the cut)
+  double radius = 0.0;                    ///< equivalent radius sqrt(area / pi) of the rim
+  double area = 0.0;                      ///< of the planar region inside the rim
+  double inscribedRadius = 0.0;           ///< of the centerline at the cut
+  ClipPoint centerlineEnd{ { 0, 0, 0 } }; ///< the vessel end on the centerline
+  double distance = 0.0;                  ///< along the centerline from its end to the cut
+  bool userChosen = false;                ///< from ClipOptions::ends
   /// Rim point ids in the output surface, in the order the wall's triangles run them.
-  std::vector<long long> Rim;
+  std::vector<long long> rim;
 };
 
 struct ClipResult
 {
   /// The surface with every end open (triangles only, unused points removed; point and cell
   /// data are not kept).
-  vtkSmartPointer<vtkPolyData> Surface;
-  std::vector<ClippedEnd> Ends; ///< in the order of the centerline's ends
-  std::vector<std::string> Warnings;
+  vtkSmartPointer<vtkPolyData> surface;
+  std::vector<ClippedEnd> ends; ///< in the order of the centerline's ends
+  std::vector<std::string> warnings;
 };
 
 /// The vessel ends of a centerline polydata (see above): each end's position and inscribed
 /// radius. Throws InputError when the polydata has no polyline or no radius array.
 struct CenterlineEnd
 {
-  ClipPoint Position{ { 0, 0, 0 } };
-  double Radius = 0.0;
+  ClipPoint position{ { 0, 0, 0 } };
+  double radius = 0.0;
 };
 std::vector<CenterlineEnd> FindCenterlineEnds(vtkPolyData* centerlines);
 
 /// A vessel end's centerline walked from the end inwards: the path along which
-/// ClipVesselEnds moves the end's clip plane (ClipEndRequest::Distance is an arc length on it).
+/// ClipVesselEnds moves the end's clip plane (ClipEndRequest::distance is an arc length on it).
 struct CenterlineEndPath
 {
-  ClipPoint Position{ { 0, 0, 0 } }; ///< the vessel end (as FindCenterlineEnds)
-  double Radius = 0.0;               ///< inscribed radius at the end
-  std::vector<ClipPoint> Points;     ///< from the end inwards, no repeated point
-  std::vector<double> ArcLengths;    ///< of Points, from 0
-  std::vector<double> Radii;         ///< inscribed radius at Points
-  double DefaultDistance = 0.0;      ///< the default cut ("where the radius has settled")
-  double MaximumDistance = 0.0;      ///< the farthest cut a request may ask: half the path
+  ClipPoint position{ { 0, 0, 0 } }; ///< the vessel end (as FindCenterlineEnds)
+  double radius = 0.0;               ///< inscribed radius at the end
+  std::vector<ClipPoint> points;     ///< from the end inwards, no repeated point
+  std::vector<double> arcLengths;    ///< of Points, from 0
+  std::vector<double> radii;         ///< inscribed radius at Points
+  double defaultDistance = 0.0;      ///< the default cut ("where the radius has settled")
+  double maximumDistance = 0.0;      ///< the farthest cut a request may ask: half the path
 };
 
 /// The paths of the vessel ends of FindCenterlineEnds, in the same order (the order of
-/// ClipResult::Ends). Throws InputError as FindCenterlineEnds.
+/// ClipResult::ends). Throws InputError as FindCenterlineEnds.
 std::vector<CenterlineEndPath> FindCenterlineEndPaths(vtkPolyData* centerlines);
 
 /// The plane that ClipVesselEnds cuts by at arc length `distance` (clamped to the path) of
@@ -121,13 +121,13 @@ std::vector<CenterlineEndPath> FindCenterlineEndPaths(vtkPolyData* centerlines);
 /// cut inwards (an oblique old rim in the way); for a requested distance it cuts here or fails.
 struct ClipPlane
 {
-  ClipPoint Centre{ { 0, 0, 0 } };
-  ClipPoint Normal{ { 0, 0, 1 } };
-  double Radius = 0.0;
+  ClipPoint centre{ { 0, 0, 0 } };
+  ClipPoint normal{ { 0, 0, 1 } };
+  double radius = 0.0;
 };
 ClipPlane ClipPlaneAt(const CenterlineEndPath& path, double distance);
 
-/// The arc length in [0, path.MaximumDistance] of the path point nearest `point`.
+/// The arc length in [0, path.maximumDistance] of the path point nearest `point`.
 double NearestDistanceOnPath(const CenterlineEndPath& path, const ClipPoint& point);
 
 /// Clips every vessel end of `surface` (a triangle surface; polygons are triangulated). Throws

@@ -28,44 +28,45 @@ using Tri = std::array<std::int64_t, 3>;
 /// A centerline walked from a vessel end inwards: positions, arc length, inscribed radius.
 struct Profile
 {
-  std::vector<V3> X;
-  std::vector<double> S;
-  std::vector<double> R;
-  bool AtBifurcation = false;    ///< X[0] is a bifurcation (cell data of the branches)
-  bool EndAtBifurcation = false; ///< X.back() is a bifurcation
+  std::vector<V3> x;
+  std::vector<double> s;
+  std::vector<double> r;
+  bool atBifurcation = false;    ///< x[0] is a bifurcation (cell data of the branches)
+  bool endAtBifurcation = false; ///< x.back() is a bifurcation
 
-  double Length() const { return S.empty() ? 0.0 : S.back(); }
-  /// Position and radius at arc length s (clamped).
-  V3 At(double s, double* radius = nullptr) const
+  double Length() const { return this->s.empty() ? 0.0 : this->s.back(); }
+  /// Position and radius at arc length `along` (clamped).
+  V3 At(double along, double* radius = nullptr) const
   {
-    s = std::clamp(s, 0.0, this->Length());
-    auto it = std::upper_bound(S.begin(), S.end(), s);
-    std::size_t i = it == S.begin() ? 0 : static_cast<std::size_t>(it - S.begin()) - 1;
-    if (i + 1 >= S.size())
+    along = std::clamp(along, 0.0, this->Length());
+    const std::vector<double>& sv = this->s;
+    auto it = std::upper_bound(sv.begin(), sv.end(), along);
+    std::size_t i = it == sv.begin() ? 0 : static_cast<std::size_t>(it - sv.begin()) - 1;
+    if (i + 1 >= sv.size())
     {
       if (radius)
       {
-        *radius = R.back();
+        *radius = this->r.back();
       }
-      return X.back();
+      return this->x.back();
     }
-    const double t = S[i + 1] > S[i] ? (s - S[i]) / (S[i + 1] - S[i]) : 0.0;
+    const double t = sv[i + 1] > sv[i] ? (along - sv[i]) / (sv[i + 1] - sv[i]) : 0.0;
     if (radius)
     {
-      *radius = R[i] + t * (R[i + 1] - R[i]);
+      *radius = this->r[i] + t * (this->r[i + 1] - this->r[i]);
     }
-    return Lerp(X[i], X[i + 1], t);
+    return Lerp(this->x[i], this->x[i + 1], t);
   }
-  /// Unit tangent pointing inwards (away from the end) at s, over a window of one radius.
-  V3 Tangent(double s) const
+  /// Unit tangent pointing inwards (away from the end) at `along`, over a window of one radius.
+  V3 Tangent(double along) const
   {
-    double r = 0;
-    this->At(s, &r);
-    const double h = std::max(0.5 * r, 1e-9);
-    V3 t = Sub(this->At(s + h), this->At(s - h));
+    double radius = 0;
+    this->At(along, &radius);
+    const double h = std::max(0.5 * radius, 1e-9);
+    V3 t = Sub(this->At(along + h), this->At(along - h));
     if (Norm(t) == 0.0)
     {
-      t = Sub(X.back(), X.front());
+      t = Sub(this->x.back(), this->x.front());
     }
     return Normalized(t);
   }
@@ -73,10 +74,10 @@ struct Profile
 
 struct EndGroup
 {
-  V3 Position;
-  double Radius = 0;
-  Profile Longest;
-  std::vector<Profile> Profiles;
+  V3 position;
+  double radius = 0;
+  Profile longest;
+  std::vector<Profile> profiles;
 };
 
 /// The vessel ends of the centerlines (VesselClip.h): each with its profiles, the longest
@@ -89,8 +90,8 @@ double SettledDistance(const Profile& p);
 // ---- the surface side (VesselEndCut.cxx) ------------------------------------------------------
 struct Mesh
 {
-  std::vector<V3> X;
-  std::vector<Tri> T;
+  std::vector<V3> x;
+  std::vector<Tri> t;
 };
 
 /// Cuts the mesh by the plane (c, n) within a ball around c of 1.5 `inscribed` radii, widened up

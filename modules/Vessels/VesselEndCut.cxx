@@ -27,8 +27,8 @@ bool CutOnce(Mesh& mesh,
   double rho,
   std::vector<std::int64_t>& rimOut)
 {
-  const std::size_t nv = mesh.X.size();
-  std::vector<V3> X = mesh.X;
+  const std::size_t nv = mesh.x.size();
+  std::vector<V3> X = mesh.x;
   std::vector<double> f(nv);
   auto computeF = [&]()
   {
@@ -44,9 +44,9 @@ bool CutOnce(Mesh& mesh,
     ring.clear();
     std::vector<std::size_t> crossing;
     std::vector<double> nearness;
-    for (std::size_t t = 0; t < mesh.T.size(); ++t)
+    for (std::size_t t = 0; t < mesh.t.size(); ++t)
     {
-      const Tri& tri = mesh.T[t];
+      const Tri& tri = mesh.t[t];
       bool pos = false, neg = false;
       for (std::int64_t v : tri)
       {
@@ -90,7 +90,7 @@ bool CutOnce(Mesh& mesh,
     std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> edgeTris;
     for (std::size_t k = 0; k < crossing.size(); ++k)
     {
-      const Tri& tri = mesh.T[crossing[k]];
+      const Tri& tri = mesh.t[crossing[k]];
       for (int e = 0; e < 3; ++e)
       {
         edgeTris[{ std::min(tri[e], tri[(e + 1) % 3]), std::max(tri[e], tri[(e + 1) % 3]) }]
@@ -136,7 +136,7 @@ bool CutOnce(Mesh& mesh,
     {
       for (int k = 0; k < 3; ++k)
       {
-        h += Distance(X[mesh.T[t][k]], X[mesh.T[t][(k + 1) % 3]]);
+        h += Distance(X[mesh.t[t][k]], X[mesh.t[t][(k + 1) % 3]]);
         ++edges;
       }
     }
@@ -144,7 +144,7 @@ bool CutOnce(Mesh& mesh,
     bool snapped = false;
     for (std::size_t t : ring)
     {
-      for (std::int64_t v : mesh.T[t])
+      for (std::int64_t v : mesh.t[t])
       {
         if (f[v] != 0.0 && std::abs(f[v]) < 0.2 * h)
         {
@@ -162,7 +162,7 @@ bool CutOnce(Mesh& mesh,
       computeF();
       for (std::size_t t : ring)
       {
-        for (std::int64_t v : mesh.T[t])
+        for (std::int64_t v : mesh.t[t])
         {
           if (std::abs(f[v]) < 1e-12 * std::max(1.0, h))
           {
@@ -180,20 +180,20 @@ bool CutOnce(Mesh& mesh,
   // The part beyond the ring: positive vertices reachable from the ring's over positive edges.
   std::vector<std::vector<std::int64_t>> adjacency(nv);
   std::vector<std::vector<std::size_t>> vertexTris(nv);
-  for (std::size_t t = 0; t < mesh.T.size(); ++t)
+  for (std::size_t t = 0; t < mesh.t.size(); ++t)
   {
     for (int k = 0; k < 3; ++k)
     {
-      adjacency[mesh.T[t][k]].push_back(mesh.T[t][(k + 1) % 3]);
-      adjacency[mesh.T[t][(k + 1) % 3]].push_back(mesh.T[t][k]);
-      vertexTris[mesh.T[t][k]].push_back(t);
+      adjacency[mesh.t[t][k]].push_back(mesh.t[t][(k + 1) % 3]);
+      adjacency[mesh.t[t][(k + 1) % 3]].push_back(mesh.t[t][k]);
+      vertexTris[mesh.t[t][k]].push_back(t);
     }
   }
   std::vector<char> removed(nv, 0);
   std::queue<std::int64_t> queue;
   for (std::size_t t : ring)
   {
-    for (std::int64_t v : mesh.T[t])
+    for (std::int64_t v : mesh.t[t])
     {
       if (f[v] > 0 && !removed[v])
       {
@@ -215,15 +215,15 @@ bool CutOnce(Mesh& mesh,
       }
     }
   }
-  std::vector<char> inRing(mesh.T.size(), 0);
+  std::vector<char> inRing(mesh.t.size(), 0);
   for (std::size_t t : ring)
   {
     inRing[t] = 1;
   }
   double removedArea = 0.0, keptArea = 0.0;
-  for (std::size_t t = 0; t < mesh.T.size(); ++t)
+  for (std::size_t t = 0; t < mesh.t.size(); ++t)
   {
-    const Tri& tri = mesh.T[t];
+    const Tri& tri = mesh.t[t];
     bool touchesRemoved = false, hasNeg = false;
     for (std::int64_t v : tri)
     {
@@ -271,9 +271,9 @@ bool CutOnce(Mesh& mesh,
   };
   std::vector<Tri> T;
   std::set<std::int64_t> onPlane;
-  for (std::size_t t = 0; t < mesh.T.size(); ++t)
+  for (std::size_t t = 0; t < mesh.t.size(); ++t)
   {
-    const Tri& tri = mesh.T[t];
+    const Tri& tri = mesh.t[t];
     if (!inRing[t])
     {
       if (!(removed[tri[0]] || removed[tri[1]] || removed[tri[2]]))
@@ -359,8 +359,8 @@ bool CutOnce(Mesh& mesh,
   {
     return false;
   }
-  mesh.X = std::move(X);
-  mesh.T = std::move(T);
+  mesh.x = std::move(X);
+  mesh.t = std::move(T);
   return true;
 }
 
@@ -382,7 +382,7 @@ bool Cut(Mesh& mesh, const V3& c, const V3& n, double inscribed, std::vector<std
 void Compact(Mesh& mesh, std::vector<ClippedEnd>& ends, std::vector<std::string>& warnings)
 {
   std::vector<std::int64_t> flat;
-  for (const Tri& t : mesh.T)
+  for (const Tri& t : mesh.t)
   {
     flat.insert(flat.end(), t.begin(), t.end());
   }
@@ -400,9 +400,9 @@ void Compact(Mesh& mesh, std::vector<ClippedEnd>& ends, std::vector<std::string>
     warnings.push_back(std::to_string(count - 1) +
       " piece(s) of the surface not connected to the vessel were dropped");
   }
-  std::vector<std::int64_t> map(mesh.X.size(), -1);
+  std::vector<std::int64_t> map(mesh.x.size(), -1);
   Mesh out;
-  for (std::size_t t = 0; t < mesh.T.size(); ++t)
+  for (std::size_t t = 0; t < mesh.t.size(); ++t)
   {
     if (component[t] != largest)
     {
@@ -411,19 +411,19 @@ void Compact(Mesh& mesh, std::vector<ClippedEnd>& ends, std::vector<std::string>
     Tri tri;
     for (int k = 0; k < 3; ++k)
     {
-      std::int64_t& m = map[mesh.T[t][k]];
+      std::int64_t& m = map[mesh.t[t][k]];
       if (m < 0)
       {
-        m = static_cast<std::int64_t>(out.X.size());
-        out.X.push_back(mesh.X[mesh.T[t][k]]);
+        m = static_cast<std::int64_t>(out.x.size());
+        out.x.push_back(mesh.x[mesh.t[t][k]]);
       }
       tri[k] = m;
     }
-    out.T.push_back(tri);
+    out.t.push_back(tri);
   }
   for (ClippedEnd& end : ends)
   {
-    for (long long& v : end.Rim)
+    for (long long& v : end.rim)
     {
       v = map[v];
     }

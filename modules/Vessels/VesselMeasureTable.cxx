@@ -11,40 +11,40 @@ namespace
 std::vector<VesselMeasure>& Table()
 {
   static std::vector<VesselMeasure> table = {
-    { "length", "Length", "mm", 2, [](const BranchMeasures& b) { return b.Length; }, true, true },
-    { "tortuosity", "Tortuosity", "", 4, [](const BranchMeasures& b) { return b.Tortuosity; } },
+    { "length", "Length", "mm", 2, [](const BranchMeasures& b) { return b.length; }, true, true },
+    { "tortuosity", "Tortuosity", "", 4, [](const BranchMeasures& b) { return b.tortuosity; } },
     { "maxCurvature",
       "Max curvature",
       "1/mm",
       4,
-      [](const BranchMeasures& b) { return b.MaxCurvature; } },
+      [](const BranchMeasures& b) { return b.maxCurvature; } },
     { "meanCurvature",
       "Mean curvature",
       "1/mm",
       4,
-      [](const BranchMeasures& b) { return b.MeanCurvature; },
+      [](const BranchMeasures& b) { return b.meanCurvature; },
       false },
     { "bendAngle",
       "Bend angle",
       "deg",
       2,
-      [](const BranchMeasures& b) { return b.BendAngle; },
+      [](const BranchMeasures& b) { return b.bendAngle; },
       true,
       true },
     { "minRadius",
       "Min radius",
       "mm",
       2,
-      [](const BranchMeasures& b) { return b.MinRadius; },
+      [](const BranchMeasures& b) { return b.minRadius; },
       true,
       true },
-    { "meanRadius", "Mean radius", "mm", 2, [](const BranchMeasures& b) { return b.MeanRadius; } },
-    { "maxRadius", "Max radius", "mm", 2, [](const BranchMeasures& b) { return b.MaxRadius; } },
+    { "meanRadius", "Mean radius", "mm", 2, [](const BranchMeasures& b) { return b.meanRadius; } },
+    { "maxRadius", "Max radius", "mm", 2, [](const BranchMeasures& b) { return b.maxRadius; } },
     { "minRadiusAbscissa",
       "Narrowest at",
       "mm",
       2,
-      [](const BranchMeasures& b) { return b.MinRadiusAbscissa; },
+      [](const BranchMeasures& b) { return b.minRadiusAbscissa; },
       false },
   };
   return table;
@@ -59,15 +59,15 @@ const std::vector<VesselMeasure>& VesselMeasureTable()
 
 void RegisterVesselMeasure(VesselMeasure measure)
 {
-  if (measure.Key.empty() || !measure.Get)
+  if (measure.key.empty() || !measure.get)
   {
     throw std::invalid_argument("vessel measure: a measure needs a key and a getter");
   }
   std::vector<VesselMeasure>& table = Table();
   if (std::any_of(
-        table.begin(), table.end(), [&](const VesselMeasure& m) { return m.Key == measure.Key; }))
+        table.begin(), table.end(), [&](const VesselMeasure& m) { return m.key == measure.key; }))
   {
-    throw std::invalid_argument("vessel measure '" + measure.Key + "' is already in the table");
+    throw std::invalid_argument("vessel measure '" + measure.key + "' is already in the table");
   }
   table.push_back(std::move(measure));
 }
@@ -76,7 +76,7 @@ bool UnregisterVesselMeasure(const std::string& key)
 {
   std::vector<VesselMeasure>& table = Table();
   const auto it =
-    std::find_if(table.begin(), table.end(), [&](const VesselMeasure& m) { return m.Key == key; });
+    std::find_if(table.begin(), table.end(), [&](const VesselMeasure& m) { return m.key == key; });
   if (it == table.end())
   {
     return false;
@@ -87,7 +87,7 @@ bool UnregisterVesselMeasure(const std::string& key)
 
 std::string MeasureTitle(const VesselMeasure& measure)
 {
-  return measure.Unit.empty() ? measure.Label : measure.Label + " (" + measure.Unit + ")";
+  return measure.unit.empty() ? measure.label : measure.label + " (" + measure.unit + ")";
 }
 
 } // namespace bender

@@ -20,13 +20,13 @@ namespace bender
 
 struct VesselMeasure
 {
-  std::string Key;   ///< JSON key, camelCase ("bendAngle"); unique in the table
-  std::string Label; ///< title in the text tables and the panel ("Bend angle")
-  std::string Unit;  ///< "mm", "deg", "1/mm"; empty for a ratio
-  int Decimals = 2;  ///< digits after the point in the text tables and the panel (JSON: 4)
-  std::function<double(const BranchMeasures&)> Get;
-  bool Text = true;   ///< a column of the text tables
-  bool Panel = false; ///< a row of the panel's held-branch table and a column of its plan table
+  std::string key;   ///< JSON key, camelCase ("bendAngle"); unique in the table
+  std::string label; ///< title in the text tables and the panel ("Bend angle")
+  std::string unit;  ///< "mm", "deg", "1/mm"; empty for a ratio
+  int decimals = 2;  ///< digits after the point in the text tables and the panel (JSON: 4)
+  std::function<double(const BranchMeasures&)> get;
+  bool text = true;   ///< a column of the text tables
+  bool panel = false; ///< a row of the panel's held-branch table and a column of its plan table
 };
 
 /// The measures, in the order the JSON, the text tables and the panel list them.

@@ -105,7 +105,7 @@ std::array<Point3, 2> EndDirections(const std::vector<Point3>& points,
     return { { chord, chord } };
   }
   const auto frames = ComputeCurveFrames(points, std::max(EndWindow(points, radii), 1e-9));
-  return { { frames.front().Tangent, frames.back().Tangent } };
+  return { { frames.front().tangent, frames.back().tangent } };
 }
 
 BranchMeasures MeasureStretch(const std::vector<Point3>& p,
@@ -132,31 +132,31 @@ BranchMeasures MeasureStretch(const std::vector<Point3>& p,
     curvature.assign(p.size(), 0.0);
     for (std::size_t i = 0; i < p.size(); ++i)
     {
-      curvature[i] = frames[i].Curvature;
+      curvature[i] = frames[i].curvature;
     }
   }
-  m.Length = s.back();
-  m.Start = p.front();
-  m.End = p.back();
-  m.Chord = Norm(Sub(p.back(), p.front()));
-  m.Tortuosity = m.Chord > 0 ? m.Length / m.Chord : 0.0;
-  m.MinRadius = r[0];
-  m.MaxRadius = r[0];
+  m.length = s.back();
+  m.start = p.front();
+  m.end = p.back();
+  m.chord = Norm(Sub(p.back(), p.front()));
+  m.tortuosity = m.chord > 0 ? m.length / m.chord : 0.0;
+  m.minRadius = r[0];
+  m.maxRadius = r[0];
   double weightedR = 0.0, weightedK = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
   {
-    if (r[i] < m.MinRadius)
+    if (r[i] < m.minRadius)
     {
-      m.MinRadius = r[i];
-      m.MinRadiusPosition = p[i];
-      m.MinRadiusAbscissa = s[i];
+      m.minRadius = r[i];
+      m.minRadiusPosition = p[i];
+      m.minRadiusAbscissa = s[i];
     }
     if (i == 0)
     {
-      m.MinRadiusPosition = p[0];
+      m.minRadiusPosition = p[0];
     }
-    m.MaxRadius = std::max(m.MaxRadius, r[i]);
-    m.MaxCurvature = std::max(m.MaxCurvature, curvature[i]);
+    m.maxRadius = std::max(m.maxRadius, r[i]);
+    m.maxCurvature = std::max(m.maxCurvature, curvature[i]);
     if (i > 0)
     {
       const double ds = s[i] - s[i - 1];
@@ -164,12 +164,12 @@ BranchMeasures MeasureStretch(const std::vector<Point3>& p,
       weightedK += 0.5 * (curvature[i] + curvature[i - 1]) * ds;
     }
   }
-  m.MeanRadius = m.Length > 0 ? weightedR / m.Length : r[0];
-  m.MeanCurvature = m.Length > 0 ? weightedK / m.Length : 0.0;
+  m.meanRadius = m.length > 0 ? weightedR / m.length : r[0];
+  m.meanCurvature = m.length > 0 ? weightedK / m.length : 0.0;
   const std::array<Point3, 2> ends = EndDirections(p, r);
-  m.StartTangent = ends[0];
-  m.EndTangent = ends[1];
-  m.BendAngle = AngleDegrees(m.StartTangent, m.EndTangent);
+  m.startTangent = ends[0];
+  m.endTangent = ends[1];
+  m.bendAngle = AngleDegrees(m.startTangent, m.endTangent);
   return m;
 }
 
@@ -184,7 +184,7 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches)
     branches->GetPointData()->GetArray(VesselArrays::MaximumInscribedSphereRadius);
   if (!radius)
   {
-    out.Message = std::string("centerlines have no point data '") +
+    out.message = std::string("centerlines have no point data '") +
       VesselArrays::MaximumInscribedSphereRadius + "'";
     return out;
   }
@@ -223,33 +223,33 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches)
       }
     }
     BranchMeasures m = MeasureStretch(p, r, curvature);
-    m.BranchId = CellValue(branches, VesselArrays::BranchId, cellId, static_cast<int>(cellId));
-    m.ParentBranchId = CellValue(branches, VesselArrays::ParentBranchId, cellId, -1);
-    m.StartBifurcationId = CellValue(branches, VesselArrays::StartBifurcationId, cellId, -1);
-    m.EndBifurcationId = CellValue(branches, VesselArrays::EndBifurcationId, cellId, -1);
-    m.EndpointId = CellValue(branches, VesselArrays::EndpointId, cellId, -1);
-    out.Branches.push_back(m);
+    m.branchId = CellValue(branches, VesselArrays::BranchId, cellId, static_cast<int>(cellId));
+    m.parentBranchId = CellValue(branches, VesselArrays::ParentBranchId, cellId, -1);
+    m.startBifurcationId = CellValue(branches, VesselArrays::StartBifurcationId, cellId, -1);
+    m.endBifurcationId = CellValue(branches, VesselArrays::EndBifurcationId, cellId, -1);
+    m.endpointId = CellValue(branches, VesselArrays::EndpointId, cellId, -1);
+    out.branches.push_back(m);
     allPoints.push_back(p);
   }
 
   // Outlets under each branch, leaves first.
   std::map<int, std::size_t> byId;
-  for (std::size_t i = 0; i < out.Branches.size(); ++i)
+  for (std::size_t i = 0; i < out.branches.size(); ++i)
   {
-    byId[out.Branches[i].BranchId] = i;
+    byId[out.branches[i].branchId] = i;
   }
-  for (std::size_t i = 0; i < out.Branches.size(); ++i)
+  for (std::size_t i = 0; i < out.branches.size(); ++i)
   {
-    if (out.Branches[i].EndpointId < 0)
+    if (out.branches[i].endpointId < 0)
     {
       continue;
     }
     // Walk up to the root adding the outlet (guarding against cycles in foreign data).
     std::size_t current = i;
-    for (std::size_t guard = 0; guard <= out.Branches.size(); ++guard)
+    for (std::size_t guard = 0; guard <= out.branches.size(); ++guard)
     {
-      out.Branches[current].Outlets.insert(out.Branches[i].EndpointId);
-      auto parent = byId.find(out.Branches[current].ParentBranchId);
+      out.branches[current].outlets.insert(out.branches[i].endpointId);
+      auto parent = byId.find(out.branches[current].parentBranchId);
       if (parent == byId.end())
       {
         break;
@@ -261,53 +261,53 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches)
   // Bifurcations: parent's direction into it, each child's direction out of it, over twice
   // the child's mean radius.
   std::map<int, BifurcationMeasures> bifurcations;
-  for (std::size_t i = 0; i < out.Branches.size(); ++i)
+  for (std::size_t i = 0; i < out.branches.size(); ++i)
   {
-    const auto& b = out.Branches[i];
-    if (b.EndBifurcationId >= 0)
+    const auto& b = out.branches[i];
+    if (b.endBifurcationId >= 0)
     {
-      bifurcations[b.EndBifurcationId].ParentBranchId = b.BranchId;
+      bifurcations[b.endBifurcationId].parentBranchId = b.branchId;
     }
-    if (b.StartBifurcationId >= 0)
+    if (b.startBifurcationId >= 0)
     {
-      bifurcations[b.StartBifurcationId].ChildBranchIds.push_back(b.BranchId);
+      bifurcations[b.startBifurcationId].childBranchIds.push_back(b.branchId);
     }
   }
   vtkDataArray* bifPoints = branches->GetFieldData()->GetArray(VesselArrays::BifurcationPoints);
   for (auto& [id, bif] : bifurcations)
   {
-    bif.Id = id;
+    bif.id = id;
     if (bifPoints && id < bifPoints->GetNumberOfTuples() && bifPoints->GetNumberOfComponents() == 3)
     {
-      bifPoints->GetTuple(id, bif.Position.data());
+      bifPoints->GetTuple(id, bif.position.data());
     }
     Point3 parentDirection{ { 0, 0, 0 } };
-    auto parent = byId.find(bif.ParentBranchId);
+    auto parent = byId.find(bif.parentBranchId);
     if (parent != byId.end())
     {
       const auto& p = allPoints[parent->second];
       const std::vector<double> s = ArcLengths(p);
-      parentDirection = ChordDirection(p, s, 2.0 * out.Branches[parent->second].MeanRadius, false);
+      parentDirection = ChordDirection(p, s, 2.0 * out.branches[parent->second].meanRadius, false);
       if (bifPoints == nullptr)
       {
-        bif.Position = p.back();
+        bif.position = p.back();
       }
     }
     std::vector<Point3> childDirections;
-    for (int child : bif.ChildBranchIds)
+    for (int child : bif.childBranchIds)
     {
       const std::size_t c = byId[child];
       const auto& p = allPoints[c];
       const std::vector<double> s = ArcLengths(p);
-      const Point3 d = ChordDirection(p, s, 2.0 * out.Branches[c].MeanRadius, true);
+      const Point3 d = ChordDirection(p, s, 2.0 * out.branches[c].meanRadius, true);
       childDirections.push_back(d);
-      bif.ParentChildAngles.push_back(AngleDegrees(parentDirection, d));
+      bif.parentChildAngles.push_back(AngleDegrees(parentDirection, d));
     }
     if (childDirections.size() >= 2)
     {
-      bif.ChildrenAngle = AngleDegrees(childDirections[0], childDirections[1]);
+      bif.childrenAngle = AngleDegrees(childDirections[0], childDirections[1]);
     }
-    out.Bifurcations.push_back(bif);
+    out.bifurcations.push_back(bif);
   }
   return out;
 }
@@ -315,30 +315,30 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches)
 VesselComparison CompareVessels(vtkPolyData* beforeBranches, vtkPolyData* afterBranches)
 {
   VesselComparison c;
-  c.Before = MeasureBranches(beforeBranches);
-  c.After = MeasureBranches(afterBranches);
-  std::vector<bool> used(c.After.Branches.size(), false);
-  for (std::size_t i = 0; i < c.Before.Branches.size(); ++i)
+  c.before = MeasureBranches(beforeBranches);
+  c.after = MeasureBranches(afterBranches);
+  std::vector<bool> used(c.after.branches.size(), false);
+  for (std::size_t i = 0; i < c.before.branches.size(); ++i)
   {
     BranchChange change;
-    change.BeforeIndex = static_cast<int>(i);
-    for (std::size_t j = 0; j < c.After.Branches.size(); ++j)
+    change.beforeIndex = static_cast<int>(i);
+    for (std::size_t j = 0; j < c.after.branches.size(); ++j)
     {
-      if (!used[j] && !c.Before.Branches[i].Outlets.empty() &&
-        c.After.Branches[j].Outlets == c.Before.Branches[i].Outlets)
+      if (!used[j] && !c.before.branches[i].outlets.empty() &&
+        c.after.branches[j].outlets == c.before.branches[i].outlets)
       {
-        change.AfterIndex = static_cast<int>(j);
+        change.afterIndex = static_cast<int>(j);
         used[j] = true;
         break;
       }
     }
-    c.Pairs.push_back(change);
+    c.pairs.push_back(change);
   }
-  for (std::size_t j = 0; j < c.After.Branches.size(); ++j)
+  for (std::size_t j = 0; j < c.after.branches.size(); ++j)
   {
     if (!used[j])
     {
-      c.Pairs.push_back({ -1, static_cast<int>(j) });
+      c.pairs.push_back({ -1, static_cast<int>(j) });
     }
   }
   return c;
@@ -361,13 +361,13 @@ std::vector<Point3> MatchedSeeds(vtkPolyData* beforeSurface,
   vtkNew<vtkIdList> near;
   for (const auto& end : beforeEndpoints)
   {
-    Point3 seed = end.Position;
+    Point3 seed = end.position;
     if (sameIds)
     {
-      beforeLocator->FindPointsWithinRadius(2.0 * end.Radius, end.Position.data(), near);
+      beforeLocator->FindPointsWithinRadius(2.0 * end.radius, end.position.data(), near);
       if (near->GetNumberOfIds() == 0)
       {
-        near->InsertNextId(beforeLocator->FindClosestPoint(end.Position.data()));
+        near->InsertNextId(beforeLocator->FindClosestPoint(end.position.data()));
       }
       Point3 shift{ { 0, 0, 0 } };
       for (vtkIdType k = 0; k < near->GetNumberOfIds(); ++k)

@@ -19,43 +19,43 @@ namespace bender
 
 struct BranchMeasures
 {
-  int BranchId = -1;
-  int ParentBranchId = -1;
-  int StartBifurcationId = -1;
-  int EndBifurcationId = -1;
-  int EndpointId = -1;   ///< the outlet the branch ends at, -1 at a bifurcation
-  std::set<int> Outlets; ///< outlets reached through this branch (its identity)
-  double Length = 0;     ///< arc length
-  double Chord = 0;      ///< distance between the branch's end points
-  double Tortuosity = 1; ///< Length / Chord (1 for a straight branch)
-  double MaxCurvature = 0;
-  double MeanCurvature = 0; ///< arc-length weighted
-  double BendAngle = 0;     ///< degrees between the start and end tangents
-  double MinRadius = 0, MeanRadius = 0, MaxRadius = 0;
-  Point3 MinRadiusPosition{ { 0, 0, 0 } };
-  double MinRadiusAbscissa = 0; ///< arc length from the branch's start to its narrowest point
-  Point3 Start{ { 0, 0, 0 } }, End{ { 0, 0, 0 } };
-  Point3 StartTangent{ { 0, 0, 0 } }, EndTangent{ { 0, 0, 0 } };
+  int branchId = -1;
+  int parentBranchId = -1;
+  int startBifurcationId = -1;
+  int endBifurcationId = -1;
+  int endpointId = -1;   ///< the outlet the branch ends at, -1 at a bifurcation
+  std::set<int> outlets; ///< outlets reached through this branch (its identity)
+  double length = 0;     ///< arc length
+  double chord = 0;      ///< distance between the branch's end points
+  double tortuosity = 1; ///< Length / Chord (1 for a straight branch)
+  double maxCurvature = 0;
+  double meanCurvature = 0; ///< arc-length weighted
+  double bendAngle = 0;     ///< degrees between the start and end tangents
+  double minRadius = 0, meanRadius = 0, maxRadius = 0;
+  Point3 minRadiusPosition{ { 0, 0, 0 } };
+  double minRadiusAbscissa = 0; ///< arc length from the branch's start to its narrowest point
+  Point3 start{ { 0, 0, 0 } }, end{ { 0, 0, 0 } };
+  Point3 startTangent{ { 0, 0, 0 } }, endTangent{ { 0, 0, 0 } };
 };
 
 struct BifurcationMeasures
 {
-  int Id = -1;
-  Point3 Position{ { 0, 0, 0 } };
-  int ParentBranchId = -1;
-  std::vector<int> ChildBranchIds;
+  int id = -1;
+  Point3 position{ { 0, 0, 0 } };
+  int parentBranchId = -1;
+  std::vector<int> childBranchIds;
   /// Angle (degrees) between the parent's direction and each child's, same order as the ids.
-  std::vector<double> ParentChildAngles;
+  std::vector<double> parentChildAngles;
   /// Angle (degrees) between the first two children's directions (the bifurcation angle).
-  double ChildrenAngle = 0;
+  double childrenAngle = 0;
 };
 
 struct VesselMeasurements
 {
-  std::vector<BranchMeasures> Branches;
-  std::vector<BifurcationMeasures> Bifurcations;
+  std::vector<BranchMeasures> branches;
+  std::vector<BifurcationMeasures> bifurcations;
   /// Empty when the input had the arrays needed; otherwise says which one is missing.
-  std::string Message;
+  std::string message;
 };
 
 /// Angle in degrees between two directions; 0 when either is the zero vector.
@@ -93,17 +93,17 @@ VesselMeasurements MeasureBranches(vtkPolyData* branches);
 
 struct BranchChange
 {
-  int BeforeIndex = -1; ///< into Before.Branches, -1 when the branch exists only after
-  int AfterIndex = -1;  ///< into After.Branches, -1 when the branch exists only before
+  int beforeIndex = -1; ///< into before.branches, -1 when the branch exists only after
+  int afterIndex = -1;  ///< into after.branches, -1 when the branch exists only before
 };
 
 struct VesselComparison
 {
-  VesselMeasurements Before;
-  VesselMeasurements After;
+  VesselMeasurements before;
+  VesselMeasurements after;
   /// Branches matched by the set of outlets they lead to (the same endpoint order must have
   /// been used for both centerline computations, e.g. with MatchedSeeds).
-  std::vector<BranchChange> Pairs;
+  std::vector<BranchChange> pairs;
 };
 
 VesselComparison CompareVessels(vtkPolyData* beforeBranches, vtkPolyData* afterBranches);

@@ -12,11 +12,11 @@ namespace
 // Brute force: labels relabelled on every join.
 struct Labels
 {
-  std::vector<std::size_t> Label;
+  std::vector<std::size_t> label;
   void Join(std::size_t a, std::size_t b)
   {
-    const std::size_t from = this->Label[b], to = this->Label[a];
-    for (auto& l : this->Label)
+    const std::size_t from = this->label[b], to = this->label[a];
+    for (auto& l : this->label)
     {
       if (l == from)
       {
@@ -74,13 +74,13 @@ TEST(UnionFind, RandomJoinsMatchBruteForceAndTheSmallestRepresents)
     Labels brute{ std::vector<std::size_t>(n) };
     for (std::size_t i = 0; i < n; ++i)
     {
-      brute.Label[i] = i;
+      brute.label[i] = i;
     }
     const std::size_t joins = random() % (2 * n);
     for (std::size_t j = 0; j < joins; ++j)
     {
       const std::size_t a = random() % n, b = random() % n;
-      const bool differed = brute.Label[a] != brute.Label[b];
+      const bool differed = brute.label[a] != brute.label[b];
       EXPECT_EQ(sets.Join(a, b), differed);
       EXPECT_EQ(small.Join(std::uint32_t(a), std::uint32_t(b)), differed);
       brute.Join(a, b);
@@ -91,8 +91,8 @@ TEST(UnionFind, RandomJoinsMatchBruteForceAndTheSmallestRepresents)
       std::size_t smallest = i;
       for (std::size_t k = 0; k < n; ++k)
       {
-        EXPECT_EQ(sets.Find(i) == sets.Find(k), brute.Label[i] == brute.Label[k]);
-        if (brute.Label[k] == brute.Label[i] && k < smallest)
+        EXPECT_EQ(sets.Find(i) == sets.Find(k), brute.label[i] == brute.label[k]);
+        if (brute.label[k] == brute.label[i] && k < smallest)
         {
           smallest = k;
         }

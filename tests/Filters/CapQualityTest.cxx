@@ -202,11 +202,11 @@ TEST_F(CapQuality, FlatWellShapedWatertightOutwardCaps)
       const double expected = id == 2 ? -1.0 : 1.0;
       EXPECT_GT(expected * m.normal[2], 0.99 * vtkMath::Norm(m.normal)) << "cap " << id;
       const auto& info = cap->GetCaps()[static_cast<std::size_t>(id - 2)];
-      EXPECT_EQ(info.Id, id);
-      EXPECT_NEAR(info.Normal[2], expected, 1e-9);
-      EXPECT_NEAR(info.Centre[2], id == 2 ? 0.0 : 20.0, 1e-9);
-      EXPECT_NEAR(info.Radius, radius, 0.03 * radius);
-      EXPECT_GE(info.MinInteriorAngle, 20.0);
+      EXPECT_EQ(info.id, id);
+      EXPECT_NEAR(info.normal[2], expected, 1e-9);
+      EXPECT_NEAR(info.centre[2], id == 2 ? 0.0 : 20.0, 1e-9);
+      EXPECT_NEAR(info.radius, radius, 0.03 * radius);
+      EXPECT_GE(info.minInteriorAngle, 20.0);
       interior += static_cast<int>(m.capPoints.size()) - (id == 2 ? 160 : 160);
     }
     EXPECT_EQ(out->GetNumberOfPoints(), frustum->GetNumberOfPoints() + interior);
@@ -231,7 +231,7 @@ TEST_F(CapQuality, RimOffItsPlaneIsProjected)
   cap->SetInputData(frustum);
   cap->Update();
   ASSERT_EQ(cap->GetNumberOfCaps(), 2);
-  EXPECT_GT(cap->GetCaps()[1].MaxRimDistance, 0.04);
+  EXPECT_GT(cap->GetCaps()[1].maxRimDistance, 0.04);
   const CapMeasures m = Measure(cap->GetOutput(), 3);
   EXPECT_LE(m.maxPlaneDistance, 1e-6 * 1.5);
   EXPECT_GE(m.minInteriorAngle, 20.0);
@@ -331,8 +331,8 @@ TEST_F(CapQuality, LabelsOfTheInputAreKept)
   again->Update();
   ASSERT_TRUE(errors.ExpectNone());
   ASSERT_EQ(again->GetNumberOfCaps(), 1);
-  EXPECT_EQ(again->GetCaps()[0].Id, 3);
-  EXPECT_FALSE(again->GetCaps()[0].Inlet);
+  EXPECT_EQ(again->GetCaps()[0].id, 3);
+  EXPECT_FALSE(again->GetCaps()[0].inlet);
   const auto labels = bender::ReadPatchLabels(again->GetOutput());
   ASSERT_EQ(labels.size(), 3u);
   EXPECT_EQ(labels[1].name, "aorta");

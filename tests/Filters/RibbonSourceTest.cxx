@@ -52,7 +52,7 @@ TEST(RibbonSource, WireAndStripFollowTheRibbon)
     strip->GetPoint(2 * i + 1, b);
     // The two edge points are at +-Width along N_s.
     const bender::Vec3 d{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-    EXPECT_LT(bender::Distance(d, f.N * 4.0), 1e-9);
+    EXPECT_LT(bender::Distance(d, f.n * 4.0), 1e-9);
   }
 }
 

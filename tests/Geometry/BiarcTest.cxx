@@ -426,9 +426,9 @@ TEST(Biarc, RigidMotionAndScaleInvariance)
       const bender::Frame f = rib.FrameAt(s);
       const bender::Frame gf = grib.FrameAt(s);
       EXPECT_LT(Distance(gf.origin, g.Point(f.origin)), 1e-9 * h);
-      EXPECT_LT(Distance(gf.T, g.Vector(f.T)), 1e-9);
-      EXPECT_LT(Distance(gf.N, g.Vector(f.N)), 1e-9);
-      EXPECT_LT(Distance(gf.B, g.Vector(f.B)), 1e-9);
+      EXPECT_LT(Distance(gf.t, g.Vector(f.t)), 1e-9);
+      EXPECT_LT(Distance(gf.n, g.Vector(f.n)), 1e-9);
+      EXPECT_LT(Distance(gf.b, g.Vector(f.b)), 1e-9);
     }
     // Scale by lambda.
     const double lambda = bendertest::Uniform(rng, 0.01, 100);

@@ -125,7 +125,7 @@ TEST_P(Conformance, FramesScrewsAndWireMatchTheIndependentImplementation)
     EXPECT_EQ(screw.flipped, js.at("flipped").get<bool>()) << "s=" << s;
     if (js.at("beta").get<double>() > 1e-9)
     {
-      EXPECT_LT(bender::Distance(screw.K, V(js.at("K"))), 1e-9) << "s=" << s;
+      EXPECT_LT(bender::Distance(screw.k, V(js.at("K"))), 1e-9) << "s=" << s;
     }
   }
   EXPECT_EQ(lines, 101 * static_cast<int>(warps.size()));

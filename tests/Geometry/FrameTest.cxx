@@ -56,9 +56,9 @@ Frame TrackerFrame(const bender::RibbonEnd& e)
 {
   Frame f;
   f.origin = e.position;
-  f.T = bender::Normalized(e.tangent);
-  f.N = bender::Normalized(e.normal - f.T * Dot(e.normal, f.T));
-  f.B = Cross(f.T, f.N);
+  f.t = bender::Normalized(e.tangent);
+  f.n = bender::Normalized(e.normal - f.t * Dot(e.normal, f.t));
+  f.b = Cross(f.t, f.n);
   return f;
 }
 
@@ -74,14 +74,14 @@ TEST(Frame, EndFramesAreTheNormalisedTrackerFrames)
     const Frame e1 = TrackerFrame(r.end);
     EXPECT_LT(Distance(c0.origin, e0.origin), 1e-9 * h);
     EXPECT_LT(Distance(c1.origin, e1.origin), 1e-9 * h);
-    EXPECT_LT(Distance(c0.T, e0.T), 1e-9);
-    EXPECT_LT(Distance(c0.N, e0.N), 1e-9);
-    EXPECT_LT(Distance(c0.B, e0.B), 1e-9);
-    EXPECT_LT(Distance(c1.T, e1.T), 1e-9);
-    EXPECT_LT(Distance(c1.N, e1.N), 1e-9) << "tau=" << rib.Twist();
-    EXPECT_LT(Distance(c1.B, e1.B), 1e-9);
-    EXPECT_LT(Distance(rib.StartNormal(), e0.N), 1e-12);
-    EXPECT_LT(Distance(rib.EndNormal(), e1.N), 1e-12);
+    EXPECT_LT(Distance(c0.t, e0.t), 1e-9);
+    EXPECT_LT(Distance(c0.n, e0.n), 1e-9);
+    EXPECT_LT(Distance(c0.b, e0.b), 1e-9);
+    EXPECT_LT(Distance(c1.t, e1.t), 1e-9);
+    EXPECT_LT(Distance(c1.n, e1.n), 1e-9) << "tau=" << rib.Twist();
+    EXPECT_LT(Distance(c1.b, e1.b), 1e-9);
+    EXPECT_LT(Distance(rib.StartNormal(), e0.n), 1e-12);
+    EXPECT_LT(Distance(rib.EndNormal(), e1.n), 1e-12);
   }
 }
 
@@ -98,7 +98,7 @@ TEST(Frame, OrthonormalRightHandedAndOnTheWire)
       const Frame f = rib.FrameAt(s);
       EXPECT_TRUE(bendertest::FrameIsOrthonormalRightHanded(f, 1e-12)) << "s=" << s;
       EXPECT_LT(Distance(f.origin, rib.Wire().PointAt(s)), 1e-12 * h);
-      EXPECT_LT(Distance(f.T, rib.Wire().TangentAt(s)), 1e-12);
+      EXPECT_LT(Distance(f.t, rib.Wire().TangentAt(s)), 1e-12);
     }
   }
 }
@@ -175,12 +175,12 @@ TEST(Frame, ConstantTwistRateAlongTheBinormal)
         continue;
       }
       const Frame f = rib.FrameAt(s);
-      const Vec3 dN = (rib.FrameAt(s + ds).N - rib.FrameAt(s - ds).N) / (2 * ds);
+      const Vec3 dN = (rib.FrameAt(s + ds).n - rib.FrameAt(s - ds).n) / (2 * ds);
       // dN/ds = (transport: a rotation about the arc axis, which is along T) + tau B.
-      EXPECT_NEAR(Dot(dN, f.B), rib.Twist(), 1e-6 * std::max(1.0, rate)) << "s=" << s;
+      EXPECT_NEAR(Dot(dN, f.b), rib.Twist(), 1e-6 * std::max(1.0, rate)) << "s=" << s;
       // dB/ds . N = -tau likewise.
-      const Vec3 dB = (rib.FrameAt(s + ds).B - rib.FrameAt(s - ds).B) / (2 * ds);
-      EXPECT_NEAR(Dot(dB, f.N), -rib.Twist(), 1e-6 * std::max(1.0, rate)) << "s=" << s;
+      const Vec3 dB = (rib.FrameAt(s + ds).b - rib.FrameAt(s - ds).b) / (2 * ds);
+      EXPECT_NEAR(Dot(dB, f.n), -rib.Twist(), 1e-6 * std::max(1.0, rate)) << "s=" << s;
     }
   }
 }
@@ -206,9 +206,9 @@ TEST(Frame, ExtraTurnsAddWholeTurnsOfTwist)
         const Frame a = base.FrameAt(s);
         const Frame b = rib.FrameAt(s);
         EXPECT_LT(Distance(a.origin, b.origin), 1e-12 * bendertest::Scale(r));
-        EXPECT_LT(Distance(a.T, b.T), 1e-12);
+        EXPECT_LT(Distance(a.t, b.t), 1e-12);
         // Same frame turned about T_s by 2 pi turns s.
-        EXPECT_LT(Distance(b.N, bender::Rotate(a.T, 2 * Pi * turns * s, a.N)), 1e-9) << "s=" << s;
+        EXPECT_LT(Distance(b.n, bender::Rotate(a.t, 2 * Pi * turns * s, a.n)), 1e-9) << "s=" << s;
       }
     }
   }
@@ -230,7 +230,7 @@ TEST(Frame, TwistTieRuleAtHalfATurn)
     const Ribbon rib = ribbonWithEndNormal(bender::Rotate(x, a, y));
     EXPECT_EQ(rib.PrincipalTwist(), Pi) << "a=" << a;
     // The middle frame is turned by +pi/2: N = z.
-    EXPECT_LT(Distance(rib.FrameAt(0.5).N, z), 1e-9) << "a=" << a;
+    EXPECT_LT(Distance(rib.FrameAt(0.5).n, z), 1e-9) << "a=" << a;
   }
   // Outside the tie band the sign is kept.
   for (double a : { Pi - 1e-8, -Pi + 1e-8, 3.0, -3.0, 0.5, -0.5 })

@@ -289,18 +289,18 @@ inline Mesh Icosphere(int levels, const Vec3& centre, double radius)
 inline bool FrameIsOrthonormalRightHanded(const bender::Frame& f, double tol)
 {
   using bender::Dot;
-  return std::abs(Dot(f.T, f.T) - 1) < tol && std::abs(Dot(f.N, f.N) - 1) < tol &&
-    std::abs(Dot(f.B, f.B) - 1) < tol && std::abs(Dot(f.T, f.N)) < tol &&
-    std::abs(Dot(f.T, f.B)) < tol && std::abs(Dot(f.N, f.B)) < tol &&
-    std::abs(Dot(bender::Cross(f.T, f.N), f.B) - 1) < tol;
+  return std::abs(Dot(f.t, f.t) - 1) < tol && std::abs(Dot(f.n, f.n) - 1) < tol &&
+    std::abs(Dot(f.b, f.b) - 1) < tol && std::abs(Dot(f.t, f.n)) < tol &&
+    std::abs(Dot(f.t, f.b)) < tol && std::abs(Dot(f.n, f.b)) < tol &&
+    std::abs(Dot(bender::Cross(f.t, f.n), f.b) - 1) < tol;
 }
 
 inline double MaxDeviation(const bender::Frame& a, const bender::Frame& b)
 {
   double d = bender::Distance(a.origin, b.origin);
-  d = std::max(d, bender::Distance(a.T, b.T));
-  d = std::max(d, bender::Distance(a.N, b.N));
-  d = std::max(d, bender::Distance(a.B, b.B));
+  d = std::max(d, bender::Distance(a.t, b.t));
+  d = std::max(d, bender::Distance(a.n, b.n));
+  d = std::max(d, bender::Distance(a.b, b.b));
   return d;
 }
 

@@ -30,9 +30,9 @@ Frame RandomFrame(std::mt19937_64& rng, double scale = 10.0)
 {
   Frame f;
   f.origin = bendertest::RandomPoint(rng, scale);
-  f.T = bendertest::RandomUnit(rng);
-  f.N = bendertest::RandomPerpendicular(rng, f.T);
-  f.B = Cross(f.T, f.N);
+  f.t = bendertest::RandomUnit(rng);
+  f.n = bendertest::RandomPerpendicular(rng, f.t);
+  f.b = Cross(f.t, f.n);
   return f;
 }
 
@@ -49,9 +49,9 @@ Frame MoveFrame(const DualQuaternion& m, const Frame& c, double f)
 {
   Frame o;
   o.origin = bender::ApplyScrewFraction(m, c.origin, f);
-  o.T = bender::ApplyScrewFraction(m, c.origin + c.T, f) - o.origin;
-  o.N = bender::ApplyScrewFraction(m, c.origin + c.N, f) - o.origin;
-  o.B = bender::ApplyScrewFraction(m, c.origin + c.B, f) - o.origin;
+  o.t = bender::ApplyScrewFraction(m, c.origin + c.t, f) - o.origin;
+  o.n = bender::ApplyScrewFraction(m, c.origin + c.n, f) - o.origin;
+  o.b = bender::ApplyScrewFraction(m, c.origin + c.b, f) - o.origin;
   return o;
 }
 
@@ -82,7 +82,7 @@ std::vector<FramePair> RandomPairs(std::uint64_t seed, int count)
       g.axis = bendertest::RandomUnit(rng);
       g.angle = angle;
       g.t = bendertest::RandomPoint(rng, 10);
-      p.cp = { g.Point(p.c.origin), g.Vector(p.c.T), g.Vector(p.c.N), g.Vector(p.c.B) };
+      p.cp = { g.Point(p.c.origin), g.Vector(p.c.t), g.Vector(p.c.n), g.Vector(p.c.b) };
     }
     out.push_back(p);
   }
@@ -100,11 +100,11 @@ TEST(Screw, FullScrewMapsTheFrameAndZeroIsTheIdentity)
       const DualQuaternion m = bender::MotionBetween(fp.c, fp.cp, qq);
       const Frame moved = MoveFrame(m, fp.c, 1.0);
       EXPECT_LT(Distance(moved.origin, fp.cp.origin), 1e-9 * 10);
-      EXPECT_LT(Distance(moved.T, fp.cp.T), 1e-9);
-      EXPECT_LT(Distance(moved.N, fp.cp.N), 1e-9);
-      EXPECT_LT(Distance(moved.B, fp.cp.B), 1e-9);
+      EXPECT_LT(Distance(moved.t, fp.cp.t), 1e-9);
+      EXPECT_LT(Distance(moved.n, fp.cp.n), 1e-9);
+      EXPECT_LT(Distance(moved.b, fp.cp.b), 1e-9);
       EXPECT_LT(
-        Distance(bender::ApplyMotion(m, fp.c.origin + fp.c.N * 2.0), fp.cp.origin + fp.cp.N * 2.0),
+        Distance(bender::ApplyMotion(m, fp.c.origin + fp.c.n * 2.0), fp.cp.origin + fp.cp.n * 2.0),
         1e-9 * 10);
       const Vec3 p = bendertest::RandomPoint(rng, 20);
       const Vec3 same = bender::ApplyScrewFraction(m, p, 0.0);
@@ -189,24 +189,24 @@ TEST(Screw, AxisDistancePreservedAndAxialDisplacement)
         continue; // the axis point is ill-conditioned
       }
       ++tested;
-      EXPECT_NEAR(Norm(sc.K), 1.0, 1e-12);
-      const double tol = 1e-9 * std::max(10.0, Norm(sc.A));
+      EXPECT_NEAR(Norm(sc.k), 1.0, 1e-12);
+      const double tol = 1e-9 * std::max(10.0, Norm(sc.a));
       for (int k = 0; k < 5; ++k)
       {
         const double f = bendertest::Uniform(rng, 0, 1);
         const Vec3 p = bendertest::RandomPoint(rng, 20);
         const Vec3 pp = bender::ApplyScrewFraction(m, p, f);
-        EXPECT_NEAR(bendertest::DistanceToLine(pp, sc.A, sc.K),
-          bendertest::DistanceToLine(p, sc.A, sc.K),
+        EXPECT_NEAR(bendertest::DistanceToLine(pp, sc.a, sc.k),
+          bendertest::DistanceToLine(p, sc.a, sc.k),
           tol);
-        EXPECT_NEAR(Dot(pp - p, sc.K), f * sc.d, tol);
+        EXPECT_NEAR(Dot(pp - p, sc.k), f * sc.d, tol);
         // The angle turned about the axis is f beta (mod 2 pi).
-        const Vec3 a = (p - sc.A) - sc.K * Dot(p - sc.A, sc.K);
-        const Vec3 b = (pp - sc.A) - sc.K * Dot(pp - sc.A, sc.K);
+        const Vec3 a = (p - sc.a) - sc.k * Dot(p - sc.a, sc.k);
+        const Vec3 b = (pp - sc.a) - sc.k * Dot(pp - sc.a, sc.k);
         if (Norm(a) > 0.1)
         {
           EXPECT_NEAR(
-            bendertest::WrapAngle(bender::SignedAngle(a, b, sc.K) - f * sc.beta), 0.0, 1e-8);
+            bendertest::WrapAngle(bender::SignedAngle(a, b, sc.k) - f * sc.beta), 0.0, 1e-8);
         }
       }
     }
@@ -235,17 +235,17 @@ TEST(Screw, AgreesWithConstructionQAndTheAForm)
     const DualQuaternion m = bender::MotionBetween(fp.c, fp.cp, q);
     const bender::Screw sc = bender::ScrewOf(m);
     EXPECT_NEAR(sc.beta, beta, 1e-9);
-    EXPECT_LT(Distance(sc.K, K), 1e-9);
+    EXPECT_LT(Distance(sc.k, K), 1e-9);
     EXPECT_NEAR(sc.d, d, 1e-9 * scale);
-    EXPECT_LT(bendertest::DistanceToLine(A, sc.A, sc.K), 1e-9 * scale);
+    EXPECT_LT(bendertest::DistanceToLine(A, sc.a, sc.k), 1e-9 * scale);
     EXPECT_FALSE(sc.flipped);
     // The twin: (K, beta, d) -> (-K, 2 pi - beta, -d), same axis line.
     const DualQuaternion tw = bender::MotionBetween(fp.c, fp.cp, -q);
     const bender::Screw st = bender::ScrewOf(tw);
     EXPECT_NEAR(st.beta, 2 * Pi - beta, 1e-9);
-    EXPECT_LT(Distance(st.K, -K), 1e-9);
+    EXPECT_LT(Distance(st.k, -K), 1e-9);
     EXPECT_NEAR(st.d, -d, 1e-9 * scale);
-    EXPECT_LT(bendertest::DistanceToLine(A, st.A, st.K), 1e-9 * scale);
+    EXPECT_LT(bendertest::DistanceToLine(A, st.a, st.k), 1e-9 * scale);
     EXPECT_TRUE(st.flipped);
     for (int k = 0; k < 5; ++k)
     {
@@ -261,10 +261,10 @@ TEST(Screw, AgreesWithConstructionQAndTheAForm)
       // frames (ScLERP of the frame C).
       const Frame mf = MoveFrame(m, fp.c, f);
       EXPECT_TRUE(bendertest::FrameIsOrthonormalRightHanded(mf, 1e-9));
-      EXPECT_LT(Distance(mf.N, bender::Rotate(K, f * beta, fp.c.N)), 1e-9);
-      const Vec3 x = fp.c.origin + fp.c.T * 0.3 - fp.c.N * 1.7 + fp.c.B * 2.2;
+      EXPECT_LT(Distance(mf.n, bender::Rotate(K, f * beta, fp.c.n)), 1e-9);
+      const Vec3 x = fp.c.origin + fp.c.t * 0.3 - fp.c.n * 1.7 + fp.c.b * 2.2;
       EXPECT_LT(Distance(bender::ApplyScrewFraction(m, x, f),
-                  mf.origin + mf.T * 0.3 - mf.N * 1.7 + mf.B * 2.2),
+                  mf.origin + mf.t * 0.3 - mf.n * 1.7 + mf.b * 2.2),
         1e-9 * scale);
     }
   }
@@ -292,7 +292,7 @@ TEST(Screw, PureAndNearPureTranslations)
       g.axis = bendertest::RandomUnit(rng);
       g.angle = angle;
       g.t = D;
-      const Frame cq{ g.Point(c.origin), g.Vector(c.T), g.Vector(c.N), g.Vector(c.B) };
+      const Frame cq{ g.Point(c.origin), g.Vector(c.t), g.Vector(c.n), g.Vector(c.b) };
       const DualQuaternion mq = bender::MotionBetween(c, cq, Relative(c, cq));
       const Vec3 r = bender::ApplyScrewFraction(mq, p, f);
       EXPECT_TRUE(bender::IsFinite(r));
@@ -316,12 +316,12 @@ TEST(Screw, ScrewOfANumericallyPureTranslationReportsTheTranslation)
     const Vec3 D = bendertest::RandomPoint(rng, 5);
     cp.origin = c.origin + D;
     const bender::Screw sc = bender::ScrewOf(bender::MotionBetween(c, cp, Relative(c, cp)));
-    const bool ok = std::abs(sc.d - Norm(D)) < 1e-9 && Distance(sc.K, bender::Normalized(D)) < 1e-9;
+    const bool ok = std::abs(sc.d - Norm(D)) < 1e-9 && Distance(sc.k, bender::Normalized(D)) < 1e-9;
     wrong += !ok;
     if (!ok && wrong <= 3)
     {
       ADD_FAILURE() << "pure translation D = (" << D.x << ", " << D.y << ", " << D.z << "): K = ("
-                    << sc.K.x << ", " << sc.K.y << ", " << sc.K.z << "), d = " << sc.d
+                    << sc.k.x << ", " << sc.k.y << ", " << sc.k.z << "), d = " << sc.d
                     << ", beta = " << sc.beta
                     << "; spec 4.1 expects K = nrm(D), d = |D| = " << Norm(D);
     }
@@ -371,9 +371,9 @@ TEST(ScrewLift, RotationSweepingThroughHalfATurnStaysContinuous)
       const double s = k / 1000.0;
       const bender::Screw sc = warp.ScrewAt(s);
       EXPECT_NEAR(sc.beta, 0.9 * Pi + 0.2 * Pi * s, 1e-9) << "s=" << s;
-      EXPECT_LT(Distance(sc.K, dir), 1e-9) << "s=" << s;
+      EXPECT_LT(Distance(sc.k, dir), 1e-9) << "s=" << s;
       EXPECT_NEAR(sc.d, shift, 1e-9 * 10) << "s=" << s;
-      EXPECT_LT(bendertest::DistanceToLine(sc.A, p0, dir), 1e-9 * 10) << "s=" << s;
+      EXPECT_LT(bendertest::DistanceToLine(sc.a, p0, dir), 1e-9 * 10) << "s=" << s;
       if (s > 0.5 + 1e-6)
       {
         EXPECT_TRUE(sc.flipped) << "s=" << s;
@@ -412,8 +412,8 @@ TEST(ScrewLift, RotationSweepingThroughZeroIsNotCorrected)
       EXPECT_FALSE(sc.flipped);
       // The points of a disc about the wire turn by -0.1 + 0.2 s: continuous through 0.
       const Frame c = warp.Initial().FrameAt(s);
-      const Vec3 p = c.origin + c.N * 0.5;
-      const Vec3 expect = c.origin + bender::Rotate(dir, -0.1 + 0.2 * s, c.N) * 0.5;
+      const Vec3 p = c.origin + c.n * 0.5;
+      const Vec3 expect = c.origin + bender::Rotate(dir, -0.1 + 0.2 * s, c.n) * 0.5;
       EXPECT_LT(Distance(bender::ApplyMotion(warp.MotionAt(s), p), expect), 1e-9 * 10);
     }
   }
@@ -446,7 +446,7 @@ TEST(ScrewLift, CurvedRibbonsCrossingHalfATurnStayContinuous)
         const double s = k / 2000.0;
         const bender::Screw sc = warp.ScrewAt(s);
         EXPECT_LT(std::abs(sc.beta - prev.beta), 0.01) << "s=" << s;
-        EXPECT_LT(Distance(sc.K, prev.K), 0.01) << "s=" << s;
+        EXPECT_LT(Distance(sc.k, prev.k), 0.01) << "s=" << s;
         prev = sc;
       }
     }
@@ -477,7 +477,7 @@ TEST(ScrewLift, HalfTurnAtTheStartIsDecidedInTheStartFrame)
       const bender::Screw s0 = warp.ScrewAt(0.0);
       EXPECT_NEAR(s0.beta, Pi, 1e-9);
       // The first component of K in C_0's coordinates that exceeds 1e-9 is positive.
-      const double comps[3] = { Dot(s0.K, c0.T), Dot(s0.K, c0.N), Dot(s0.K, c0.B) };
+      const double comps[3] = { Dot(s0.k, c0.t), Dot(s0.k, c0.n), Dot(s0.k, c0.b) };
       for (double comp : comps)
       {
         if (std::abs(comp) > 1e-6)
@@ -486,14 +486,14 @@ TEST(ScrewLift, HalfTurnAtTheStartIsDecidedInTheStartFrame)
           break;
         }
       }
-      EXPECT_LT(Norm(Cross(s0.K, g.axis)), 1e-9);
+      EXPECT_LT(Norm(Cross(s0.k, g.axis)), 1e-9);
       // The whole warp is the same rigid half-turn.
       for (int k = 0; k <= 20; ++k)
       {
         const double s = k / 20.0;
         const bender::Screw sc = warp.ScrewAt(s);
         EXPECT_NEAR(sc.beta, Pi, 1e-9) << "s=" << s;
-        EXPECT_LT(Distance(sc.K, s0.K), 1e-9) << "s=" << s;
+        EXPECT_LT(Distance(sc.k, s0.k), 1e-9) << "s=" << s;
         const Vec3 p = bendertest::RandomPoint(rng, 10);
         EXPECT_LT(Distance(bender::ApplyMotion(warp.MotionAt(s), p), g.Point(p)), 1e-9 * 20);
         // Half of it: a quarter turn about K.
@@ -535,10 +535,10 @@ TEST(ScrewLift, ReverseScrewsGivesTheTwin)
         const bender::Screw a = fwd.ScrewAt(s);
         const bender::Screw b = rev.ScrewAt(s);
         ASSERT_GT(a.beta, 0.1);
-        EXPECT_LT(Distance(b.K, -a.K), 1e-9) << "s=" << s;
+        EXPECT_LT(Distance(b.k, -a.k), 1e-9) << "s=" << s;
         EXPECT_NEAR(b.beta, 2 * Pi - a.beta, 1e-9) << "s=" << s;
         EXPECT_NEAR(b.d, -a.d, 1e-9 * 20) << "s=" << s;
-        EXPECT_LT(bendertest::DistanceToLine(b.A, a.A, a.K), 1e-9 * std::max(20.0, Norm(a.A)));
+        EXPECT_LT(bendertest::DistanceToLine(b.a, a.a, a.k), 1e-9 * std::max(20.0, Norm(a.a)));
         EXPECT_NE(a.flipped, b.flipped);
         // Same motion at f = 1, a different path in between.
         const Vec3 p = bendertest::RandomPoint(rng, 10);

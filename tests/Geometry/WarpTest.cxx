@@ -251,18 +251,18 @@ TEST(Warp, IdentityWhenTheRibbonDoesNotMove)
 // G as a screw with known parameters: X -> A + Rot(K, beta)(X - A) + d K.
 struct KnownScrew
 {
-  Vec3 A, K;
+  Vec3 a, k;
   double beta, d;
   Vec3 Apply(const Vec3& p, double f) const
   {
-    return A + bender::Rotate(K, f * beta, p - A) + K * (f * d);
+    return this->a + bender::Rotate(this->k, f * beta, p - this->a) + this->k * (f * d);
   }
   bendertest::Rigid AsRigid() const
   {
     bendertest::Rigid g;
-    g.axis = K;
+    g.axis = this->k;
     g.angle = beta;
-    g.t = A - bender::Rotate(K, beta, A) + K * d;
+    g.t = this->a - bender::Rotate(this->k, beta, this->a) + this->k * d;
     return g;
   }
 };
@@ -324,9 +324,9 @@ TEST(Warp, RigidMotionOfTheRibbon)
       const double s = k / 50.0;
       const bender::Screw sc = warp->ScrewAt(s);
       EXPECT_NEAR(sc.beta, G.beta, 1e-9) << "s=" << s;
-      EXPECT_LT(Distance(sc.K, G.K), 1e-9) << "s=" << s;
+      EXPECT_LT(Distance(sc.k, G.k), 1e-9) << "s=" << s;
       EXPECT_NEAR(sc.d, G.d, 1e-9 * h) << "s=" << s;
-      EXPECT_LT(bendertest::DistanceToLine(G.A, sc.A, sc.K), 1e-9 * std::max(h, Norm(sc.A)))
+      EXPECT_LT(bendertest::DistanceToLine(G.a, sc.a, sc.k), 1e-9 * std::max(h, Norm(sc.a)))
         << "s=" << s;
     }
     // Plateau covering the shape: P' = G(P), also where two projections count.
@@ -376,12 +376,12 @@ TEST(Warp, PointsOfTheWireFollowTheirScrew)
       {
         const double rho = 0.9 * warp->Spec().decay.plateau * R;
         const double a = bendertest::Uniform(rng, 0, 2 * Pi);
-        const Vec3 p = c.origin + (c.N * std::cos(a) + c.B * std::sin(a)) * rho;
+        const Vec3 p = c.origin + (c.n * std::cos(a) + c.b * std::sin(a)) * rho;
         const auto pr = bender::ProjectOntoWire(warp->Initial().Wire(), p, R);
         if (pr.count == 1 && s > 0 && s < 1)
         {
           EXPECT_LT(
-            Distance(warp->Apply(p), cp.origin + (cp.N * std::cos(a) + cp.B * std::sin(a)) * rho),
+            Distance(warp->Apply(p), cp.origin + (cp.n * std::cos(a) + cp.b * std::sin(a)) * rho),
             1e-9 * h);
         }
       }
@@ -415,7 +415,7 @@ TEST(Warp, PointsOutsideTheRegionOfInfluenceDoNotMove)
     // Exactly at distance R from an interior point of the wire.
     const double s = bendertest::Uniform(rng, 0.2, 0.8);
     const bender::Frame c = warp->Initial().FrameAt(s);
-    const Vec3 p = c.origin + c.N * R;
+    const Vec3 p = c.origin + c.n * R;
     if (WireDistance(*warp, p) >= R)
     {
       EXPECT_EQ(Distance(warp->Apply(p), p), 0.0);
@@ -470,7 +470,7 @@ TEST(Warp, ContinuousAcrossTheRegionBoundaryAndTheNormalPlanes)
       // RoI boundary at an interior point: crossing along the radial direction.
       const double s = bendertest::Uniform(rng, 0.05, 0.95);
       const bender::Frame c = warp->Initial().FrameAt(s);
-      const Vec3 radial = bender::Normalized(c.N * std::cos(k) + c.B * std::sin(k));
+      const Vec3 radial = bender::Normalized(c.n * std::cos(k) + c.b * std::sin(k));
       ExpectContinuousAcross(*warp, c.origin + radial * R, radial, lip, "RoI boundary");
       // End planes: a point on the plane at P0 (resp. P1), crossing along the tangent.
       const double rho = bendertest::Uniform(rng, 0, R);
@@ -757,7 +757,7 @@ TEST(WarpBinding, TableWithinOneHundredThousandthOfTheSceneAtTheJunctions)
       {
         const double s = std::clamp(sk + k * 2.5e-5, 0.0, 1.0);
         const bender::Frame c = warp->Initial().FrameAt(s);
-        const Vec3 p = c.origin + c.N * (0.3 * warp->Spec().radius);
+        const Vec3 p = c.origin + c.n * (0.3 * warp->Spec().radius);
         bender::BoundPoint rec;
         rec.s0 = rec.s1 = s;
         rec.f = 0.8;

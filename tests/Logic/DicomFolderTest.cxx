@@ -20,18 +20,18 @@ namespace
 
 struct TempFolder
 {
-  std::filesystem::path Path;
+  std::filesystem::path path;
   explicit TempFolder(const std::string& name)
   {
     std::random_device random;
-    Path = std::filesystem::temp_directory_path() /
+    this->path = std::filesystem::temp_directory_path() /
       ("bender-dicom-" + std::to_string(random()) + "-" + std::to_string(random())) / name;
-    std::filesystem::create_directories(Path);
+    std::filesystem::create_directories(this->path);
   }
   ~TempFolder()
   {
     std::error_code ec;
-    std::filesystem::remove_all(Path.parent_path(), ec);
+    std::filesystem::remove_all(this->path.parent_path(), ec);
   }
 };
 
@@ -54,9 +54,9 @@ const std::string Medium = "1.2.826.0.1.3680043.2.1125.7.3";
 TEST(DicomFolder, OneSeriesIsReadWithoutANote)
 {
   TempFolder folder("head");
-  bender_test::WriteDicomTestSeries(folder.Path.string(), CtSlice(), Small, "axial", 4);
+  bender_test::WriteDicomTestSeries(folder.path.string(), CtSlice(), Small, "axial", 4);
   SegmentationSession session;
-  auto job = session.BeginRead(folder.Path.string() + "/");
+  auto job = session.BeginRead(folder.path.string() + "/");
   job->Run({});
   ASSERT_TRUE(job->volume);
   EXPECT_EQ(job->volume->geometry.size[2], 4u);
@@ -73,7 +73,7 @@ TEST(DicomFolder, OneSeriesIsReadWithoutANote)
 TEST(DicomFolder, SeveralSeriesTheLargestIsReadAndTheUserIsTold)
 {
   TempFolder folder("study");
-  const std::string path = folder.Path.string();
+  const std::string path = folder.path.string();
   bender_test::WriteDicomTestSeries(path, CtSlice(), Small, "scout", 2);
   bender_test::WriteDicomTestSeries(path, CtSlice(), Large, "angio", 6);
   bender_test::WriteDicomTestSeries(path, CtSlice(), Medium, "late", 3);
@@ -112,9 +112,9 @@ TEST(DicomFolder, SeveralSeriesTheLargestIsReadAndTheUserIsTold)
 TEST(DicomFolder, AFolderWithoutDicomGetsOneClearLine)
 {
   TempFolder folder("notes");
-  std::ofstream(folder.Path / "readme.txt") << "not a DICOM file\n";
+  std::ofstream(folder.path / "readme.txt") << "not a DICOM file\n";
   SegmentationSession session;
-  auto job = session.BeginRead(folder.Path.string());
+  auto job = session.BeginRead(folder.path.string());
   try
   {
     job->Run({});
@@ -136,7 +136,7 @@ TEST(DicomFolder, AFolderWithoutDicomGetsOneClearLine)
 TEST(DicomFolder, ChooseDicomSeriesChecksTheUidAskedFor)
 {
   TempFolder folder("study");
-  const std::string path = folder.Path.string();
+  const std::string path = folder.path.string();
   bender_test::WriteDicomTestSeries(path, CtSlice(), Small, "scout", 2);
   bender_test::WriteDicomTestSeries(path, CtSlice(), Large, "angio", 5);
   std::string note = "stale";

@@ -29,20 +29,20 @@ namespace
 
 struct TempFolder
 {
-  std::filesystem::path Path;
+  std::filesystem::path path;
   TempFolder()
   {
     std::random_device random;
-    Path = std::filesystem::temp_directory_path() /
+    this->path = std::filesystem::temp_directory_path() /
       ("bender-session-file-" + std::to_string(random()) + "-" + std::to_string(random()));
-    std::filesystem::create_directories(Path);
+    std::filesystem::create_directories(this->path);
   }
   ~TempFolder()
   {
     std::error_code ec;
-    std::filesystem::remove_all(Path, ec);
+    std::filesystem::remove_all(this->path, ec);
   }
-  std::string File(const std::string& name) const { return (Path / name).string(); }
+  std::string File(const std::string& name) const { return (this->path / name).string(); }
 };
 
 std::string ReadText(const std::string& path)
@@ -359,7 +359,7 @@ TEST(SessionAutosave, ASnapshotThatCannotBeWrittenLeavesThePreviousFile)
   }
   EXPECT_EQ(ReadText(path), before);
   // Only the session file in the folder: no temporary left behind.
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder.Path),
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder.path),
               std::filesystem::directory_iterator()),
     1);
 }
@@ -412,7 +412,7 @@ std::shared_ptr<const Volume> SmallVolume(std::size_t n, float offset)
 TEST(AutosaveCopies, WrittenOffTheCallersThreadAndReferencedOnlyWhenComplete)
 {
   TempFolder folder;
-  const std::string path = SessionVolumeCopyPath((folder.Path / "autosave.json").string());
+  const std::string path = SessionVolumeCopyPath((folder.path / "autosave.json").string());
   const std::shared_ptr<const Volume> a = SmallVolume(6, 0.0f);
   const std::shared_ptr<const Volume> b = SmallVolume(9, 1000.0f);
 
@@ -457,7 +457,7 @@ TEST(AutosaveCopies, WrittenOffTheCallersThreadAndReferencedOnlyWhenComplete)
   EXPECT_EQ(ReadVolume(path).voxels, a->voxels);
   // No staging file left beside it.
   int files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(folder.Path))
+  for (const auto& entry : std::filesystem::directory_iterator(folder.path))
   {
     (void)entry;
     ++files;
@@ -477,7 +477,7 @@ TEST(AutosaveCopies, WrittenOffTheCallersThreadAndReferencedOnlyWhenComplete)
 TEST(AutosaveCopies, AFailedWriteIsSaidOnceAndNotRetriedForTheSameObject)
 {
   TempFolder folder;
-  const std::string path = (folder.Path / "missing-folder" / "copy.nrrd").string();
+  const std::string path = (folder.path / "missing-folder" / "copy.nrrd").string();
   const std::shared_ptr<const Volume> a = SmallVolume(4, 0.0f);
   std::atomic<int> finished{ 0 };
   std::atomic<int> writes{ 0 };

@@ -79,7 +79,7 @@ TEST_F(VesselSessionTest, CentrelinesOfTheLoadedSurface)
   EXPECT_TRUE(Vessels->IsUpToDate(*Session));
   EXPECT_FALSE(Vessels->BeginCenterlines(*Session)) << "up to date: no new job";
   EXPECT_EQ(Vessels->GetPaths()->GetNumberOfCells(), 2);
-  EXPECT_GE(Vessels->GetMeasures().Branches.size(), 3u);
+  EXPECT_GE(Vessels->GetMeasures().branches.size(), 3u);
   EXPECT_FALSE(Vessels->GetComparison()) << "nothing bent yet";
 }
 
@@ -127,19 +127,19 @@ TEST_F(VesselSessionTest, HeldBranchFollowsTheBendAndThePlanIsCompared)
   const RibbonPlacement placed = Vessels->PlaceRibbon(WallPick(40), WallPick(160));
   ASSERT_TRUE(Vessels->HoldBranch(placed.ribbon, Session->GetSurface()));
   const HeldBranchMeasures before = Vessels->MeasureHeld();
-  ASSERT_TRUE(before.Valid);
-  EXPECT_GT(before.Length, Distance(placed.ribbon.start.position, placed.ribbon.end.position));
-  EXPECT_GT(before.MinRadius, 0.5 * placed.vesselRadius);
-  EXPECT_LT(before.MinRadius, 1.2 * placed.vesselRadius);
+  ASSERT_TRUE(before.valid);
+  EXPECT_GT(before.length, Distance(placed.ribbon.start.position, placed.ribbon.end.position));
+  EXPECT_GT(before.minRadius, 0.5 * placed.vesselRadius);
+  EXPECT_LT(before.minRadius, 1.2 * placed.vesselRadius);
   // Unchanged by the identity warp.
   WarpParameters parameters = Session->GetParameters();
   parameters.radius = placed.suggestedRadius;
   ASSERT_TRUE(Session->SetParameters(parameters));
   ASSERT_TRUE(Session->Grab(placed.ribbon));
   const HeldBranchMeasures still = Vessels->MeasureHeld(LiveWarpOf(*Session));
-  EXPECT_NEAR(still.BendAngle, before.BendAngle, 0.5);
-  EXPECT_NEAR(still.Length, before.Length, 0.01 * before.Length);
-  EXPECT_NEAR(still.MinRadius, before.MinRadius, 0.01 * before.MinRadius);
+  EXPECT_NEAR(still.bendAngle, before.bendAngle, 0.5);
+  EXPECT_NEAR(still.length, before.length, 0.01 * before.length);
+  EXPECT_NEAR(still.minRadius, before.minRadius, 0.01 * before.minRadius);
   // Turn the end frame by 30 degrees about the start normal, around the start.
   RibbonSpec bent = placed.ribbon;
   const Vec3 axis = Normalized(placed.ribbon.start.normal);
@@ -152,14 +152,14 @@ TEST_F(VesselSessionTest, HeldBranchFollowsTheBendAndThePlanIsCompared)
   const double plan = TangentAngle(Session->GetFinalRibbon()) - TangentAngle(placed.ribbon);
   ASSERT_GT(std::abs(plan), 10.0);
   const HeldBranchMeasures live = Vessels->MeasureHeld(LiveWarpOf(*Session));
-  ASSERT_TRUE(live.Valid);
-  EXPECT_NEAR(live.BendAngle - before.BendAngle, plan, 4.0);
+  ASSERT_TRUE(live.valid);
+  EXPECT_NEAR(live.bendAngle - before.bendAngle, plan, 4.0);
   // The carried axis to the carried wall: positive, no wider than before this bend.
-  EXPECT_GT(live.MinRadius, 0.0);
-  EXPECT_LT(live.MinRadius, 1.05 * before.MinRadius);
-  std::cout << "held stretch: bend " << before.BendAngle << " -> " << live.BendAngle
-            << " deg (plan " << plan << "), min radius " << before.MinRadius << " -> "
-            << live.MinRadius << " mm\n";
+  EXPECT_GT(live.minRadius, 0.0);
+  EXPECT_LT(live.minRadius, 1.05 * before.minRadius);
+  std::cout << "held stretch: bend " << before.bendAngle << " -> " << live.bendAngle
+            << " deg (plan " << plan << "), min radius " << before.minRadius << " -> "
+            << live.minRadius << " mm\n";
 
   // The drawn centerline follows the bend: its points moved, the ribbon's start stays.
   auto warped = Vessels->WarpedPaths(LiveWarpOf(*Session));
@@ -184,17 +184,17 @@ TEST_F(VesselSessionTest, HeldBranchFollowsTheBendAndThePlanIsCompared)
   ASSERT_TRUE(Vessels->Finish(*job, message)) << message;
   ASSERT_TRUE(Vessels->GetComparison());
   const VesselComparison& comparison = *Vessels->GetComparison();
-  ASSERT_FALSE(comparison.Pairs.empty());
+  ASSERT_FALSE(comparison.pairs.empty());
   double largestTurn = 0;
-  for (const BranchChange& pair : comparison.Pairs)
+  for (const BranchChange& pair : comparison.pairs)
   {
-    if (pair.BeforeIndex >= 0 && pair.AfterIndex >= 0)
+    if (pair.beforeIndex >= 0 && pair.afterIndex >= 0)
     {
-      const auto& b = comparison.Before.Branches[pair.BeforeIndex];
-      const auto& a = comparison.After.Branches[pair.AfterIndex];
+      const auto& b = comparison.before.branches[pair.beforeIndex];
+      const auto& a = comparison.after.branches[pair.afterIndex];
       largestTurn = std::max(largestTurn,
-        std::acos(std::clamp(Dot(Vec3{ b.EndTangent[0], b.EndTangent[1], b.EndTangent[2] },
-                               Vec3{ a.EndTangent[0], a.EndTangent[1], a.EndTangent[2] }),
+        std::acos(std::clamp(Dot(Vec3{ b.endTangent[0], b.endTangent[1], b.endTangent[2] },
+                               Vec3{ a.endTangent[0], a.endTangent[1], a.endTangent[2] }),
           -1.0,
           1.0)) *
           Degrees);

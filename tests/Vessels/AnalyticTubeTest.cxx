@@ -27,9 +27,9 @@ const double Pi = 3.14159265358979323846;
 
 struct AxisErrors
 {
-  double MaxAxisDistance = 0;
-  double MaxRadiusError = 0;
-  int Points = 0;
+  double maxAxisDistance = 0;
+  double maxRadiusError = 0;
+  int points = 0;
 };
 
 // Distances of the centerline points to the true axis and radius errors, skipping points
@@ -74,11 +74,11 @@ AxisErrors CompareWithAxis(vtkPolyData* lines,
         nearest = a;
       }
     }
-    e.MaxAxisDistance = std::max(e.MaxAxisDistance, best / radii[nearest]);
-    e.MaxRadiusError = std::max(e.MaxRadiusError,
+    e.maxAxisDistance = std::max(e.maxAxisDistance, best / radii[nearest]);
+    e.maxRadiusError = std::max(e.maxRadiusError,
       std::abs(radius->GetComponent(static_cast<vtkIdType>(i), 0) - radii[nearest]) /
         radii[nearest]);
-    ++e.Points;
+    ++e.points;
   }
   return e;
 }
@@ -91,21 +91,21 @@ TEST(AnalyticTube, StraightTubeAxisRadiusAndTortuosity)
   const Curve axis = [](double t) { return Point3{ { 0.3 * t, -0.2 * t, t } }; };
   auto surface = SweptTube(axis, 0.0, 40.0, 81, 64, R);
   const CenterlineResult result = ComputeCenterlines(surface);
-  ASSERT_TRUE(result.Ok) << result.Message;
-  ASSERT_EQ(result.Endpoints.size(), 2u);
-  EXPECT_EQ(result.Branches->GetNumberOfCells(), 1);
-  EXPECT_TRUE(result.Bifurcations.empty());
-  const AxisErrors e = CompareWithAxis(result.Branches, { SampleCurve(axis, 0, 40, 2) }, { R });
-  EXPECT_GT(e.Points, 100);
-  EXPECT_LT(e.MaxAxisDistance, 0.02);
-  EXPECT_LT(e.MaxRadiusError, 0.03);
-  const VesselMeasurements m = MeasureBranches(result.Branches);
-  ASSERT_EQ(m.Branches.size(), 1u);
+  ASSERT_TRUE(result.ok) << result.message;
+  ASSERT_EQ(result.endpoints.size(), 2u);
+  EXPECT_EQ(result.branches->GetNumberOfCells(), 1);
+  EXPECT_TRUE(result.bifurcations.empty());
+  const AxisErrors e = CompareWithAxis(result.branches, { SampleCurve(axis, 0, 40, 2) }, { R });
+  EXPECT_GT(e.points, 100);
+  EXPECT_LT(e.maxAxisDistance, 0.02);
+  EXPECT_LT(e.maxRadiusError, 0.03);
+  const VesselMeasurements m = MeasureBranches(result.branches);
+  ASSERT_EQ(m.branches.size(), 1u);
   const double trueLength = 40.0 * std::sqrt(1 + 0.09 + 0.04);
-  EXPECT_NEAR(m.Branches[0].Length, trueLength, 0.01 * trueLength);
-  EXPECT_NEAR(m.Branches[0].Tortuosity, 1.0, 0.01);
-  EXPECT_LT(m.Branches[0].BendAngle, 1.0);
-  EXPECT_LT(m.Branches[0].MaxCurvature, 0.02 / R);
+  EXPECT_NEAR(m.branches[0].length, trueLength, 0.01 * trueLength);
+  EXPECT_NEAR(m.branches[0].tortuosity, 1.0, 0.01);
+  EXPECT_LT(m.branches[0].bendAngle, 1.0);
+  EXPECT_LT(m.branches[0].maxCurvature, 0.02 / R);
 }
 
 TEST(AnalyticTube, TorusSectionBendAngleAndTortuosity)
@@ -116,18 +116,18 @@ TEST(AnalyticTube, TorusSectionBendAngleAndTortuosity)
   };
   auto surface = SweptTube(axis, 0.0, Pi / 2, 121, 64, R);
   const CenterlineResult result = ComputeCenterlines(surface);
-  ASSERT_TRUE(result.Ok) << result.Message;
-  ASSERT_EQ(result.Branches->GetNumberOfCells(), 1);
+  ASSERT_TRUE(result.ok) << result.message;
+  ASSERT_EQ(result.branches->GetNumberOfCells(), 1);
   const AxisErrors e =
-    CompareWithAxis(result.Branches, { SampleCurve(axis, 0, Pi / 2, 4000) }, { R });
-  EXPECT_LT(e.MaxAxisDistance, 0.02);
-  EXPECT_LT(e.MaxRadiusError, 0.03);
-  const VesselMeasurements m = MeasureBranches(result.Branches);
-  ASSERT_EQ(m.Branches.size(), 1u);
+    CompareWithAxis(result.branches, { SampleCurve(axis, 0, Pi / 2, 4000) }, { R });
+  EXPECT_LT(e.maxAxisDistance, 0.02);
+  EXPECT_LT(e.maxRadiusError, 0.03);
+  const VesselMeasurements m = MeasureBranches(result.branches);
+  ASSERT_EQ(m.branches.size(), 1u);
   const double tortuosity = (rho * Pi / 2) / (rho * std::sqrt(2.0));
-  EXPECT_NEAR(m.Branches[0].Tortuosity, tortuosity, 0.01 * tortuosity);
-  EXPECT_NEAR(m.Branches[0].BendAngle, 90.0, 0.9);
-  EXPECT_NEAR(m.Branches[0].MeanCurvature, 1.0 / rho, 0.05 / rho);
+  EXPECT_NEAR(m.branches[0].tortuosity, tortuosity, 0.01 * tortuosity);
+  EXPECT_NEAR(m.branches[0].bendAngle, 90.0, 0.9);
+  EXPECT_NEAR(m.branches[0].meanCurvature, 1.0 / rho, 0.05 / rho);
 }
 
 TEST(AnalyticTube, HelixCurvatureAndTorsion)
@@ -138,16 +138,16 @@ TEST(AnalyticTube, HelixCurvatureAndTorsion)
   };
   auto surface = SweptTube(axis, 0.0, 2 * Pi, 241, 64, R);
   const CenterlineResult result = ComputeCenterlines(surface);
-  ASSERT_TRUE(result.Ok) << result.Message;
-  ASSERT_EQ(result.Branches->GetNumberOfCells(), 1);
+  ASSERT_TRUE(result.ok) << result.message;
+  ASSERT_EQ(result.branches->GetNumberOfCells(), 1);
   const AxisErrors e =
-    CompareWithAxis(result.Branches, { SampleCurve(axis, 0, 2 * Pi, 8000) }, { R });
-  EXPECT_LT(e.MaxAxisDistance, 0.02);
-  EXPECT_LT(e.MaxRadiusError, 0.03);
+    CompareWithAxis(result.branches, { SampleCurve(axis, 0, 2 * Pi, 8000) }, { R });
+  EXPECT_LT(e.maxAxisDistance, 0.02);
+  EXPECT_LT(e.maxRadiusError, 0.03);
   const double kappa = a / (a * a + b * b), tau = b / (a * a + b * b);
-  vtkDataArray* k = result.Branches->GetPointData()->GetArray(VesselArrays::Curvature);
-  vtkDataArray* t = result.Branches->GetPointData()->GetArray(VesselArrays::Torsion);
-  vtkDataArray* s = result.Branches->GetPointData()->GetArray(VesselArrays::Abscissa);
+  vtkDataArray* k = result.branches->GetPointData()->GetArray(VesselArrays::Curvature);
+  vtkDataArray* t = result.branches->GetPointData()->GetArray(VesselArrays::Torsion);
+  vtkDataArray* s = result.branches->GetPointData()->GetArray(VesselArrays::Abscissa);
   ASSERT_TRUE(k && t && s);
   const double length = s->GetComponent(s->GetNumberOfTuples() - 1, 0);
   EXPECT_NEAR(length, 2 * Pi * std::sqrt(a * a + b * b), 0.01 * 2 * Pi * std::sqrt(a * a + b * b));
@@ -183,32 +183,32 @@ TEST(AnalyticTube, YBifurcationBranchesAndAxes)
   const double bounds[6] = { -25, 25, -4.5, 4.5, -25, 25 };
   auto surface = ImplicitTubes(tubes, bounds, 0.25);
   const CenterlineResult result = ComputeCenterlines(surface);
-  ASSERT_TRUE(result.Ok) << result.Message;
-  ASSERT_EQ(result.Endpoints.size(), 3u);
-  EXPECT_TRUE(result.Endpoints[0].Inlet);
-  EXPECT_LT(result.Endpoints[0].Position[2], -20.0) << "the trunk, the largest end, is the inlet";
-  ASSERT_EQ(result.Bifurcations.size(), 1u);
-  ASSERT_EQ(result.Branches->GetNumberOfCells(), 3);
+  ASSERT_TRUE(result.ok) << result.message;
+  ASSERT_EQ(result.endpoints.size(), 3u);
+  EXPECT_TRUE(result.endpoints[0].inlet);
+  EXPECT_LT(result.endpoints[0].position[2], -20.0) << "the trunk, the largest end, is the inlet";
+  ASSERT_EQ(result.bifurcations.size(), 1u);
+  ASSERT_EQ(result.branches->GetNumberOfCells(), 3);
   // Axes, away from the bifurcation region (two trunk radii).
-  const AxisErrors e = CompareWithAxis(result.Branches,
+  const AxisErrors e = CompareWithAxis(result.branches,
     { { { { 0, 0, -40 } }, o }, { o, left }, { o, right } },
     { Rt, Rc, Rc },
     { o },
     2.5 * Rt);
-  EXPECT_GT(e.Points, 300);
-  EXPECT_LT(e.MaxAxisDistance, 0.02);
-  EXPECT_LT(e.MaxRadiusError, 0.03);
-  const VesselMeasurements m = MeasureBranches(result.Branches);
-  ASSERT_EQ(m.Bifurcations.size(), 1u);
-  EXPECT_EQ(m.Bifurcations[0].ChildBranchIds.size(), 2u);
-  EXPECT_NEAR(m.Bifurcations[0].ChildrenAngle, 70.0, 5.0);
+  EXPECT_GT(e.points, 300);
+  EXPECT_LT(e.maxAxisDistance, 0.02);
+  EXPECT_LT(e.maxRadiusError, 0.03);
+  const VesselMeasurements m = MeasureBranches(result.branches);
+  ASSERT_EQ(m.bifurcations.size(), 1u);
+  EXPECT_EQ(m.bifurcations[0].childBranchIds.size(), 2u);
+  EXPECT_NEAR(m.bifurcations[0].childrenAngle, 70.0, 5.0);
   // The children are straight from where they separate; the trunk's branch includes the
   // bifurcation region, where the path to its first outlet starts to turn.
-  for (const auto& b : m.Branches)
+  for (const auto& b : m.branches)
   {
-    if (b.ParentBranchId >= 0)
+    if (b.parentBranchId >= 0)
     {
-      EXPECT_NEAR(b.Tortuosity, 1.0, 0.01) << "branch " << b.BranchId;
+      EXPECT_NEAR(b.tortuosity, 1.0, 0.01) << "branch " << b.branchId;
     }
   }
 }
@@ -221,9 +221,9 @@ TEST(AnalyticTube, RemeshingChangesTheCenterlineByLessThanTwoPercentOfTheRadius)
   };
   const CenterlineResult coarse = ComputeCenterlines(SweptTube(axis, 0.0, Pi / 2, 61, 40, R));
   const CenterlineResult fine = ComputeCenterlines(SweptTube(axis, 0.0, Pi / 2, 181, 96, R));
-  ASSERT_TRUE(coarse.Ok && fine.Ok);
-  EXPECT_LT(MaxDistanceToLines(coarse.Branches, fine.Branches), 0.02 * R);
-  EXPECT_LT(MaxDistanceToLines(fine.Branches, coarse.Branches), 0.02 * R);
+  ASSERT_TRUE(coarse.ok && fine.ok);
+  EXPECT_LT(MaxDistanceToLines(coarse.branches, fine.branches), 0.02 * R);
+  EXPECT_LT(MaxDistanceToLines(fine.branches, coarse.branches), 0.02 * R);
 }
 
 TEST(AnalyticTube, SeedsChooseTheEnds)
@@ -233,12 +233,12 @@ TEST(AnalyticTube, SeedsChooseTheEnds)
   auto surface = SweptTube(axis, 0.0, 30.0, 61, 48, R);
   CenterlineOptions options;
   // Outlet first: the seeds reverse the direction; the second seed is inside the tube.
-  options.Seeds = { { { 0.5, 0, 30 } }, { { 0, 0, 10 } } };
+  options.seeds = { { { 0.5, 0, 30 } }, { { 0, 0, 10 } } };
   const CenterlineResult result = ComputeCenterlines(surface, options);
-  ASSERT_TRUE(result.Ok) << result.Message;
-  ASSERT_EQ(result.Endpoints.size(), 2u);
-  EXPECT_NEAR(result.Endpoints[0].Position[2], 30.0, 1e-6) << "snapped to the open end's centre";
-  const auto points = PointsOf(result.Branches);
+  ASSERT_TRUE(result.ok) << result.message;
+  ASSERT_EQ(result.endpoints.size(), 2u);
+  EXPECT_NEAR(result.endpoints[0].position[2], 30.0, 1e-6) << "snapped to the open end's centre";
+  const auto points = PointsOf(result.branches);
   ASSERT_GT(points.size(), 10u);
   EXPECT_NEAR(points.front()[2], 30.0, 1e-6);
   EXPECT_NEAR(points.back()[2], 10.0, R);

@@ -95,70 +95,70 @@ CenterlineResult* AneurysmCenterlines::Result = nullptr;
 
 TEST_F(AneurysmCenterlines, ThreeOpenEndsOneBifurcationThreeBranches)
 {
-  ASSERT_TRUE(Result->Ok) << Result->Message;
-  ASSERT_EQ(Result->Endpoints.size(), 3u);
-  for (const auto& end : Result->Endpoints)
+  ASSERT_TRUE(Result->ok) << Result->message;
+  ASSERT_EQ(Result->endpoints.size(), 3u);
+  for (const auto& end : Result->endpoints)
   {
-    EXPECT_EQ(end.Kind, EndpointKind::OpenEnd);
-    EXPECT_TRUE(end.Reached);
+    EXPECT_EQ(end.kind, EndpointKind::OpenEnd);
+    EXPECT_TRUE(end.reached);
   }
-  EXPECT_TRUE(Result->Endpoints[0].Inlet);
-  EXPECT_EQ(Result->Bifurcations.size(), 1u);
-  EXPECT_EQ(Result->Branches->GetNumberOfCells(), 3);
-  EXPECT_EQ(Result->Paths->GetNumberOfCells(), 2);
-  const VesselMeasurements m = MeasureBranches(Result->Branches);
-  ASSERT_EQ(m.Branches.size(), 3u);
-  ASSERT_EQ(m.Bifurcations.size(), 1u);
-  EXPECT_EQ(m.Bifurcations[0].ChildBranchIds.size(), 2u);
-  for (const auto& b : m.Branches)
+  EXPECT_TRUE(Result->endpoints[0].inlet);
+  EXPECT_EQ(Result->bifurcations.size(), 1u);
+  EXPECT_EQ(Result->branches->GetNumberOfCells(), 3);
+  EXPECT_EQ(Result->paths->GetNumberOfCells(), 2);
+  const VesselMeasurements m = MeasureBranches(Result->branches);
+  ASSERT_EQ(m.branches.size(), 3u);
+  ASSERT_EQ(m.bifurcations.size(), 1u);
+  EXPECT_EQ(m.bifurcations[0].childBranchIds.size(), 2u);
+  for (const auto& b : m.branches)
   {
-    EXPECT_GT(b.Length, 2 * b.MeanRadius);
-    EXPECT_GE(b.Tortuosity, 1.0);
-    EXPECT_GT(b.MinRadius, 0.0);
+    EXPECT_GT(b.length, 2 * b.meanRadius);
+    EXPECT_GE(b.tortuosity, 1.0);
+    EXPECT_GT(b.minRadius, 0.0);
   }
 }
 
 TEST_F(AneurysmCenterlines, TheDomeIsNotABranch)
 {
-  ASSERT_TRUE(Result->Ok) << Result->Message;
+  ASSERT_TRUE(Result->ok) << Result->message;
   // The centerlines stay in the vessels: no inscribed sphere along them is much larger than the
   // largest open end (the dome's would be).
   double largestEnd = 0.0;
-  for (const auto& end : Result->Endpoints)
+  for (const auto& end : Result->endpoints)
   {
-    largestEnd = std::max(largestEnd, end.Radius);
+    largestEnd = std::max(largestEnd, end.radius);
   }
-  EXPECT_LT(MaxRadius(Result->Branches), 1.3 * largestEnd);
+  EXPECT_LT(MaxRadius(Result->branches), 1.3 * largestEnd);
 }
 
 TEST_F(AneurysmCenterlines, CappedSurfaceFindsTheSameThreeEndsAndRejectsTheDome)
 {
-  ASSERT_TRUE(Result->Ok) << Result->Message;
+  ASSERT_TRUE(Result->ok) << Result->message;
   vtkNew<vtkBenderCapFilter> cap;
   cap->SetInputData(Surface);
   cap->Update();
   ASSERT_EQ(cap->GetNumberOfCaps(), 3);
   const CenterlineResult closed = ComputeCenterlines(cap->GetOutput());
-  ASSERT_TRUE(closed.Ok) << closed.Message;
-  ASSERT_EQ(closed.Endpoints.size(), 3u) << "the dome must not be taken for a vessel end";
-  for (const auto& open : Result->Endpoints)
+  ASSERT_TRUE(closed.ok) << closed.message;
+  ASSERT_EQ(closed.endpoints.size(), 3u) << "the dome must not be taken for a vessel end";
+  for (const auto& open : Result->endpoints)
   {
     double nearest = 1e300;
-    for (const auto& tip : closed.Endpoints)
+    for (const auto& tip : closed.endpoints)
     {
-      EXPECT_EQ(tip.Kind, EndpointKind::VoronoiTip);
-      nearest = std::min(nearest, Distance(open.Position, tip.Position));
+      EXPECT_EQ(tip.kind, EndpointKind::VoronoiTip);
+      nearest = std::min(nearest, Distance(open.position, tip.position));
     }
-    EXPECT_LT(nearest, 3.0 * open.Radius)
-      << "open end at " << open.Position[0] << ", " << open.Position[1] << ", " << open.Position[2];
+    EXPECT_LT(nearest, 3.0 * open.radius)
+      << "open end at " << open.position[0] << ", " << open.position[1] << ", " << open.position[2];
   }
-  EXPECT_EQ(closed.Bifurcations.size(), 1u);
-  EXPECT_LT(MaxRadius(closed.Branches), 1.3 * MaxRadius(Result->Branches));
+  EXPECT_EQ(closed.bifurcations.size(), 1u);
+  EXPECT_LT(MaxRadius(closed.branches), 1.3 * MaxRadius(Result->branches));
 }
 
 TEST_F(AneurysmCenterlines, RigidMotionMovesTheCenterlineWithTheSurface)
 {
-  ASSERT_TRUE(Result->Ok) << Result->Message;
+  ASSERT_TRUE(Result->ok) << Result->message;
   vtkNew<vtkTransform> motion;
   motion->Translate(12.0, -7.0, 30.0);
   motion->RotateWXYZ(37.0, 0.3, -0.8, 0.5);
@@ -167,69 +167,69 @@ TEST_F(AneurysmCenterlines, RigidMotionMovesTheCenterlineWithTheSurface)
   moveSurface->SetTransform(motion);
   moveSurface->Update();
   const CenterlineResult moved = ComputeCenterlines(moveSurface->GetOutput());
-  ASSERT_TRUE(moved.Ok) << moved.Message;
+  ASSERT_TRUE(moved.ok) << moved.message;
   vtkNew<vtkTransformPolyDataFilter> moveLines;
-  moveLines->SetInputData(Result->Paths);
+  moveLines->SetInputData(Result->paths);
   moveLines->SetTransform(motion);
   moveLines->Update();
   double smallest = 1e300, largest = 0.0;
-  for (const auto& end : Result->Endpoints)
+  for (const auto& end : Result->endpoints)
   {
-    smallest = std::min(smallest, end.Radius);
-    largest = std::max(largest, end.Radius);
+    smallest = std::min(smallest, end.radius);
+    largest = std::max(largest, end.radius);
   }
   // Issue 10: the centerline moves with the surface, within 2 % of the radius away from the
   // bifurcation region (the centerline is placed on the centroids of the wall's cross-sections,
   // which do not depend on the Delaunay's tie-breaking): measured 0.0004 mm, 0.01 % (0.006 mm with
   // Qhull's Delaunay).
   EXPECT_LT(
-    MaxDistanceOutside(moved.Paths, moveLines->GetOutput(), moved.Bifurcations, 2 * largest),
+    MaxDistanceOutside(moved.paths, moveLines->GetOutput(), moved.bifurcations, 2 * largest),
     0.02 * smallest);
-  EXPECT_LT(MaxDistanceToLines(moved.Paths, moveLines->GetOutput()), 0.15 * smallest);
+  EXPECT_LT(MaxDistanceToLines(moved.paths, moveLines->GetOutput()), 0.15 * smallest);
 }
 
 TEST_F(AneurysmCenterlines, FinerRemeshingChangesTheCenterlineLittle)
 {
-  ASSERT_TRUE(Result->Ok) << Result->Message;
+  ASSERT_TRUE(Result->ok) << Result->message;
   vtkNew<vtkLinearSubdivisionFilter> finer;
   finer->SetInputData(Surface);
   finer->SetNumberOfSubdivisions(1);
   finer->Update();
   const CenterlineResult fine = ComputeCenterlines(finer->GetOutput());
-  ASSERT_TRUE(fine.Ok) << fine.Message;
-  ASSERT_EQ(fine.Endpoints.size(), 3u);
+  ASSERT_TRUE(fine.ok) << fine.message;
+  ASSERT_EQ(fine.endpoints.size(), 3u);
   double smallest = 1e300, largest = 0.0;
-  for (const auto& end : Result->Endpoints)
+  for (const auto& end : Result->endpoints)
   {
-    smallest = std::min(smallest, end.Radius);
-    largest = std::max(largest, end.Radius);
+    smallest = std::min(smallest, end.radius);
+    largest = std::max(largest, end.radius);
   }
   // Issue 10: a uniform remeshing changes the centerline by less than 2 % of the radius away
   // from the bifurcation region: measured 0.047 mm, 1.6 % of the smallest end radius.
   EXPECT_LT(
-    MaxDistanceOutside(fine.Paths, Result->Paths, fine.Bifurcations, 2 * largest), 0.02 * smallest);
-  EXPECT_LT(MaxDistanceToLines(fine.Paths, Result->Paths), 0.25 * smallest);
+    MaxDistanceOutside(fine.paths, Result->paths, fine.bifurcations, 2 * largest), 0.02 * smallest);
+  EXPECT_LT(MaxDistanceToLines(fine.paths, Result->paths), 0.25 * smallest);
 }
 
 TEST_F(AneurysmCenterlines, CoarserRemeshingChangesTheCenterlineLittle)
 {
-  ASSERT_TRUE(Result->Ok) << Result->Message;
+  ASSERT_TRUE(Result->ok) << Result->message;
   vtkNew<vtkQuadricDecimation> coarser;
   coarser->SetInputData(Surface);
   coarser->SetTargetReduction(0.5);
   coarser->Update();
   const CenterlineResult coarse = ComputeCenterlines(coarser->GetOutput());
-  ASSERT_TRUE(coarse.Ok) << coarse.Message;
-  ASSERT_EQ(coarse.Endpoints.size(), 3u);
+  ASSERT_TRUE(coarse.ok) << coarse.message;
+  ASSERT_EQ(coarse.endpoints.size(), 3u);
   double smallest = 1e300, largest = 0.0;
-  for (const auto& end : Result->Endpoints)
+  for (const auto& end : Result->endpoints)
   {
-    smallest = std::min(smallest, end.Radius);
-    largest = std::max(largest, end.Radius);
+    smallest = std::min(smallest, end.radius);
+    largest = std::max(largest, end.radius);
   }
   // Half the triangles (quadric decimation): measured 0.051 mm, 1.7 % of the smallest end radius
   // away from the bifurcation region.
-  EXPECT_LT(MaxDistanceOutside(coarse.Paths, Result->Paths, coarse.Bifurcations, 2 * largest),
+  EXPECT_LT(MaxDistanceOutside(coarse.paths, Result->paths, coarse.bifurcations, 2 * largest),
     0.02 * smallest);
-  EXPECT_LT(MaxDistanceToLines(coarse.Paths, Result->Paths), 0.25 * smallest);
+  EXPECT_LT(MaxDistanceToLines(coarse.paths, Result->paths), 0.25 * smallest);
 }

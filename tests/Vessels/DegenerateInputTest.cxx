@@ -20,11 +20,11 @@ namespace
 {
 void ExpectCleanFailure(const CenterlineResult& result)
 {
-  EXPECT_FALSE(result.Ok);
-  EXPECT_FALSE(result.Message.empty());
-  EXPECT_EQ(result.Message.find('\n'), std::string::npos);
-  ASSERT_NE(result.Branches, nullptr);
-  EXPECT_EQ(result.Branches->GetNumberOfPoints(), 0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_FALSE(result.message.empty());
+  EXPECT_EQ(result.message.find('\n'), std::string::npos);
+  ASSERT_NE(result.branches, nullptr);
+  EXPECT_EQ(result.branches->GetNumberOfPoints(), 0);
 }
 } // namespace
 
@@ -33,10 +33,10 @@ TEST(VesselDegenerate, NullSurfaceAndBadOptionsThrow)
   EXPECT_THROW(ComputeCenterlines(nullptr), std::invalid_argument);
   vtkNew<vtkPolyData> empty;
   CenterlineOptions options;
-  options.Step = -1;
+  options.step = -1;
   EXPECT_THROW(ComputeCenterlines(empty, options), std::invalid_argument);
   options = {};
-  options.Seeds = { { { 0, 0, 0 } } };
+  options.seeds = { { { 0, 0, 0 } } };
   EXPECT_THROW(ComputeCenterlines(empty, options), std::invalid_argument);
 }
 
@@ -74,7 +74,7 @@ TEST(VesselDegenerate, SphereIsNotAVessel)
   sphere->Update();
   const CenterlineResult result = ComputeCenterlines(sphere->GetOutput());
   ExpectCleanFailure(result);
-  EXPECT_NE(result.Message.find("sphere"), std::string::npos) << result.Message;
+  EXPECT_NE(result.message.find("sphere"), std::string::npos) << result.message;
 }
 
 TEST(VesselDegenerate, UnreachableOutletIsReportedNotTraced)
@@ -106,18 +106,18 @@ TEST(VesselDegenerate, UnreachableOutletIsReportedNotTraced)
   both->SetPoints(points);
   both->SetPolys(cells);
   CenterlineOptions options;
-  options.Seeds = { { { 0, 0, 0 } }, { { 20, 0, 20 } } };
+  options.seeds = { { { 0, 0, 0 } }, { { 20, 0, 20 } } };
   const CenterlineResult result = ComputeCenterlines(both, options);
   ExpectCleanFailure(result);
-  EXPECT_NE(result.Message.find("reached"), std::string::npos) << result.Message;
-  EXPECT_FALSE(result.Warnings.empty());
+  EXPECT_NE(result.message.find("reached"), std::string::npos) << result.message;
+  EXPECT_FALSE(result.warnings.empty());
   // With a reachable outlet too, the result keeps the reachable one and warns about the other.
-  options.Seeds = { { { 0, 0, 0 } }, { { 20, 0, 20 } }, { { 0, 0, 20 } } };
+  options.seeds = { { { 0, 0, 0 } }, { { 20, 0, 20 } }, { { 0, 0, 20 } } };
   const CenterlineResult partial = ComputeCenterlines(both, options);
-  ASSERT_TRUE(partial.Ok) << partial.Message;
-  EXPECT_EQ(partial.Branches->GetNumberOfCells(), 1);
-  EXPECT_FALSE(partial.Endpoints[1].Reached);
-  EXPECT_TRUE(partial.Endpoints[2].Reached);
+  ASSERT_TRUE(partial.ok) << partial.message;
+  EXPECT_EQ(partial.branches->GetNumberOfCells(), 1);
+  EXPECT_FALSE(partial.endpoints[1].reached);
+  EXPECT_TRUE(partial.endpoints[2].reached);
 }
 
 TEST(VesselDegenerate, MeasuresNeedTheRadius)
@@ -125,8 +125,8 @@ TEST(VesselDegenerate, MeasuresNeedTheRadius)
   EXPECT_THROW(MeasureBranches(nullptr), std::invalid_argument);
   vtkNew<vtkPolyData> lines;
   const VesselMeasurements m = MeasureBranches(lines);
-  EXPECT_FALSE(m.Message.empty());
-  EXPECT_TRUE(m.Branches.empty());
+  EXPECT_FALSE(m.message.empty());
+  EXPECT_TRUE(m.branches.empty());
 }
 
 TEST(VesselDegenerate, HoleInTheWallIsNotAnEnd)
@@ -149,8 +149,8 @@ TEST(VesselDegenerate, HoleInTheWallIsNotAnEnd)
   }
   tube->SetPolys(kept);
   const CenterlineResult result = ComputeCenterlines(tube);
-  ASSERT_TRUE(result.Ok) << result.Message;
-  EXPECT_EQ(result.Endpoints.size(), 2u);
-  EXPECT_EQ(result.Branches->GetNumberOfCells(), 1);
-  EXPECT_FALSE(result.Warnings.empty());
+  ASSERT_TRUE(result.ok) << result.message;
+  EXPECT_EQ(result.endpoints.size(), 2u);
+  EXPECT_EQ(result.branches->GetNumberOfCells(), 1);
+  EXPECT_FALSE(result.warnings.empty());
 }

@@ -140,7 +140,7 @@ void ExpectDelaunay(std::vector<Point> points)
   std::string error;
   bender::DelaunayStatistics stats;
   ASSERT_TRUE(bender::DelaunayTetrahedra(points, tets, error, &stats)) << error;
-  EXPECT_EQ(stats.Duplicates, 0);
+  EXPECT_EQ(stats.duplicates, 0);
   const double diagonal = Diagonal(points);
   const long double tolerance = 1e-9L * diagonal * diagonal;
   std::set<Tet> found;
@@ -364,8 +364,8 @@ TEST(DelaunayTetrahedra, CoSphericalLatticeIsTriangulatedWithoutFlatTetrahedra)
   std::string error;
   bender::DelaunayStatistics stats;
   ASSERT_TRUE(bender::DelaunayTetrahedra(points, tets, error, &stats)) << error;
-  EXPECT_GT(stats.Perturbations, 0) << "the lattice's ties were broken by the perturbation";
-  EXPECT_GT(stats.ExactTests, 0);
+  EXPECT_GT(stats.perturbations, 0) << "the lattice's ties were broken by the perturbation";
+  EXPECT_GT(stats.exactTests, 0);
   long double volume = 0;
   for (const Tet& t : tets)
   {
@@ -397,7 +397,7 @@ TEST(DelaunayTetrahedra, ExactGridLatticeWithManyTiesTilesItsCube)
   std::string error;
   bender::DelaunayStatistics stats;
   ASSERT_TRUE(bender::DelaunayTetrahedra(probe, tets, error, &stats)) << error;
-  const double spacing = 60000.0 * stats.GridStep;
+  const double spacing = 60000.0 * stats.gridStep;
   ASSERT_LT(2 * spacing, l);
   std::vector<Point> points = frame;
   for (int i = -2; i <= 2; ++i)
@@ -414,8 +414,8 @@ TEST(DelaunayTetrahedra, ExactGridLatticeWithManyTiesTilesItsCube)
   ASSERT_TRUE(bender::DelaunayTetrahedra(points, tets, error, &stats)) << error;
   EXPECT_TRUE(std::equal(points.begin() + 8, points.end(), original.begin() + 8))
     << "the lattice lies on the grid already (the frame's corners need not)";
-  EXPECT_GT(stats.Perturbations, 100);
-  EXPECT_EQ(stats.Duplicates, 0);
+  EXPECT_GT(stats.perturbations, 100);
+  EXPECT_EQ(stats.duplicates, 0);
   long double volume = 0;
   for (const Tet& t : tets)
   {
@@ -445,7 +445,7 @@ TEST(DelaunayTetrahedra, DuplicatesAreLeftOut)
   std::string error;
   bender::DelaunayStatistics stats;
   ASSERT_TRUE(bender::DelaunayTetrahedra(points, tets, error, &stats)) << error;
-  EXPECT_EQ(stats.Duplicates, 1);
+  EXPECT_EQ(stats.duplicates, 1);
   // Whichever of the two equal points comes later in the insertion order is left out.
   bool used[6] = { false, false, false, false, false, false };
   long double volume = 0;
@@ -461,7 +461,7 @@ TEST(DelaunayTetrahedra, DuplicatesAreLeftOut)
   EXPECT_TRUE(used[0] && used[2] && used[3] && used[5]);
   // The points moved onto the grid by up to half a step (about 1e-6 of this unit cube).
   EXPECT_NEAR(static_cast<double>(volume), 1.0 / 6.0, 1e-5);
-  EXPECT_LT(stats.GridStep, 1e-5);
+  EXPECT_LT(stats.gridStep, 1e-5);
 }
 
 TEST(DelaunayTetrahedra, DegenerateInputGivesAReason)

@@ -68,11 +68,11 @@ vtkSmartPointer<vtkPolyData> CapNamed(vtkPolyData* open,
   const std::vector<FlowExtensionEnd>& ends,
   vtkBenderCapFilter* cap)
 {
-  for (std::size_t k = 0; k < r.Ends.size(); ++k)
+  for (std::size_t k = 0; k < r.ends.size(); ++k)
   {
-    cap->AddCapName(r.Ends[k].FarCentre.data(),
-      ends[k].Inlet ? "inlet" : "outlet_" + std::to_string(k),
-      ends[k].Inlet);
+    cap->AddCapName(r.ends[k].farCentre.data(),
+      ends[k].inlet ? "inlet" : "outlet_" + std::to_string(k),
+      ends[k].inlet);
   }
   cap->SetInputData(open);
   cap->Update();
@@ -96,36 +96,36 @@ TEST_F(FlowExtensionTest, LengthDirectionCircleAndLabels)
   int inlets = 0;
   for (const FlowExtensionEnd& e : ends)
   {
-    inlets += e.Inlet ? 1 : 0;
-    EXPECT_NEAR(std::abs(e.Normal[2]), 1.0, 1e-9);
-    EXPECT_EQ(e.Normal[2] > 0, e.Centre[2] > 10.0); // outwards
-    EXPECT_NEAR(e.Radius, r, 0.01 * r);
+    inlets += e.inlet ? 1 : 0;
+    EXPECT_NEAR(std::abs(e.normal[2]), 1.0, 1e-9);
+    EXPECT_EQ(e.normal[2] > 0, e.centre[2] > 10.0); // outwards
+    EXPECT_NEAR(e.radius, r, 0.01 * r);
   }
   ASSERT_EQ(inlets, 1);
   const FlowExtensionResult result = AddFlowExtensions(tube, ends);
-  ASSERT_EQ(result.Ends.size(), 2u);
+  ASSERT_EQ(result.ends.size(), 2u);
   for (std::size_t k = 0; k < 2; ++k)
   {
-    const ExtendedEnd& x = result.Ends[k];
-    const double factor = ends[k].Inlet ? 10.0 : 5.0;
-    EXPECT_DOUBLE_EQ(x.Factor, factor);
-    EXPECT_NEAR(x.Length, factor * ends[k].Radius, 1e-12);
+    const ExtendedEnd& x = result.ends[k];
+    const double factor = ends[k].inlet ? 10.0 : 5.0;
+    EXPECT_DOUBLE_EQ(x.factor, factor);
+    EXPECT_NEAR(x.length, factor * ends[k].radius, 1e-12);
     // Far centre along the outward normal, at Length from the rim's centre.
-    const double along = (x.FarCentre[2] - ends[k].Centre[2]) * ends[k].Normal[2];
-    EXPECT_NEAR(along, x.Length, 1e-9);
-    EXPECT_NEAR(x.FarCentre[0], 0.0, 1e-9);
-    ASSERT_EQ(x.FarRim.size(), 64u);
-    for (long long v : x.FarRim)
+    const double along = (x.farCentre[2] - ends[k].centre[2]) * ends[k].normal[2];
+    EXPECT_NEAR(along, x.length, 1e-9);
+    EXPECT_NEAR(x.farCentre[0], 0.0, 1e-9);
+    ASSERT_EQ(x.farRim.size(), 64u);
+    for (long long v : x.farRim)
     {
       std::array<double, 3> p;
-      result.Surface->GetPoint(v, p.data());
-      EXPECT_NEAR(p[2], x.FarCentre[2], 1e-9);                   // on the far plane
-      EXPECT_NEAR(std::hypot(p[0], p[1]), ends[k].Radius, 1e-9); // on the circle
+      result.surface->GetPoint(v, p.data());
+      EXPECT_NEAR(p[2], x.farCentre[2], 1e-9);                   // on the far plane
+      EXPECT_NEAR(std::hypot(p[0], p[1]), ends[k].radius, 1e-9); // on the circle
     }
   }
   // Capped: closed, manifold, consistent, outwards; extension walls are wall, caps the ends.
   vtkNew<vtkBenderCapFilter> cap;
-  vtkSmartPointer<vtkPolyData> closed = CapNamed(result.Surface, result, ends, cap);
+  vtkSmartPointer<vtkPolyData> closed = CapNamed(result.surface, result, ends, cap);
   ASSERT_EQ(cap->GetNumberOfCaps(), 2);
   MeshCheckOptions check;
   check.requireClosed = true;
@@ -140,16 +140,16 @@ TEST_F(FlowExtensionTest, LengthDirectionCircleAndLabels)
   EXPECT_EQ(labels[0].name, "wall");
   const std::vector<int> ids = CellPatchIds(closed);
   const auto extensionTriangles =
-    static_cast<std::size_t>(result.Surface->GetNumberOfPolys() - tube->GetNumberOfPolys());
-  for (std::size_t t = 0; t < static_cast<std::size_t>(result.Surface->GetNumberOfPolys()); ++t)
+    static_cast<std::size_t>(result.surface->GetNumberOfPolys() - tube->GetNumberOfPolys());
+  for (std::size_t t = 0; t < static_cast<std::size_t>(result.surface->GetNumberOfPolys()); ++t)
   {
     ASSERT_EQ(ids[t], kWallEntityId) << "extension triangle " << t;
   }
   EXPECT_GT(extensionTriangles, 0u);
   for (const auto& capInfo : cap->GetCaps())
   {
-    EXPECT_EQ(capInfo.Inlet, capInfo.Name == "inlet");
-    EXPECT_GT(std::abs(capInfo.Centre[2] - 10.0), 10.0 + 4.9 * r);
+    EXPECT_EQ(capInfo.inlet, capInfo.name == "inlet");
+    EXPECT_GT(std::abs(capInfo.centre[2] - 10.0), 10.0 + 4.9 * r);
   }
 }
 
@@ -158,19 +158,19 @@ TEST_F(FlowExtensionTest, PerEndFactorsAndErrors)
   auto tube = EllipticTube(2.0, 2.0, 10.0, 48, 20);
   std::vector<FlowExtensionEnd> ends = OpenEnds(tube);
   ASSERT_EQ(ends.size(), 2u);
-  ends[0].Factor = 0.0; // no extension
-  ends[1].Factor = 3.0;
+  ends[0].factor = 0.0; // no extension
+  ends[1].factor = 3.0;
   const FlowExtensionResult r = AddFlowExtensions(tube, ends);
-  EXPECT_EQ(r.Ends[0].Length, 0.0);
-  EXPECT_EQ(r.Ends[0].FarRim, ends[0].Rim);
-  EXPECT_NEAR(r.Ends[1].Length, 3.0 * ends[1].Radius, 1e-12);
-  ends[1].Factor = 1000.0;
+  EXPECT_EQ(r.ends[0].length, 0.0);
+  EXPECT_EQ(r.ends[0].farRim, ends[0].rim);
+  EXPECT_NEAR(r.ends[1].length, 3.0 * ends[1].radius, 1e-12);
+  ends[1].factor = 1000.0;
   EXPECT_THROW(AddFlowExtensions(tube, ends), InputError);
-  ends[1].Factor = 3.0;
+  ends[1].factor = 3.0;
   FlowExtensionOptions bad;
-  bad.InletFactor = std::nan("");
+  bad.inletFactor = std::nan("");
   EXPECT_THROW(AddFlowExtensions(tube, ends, bad), InputError);
-  ends[1].Rim = { 0, 1 };
+  ends[1].rim = { 0, 1 };
   EXPECT_THROW(AddFlowExtensions(tube, ends), InputError);
 }
 
@@ -178,46 +178,46 @@ TEST_F(FlowExtensionTest, ClippedAneurysmExtendedAndCappedIsClosedAndClean)
 {
   auto surface = ReadMesh(std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl");
   const CenterlineResult cl = ComputeCenterlines(surface);
-  ASSERT_TRUE(cl.Ok) << cl.Message;
-  const ClipResult clipped = ClipVesselEnds(surface, cl.Paths);
-  ASSERT_EQ(clipped.Ends.size(), 3u);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  const ClipResult clipped = ClipVesselEnds(surface, cl.paths);
+  ASSERT_EQ(clipped.ends.size(), 3u);
   std::vector<FlowExtensionEnd> ends;
   std::size_t largest = 0;
-  for (std::size_t k = 0; k < clipped.Ends.size(); ++k)
+  for (std::size_t k = 0; k < clipped.ends.size(); ++k)
   {
-    const ClippedEnd& c = clipped.Ends[k];
-    ends.push_back({ c.Rim, c.Centre, c.Normal, c.Radius, -1.0, false });
-    if (c.Area > clipped.Ends[largest].Area)
+    const ClippedEnd& c = clipped.ends[k];
+    ends.push_back({ c.rim, c.centre, c.normal, c.radius, -1.0, false });
+    if (c.area > clipped.ends[largest].area)
     {
       largest = k;
     }
   }
-  ends[largest].Inlet = true;
-  const FlowExtensionResult result = AddFlowExtensions(clipped.Surface, ends);
+  ends[largest].inlet = true;
+  const FlowExtensionResult result = AddFlowExtensions(clipped.surface, ends);
   // The two outlets of this model point towards each other: their extensions are shortened
   // (with a warning each) so that they do not collide; the inlet's is full length.
   std::size_t shortened = 0;
   for (std::size_t k = 0; k < ends.size(); ++k)
   {
-    const double requested = (ends[k].Inlet ? 10.0 : 5.0) * ends[k].Radius;
-    EXPECT_NEAR(result.Ends[k].RequestedLength, requested, 1e-9);
-    EXPECT_LE(result.Ends[k].Length, requested);
-    EXPECT_GE(result.Ends[k].Length, 0.0);
-    if (ends[k].Inlet)
+    const double requested = (ends[k].inlet ? 10.0 : 5.0) * ends[k].radius;
+    EXPECT_NEAR(result.ends[k].requestedLength, requested, 1e-9);
+    EXPECT_LE(result.ends[k].length, requested);
+    EXPECT_GE(result.ends[k].length, 0.0);
+    if (ends[k].inlet)
     {
-      EXPECT_NEAR(result.Ends[k].Length, requested, 1e-9);
+      EXPECT_NEAR(result.ends[k].length, requested, 1e-9);
     }
-    shortened += result.Ends[k].Length < requested ? 1 : 0;
-    const double expected = result.Ends[k].Length;
+    shortened += result.ends[k].length < requested ? 1 : 0;
+    const double expected = result.ends[k].length;
     // Direction: the far centre is along the clip normal (the centerline's tangent).
-    const std::array<double, 3> d{ { result.Ends[k].FarCentre[0] - ends[k].Centre[0],
-      result.Ends[k].FarCentre[1] - ends[k].Centre[1],
-      result.Ends[k].FarCentre[2] - ends[k].Centre[2] } };
-    EXPECT_NEAR(Dot3(d, ends[k].Normal), expected, 1e-9);
+    const std::array<double, 3> d{ { result.ends[k].farCentre[0] - ends[k].centre[0],
+      result.ends[k].farCentre[1] - ends[k].centre[1],
+      result.ends[k].farCentre[2] - ends[k].centre[2] } };
+    EXPECT_NEAR(Dot3(d, ends[k].normal), expected, 1e-9);
   }
-  EXPECT_EQ(result.Warnings.size(), shortened);
+  EXPECT_EQ(result.warnings.size(), shortened);
   vtkNew<vtkBenderCapFilter> cap;
-  vtkSmartPointer<vtkPolyData> closed = CapNamed(result.Surface, result, ends, cap);
+  vtkSmartPointer<vtkPolyData> closed = CapNamed(result.surface, result, ends, cap);
   ASSERT_EQ(cap->GetNumberOfCaps(), 3);
   MeshCheckOptions check;
   check.requireClosed = true;
@@ -229,7 +229,7 @@ TEST_F(FlowExtensionTest, ClippedAneurysmExtendedAndCappedIsClosedAndClean)
   EXPECT_GT(report.volume, 0.0);
   for (const auto& info : cap->GetCaps())
   {
-    EXPECT_GE(info.MinInteriorAngle, 20.0) << info.Name;
-    EXPECT_LE(info.MaxRimDistance, 1e-9 * info.Radius) << info.Name;
+    EXPECT_GE(info.minInteriorAngle, 20.0) << info.name;
+    EXPECT_LE(info.maxRimDistance, 1e-9 * info.radius) << info.name;
   }
 }

@@ -49,35 +49,35 @@ std::array<double, 3> UnitOf(std::array<double, 3> a)
 /// boundary loops are exactly the rims, each rim on its plane.
 void ExpectCleanOpenResult(const ClipResult& r, std::size_t ends, vtkPolyData* input)
 {
-  ASSERT_EQ(r.Ends.size(), ends);
-  const MeshCheckReport report = CheckMesh(r.Surface);
+  ASSERT_EQ(r.ends.size(), ends);
+  const MeshCheckReport report = CheckMesh(r.surface);
   EXPECT_EQ(report.components, 1);
   EXPECT_EQ(report.boundaryLoops.size(), ends);
   EXPECT_EQ(report.nonManifoldEdges, 0);
   EXPECT_EQ(report.nonManifoldVertices, 0);
   EXPECT_EQ(report.inconsistentEdges, 0);
   EXPECT_LE(report.degenerateTriangles, CheckMesh(input).degenerateTriangles);
-  for (const ClippedEnd& end : r.Ends)
+  for (const ClippedEnd& end : r.ends)
   {
-    ASSERT_GE(end.Rim.size(), 3u);
-    for (long long v : end.Rim)
+    ASSERT_GE(end.rim.size(), 3u);
+    for (long long v : end.rim)
     {
       std::array<double, 3> p;
-      r.Surface->GetPoint(v, p.data());
+      r.surface->GetPoint(v, p.data());
       const std::array<double, 3> d{
-        { p[0] - end.Centre[0], p[1] - end.Centre[1], p[2] - end.Centre[2] }
+        { p[0] - end.centre[0], p[1] - end.centre[1], p[2] - end.centre[2] }
       };
-      EXPECT_LE(std::abs(Dot3(d, end.Normal)), 1e-9 * end.Radius);
+      EXPECT_LE(std::abs(Dot3(d, end.normal)), 1e-9 * end.radius);
     }
-    EXPECT_GT(end.Radius, 0.5 * end.InscribedRadius);
-    EXPECT_LT(Dist(end.Centre, end.CenterlineEnd), end.Distance + end.Radius);
+    EXPECT_GT(end.radius, 0.5 * end.inscribedRadius);
+    EXPECT_LT(Dist(end.centre, end.centerlineEnd), end.distance + end.radius);
   }
 }
 
 struct Y
 {
-  vtkSmartPointer<vtkPolyData> Surface;
-  std::array<double, 3> Axis[3]; // unit directions outwards: trunk, left, right
+  vtkSmartPointer<vtkPolyData> surface;
+  std::array<double, 3> axis[3]; // unit directions outwards: trunk, left, right
 };
 
 Y MakeY(double halfAngleDegrees, double rt, double rc)
@@ -91,10 +91,10 @@ Y MakeY(double halfAngleDegrees, double rt, double rc)
   };
   const double bounds[6] = { -25, 25, -4.5, 4.5, -25, 25 };
   Y y;
-  y.Surface = ImplicitTubes(tubes, bounds, 0.4);
-  y.Axis[0] = { { 0, 0, -1 } };
-  y.Axis[1] = { { -std::sin(a), 0, std::cos(a) } };
-  y.Axis[2] = { { std::sin(a), 0, std::cos(a) } };
+  y.surface = ImplicitTubes(tubes, bounds, 0.4);
+  y.axis[0] = { { 0, 0, -1 } };
+  y.axis[1] = { { -std::sin(a), 0, std::cos(a) } };
+  y.axis[2] = { { std::sin(a), 0, std::cos(a) } };
   return y;
 }
 
@@ -104,12 +104,12 @@ int NearestAxis(const Y& y, const ClippedEnd& end, double& degrees)
   int best = 0;
   for (int k = 1; k < 3; ++k)
   {
-    if (Dot3(end.Normal, y.Axis[k]) > Dot3(end.Normal, y.Axis[best]))
+    if (Dot3(end.normal, y.axis[k]) > Dot3(end.normal, y.axis[best]))
     {
       best = k;
     }
   }
-  degrees = std::acos(std::min(1.0, Dot3(end.Normal, y.Axis[best]))) * 180.0 / M_PI;
+  degrees = std::acos(std::min(1.0, Dot3(end.normal, y.axis[best]))) * 180.0 / M_PI;
   return best;
 }
 
@@ -121,7 +121,7 @@ const Y& Y35()
 }
 const CenterlineResult& Y35Centerlines()
 {
-  static const CenterlineResult cl = ComputeCenterlines(Y35().Surface);
+  static const CenterlineResult cl = ComputeCenterlines(Y35().surface);
   return cl;
 }
 
@@ -136,23 +136,23 @@ TEST_F(VesselClipTest, OpenYEndsArePerpendicularToTheAxes)
 {
   const Y& y = Y35();
   const CenterlineResult& cl = Y35Centerlines();
-  ASSERT_TRUE(cl.Ok) << cl.Message;
-  ASSERT_EQ(FindCenterlineEnds(cl.Paths).size(), 3u);
-  ASSERT_EQ(FindCenterlineEnds(cl.Branches).size(), 3u); // the bifurcation is not an end
-  const ClipResult r = ClipVesselEnds(y.Surface, cl.Paths);
-  ExpectCleanOpenResult(r, 3, y.Surface);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  ASSERT_EQ(FindCenterlineEnds(cl.paths).size(), 3u);
+  ASSERT_EQ(FindCenterlineEnds(cl.branches).size(), 3u); // the bifurcation is not an end
+  const ClipResult r = ClipVesselEnds(y.surface, cl.paths);
+  ExpectCleanOpenResult(r, 3, y.surface);
   bool seen[3] = { false, false, false };
-  for (const ClippedEnd& end : r.Ends)
+  for (const ClippedEnd& end : r.ends)
   {
     double degrees = 0;
     const int axis = NearestAxis(y, end, degrees);
     seen[axis] = true;
-    EXPECT_LT(degrees, 2.0) << "end at " << end.Centre[0] << " " << end.Centre[2];
-    EXPECT_NEAR(end.Radius, axis == 0 ? 3.0 : 2.4, 0.1);
-    EXPECT_GE(end.Distance, end.InscribedRadius * 0.99); // at least one radius inside
+    EXPECT_LT(degrees, 2.0) << "end at " << end.centre[0] << " " << end.centre[2];
+    EXPECT_NEAR(end.radius, axis == 0 ? 3.0 : 2.4, 0.1);
+    EXPECT_GE(end.distance, end.inscribedRadius * 0.99); // at least one radius inside
     // The cut is at least a radius inside the old open end (measured along the axis).
     EXPECT_LT(
-      std::abs(end.Centre[2]), 25.0 - 0.9 * end.InscribedRadius * std::abs(y.Axis[axis][2]));
+      std::abs(end.centre[2]), 25.0 - 0.9 * end.inscribedRadius * std::abs(y.axis[axis][2]));
   }
   EXPECT_TRUE(seen[0] && seen[1] && seen[2]);
 }
@@ -163,87 +163,87 @@ TEST_F(VesselClipTest, EndPathsGiveThePlanesTheClipCutsBy)
   // for the cut at that arc length: ClipVesselEnds must cut exactly on ClipPlaneAt's plane.
   const Y& y = Y35();
   const CenterlineResult& cl = Y35Centerlines();
-  ASSERT_TRUE(cl.Ok) << cl.Message;
-  const std::vector<CenterlineEndPath> paths = FindCenterlineEndPaths(cl.Paths);
-  const std::vector<CenterlineEnd> ends = FindCenterlineEnds(cl.Paths);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  const std::vector<CenterlineEndPath> paths = FindCenterlineEndPaths(cl.paths);
+  const std::vector<CenterlineEnd> ends = FindCenterlineEnds(cl.paths);
   ASSERT_EQ(paths.size(), 3u);
-  const ClipResult defaults = ClipVesselEnds(y.Surface, cl.Paths);
-  ASSERT_EQ(defaults.Ends.size(), 3u);
+  const ClipResult defaults = ClipVesselEnds(y.surface, cl.paths);
+  ASSERT_EQ(defaults.ends.size(), 3u);
   for (std::size_t k = 0; k < paths.size(); ++k)
   {
     const CenterlineEndPath& path = paths[k];
-    EXPECT_EQ(path.Position, ends[k].Position);
-    ASSERT_GE(path.Points.size(), 2u);
-    ASSERT_EQ(path.ArcLengths.size(), path.Points.size());
-    EXPECT_EQ(path.Points.front(), path.Position);
-    for (std::size_t i = 1; i < path.ArcLengths.size(); ++i)
+    EXPECT_EQ(path.position, ends[k].position);
+    ASSERT_GE(path.points.size(), 2u);
+    ASSERT_EQ(path.arcLengths.size(), path.points.size());
+    EXPECT_EQ(path.points.front(), path.position);
+    for (std::size_t i = 1; i < path.arcLengths.size(); ++i)
     {
-      EXPECT_NEAR(path.ArcLengths[i] - path.ArcLengths[i - 1],
-        Dist(path.Points[i], path.Points[i - 1]),
+      EXPECT_NEAR(path.arcLengths[i] - path.arcLengths[i - 1],
+        Dist(path.points[i], path.points[i - 1]),
         1e-9);
     }
-    EXPECT_NEAR(path.MaximumDistance, 0.5 * path.ArcLengths.back(), 1e-9);
+    EXPECT_NEAR(path.maximumDistance, 0.5 * path.arcLengths.back(), 1e-9);
     // The default: at least a radius in, where the default clip cut (the open Y's first try
     // succeeds).
-    EXPECT_GT(path.DefaultDistance, 0.9 * path.Radius);
-    EXPECT_NEAR(defaults.Ends[k].Distance, path.DefaultDistance, 1e-9);
+    EXPECT_GT(path.defaultDistance, 0.9 * path.radius);
+    EXPECT_NEAR(defaults.ends[k].distance, path.defaultDistance, 1e-9);
 
     // A cut 3 mm deeper than the default, requested by the end and the distance.
-    const double d = path.DefaultDistance + 3.0;
-    ASSERT_LT(d, path.MaximumDistance);
+    const double d = path.defaultDistance + 3.0;
+    ASSERT_LT(d, path.maximumDistance);
     const ClipPlane plane = ClipPlaneAt(path, d);
-    EXPECT_NEAR(NearestDistanceOnPath(path, plane.Centre), d, 1e-6);
-    EXPECT_NEAR(Dot3(plane.Normal, plane.Normal), 1.0, 1e-12);
+    EXPECT_NEAR(NearestDistanceOnPath(path, plane.centre), d, 1e-6);
+    EXPECT_NEAR(Dot3(plane.normal, plane.normal), 1.0, 1e-12);
     // Outwards: towards the end.
-    EXPECT_GT(Dot3(plane.Normal,
-                { { path.Position[0] - plane.Centre[0],
-                  path.Position[1] - plane.Centre[1],
-                  path.Position[2] - plane.Centre[2] } }),
+    EXPECT_GT(Dot3(plane.normal,
+                { { path.position[0] - plane.centre[0],
+                  path.position[1] - plane.centre[1],
+                  path.position[2] - plane.centre[2] } }),
       0.0);
     ClipOptions options;
-    options.Ends.push_back({ path.Position, d });
-    const ClipResult r = ClipVesselEnds(y.Surface, cl.Paths, options);
-    ExpectCleanOpenResult(r, 3, y.Surface);
-    const ClippedEnd& end = r.Ends[k];
-    EXPECT_TRUE(end.UserChosen);
-    EXPECT_NEAR(end.Distance, d, 1e-12);
-    EXPECT_GT(Dot3(end.Normal, plane.Normal), 1.0 - 1e-9);
-    EXPECT_NEAR(end.InscribedRadius, plane.Radius, 1e-12);
-    for (long long v : end.Rim)
+    options.ends.push_back({ path.position, d });
+    const ClipResult r = ClipVesselEnds(y.surface, cl.paths, options);
+    ExpectCleanOpenResult(r, 3, y.surface);
+    const ClippedEnd& end = r.ends[k];
+    EXPECT_TRUE(end.userChosen);
+    EXPECT_NEAR(end.distance, d, 1e-12);
+    EXPECT_GT(Dot3(end.normal, plane.normal), 1.0 - 1e-9);
+    EXPECT_NEAR(end.inscribedRadius, plane.radius, 1e-12);
+    for (long long v : end.rim)
     {
       std::array<double, 3> p;
-      r.Surface->GetPoint(v, p.data());
+      r.surface->GetPoint(v, p.data());
       EXPECT_LE(std::abs(Dot3(
-                  { { p[0] - plane.Centre[0], p[1] - plane.Centre[1], p[2] - plane.Centre[2] } },
-                  plane.Normal)),
-        1e-9 * plane.Radius);
+                  { { p[0] - plane.centre[0], p[1] - plane.centre[1], p[2] - plane.centre[2] } },
+                  plane.normal)),
+        1e-9 * plane.radius);
     }
     // The rim is centred on the centerline (the tubes are round) and 3 mm deeper than the
     // default's.
-    EXPECT_LT(Dist(end.Centre, plane.Centre), 0.1 * plane.Radius);
-    EXPECT_NEAR(Dist(end.Centre, defaults.Ends[k].Centre), 3.0, 0.1 * plane.Radius);
+    EXPECT_LT(Dist(end.centre, plane.centre), 0.1 * plane.radius);
+    EXPECT_NEAR(Dist(end.centre, defaults.ends[k].centre), 3.0, 0.1 * plane.radius);
   }
   // Clamped to the path.
   const ClipPlane before = ClipPlaneAt(paths[0], -5.0);
-  EXPECT_EQ(before.Centre, paths[0].Position);
+  EXPECT_EQ(before.centre, paths[0].position);
   // The far end of the path is beyond the range: the nearest allowed point is its limit.
   EXPECT_NEAR(
-    NearestDistanceOnPath(paths[0], paths[0].Points.back()), paths[0].MaximumDistance, 1e-9);
+    NearestDistanceOnPath(paths[0], paths[0].points.back()), paths[0].maximumDistance, 1e-9);
 }
 
 TEST_F(VesselClipTest, ClosedYIsOpenedAtItsThreeEnds)
 {
   const Y& y = Y35();
   vtkNew<vtkBenderCapFilter> cap;
-  cap->SetInputData(y.Surface);
+  cap->SetInputData(y.surface);
   cap->Update();
   ASSERT_TRUE(CheckMesh(cap->GetOutput()).closed);
   vtkSmartPointer<vtkPolyData> closed = cap->GetOutput();
   const CenterlineResult cl = ComputeCenterlines(closed);
-  ASSERT_TRUE(cl.Ok) << cl.Message;
-  const ClipResult r = ClipVesselEnds(closed, cl.Branches);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  const ClipResult r = ClipVesselEnds(closed, cl.branches);
   ExpectCleanOpenResult(r, 3, closed);
-  for (const ClippedEnd& end : r.Ends)
+  for (const ClippedEnd& end : r.ends)
   {
     // The centerline of a closed surface runs a few degrees off the axis near an oblique flat
     // end (it veers towards the end's corner); the cut follows the centerline (5 degrees: 4.8
@@ -252,10 +252,10 @@ TEST_F(VesselClipTest, ClosedYIsOpenedAtItsThreeEnds)
     NearestAxis(y, end, degrees);
     EXPECT_LT(degrees, 6.0);
     // The flat caps (z = -25, z = 25) are gone: the whole rim is inside the box.
-    for (long long v : end.Rim)
+    for (long long v : end.rim)
     {
       std::array<double, 3> p;
-      r.Surface->GetPoint(v, p.data());
+      r.surface->GetPoint(v, p.data());
       EXPECT_LT(std::abs(p[2]), 24.9);
     }
   }
@@ -266,36 +266,36 @@ TEST_F(VesselClipTest, NeighbourRunningAlongsideIsNotCut)
   // Children 2 x 8 degrees apart: near their ends the gap between them is about one radius,
   // so each end's plane, extended, crosses the other child.
   const Y y = MakeY(8.0, 3.0, 2.0);
-  const CenterlineResult cl = ComputeCenterlines(y.Surface);
-  ASSERT_TRUE(cl.Ok) << cl.Message;
+  const CenterlineResult cl = ComputeCenterlines(y.surface);
+  ASSERT_TRUE(cl.ok) << cl.message;
   ClipOptions options;
   // Cut the left child deep, 8 mm from its end (where the children are 2.2 mm apart).
   const double z = 25.0;
-  options.Ends.push_back({ { { -z * std::tan(8.0 * M_PI / 180.0), 0, z } }, 8.0 });
-  const ClipResult r = ClipVesselEnds(y.Surface, cl.Paths, options);
-  ExpectCleanOpenResult(r, 3, y.Surface);
+  options.ends.push_back({ { { -z * std::tan(8.0 * M_PI / 180.0), 0, z } }, 8.0 });
+  const ClipResult r = ClipVesselEnds(y.surface, cl.paths, options);
+  ExpectCleanOpenResult(r, 3, y.surface);
   // The right child keeps its length: its points reach near its own default cut.
   double leftReach = 0, rightReach = 0;
-  for (vtkIdType i = 0; i < r.Surface->GetNumberOfPoints(); ++i)
+  for (vtkIdType i = 0; i < r.surface->GetNumberOfPoints(); ++i)
   {
     std::array<double, 3> p;
-    r.Surface->GetPoint(i, p.data());
+    r.surface->GetPoint(i, p.data());
     if (p[0] < -0.5)
     {
-      leftReach = std::max(leftReach, Dot3(p, y.Axis[1]));
+      leftReach = std::max(leftReach, Dot3(p, y.axis[1]));
     }
     else if (p[0] > 0.5)
     {
-      rightReach = std::max(rightReach, Dot3(p, y.Axis[2]));
+      rightReach = std::max(rightReach, Dot3(p, y.axis[2]));
     }
   }
   int user = 0;
-  for (const ClippedEnd& end : r.Ends)
+  for (const ClippedEnd& end : r.ends)
   {
-    user += end.UserChosen ? 1 : 0;
-    if (end.UserChosen)
+    user += end.userChosen ? 1 : 0;
+    if (end.userChosen)
     {
-      EXPECT_NEAR(end.Distance, 8.0, 1e-9);
+      EXPECT_NEAR(end.distance, 8.0, 1e-9);
     }
   }
   EXPECT_EQ(user, 1);
@@ -317,16 +317,16 @@ TEST_F(VesselClipTest, ObliqueOpenEndIsRecutPerpendicular)
     }
   }
   const CenterlineResult cl = ComputeCenterlines(tube);
-  ASSERT_TRUE(cl.Ok) << cl.Message;
-  const ClipResult r = ClipVesselEnds(tube, cl.Paths);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  const ClipResult r = ClipVesselEnds(tube, cl.paths);
   ExpectCleanOpenResult(r, 2, tube);
-  for (const ClippedEnd& end : r.Ends)
+  for (const ClippedEnd& end : r.ends)
   {
-    EXPECT_GT(std::abs(end.Normal[2]), std::cos(1.0 * M_PI / 180.0));
-    EXPECT_NEAR(end.Radius, 2.0, 0.05);
-    if (end.Normal[2] > 0)
+    EXPECT_GT(std::abs(end.normal[2]), std::cos(1.0 * M_PI / 180.0));
+    EXPECT_NEAR(end.radius, 2.0, 0.05);
+    if (end.normal[2] > 0)
     {
-      EXPECT_LT(end.Centre[2], 30.0 - 2.0 * std::tan(30.0 * M_PI / 180.0)); // below the slant
+      EXPECT_LT(end.centre[2], 30.0 - 2.0 * std::tan(30.0 * M_PI / 180.0)); // below the slant
     }
   }
 }
@@ -335,36 +335,36 @@ TEST_F(VesselClipTest, AneurysmThreeEndsPerpendicularDomeWhole)
 {
   auto surface = ReadMesh(std::string(BENDER_EXTERNAL_DATA_DIR) + "/aneurysm_data.stl");
   const CenterlineResult cl = ComputeCenterlines(surface);
-  ASSERT_TRUE(cl.Ok) << cl.Message;
-  const ClipResult r = ClipVesselEnds(surface, cl.Paths);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  const ClipResult r = ClipVesselEnds(surface, cl.paths);
   ExpectCleanOpenResult(r, 3, surface);
-  vtkDataArray* tangent = cl.Branches->GetPointData()->GetArray(VesselArrays::FrenetTangent);
+  vtkDataArray* tangent = cl.branches->GetPointData()->GetArray(VesselArrays::FrenetTangent);
   ASSERT_NE(tangent, nullptr);
-  for (const ClippedEnd& end : r.Ends)
+  for (const ClippedEnd& end : r.ends)
   {
     // The tangent of the nearest centerline point.
     vtkIdType nearest = 0;
     double best = 1e300;
-    for (vtkIdType i = 0; i < cl.Branches->GetNumberOfPoints(); ++i)
+    for (vtkIdType i = 0; i < cl.branches->GetNumberOfPoints(); ++i)
     {
       std::array<double, 3> p;
-      cl.Branches->GetPoint(i, p.data());
-      if (Dist(p, end.Centre) < best)
+      cl.branches->GetPoint(i, p.data());
+      if (Dist(p, end.centre) < best)
       {
-        best = Dist(p, end.Centre);
+        best = Dist(p, end.centre);
         nearest = i;
       }
     }
     std::array<double, 3> t;
     tangent->GetTuple(nearest, t.data());
     t = UnitOf(t);
-    const double degrees = std::acos(std::min(1.0, std::abs(Dot3(t, end.Normal)))) * 180 / M_PI;
+    const double degrees = std::acos(std::min(1.0, std::abs(Dot3(t, end.normal)))) * 180 / M_PI;
     EXPECT_LT(degrees, 5.0);
-    EXPECT_LT(best, 0.25 * end.Radius); // the rim is centred on the centerline
+    EXPECT_LT(best, 0.25 * end.radius); // the rim is centred on the centerline
   }
   // Only the three end pieces are removed: most of the area is kept, the dome included.
   const double before = CheckMesh(surface).area;
-  const double after = CheckMesh(r.Surface).area;
+  const double after = CheckMesh(r.surface).area;
   EXPECT_GT(after, 0.6 * before);
   EXPECT_LT(after, before);
 }
@@ -373,12 +373,12 @@ TEST_F(VesselClipTest, BadRequestsAreOneLineErrors)
 {
   const Y& y = Y35();
   const CenterlineResult& cl = Y35Centerlines();
-  ASSERT_TRUE(cl.Ok) << cl.Message;
+  ASSERT_TRUE(cl.ok) << cl.message;
   ClipOptions far;
-  far.Ends.push_back({ { { 100, 100, 100 } }, -1.0 });
+  far.ends.push_back({ { { 100, 100, 100 } }, -1.0 });
   try
   {
-    ClipVesselEnds(y.Surface, cl.Paths, far);
+    ClipVesselEnds(y.surface, cl.paths, far);
     ADD_FAILURE() << "no exception";
   }
   catch (const InputError& e)
@@ -387,16 +387,16 @@ TEST_F(VesselClipTest, BadRequestsAreOneLineErrors)
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
   }
   ClipOptions tooDeep;
-  tooDeep.Ends.push_back({ { { 0, 0, -25 } }, 500.0 });
-  EXPECT_THROW(ClipVesselEnds(y.Surface, cl.Paths, tooDeep), InputError);
+  tooDeep.ends.push_back({ { { 0, 0, -25 } }, 500.0 });
+  EXPECT_THROW(ClipVesselEnds(y.surface, cl.paths, tooDeep), InputError);
   vtkNew<vtkPolyData> empty;
-  EXPECT_THROW(ClipVesselEnds(empty, cl.Paths), InputError);
+  EXPECT_THROW(ClipVesselEnds(empty, cl.paths), InputError);
   vtkNew<vtkPolyData> noRadius;
-  noRadius->DeepCopy(cl.Paths);
+  noRadius->DeepCopy(cl.paths);
   noRadius->GetPointData()->RemoveArray(VesselArrays::MaximumInscribedSphereRadius);
   try
   {
-    ClipVesselEnds(y.Surface, noRadius);
+    ClipVesselEnds(y.surface, noRadius);
     ADD_FAILURE() << "no exception";
   }
   catch (const InputError& e)

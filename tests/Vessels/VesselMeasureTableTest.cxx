@@ -67,28 +67,28 @@ TEST(VesselMeasureTable, RowsHaveUniqueKeysAndGetters)
   std::set<std::string> keys;
   std::set<std::string> panel;
   BranchMeasures b;
-  b.Length = 12.5;
-  b.BendAngle = 30.0;
-  b.MinRadius = 1.5;
+  b.length = 12.5;
+  b.bendAngle = 30.0;
+  b.minRadius = 1.5;
   for (const VesselMeasure& m : VesselMeasureTable())
   {
-    EXPECT_FALSE(m.Key.empty());
-    EXPECT_FALSE(m.Label.empty()) << m.Key;
-    EXPECT_TRUE(keys.insert(m.Key).second) << m.Key << " twice";
-    ASSERT_TRUE(m.Get) << m.Key;
-    EXPECT_TRUE(std::isfinite(m.Get(b))) << m.Key;
-    if (m.Panel)
+    EXPECT_FALSE(m.key.empty());
+    EXPECT_FALSE(m.label.empty()) << m.key;
+    EXPECT_TRUE(keys.insert(m.key).second) << m.key << " twice";
+    ASSERT_TRUE(m.get) << m.key;
+    EXPECT_TRUE(std::isfinite(m.get(b))) << m.key;
+    if (m.panel)
     {
-      panel.insert(m.Key);
+      panel.insert(m.key);
     }
   }
   // The panel's held branch: length, bend angle and narrowest radius, live during a bend.
   EXPECT_EQ(panel, (std::set<std::string>{ "length", "bendAngle", "minRadius" }));
   const auto& table = VesselMeasureTable();
   const auto bend = std::find_if(
-    table.begin(), table.end(), [](const VesselMeasure& m) { return m.Key == "bendAngle"; });
+    table.begin(), table.end(), [](const VesselMeasure& m) { return m.key == "bendAngle"; });
   ASSERT_NE(bend, table.end());
-  EXPECT_EQ(bend->Get(b), 30.0);
+  EXPECT_EQ(bend->get(b), 30.0);
   EXPECT_EQ(MeasureTitle(*bend), "Bend angle (deg)");
 }
 
@@ -102,12 +102,12 @@ TEST(VesselMeasureTable, RegisteringChecksTheRow)
     RegisterVesselMeasure({ "noGetter", "No getter", "", 2, nullptr }), std::invalid_argument);
   EXPECT_THROW(
     RegisterVesselMeasure(
-      { "length", "Length again", "mm", 2, [](const BranchMeasures& b) { return b.Length; } }),
+      { "length", "Length again", "mm", 2, [](const BranchMeasures& b) { return b.length; } }),
     std::invalid_argument);
   RegisterVesselMeasure(
-    { "chord", "Chord", "mm", 2, [](const BranchMeasures& b) { return b.Chord; } });
+    { "chord", "Chord", "mm", 2, [](const BranchMeasures& b) { return b.chord; } });
   EXPECT_EQ(VesselMeasureTable().size(), rows + 1);
-  EXPECT_EQ(VesselMeasureTable().back().Key, "chord");
+  EXPECT_EQ(VesselMeasureTable().back().key, "chord");
   EXPECT_TRUE(UnregisterVesselMeasure("chord"));
   EXPECT_FALSE(UnregisterVesselMeasure("chord"));
   EXPECT_EQ(VesselMeasureTable().size(), rows);
@@ -129,16 +129,16 @@ TEST(VesselMeasureTable, EndWindowRuleOnArcs)
     EXPECT_NEAR(ends[1][0], -std::sin(angle), 1e-3);
     EXPECT_NEAR(ends[1][1], std::cos(angle), 1e-3);
     const BranchMeasures m = MeasureStretch(p, r);
-    EXPECT_NEAR(m.BendAngle, degrees, 0.1);
-    EXPECT_NEAR(m.Length, bend * angle, 1e-3 * bend * angle);
-    EXPECT_NEAR(m.MaxCurvature, 1.0 / bend, 0.02 / bend);
-    EXPECT_NEAR(m.MinRadius, radius, 1e-12);
+    EXPECT_NEAR(m.bendAngle, degrees, 0.1);
+    EXPECT_NEAR(m.length, bend * angle, 1e-3 * bend * angle);
+    EXPECT_NEAR(m.maxCurvature, 1.0 / bend, 0.02 / bend);
+    EXPECT_NEAR(m.minRadius, radius, 1e-12);
     // The plan's table (MeasureBranches of the polyline) and the stretch agree exactly.
     const VesselMeasurements table = MeasureBranches(Polyline(p, r));
-    ASSERT_EQ(table.Branches.size(), 1u);
+    ASSERT_EQ(table.branches.size(), 1u);
     for (const VesselMeasure& row : VesselMeasureTable())
     {
-      EXPECT_NEAR(row.Get(table.Branches[0]), row.Get(m), 1e-9) << row.Key;
+      EXPECT_NEAR(row.get(table.branches[0]), row.get(m), 1e-9) << row.key;
     }
   }
 }
@@ -151,13 +151,13 @@ TEST(VesselMeasureTable, EndWindowIsAtMostAThirdOfTheStretch)
   const std::vector<double> r(p.size(), 5.0);
   EXPECT_NEAR(EndWindow(p, r), 1.0, 1e-12);
   const BranchMeasures m = MeasureStretch(p, r);
-  EXPECT_NEAR(m.BendAngle, 0.0, 1e-9);
-  EXPECT_NEAR(m.Tortuosity, 1.0, 1e-12);
+  EXPECT_NEAR(m.bendAngle, 0.0, 1e-9);
+  EXPECT_NEAR(m.tortuosity, 1.0, 1e-12);
   // Two samples: the chord at both ends.
   const BranchMeasures two = MeasureStretch({ p[0], p[1] }, { 1.0, 1.0 });
-  EXPECT_NEAR(two.BendAngle, 0.0, 1e-12);
-  EXPECT_NEAR(two.StartTangent[0], 1.0, 1e-12);
+  EXPECT_NEAR(two.bendAngle, 0.0, 1e-12);
+  EXPECT_NEAR(two.startTangent[0], 1.0, 1e-12);
   // Too few points or radii of another count: the default measures.
-  EXPECT_EQ(MeasureStretch({ p[0] }, { 1.0 }).Length, 0.0);
-  EXPECT_EQ(MeasureStretch(p, { 1.0 }).Length, 0.0);
+  EXPECT_EQ(MeasureStretch({ p[0] }, { 1.0 }).length, 0.0);
+  EXPECT_EQ(MeasureStretch(p, { 1.0 }).length, 0.0);
 }

@@ -132,7 +132,7 @@ vtkSmartPointer<vtkPolyData> ImplicitTubes(const std::vector<Segment>& segments,
         double f = std::numeric_limits<double>::infinity();
         for (const auto& s : segments)
         {
-          f = std::min(f, SegmentDistance(p, s.A, s.B) - s.Radius);
+          f = std::min(f, SegmentDistance(p, s.a, s.b) - s.radius);
         }
         values->SetValue(id, f);
       }

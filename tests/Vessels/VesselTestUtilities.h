@@ -33,8 +33,8 @@ vtkSmartPointer<vtkPolyData> SweptTube(const Curve& curve,
 /// leave the grid (the trunk's end at z = -zCut, the children's at z = +zCut).
 struct Segment
 {
-  Point3 A, B;
-  double Radius;
+  Point3 a, b;
+  double radius;
 };
 vtkSmartPointer<vtkPolyData> ImplicitTubes(const std::vector<Segment>& segments,
   const double bounds[6],

@@ -52,7 +52,7 @@ TEST(VesselWorkflow, CenterlinesWrittenWithTheirArrays)
   options.input = Aneurysm;
   options.output = out;
   const CenterlineWorkflowResult result = ComputeCenterlinesOfFile(options);
-  EXPECT_EQ(result.measures.Branches.size(), 3u);
+  EXPECT_EQ(result.measures.branches.size(), 3u);
   auto lines = ReadMesh(out);
   EXPECT_EQ(lines->GetNumberOfLines(), 3);
   for (const char* name : { VesselArrays::MaximumInscribedSphereRadius,
@@ -145,8 +145,8 @@ TEST(VesselWorkflow, DemoPlanBendAngleMatchesThePlanWithinTwoDegrees)
   };
   const auto vec = [](const Point3& p) { return Vec3{ p[0], p[1], p[2] }; };
   const bool atStart = bent->startTurn > bent->endTurn;
-  const Point3& endBefore = atStart ? bent->before->StartTangent : bent->before->EndTangent;
-  const Point3& otherBefore = atStart ? bent->before->EndTangent : bent->before->StartTangent;
+  const Point3& endBefore = atStart ? bent->before->startTangent : bent->before->endTangent;
+  const Point3& otherBefore = atStart ? bent->before->endTangent : bent->before->startTangent;
   const double rigidTurn = AngleDegrees(vec(endBefore), move(endBefore));
   const double rigidBendChange = AngleDegrees(move(endBefore), vec(otherBefore)) -
     AngleDegrees(vec(endBefore), vec(otherBefore));
@@ -154,17 +154,17 @@ TEST(VesselWorkflow, DemoPlanBendAngleMatchesThePlanWithinTwoDegrees)
     std::max(bent->startTurn, bent->endTurn),
     planned,
     rigidTurn,
-    bent->after->BendAngle - bent->before->BendAngle,
+    bent->after->bendAngle - bent->before->bendAngle,
     rigidBendChange);
   EXPECT_NEAR(std::max(bent->startTurn, bent->endTurn), rigidTurn, 2.0);
   EXPECT_NEAR(std::max(bent->startTurn, bent->endTurn), planned, 2.0);
-  EXPECT_NEAR(bent->after->BendAngle - bent->before->BendAngle, rigidBendChange, 2.0);
+  EXPECT_NEAR(bent->after->bendAngle - bent->before->bendAngle, rigidBendChange, 2.0);
   for (const auto& c : result.branches)
   {
     if (&c != bent)
     {
       EXPECT_LT(std::max(c.startTurn, c.endTurn), 2.0);
-      EXPECT_NEAR(c.after->Length, c.before->Length, 0.02 * c.before->Length);
+      EXPECT_NEAR(c.after->length, c.before->length, 0.02 * c.before->length);
     }
   }
   const std::string json = MeasurementsToJson(result);
@@ -179,35 +179,35 @@ TEST(VesselWorkflow, SegmentationPhantomCenterlinesFollowTheSourceSurface)
 {
   const DemoVessel demo = SegmentDemoVessel(DemoVesselPath());
   CenterlineResult segmented = ComputeCenterlines(demo.surface);
-  ASSERT_TRUE(segmented.Ok) << segmented.Message;
-  ASSERT_EQ(segmented.Endpoints.size(), 3u) << "the aneurysm's sac must not be a vessel end";
-  for (const auto& end : segmented.Endpoints)
+  ASSERT_TRUE(segmented.ok) << segmented.message;
+  ASSERT_EQ(segmented.endpoints.size(), 3u) << "the aneurysm's sac must not be a vessel end";
+  for (const auto& end : segmented.endpoints)
   {
-    EXPECT_EQ(end.Kind, EndpointKind::VoronoiTip);
+    EXPECT_EQ(end.kind, EndpointKind::VoronoiTip);
   }
-  EXPECT_EQ(segmented.Bifurcations.size(), 1u);
+  EXPECT_EQ(segmented.bifurcations.size(), 1u);
   const CenterlineResult source = ComputeCenterlines(ReadMesh(Aneurysm));
-  ASSERT_TRUE(source.Ok) << source.Message;
+  ASSERT_TRUE(source.ok) << source.message;
   // Distance from each segmented centerline point to the source's centerlines, skipping two
   // end radii around the ends (a closed tip stops about one radius before the cut) and around
   // the bifurcation.
   double largest = 0.0;
-  for (const auto& end : source.Endpoints)
+  for (const auto& end : source.endpoints)
   {
-    largest = std::max(largest, end.Radius);
+    largest = std::max(largest, end.radius);
   }
   std::vector<Point3> excluded;
-  for (const auto& end : segmented.Endpoints)
+  for (const auto& end : segmented.endpoints)
   {
-    excluded.push_back(end.Position);
+    excluded.push_back(end.position);
   }
-  for (const auto& b : segmented.Bifurcations)
+  for (const auto& b : segmented.bifurcations)
   {
     excluded.push_back(b);
   }
   std::vector<std::vector<Point3>> sourceLines;
   {
-    vtkCellArray* cells = source.Paths->GetLines();
+    vtkCellArray* cells = source.paths->GetLines();
     cells->InitTraversal();
     vtkIdType n = 0;
     const vtkIdType* ids = nullptr;
@@ -216,17 +216,17 @@ TEST(VesselWorkflow, SegmentationPhantomCenterlinesFollowTheSourceSurface)
       std::vector<Point3> line(static_cast<std::size_t>(n));
       for (vtkIdType k = 0; k < n; ++k)
       {
-        source.Paths->GetPoint(ids[k], line[k].data());
+        source.paths->GetPoint(ids[k], line[k].data());
       }
       sourceLines.push_back(line);
     }
   }
   double worst = 0.0;
   int checked = 0;
-  for (vtkIdType i = 0; i < segmented.Paths->GetNumberOfPoints(); ++i)
+  for (vtkIdType i = 0; i < segmented.paths->GetNumberOfPoints(); ++i)
   {
     Point3 p;
-    segmented.Paths->GetPoint(i, p.data());
+    segmented.paths->GetPoint(i, p.data());
     bool skip = false;
     for (const auto& x : excluded)
     {
@@ -259,8 +259,8 @@ TEST(VesselWorkflow, RibbonOnTheCenterlineFromTwoPicks)
 {
   auto surface = ReadMesh(Aneurysm);
   const CenterlineResult result = ComputeCenterlines(surface);
-  ASSERT_TRUE(result.Ok) << result.Message;
-  vtkPolyData* paths = result.Paths;
+  ASSERT_TRUE(result.ok) << result.message;
+  vtkPolyData* paths = result.paths;
   vtkDataArray* radius =
     paths->GetPointData()->GetArray(VesselArrays::MaximumInscribedSphereRadius);
   vtkDataArray* tangent = paths->GetPointData()->GetArray(VesselArrays::FrenetTangent);
@@ -286,9 +286,9 @@ TEST(VesselWorkflow, RibbonOnTheCenterlineFromTwoPicks)
   tangent->GetTuple(ids[30], t30);
   tangent->GetTuple(ids[150], t150);
   EXPECT_LT(
-    Distance(placed.ribbon.start.position, Vec3{ p30[0], p30[1], p30[2] }), 3 * result.Step);
+    Distance(placed.ribbon.start.position, Vec3{ p30[0], p30[1], p30[2] }), 3 * result.step);
   EXPECT_LT(
-    Distance(placed.ribbon.end.position, Vec3{ p150[0], p150[1], p150[2] }), 3 * result.Step);
+    Distance(placed.ribbon.end.position, Vec3{ p150[0], p150[1], p150[2] }), 3 * result.step);
   EXPECT_GT(Dot(placed.ribbon.start.tangent, Vec3{ t30[0], t30[1], t30[2] }), 0.99);
   EXPECT_GT(Dot(placed.ribbon.end.tangent, Vec3{ t150[0], t150[1], t150[2] }), 0.99);
   EXPECT_NEAR(Dot(placed.ribbon.start.normal, placed.ribbon.start.tangent), 0.0, 1e-9);
@@ -333,19 +333,19 @@ TEST(VesselWorkflow, ARegisteredMeasureAppearsInTheJsonAndTheTextTables)
   MeasureWorkflowResult result;
   result.before.surface = test::SweptTube(axis, 0.0, 30.0, 61, 32, 2.0);
   result.before.centerlines = ComputeCenterlines(result.before.surface);
-  ASSERT_TRUE(result.before.centerlines.Ok) << result.before.centerlines.Message;
-  result.before.measures = MeasureBranches(result.before.centerlines.Branches);
-  ASSERT_EQ(result.before.measures.Branches.size(), 1u);
+  ASSERT_TRUE(result.before.centerlines.ok) << result.before.centerlines.message;
+  result.before.measures = MeasureBranches(result.before.centerlines.branches);
+  ASSERT_EQ(result.before.measures.branches.size(), 1u);
   result.after = result.before;
   BranchComparison same;
-  same.before = result.before.measures.Branches[0];
-  same.after = result.after->measures.Branches[0];
+  same.before = result.before.measures.branches[0];
+  same.after = result.after->measures.branches[0];
   result.branches.push_back(same);
-  const double length = result.before.measures.Branches[0].Length;
+  const double length = result.before.measures.branches[0].length;
 
   RegisterVesselMeasure(
     { "twiceTheLength", "Twice the length", "mm", 3, [](const BranchMeasures& b) {
-       return 2.0 * b.Length;
+       return 2.0 * b.length;
      } });
   const auto json = nlohmann::json::parse(MeasurementsToJson(result));
   const auto centerlineJson = nlohmann::json::parse(CenterlinesToJson(result.before));
@@ -364,7 +364,7 @@ TEST(VesselWorkflow, ARegisteredMeasureAppearsInTheJsonAndTheTextTables)
   // Every row of the table is in the JSON; unregistered, the dummy is gone.
   for (const VesselMeasure& m : VesselMeasureTable())
   {
-    EXPECT_TRUE(centerlineJson["branches"][0].contains(m.Key)) << m.Key;
+    EXPECT_TRUE(centerlineJson["branches"][0].contains(m.key)) << m.key;
   }
   EXPECT_EQ(CenterlinesToJson(result.before).find("twiceTheLength"), std::string::npos);
   EXPECT_EQ(MeasurementsToText(result).find("Twice the length"), std::string::npos);
@@ -389,14 +389,14 @@ TEST(VesselWorkflow, LiveMeasuresAndThePlanTableAgreeOnTheDemo)
   ASSERT_TRUE(vessels.HoldBranch(demo.initial, session.GetSurface()));
   const auto agree = [](const HeldBranchMeasures& live, vtkPolyData* stretch)
   {
-    ASSERT_TRUE(live.Valid);
+    ASSERT_TRUE(live.valid);
     ASSERT_NE(stretch, nullptr);
     const VesselMeasurements table = MeasureBranches(stretch);
-    ASSERT_EQ(table.Branches.size(), 1u);
+    ASSERT_EQ(table.branches.size(), 1u);
     for (const VesselMeasure& m : VesselMeasureTable())
     {
-      EXPECT_NEAR(m.Get(live), m.Get(table.Branches[0]), 1e-9 * (1.0 + std::abs(m.Get(live))))
-        << m.Key;
+      EXPECT_NEAR(m.get(live), m.get(table.branches[0]), 1e-9 * (1.0 + std::abs(m.get(live))))
+        << m.key;
     }
   };
   const HeldBranchMeasures before = vessels.MeasureHeld();
@@ -411,12 +411,12 @@ TEST(VesselWorkflow, LiveMeasuresAndThePlanTableAgreeOnTheDemo)
   const HeldBranchMeasures now = vessels.MeasureHeld(live);
   agree(now, vessels.HeldStretch(live));
   std::printf("demo held stretch: length %.2f -> %.2f mm, bend %.2f -> %.2f deg\n",
-    before.Length,
-    now.Length,
-    before.BendAngle,
-    now.BendAngle);
+    before.length,
+    now.length,
+    before.bendAngle,
+    now.bendAngle);
   // The demo turns the ribbon's end frame: the held stretch is carried (it moved), so the
   // agreement above is that of a warped stretch.
-  EXPECT_GT(std::abs(now.BendAngle - before.BendAngle) + std::abs(now.Length - before.Length), 0.1);
+  EXPECT_GT(std::abs(now.bendAngle - before.bendAngle) + std::abs(now.length - before.length), 0.1);
   session.CancelGrab("test done");
 }

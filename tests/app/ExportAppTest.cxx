@@ -224,8 +224,8 @@ private slots:
     form->Presets->setCurrentIndex(ExportOptionsForm::OpenFoam);
     QCOMPARE(form->Formats->currentIndex(), form->formatIndex("stl", true));
     QCOMPARE(form->Patches->currentIndex(), 1);
-    QCOMPARE(form->Unit->currentIndex(), 1);
-    QVERIFY(form->Cap->isChecked());
+    QCOMPARE(form->unit->currentIndex(), 1);
+    QVERIFY(form->cap->isChecked());
     QVERIFY(form->Sidecar->isChecked());
     QVERIFY(dialog->path().endsWith(".stl"));
     QApplication::processEvents();
@@ -254,7 +254,7 @@ private slots:
     QVERIFY(sidecar["insidePoint"].isArray());
     // The panel keeps the dialog's choices.
     QCOMPARE(this->panelForm()->Presets->currentIndex(), int(ExportOptionsForm::OpenFoam));
-    QCOMPARE(this->panelForm()->Unit->currentIndex(), 1);
+    QCOMPARE(this->panelForm()->unit->currentIndex(), 1);
   }
 
   void namedSolidsNeverMakeABinaryStlAsciiSilently()
@@ -272,8 +272,8 @@ private slots:
     QCOMPARE(form->Patches->currentIndex(), 0);
     QVERIFY2(form->note().contains("One surface"), qPrintable(form->note()));
     // The binary STL written is binary.
-    form->Cap->setChecked(false);
-    form->Unit->setCurrentIndex(0);
+    form->cap->setChecked(false);
+    form->unit->setCurrentIndex(0);
     const QString stl = this->Folder.filePath("binary.stl");
     QVERIFY(this->Window->exportSurface(stl, true));
     QVERIFY(this->Window->waitUntilIdle(120000));
@@ -377,19 +377,19 @@ private slots:
     {
       panels->setCurrentWidget(panel);
     }
-    panel->Clip->setChecked(false); // the tube's ends are open already
+    panel->clip->setChecked(false); // the tube's ends are open already
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
     QVERIFY(this->Window->waitUntilIdle(120000)); // a job on the worker
-    QCOMPARE(panel->Ends->rowCount(), 2);
+    QCOMPARE(panel->ends->rowCount(), 2);
     int inletRow = -1, outletRow = -1;
     for (int row = 0; row < 2; ++row)
     {
-      const QString role = panel->Ends->item(row, 1)->text();
+      const QString role = panel->ends->item(row, 1)->text();
       (role == "inlet" ? inletRow : outletRow) = row;
     }
     QVERIFY(inletRow >= 0 && outletRow >= 0);
-    QCOMPARE(panel->Ends->item(inletRow, 0)->text(), QString("inlet"));
-    QCOMPARE(panel->Ends->item(outletRow, 0)->text(), QString("outlet_1"));
+    QCOMPARE(panel->ends->item(inletRow, 0)->text(), QString("inlet"));
+    QCOMPARE(panel->ends->item(outletRow, 0)->text(), QString("outlet_1"));
     const auto extent = [&session]()
     {
       double b[6];
@@ -405,11 +405,11 @@ private slots:
               .save(QString(BENDER_ARTIFACT_DIR) + "/export-panel-prepared.png"));
 
     // Renamed, without an outlet extension: prepared again from the surface before.
-    panel->Ends->item(outletRow, 0)->setText("aorta_out");
-    panel->Ends->item(outletRow, 3)->setText("0");
+    panel->ends->item(outletRow, 0)->setText("aorta_out");
+    panel->ends->item(outletRow, 3)->setText("0");
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
     QVERIFY(this->Window->waitUntilIdle(120000));
-    QCOMPARE(panel->Ends->rowCount(), 2);
+    QCOMPARE(panel->ends->rowCount(), 2);
     labels = bender::ReadPatchLabels(session.GetSurface());
     QCOMPARE(labels.size(), std::size_t(3));
     bool renamed = false;
@@ -420,7 +420,7 @@ private slots:
     QVERIFY(renamed);
     QVERIFY2(std::abs(extent() - 90.0) < 2.0, qPrintable(QString::number(extent())));
     // A bad name is refused with one line in the report; the surface stays.
-    panel->Ends->item(outletRow, 0)->setText("no spaces");
+    panel->ends->item(outletRow, 0)->setText("no spaces");
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
     QVERIFY(this->Window->waitUntilIdle(120000));
     QVERIFY(panel->findChild<QPlainTextEdit*>("checkReport")
@@ -460,7 +460,7 @@ private slots:
     panels->setCurrentWidget(panel);
     QApplication::processEvents();
     panel->showReport(QString());
-    panel->Clip->setChecked(true);
+    panel->clip->setChecked(true);
     CfdEndsOverlay* overlay = this->Window->exports()->endsOverlay();
     QVERIFY(overlay);
     QVERIFY(overlay->isVisible());
@@ -475,25 +475,25 @@ private slots:
     QCOMPARE(overlay->numberOfEnds(), 3);
     QCOMPARE(overlay->numberOfDiscsShown(), 3);
     QVERIFY(panel->listsCenterlineEnds());
-    QCOMPARE(panel->Ends->rowCount(), 3);
+    QCOMPARE(panel->ends->rowCount(), 3);
     int inlets = 0;
     for (int k = 0; k < 3; ++k)
     {
       const bender::ClipPlane plane = overlay->plane(k);
-      QVERIFY(plane.Radius > 0.5);
+      QVERIFY(plane.radius > 0.5);
       vtkPolyData* disc = overlay->disc(k);
       QVERIFY(disc && disc->GetNumberOfPoints() >= 24);
       for (vtkIdType i = 0; i < disc->GetNumberOfPoints(); ++i)
       {
         P3 p;
         disc->GetPoint(i, p.data());
-        const P3 d = Minus(p, plane.Centre);
-        QVERIFY(std::abs(Dot(d, plane.Normal)) < 1e-6 * plane.Radius);
-        QVERIFY(std::abs(std::sqrt(Dot(d, d)) - 1.5 * plane.Radius) < 1e-6 * plane.Radius);
+        const P3 d = Minus(p, plane.centre);
+        QVERIFY(std::abs(Dot(d, plane.normal)) < 1e-6 * plane.radius);
+        QVERIFY(std::abs(std::sqrt(Dot(d, d)) - 1.5 * plane.radius) < 1e-6 * plane.radius);
       }
       // The disc starts where the clip cuts by default; the table says so.
-      QCOMPARE(overlay->distance(k), overlay->path(k).DefaultDistance);
-      QCOMPARE(panel->Ends->item(k, ExportPanel::CutColumn)->text(),
+      QCOMPARE(overlay->distance(k), overlay->path(k).defaultDistance);
+      QCOMPARE(panel->ends->item(k, ExportPanel::CutColumn)->text(),
         QString::number(overlay->distance(k), 'f', 2));
       QVERIFY(overlay->label(k).startsWith(panel->endName(k)));
       inlets += panel->endIsInlet(k) ? 1 : 0;
@@ -507,9 +507,9 @@ private slots:
     QApplication::processEvents();
     QCOMPARE(overlay->numberOfDiscsShown(), 3);
     // Not clipping (the surface's open ends as they are): no disc.
-    panel->Clip->setChecked(false);
+    panel->clip->setChecked(false);
     QCOMPARE(overlay->numberOfDiscsShown(), 0);
-    panel->Clip->setChecked(true);
+    panel->clip->setChecked(true);
     QCOMPARE(overlay->numberOfDiscsShown(), 3);
 
     // Drag the end whose move shows best on the screen, by about two radii inwards.
@@ -521,7 +521,7 @@ private slots:
     {
       const bender::CenterlineEndPath& path = overlay->path(k);
       const double d0 = overlay->distance(k);
-      const double t = d0 + std::min(2.0 * path.Radius, 0.8 * (path.MaximumDistance - d0));
+      const double t = d0 + std::min(2.0 * path.radius, 0.8 * (path.maximumDistance - d0));
       double a[2], b[2];
       QVERIFY(overlay->pathDisplayPosition(k, d0, a));
       QVERIFY(overlay->pathDisplayPosition(k, t, b));
@@ -535,7 +535,7 @@ private slots:
     }
     QVERIFY2(best > 20, qPrintable(QString::number(best)));
     const double start = overlay->distance(end);
-    const double radius = overlay->plane(end).Radius;
+    const double radius = overlay->plane(end).radius;
     const bender::ClipPlane before = overlay->plane(end);
     double handle[2], goal[2];
     QVERIFY(overlay->handleDisplayPosition(end, handle));
@@ -567,27 +567,27 @@ private slots:
     QCOMPARE(eyeAfter[2], eye[2]);
     const bender::ClipPlane moved = overlay->plane(end);
     const bender::ClipPlane expected = bender::ClipPlaneAt(overlay->path(end), dragged);
-    QCOMPARE(moved.Centre, expected.Centre);
-    QVERIFY(std::sqrt(Dot(Minus(moved.Centre, before.Centre), Minus(moved.Centre, before.Centre))) >
+    QCOMPARE(moved.centre, expected.centre);
+    QVERIFY(std::sqrt(Dot(Minus(moved.centre, before.centre), Minus(moved.centre, before.centre))) >
       0.9 * radius);
     // The table follows the drag.
     QCOMPARE(panel->cutDistance(end), dragged);
     QCOMPARE(
-      panel->Ends->item(end, ExportPanel::CutColumn)->text(), QString::number(dragged, 'f', 2));
+      panel->ends->item(end, ExportPanel::CutColumn)->text(), QString::number(dragged, 'f', 2));
 
     // A distance typed in the table moves another end's disc.
     const int typed = (end + 1) % 3;
     const double typedDistance = std::round((overlay->distance(typed) + 1.5) * 100.0) / 100.0;
-    panel->Ends->item(typed, ExportPanel::CutColumn)
+    panel->ends->item(typed, ExportPanel::CutColumn)
       ->setText(QString::number(typedDistance, 'f', 2));
     QVERIFY(std::abs(overlay->distance(typed) - typedDistance) < 1e-9);
     // Past the range: clamped, in the table too.
     const int third = (end + 2) % 3;
-    panel->Ends->item(third, ExportPanel::CutColumn)->setText("100000");
-    QCOMPARE(overlay->distance(third), overlay->path(third).MaximumDistance);
-    QCOMPARE(panel->cutDistance(third), overlay->path(third).MaximumDistance);
-    panel->Ends->item(third, ExportPanel::CutColumn)
-      ->setText(QString::number(overlay->path(third).DefaultDistance, 'f', 2));
+    panel->ends->item(third, ExportPanel::CutColumn)->setText("100000");
+    QCOMPARE(overlay->distance(third), overlay->path(third).maximumDistance);
+    QCOMPARE(panel->cutDistance(third), overlay->path(third).maximumDistance);
+    panel->ends->item(third, ExportPanel::CutColumn)
+      ->setText(QString::number(overlay->path(third).defaultDistance, 'f', 2));
     QApplication::processEvents();
     const QString shots = QString(BENDER_ARTIFACT_DIR);
     QDir().mkpath(shots);
@@ -608,8 +608,8 @@ private slots:
     // keeps processing events (a timer ticks, the progress bar shows) while it runs.
     const bender::ClipPlane cutDragged = overlay->plane(end);
     const bender::ClipPlane cutTyped = overlay->plane(typed);
-    panel->InletFactor->setValue(0.0);
-    panel->OutletFactor->setValue(0.0);
+    panel->inletFactor->setValue(0.0);
+    panel->outletFactor->setValue(0.0);
     this->HoldJobs = true;
     this->Released = false;
     int ticksWhileBusy = 0;
@@ -654,7 +654,7 @@ private slots:
         if (label.id < 2)
           continue;
         const P3 c = CapCentre(surface, label.id);
-        const double d = std::sqrt(Dot(Minus(c, cut.Centre), Minus(c, cut.Centre)));
+        const double d = std::sqrt(Dot(Minus(c, cut.centre), Minus(c, cut.centre)));
         if (d < nearestDistance)
         {
           nearestDistance = d;
@@ -663,17 +663,17 @@ private slots:
       }
       QVERIFY(nearest >= 2);
       const P3 c = CapCentre(surface, nearest);
-      const double off = Dot(Minus(c, cut.Centre), cut.Normal);
-      QVERIFY2(std::abs(off) < 0.05 * cut.Radius,
+      const double off = Dot(Minus(c, cut.centre), cut.normal);
+      QVERIFY2(std::abs(off) < 0.05 * cut.radius,
         qPrintable(QString("cap %1 off its plane by %2 mm").arg(nearest).arg(off)));
-      QVERIFY2(nearestDistance < 0.5 * cut.Radius,
+      QVERIFY2(nearestDistance < 0.5 * cut.radius,
         qPrintable(
           QString("cap %1 is %2 mm from the centerline").arg(nearest).arg(nearestDistance)));
     }
     // Not where the dragged end is cut by default.
     {
-      const P3 shift = Minus(cutDragged.Centre, before.Centre);
-      QVERIFY(std::abs(Dot(shift, before.Normal)) > 0.8 * radius);
+      const P3 shift = Minus(cutDragged.centre, before.centre);
+      QVERIFY(std::abs(Dot(shift, before.normal)) > 0.8 * radius);
     }
 
     // After Prepare the discs go, the caps are shown labelled with their names; the table
@@ -686,7 +686,7 @@ private slots:
     QCOMPARE(names, (std::vector<QString>{ "inlet", "outlet_1", "outlet_2" }));
     QVERIFY(overlay->caps()->GetNumberOfCells() > 0);
     QVERIFY(!panel->listsCenterlineEnds());
-    QCOMPARE(panel->Ends->rowCount(), 3);
+    QCOMPARE(panel->ends->rowCount(), 3);
     bool draggedListed = false;
     for (int row = 0; row < 3; ++row)
     {

@@ -518,10 +518,10 @@ private slots:
     QVERIFY(panel->connectWith(std::make_unique<bender::SimulatedDevice>(options)));
     QTRY_VERIFY_WITH_TIMEOUT(grabbed.count() == 1, 15000);
     VesselController* vessels = this->Window->vessels();
-    QVERIFY(vessels->heldBefore().Valid);
-    const double angle = vessels->heldBefore().BendAngle;
-    QTRY_VERIFY_WITH_TIMEOUT(moved.count() > 5 && vessels->heldNow().Valid &&
-        std::abs(vessels->heldNow().BendAngle - angle) > 5.0,
+    QVERIFY(vessels->heldBefore().valid);
+    const double angle = vessels->heldBefore().bendAngle;
+    QTRY_VERIFY_WITH_TIMEOUT(moved.count() > 5 && vessels->heldNow().valid &&
+        std::abs(vessels->heldNow().bendAngle - angle) > 5.0,
       15000);
     QTRY_VERIFY_WITH_TIMEOUT(!this->Window->trackers().IsConnected(), 15000);
     QCOMPARE(grabbed.count(), 1);

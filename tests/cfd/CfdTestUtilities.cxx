@@ -75,8 +75,8 @@ vtkSmartPointer<vtkPolyData> PreparedDemoVessel(bool bent)
     surface = ApplyPlan(segmented, ReadWarpPlan(DemoPlanPath())).output;
   }
   PrepareForCfdOptions options;
-  options.InputName = bent ? "the bent demo vessel" : "the segmented demo vessel";
-  result = PrepareForCfd(surface, options).Surface;
+  options.inputName = bent ? "the bent demo vessel" : "the segmented demo vessel";
+  result = PrepareForCfd(surface, options).surface;
   return result;
 }
 
