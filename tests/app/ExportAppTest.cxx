@@ -224,8 +224,8 @@ private slots:
     form->Presets->setCurrentIndex(ExportOptionsForm::OpenFoam);
     QCOMPARE(form->Formats->currentIndex(), form->formatIndex("stl", true));
     QCOMPARE(form->Patches->currentIndex(), 1);
-    QCOMPARE(form->unit->currentIndex(), 1);
-    QVERIFY(form->cap->isChecked());
+    QCOMPARE(form->Unit->currentIndex(), 1);
+    QVERIFY(form->Cap->isChecked());
     QVERIFY(form->Sidecar->isChecked());
     QVERIFY(dialog->path().endsWith(".stl"));
     QApplication::processEvents();
@@ -254,7 +254,7 @@ private slots:
     QVERIFY(sidecar["insidePoint"].isArray());
     // The panel keeps the dialog's choices.
     QCOMPARE(this->panelForm()->Presets->currentIndex(), int(ExportOptionsForm::OpenFoam));
-    QCOMPARE(this->panelForm()->unit->currentIndex(), 1);
+    QCOMPARE(this->panelForm()->Unit->currentIndex(), 1);
   }
 
   void namedSolidsNeverMakeABinaryStlAsciiSilently()
@@ -272,8 +272,8 @@ private slots:
     QCOMPARE(form->Patches->currentIndex(), 0);
     QVERIFY2(form->note().contains("One surface"), qPrintable(form->note()));
     // The binary STL written is binary.
-    form->cap->setChecked(false);
-    form->unit->setCurrentIndex(0);
+    form->Cap->setChecked(false);
+    form->Unit->setCurrentIndex(0);
     const QString stl = this->Folder.filePath("binary.stl");
     QVERIFY(this->Window->exportSurface(stl, true));
     QVERIFY(this->Window->waitUntilIdle(120000));
@@ -377,19 +377,19 @@ private slots:
     {
       panels->setCurrentWidget(panel);
     }
-    panel->clip->setChecked(false); // the tube's ends are open already
+    panel->Clip->setChecked(false); // the tube's ends are open already
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
     QVERIFY(this->Window->waitUntilIdle(120000)); // a job on the worker
-    QCOMPARE(panel->ends->rowCount(), 2);
+    QCOMPARE(panel->Ends->rowCount(), 2);
     int inletRow = -1, outletRow = -1;
     for (int row = 0; row < 2; ++row)
     {
-      const QString role = panel->ends->item(row, 1)->text();
+      const QString role = panel->Ends->item(row, 1)->text();
       (role == "inlet" ? inletRow : outletRow) = row;
     }
     QVERIFY(inletRow >= 0 && outletRow >= 0);
-    QCOMPARE(panel->ends->item(inletRow, 0)->text(), QString("inlet"));
-    QCOMPARE(panel->ends->item(outletRow, 0)->text(), QString("outlet_1"));
+    QCOMPARE(panel->Ends->item(inletRow, 0)->text(), QString("inlet"));
+    QCOMPARE(panel->Ends->item(outletRow, 0)->text(), QString("outlet_1"));
     const auto extent = [&session]()
     {
       double b[6];
@@ -405,11 +405,11 @@ private slots:
               .save(QString(BENDER_ARTIFACT_DIR) + "/export-panel-prepared.png"));
 
     // Renamed, without an outlet extension: prepared again from the surface before.
-    panel->ends->item(outletRow, 0)->setText("aorta_out");
-    panel->ends->item(outletRow, 3)->setText("0");
+    panel->Ends->item(outletRow, 0)->setText("aorta_out");
+    panel->Ends->item(outletRow, 3)->setText("0");
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
     QVERIFY(this->Window->waitUntilIdle(120000));
-    QCOMPARE(panel->ends->rowCount(), 2);
+    QCOMPARE(panel->Ends->rowCount(), 2);
     labels = bender::ReadPatchLabels(session.GetSurface());
     QCOMPARE(labels.size(), std::size_t(3));
     bool renamed = false;
@@ -420,7 +420,7 @@ private slots:
     QVERIFY(renamed);
     QVERIFY2(std::abs(extent() - 90.0) < 2.0, qPrintable(QString::number(extent())));
     // A bad name is refused with one line in the report; the surface stays.
-    panel->ends->item(outletRow, 0)->setText("no spaces");
+    panel->Ends->item(outletRow, 0)->setText("no spaces");
     QTest::mouseClick(panel->Prepare, Qt::LeftButton);
     QVERIFY(this->Window->waitUntilIdle(120000));
     QVERIFY(panel->findChild<QPlainTextEdit*>("checkReport")
@@ -460,7 +460,7 @@ private slots:
     panels->setCurrentWidget(panel);
     QApplication::processEvents();
     panel->showReport(QString());
-    panel->clip->setChecked(true);
+    panel->Clip->setChecked(true);
     CfdEndsOverlay* overlay = this->Window->exports()->endsOverlay();
     QVERIFY(overlay);
     QVERIFY(overlay->isVisible());
@@ -475,7 +475,7 @@ private slots:
     QCOMPARE(overlay->numberOfEnds(), 3);
     QCOMPARE(overlay->numberOfDiscsShown(), 3);
     QVERIFY(panel->listsCenterlineEnds());
-    QCOMPARE(panel->ends->rowCount(), 3);
+    QCOMPARE(panel->Ends->rowCount(), 3);
     int inlets = 0;
     for (int k = 0; k < 3; ++k)
     {
@@ -493,7 +493,7 @@ private slots:
       }
       // The disc starts where the clip cuts by default; the table says so.
       QCOMPARE(overlay->distance(k), overlay->path(k).defaultDistance);
-      QCOMPARE(panel->ends->item(k, ExportPanel::CutColumn)->text(),
+      QCOMPARE(panel->Ends->item(k, ExportPanel::CutColumn)->text(),
         QString::number(overlay->distance(k), 'f', 2));
       QVERIFY(overlay->label(k).startsWith(panel->endName(k)));
       inlets += panel->endIsInlet(k) ? 1 : 0;
@@ -507,9 +507,9 @@ private slots:
     QApplication::processEvents();
     QCOMPARE(overlay->numberOfDiscsShown(), 3);
     // Not clipping (the surface's open ends as they are): no disc.
-    panel->clip->setChecked(false);
+    panel->Clip->setChecked(false);
     QCOMPARE(overlay->numberOfDiscsShown(), 0);
-    panel->clip->setChecked(true);
+    panel->Clip->setChecked(true);
     QCOMPARE(overlay->numberOfDiscsShown(), 3);
 
     // Drag the end whose move shows best on the screen, by about two radii inwards.
@@ -573,20 +573,20 @@ private slots:
     // The table follows the drag.
     QCOMPARE(panel->cutDistance(end), dragged);
     QCOMPARE(
-      panel->ends->item(end, ExportPanel::CutColumn)->text(), QString::number(dragged, 'f', 2));
+      panel->Ends->item(end, ExportPanel::CutColumn)->text(), QString::number(dragged, 'f', 2));
 
     // A distance typed in the table moves another end's disc.
     const int typed = (end + 1) % 3;
     const double typedDistance = std::round((overlay->distance(typed) + 1.5) * 100.0) / 100.0;
-    panel->ends->item(typed, ExportPanel::CutColumn)
+    panel->Ends->item(typed, ExportPanel::CutColumn)
       ->setText(QString::number(typedDistance, 'f', 2));
     QVERIFY(std::abs(overlay->distance(typed) - typedDistance) < 1e-9);
     // Past the range: clamped, in the table too.
     const int third = (end + 2) % 3;
-    panel->ends->item(third, ExportPanel::CutColumn)->setText("100000");
+    panel->Ends->item(third, ExportPanel::CutColumn)->setText("100000");
     QCOMPARE(overlay->distance(third), overlay->path(third).maximumDistance);
     QCOMPARE(panel->cutDistance(third), overlay->path(third).maximumDistance);
-    panel->ends->item(third, ExportPanel::CutColumn)
+    panel->Ends->item(third, ExportPanel::CutColumn)
       ->setText(QString::number(overlay->path(third).defaultDistance, 'f', 2));
     QApplication::processEvents();
     const QString shots = QString(BENDER_ARTIFACT_DIR);
@@ -608,8 +608,8 @@ private slots:
     // keeps processing events (a timer ticks, the progress bar shows) while it runs.
     const bender::ClipPlane cutDragged = overlay->plane(end);
     const bender::ClipPlane cutTyped = overlay->plane(typed);
-    panel->inletFactor->setValue(0.0);
-    panel->outletFactor->setValue(0.0);
+    panel->InletFactor->setValue(0.0);
+    panel->OutletFactor->setValue(0.0);
     this->HoldJobs = true;
     this->Released = false;
     int ticksWhileBusy = 0;
@@ -686,7 +686,7 @@ private slots:
     QCOMPARE(names, (std::vector<QString>{ "inlet", "outlet_1", "outlet_2" }));
     QVERIFY(overlay->caps()->GetNumberOfCells() > 0);
     QVERIFY(!panel->listsCenterlineEnds());
-    QCOMPARE(panel->ends->rowCount(), 3);
+    QCOMPARE(panel->Ends->rowCount(), 3);
     bool draggedListed = false;
     for (int row = 0; row < 3; ++row)
     {
