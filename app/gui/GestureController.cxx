@@ -6,6 +6,7 @@
 #include "MainActions.h"
 #include "ProblemOverlay.h"
 #include "RibbonPlacement.h"
+#include "TrackerSession.h"
 #include "VesselController.h"
 #include "WorkRunner.h"
 #include "vtkBenderRibbonRepresentation.h"
@@ -179,6 +180,19 @@ bool GestureController::isPlacingRibbon() const
 
 bool GestureController::grab()
 {
+  if (this->Trackers && this->Trackers->IsConnected())
+  {
+    // The hands hold the ribbon: the key is their button.
+    if (!this->Trackers->PressHands())
+    {
+      return false;
+    }
+    if (this->Vessels)
+    {
+      this->Vessels->grabbed();
+    }
+    return true;
+  }
   auto* widget = this->View->ribbonWidget();
   auto* rep = widget->GetRibbonRepresentation();
   if (!widget->GetEnabled() || !rep->GetValid())
@@ -201,6 +215,11 @@ bool GestureController::grab()
 
 bool GestureController::release()
 {
+  if (this->Trackers && this->Trackers->HandsPressed())
+  {
+    // The hands let go: the stylus release's path, which commits through release() again.
+    return this->Trackers->ReleaseHands();
+  }
   if (this->Session.GetState() != bender::GrabState::Grabbed ||
     this->Worker->refuseWhenBusy(this->Session))
   {

@@ -12,6 +12,7 @@ namespace bender
 {
 class BenderSession;
 struct RibbonPlacement;
+class TrackerSession;
 }
 class BendPanel;
 class BenderView;
@@ -40,7 +41,10 @@ class WorkRunner;
 /// widget of the window has the focus, floating panels included; a text field being typed in
 /// keeps its letters). Space held grabs and its release releases: an application event filter
 /// takes Space for every widget of the window but text fields, and ignores key auto-repeat, so
-/// one press is one grab and one release one commit.
+/// one press is one grab and one release one commit. With a tracker connected (setTrackers),
+/// G and Space press the hands' button instead (TrackerSession::PressHands): the hands bend the
+/// ribbon from where it is, as a stylus press does, for devices that send no button (PLUS) and
+/// foot pedals that send Space.
 ///
 /// The commit guard: when the session holds a release (BenderSession::IsCommitHeld: flipped or
 /// crossing triangles, or R >= r_min), the problem triangles are drawn over the surface
@@ -71,6 +75,8 @@ public:
   bool placeRibbonOnCenterline(const double first[3], const double second[3]);
   /// The vessel side (centerlines, measurements); may be null.
   void setVessels(VesselController* vessels) { this->Vessels = vessels; }
+  /// The window's trackers: while one is connected, grab() and release() are the hands'.
+  void setTrackers(bender::TrackerSession* trackers) { this->Trackers = trackers; }
   /// True after the first of the two clicks of "place ribbon" on a centerline.
   bool hasFirstPick() const { return this->HasFirstPick; }
   bool isPlacingRibbon() const;
@@ -133,6 +139,7 @@ private:
   QWidget* Window;
   bool SpaceHeld = false;
   VesselController* Vessels = nullptr;
+  bender::TrackerSession* Trackers = nullptr;
   bool HasFirstPick = false;
   double FirstPick[3] = { 0, 0, 0 };
   bool Interactive = false;

@@ -88,6 +88,7 @@ MainWindow::~MainWindow()
   // delete the view, the central widget, before the dock's panels).
   delete this->TrackersUi;
   this->TrackersUi = nullptr;
+  this->Gesture->setTrackers(nullptr);
   this->Trackers.reset();
 }
 
@@ -119,6 +120,7 @@ void MainWindow::buildPanels()
   this->Vessels = new VesselController(
     this->Session, this->View, this->Worker, this->Actions, this->Measurements, this);
   this->Gesture->setVessels(this->Vessels);
+  this->Gesture->setTrackers(this->Trackers.get());
   const WindowParts parts{ this->Session,
     this->Segmentation,
     this->Worker,

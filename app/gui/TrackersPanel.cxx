@@ -60,6 +60,12 @@ const char* const AlignTip =
   "right hand its end, and the orange hand markers jump onto them; from then on the ribbon "
   "moves by the hands' displacements while the stylus is pressed. Nothing is bent. (Each "
   "stylus press anchors them too, so the ribbon never jumps.)";
+// The keys of TrackerSession::PressHands (GestureController routes G and Space to it while a
+// tracker is connected); docs/tracking.md says the same.
+const char* const GrabKeysText =
+  "Grab with the hands: the stylus button, or, for devices that send no button (OpenIGTLink "
+  "from PLUS), <b>G</b> (press to grab, again to release) or <b>hold Space</b> (released on "
+  "letting go: a USB foot pedal set to send Space).";
 const char* const AlignDisabledTip =
   "Connect a tracker first: Align anchors the connected hands to the ribbon shown";
 }
@@ -149,6 +155,10 @@ TrackersPanel::TrackersPanel(QWidget* parent)
   this->Clutch->setToolTip("While a bend is held by the stylus: the ribbon stays where it is and "
                            "the hands move freely; off again, the hands hold it from there");
   layout->addWidget(this->Clutch);
+  auto* keys = new QLabel(GrabKeysText, this);
+  keys->setObjectName("trackerGrabKeys");
+  keys->setWordWrap(true);
+  layout->addWidget(keys);
   this->Status = new QLabel("not connected", this);
   this->Status->setObjectName("trackerStatus");
   this->Status->setWordWrap(true);

@@ -34,7 +34,9 @@ class QSpinBox;
 /// panel drives the tracker session itself: connect (opened on a pool thread for OpenIGTLink,
 /// USB and serial devices, so the GUI thread never waits for a host), poll at the display rate
 /// (the live warp follows the hands, the widget shows their ribbon; a stylus release starts the
-/// window's release job), disconnect, align.
+/// window's release job), disconnect, align. A line under the clutch says which keys press the
+/// hands' button for devices that send none (G, and Space held: a foot pedal), as
+/// GestureController routes them while a tracker is connected.
 ///
 /// While connected, the 3D view shows where each hand maps now (TrackerSession::MappedHands):
 /// an orange ball labelled "left hand" / "right hand", tied by a line to the ribbon end it

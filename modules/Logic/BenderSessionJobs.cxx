@@ -1,6 +1,7 @@
 #include "BenderSession.h"
 
 #include "FileIdentity.h"
+#include "RibbonLengthChange.h"
 #include "StringUtil.h"
 #include "WarpPlanIO.h"
 #include <vtkPolyData.h>
@@ -278,7 +279,13 @@ bool BenderSession::FinishRelease(SessionJob& job)
   {
     text << " (subdivided to " << result->GetNumberOfPolys() << " triangles)";
   }
-  this->Report(MessageSeverity::Info, text.str());
+  // A clean surface may still be a much shorter or longer vessel: said, never silent.
+  const std::string lengthNote = RibbonLengthNote(warp);
+  if (!lengthNote.empty())
+  {
+    text << "; " << lengthNote;
+  }
+  this->Report(lengthNote.empty() ? MessageSeverity::Info : MessageSeverity::Warning, text.str());
   this->Autosave();
   this->Changed();
   return true;

@@ -112,6 +112,7 @@ void TrackerSession::Disconnect()
   this->Device->Close();
   this->Device.reset();
   this->Input.reset();
+  this->KeyPressed = false;
   this->Session.AddMessage(MessageSeverity::Info, "Tracker " + this->DeviceName + " disconnected");
 }
 
@@ -174,6 +175,14 @@ TrackerSession::PollResult TrackerSession::Poll()
   {
     return result;
   }
+  if (this->KeyPressed && this->Session.GetState() != GrabState::Grabbed)
+  {
+    // The window ended the grab PressHands started (cancelled it): the hands let go too.
+    this->KeyPressed = false;
+    this->Input->HandleEvent(
+      { TrackerEventType::Release, this->Input->Hands().leftStation, 0.0, {} });
+    this->Synced.reset();
+  }
   // The ribbon on screen changed between grabs (placed, released, cancelled, undone): the
   // hands hold it from where it is now.
   this->SyncRibbon();
@@ -191,29 +200,7 @@ TrackerSession::PollResult TrackerSession::Poll()
   }
   for (const auto& gesture : gestures)
   {
-    switch (gesture.kind)
-    {
-      case TwoHandRibbonInput::Gesture::Kind::Grabbed:
-        if (this->Session.GetState() != GrabState::Grabbed && this->Session.Grab(gesture.initial))
-        {
-          result.grabbed = true;
-        }
-        break;
-      case TwoHandRibbonInput::Gesture::Kind::Released:
-        if (this->Session.GetState() == GrabState::Grabbed)
-        {
-          this->Session.MoveFinal(gesture.final);
-          result.released = this->ReleaseHandler ? this->ReleaseHandler() : this->Session.Release();
-        }
-        break;
-      case TwoHandRibbonInput::Gesture::Kind::Cancelled:
-        if (this->Session.GetState() == GrabState::Grabbed)
-        {
-          this->Session.CancelGrab("tracker " + this->DeviceName + ": " + gesture.reason);
-          result.cancelled = true;
-        }
-        break;
-    }
+    this->Apply(gesture, result);
   }
   if (this->Session.GetState() == GrabState::Grabbed && this->Input->IsGrabbing())
   {
@@ -231,6 +218,116 @@ TrackerSession::PollResult TrackerSession::Poll()
     result.ended = true;
   }
   return result;
+}
+
+void TrackerSession::Apply(const TwoHandRibbonInput::Gesture& gesture, PollResult& result)
+{
+  switch (gesture.kind)
+  {
+    case TwoHandRibbonInput::Gesture::Kind::Grabbed:
+      if (this->Session.GetState() != GrabState::Grabbed && this->Session.Grab(gesture.initial))
+      {
+        result.grabbed = true;
+      }
+      break;
+    case TwoHandRibbonInput::Gesture::Kind::Released:
+      this->KeyPressed = false;
+      if (this->Session.GetState() == GrabState::Grabbed)
+      {
+        this->Session.MoveFinal(gesture.final);
+        result.released = this->ReleaseHandler ? this->ReleaseHandler() : this->Session.Release();
+      }
+      break;
+    case TwoHandRibbonInput::Gesture::Kind::Cancelled:
+      this->KeyPressed = false;
+      if (this->Session.GetState() == GrabState::Grabbed)
+      {
+        this->Session.CancelGrab("tracker " + this->DeviceName + ": " + gesture.reason);
+        result.cancelled = true;
+      }
+      break;
+  }
+}
+
+void TrackerSession::RefreshHands()
+{
+  if (!this->Input || !this->Device)
+  {
+    return;
+  }
+  for (const int station : { this->Input->Hands().leftStation, this->Input->Hands().rightStation })
+  {
+    if (const std::optional<TrackerPose> pose = this->Device->LatestPose(station))
+    {
+      this->Input->UpdatePose(*pose);
+    }
+  }
+}
+
+bool TrackerSession::PressHands()
+{
+  if (!this->Device || !this->Input)
+  {
+    this->Session.AddMessage(
+      MessageSeverity::Error, "Grab with the hands: connect a tracker first");
+    return false;
+  }
+  if (this->Input->IsGrabbing() || this->Session.GetState() == GrabState::Grabbed)
+  {
+    this->Session.AddMessage(
+      MessageSeverity::Error, "Grab with the hands: release or cancel the grab first");
+    return false;
+  }
+  // From the ribbon on screen, with the hands as they are now.
+  this->SyncRibbon();
+  this->RefreshHands();
+  const int station = this->Input->Hands().leftStation;
+  const std::optional<TrackerPose> pose = this->Device->LatestPose(station);
+  const std::optional<TwoHandRibbonInput::Gesture> gesture =
+    this->Input->HandleEvent({ TrackerEventType::Grab, station, pose ? pose->time : 0.0, {} });
+  if (!gesture)
+  {
+    this->Session.AddMessage(MessageSeverity::Error,
+      "Grab with the hands: tracker " + this->DeviceName + " has not sent both hands yet");
+    return false;
+  }
+  PollResult result;
+  this->Apply(*gesture, result);
+  if (!result.grabbed)
+  {
+    // The session refused (busy, no surface): the hands let go again, nothing moved.
+    this->Input->HandleEvent({ TrackerEventType::Release, station, gesture->time, {} });
+    return false;
+  }
+  this->KeyPressed = true;
+  return true;
+}
+
+bool TrackerSession::ReleaseHands()
+{
+  if (!this->HandsPressed())
+  {
+    this->KeyPressed = false;
+    return false;
+  }
+  this->RefreshHands();
+  const int station = this->Input->Hands().leftStation;
+  const std::optional<TrackerPose> pose = this->Device->LatestPose(station);
+  const std::optional<TwoHandRibbonInput::Gesture> gesture =
+    this->Input->HandleEvent({ TrackerEventType::Release, station, pose ? pose->time : 0.0, {} });
+  this->KeyPressed = false;
+  if (!gesture)
+  {
+    return false;
+  }
+  PollResult result;
+  this->Apply(*gesture, result);
+  return result.released;
+}
+
+bool TrackerSession::HandsPressed() const
+{
+  return this->KeyPressed && this->Input && this->Input->IsGrabbing();
 }
 
 std::optional<RibbonSpec> TrackerSession::CurrentRibbon() const
@@ -352,18 +449,8 @@ std::optional<RibbonSpec> TrackerSession::MappedHands() const
 
 bool TrackerSession::AlignTo(const RibbonSpec& target)
 {
-  if (this->Input && this->Device)
-  {
-    // Anchored as the hands are now, not as the last poll saw them.
-    for (const int station :
-      { this->Input->Hands().leftStation, this->Input->Hands().rightStation })
-    {
-      if (const std::optional<TrackerPose> pose = this->Device->LatestPose(station))
-      {
-        this->Input->UpdatePose(*pose);
-      }
-    }
-  }
+  // Anchored as the hands are now, not as the last poll saw them.
+  this->RefreshHands();
   if (!this->Input || !this->CurrentRibbon())
   {
     this->Session.AddMessage(MessageSeverity::Error,

@@ -19,7 +19,8 @@ class BenderSession;
 
 /// Bending with trackers: a tracker device (Fastrak over USB or serial, a replayed recording,
 /// the simulator) and the two-hand mapping drive a BenderSession. The stylus button grabs and
-/// releases; while grabbed the final ribbon follows the hands. When the device fails mid-warp
+/// releases (or, for devices without buttons, PressHands/ReleaseHands: a key or a foot pedal);
+/// while grabbed the final ribbon follows the hands. When the device fails mid-warp
 /// (disconnected, read error, end of a replay) the live warp is cancelled, the last committed
 /// shape stays and the session gets a warning message.
 ///
@@ -70,6 +71,18 @@ public:
   /// Takes the device's latest poses and events and drives the session.
   PollResult Poll();
 
+  /// The hands' button pressed from the keyboard or a foot pedal, for devices that send no
+  /// button (an OpenIGTLink server without STRING messages, PLUS's default): grabs with the
+  /// hands as a press of the left hand's stylus does (the hands are anchored to the ribbon as
+  /// it is, then move it). False, with a message, when not connected, before both hands are
+  /// seen, or while a grab is under way.
+  bool PressHands();
+  /// Lets go of the button PressHands pressed: commits as a stylus release does (through the
+  /// release handler). False when PressHands holds nothing.
+  bool ReleaseHands();
+  /// Whether PressHands holds the hands now (until ReleaseHands, a cancel or a disconnect).
+  bool HandsPressed() const;
+
   /// How a stylus release commits: by default BenderSession::Release() at once; a window sets a
   /// handler that starts the release job on its worker (as its G key does) and returns whether
   /// it started (PollResult::released then means "the commit started").
@@ -118,6 +131,10 @@ public:
 private:
   void Fail(const std::string& reason);
   void SyncRibbon();
+  /// The device's newest poses of both hands into the input.
+  void RefreshHands();
+  /// What a gesture of the input does to the session.
+  void Apply(const TwoHandRibbonInput::Gesture& gesture, PollResult& result);
 
   BenderSession& Session;
   std::unique_ptr<TrackerDevice> Device;
@@ -126,6 +143,7 @@ private:
   std::function<bool()> ReleaseHandler;
   std::optional<RibbonSpec> Synced; // the session's ribbon the hands were last anchored to
   double RelativeScale = 0.0;
+  bool KeyPressed = false; // PressHands holds the hands
 };
 
 } // namespace bender

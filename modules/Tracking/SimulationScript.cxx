@@ -23,22 +23,24 @@ double SmoothStep(double x)
   return x * x * (3.0 - 2.0 * x);
 }
 
-// Amount of bend in [0, 1] over the 8-second cycle.
+constexpr double Cycle = 14.0;                  // seconds
+constexpr double BendAngle = 50.0 * Pi / 180.0; // the right hand's end turns by this much
+constexpr double Span = 200.0;                  // mm between the hands at rest
+
+// Amount of bend in [0, 1] over the cycle: bent over 1-4 s, straightened over 8-11 s.
 double Bend(double t)
 {
-  if (t < 1.0)
-  {
-    return 0.0;
-  }
-  if (t < 4.0)
+  if (t < 8.0)
   {
     return SmoothStep((t - 1.0) / 3.0);
   }
-  if (t < 5.0)
-  {
-    return 1.0;
-  }
-  return 1.0 - SmoothStep((t - 5.0) / 2.0);
+  return 1.0 - SmoothStep((t - 8.0) / 3.0);
+}
+
+// The left stylus: down over 1-5 s (the bend) and 8-12 s (the way back).
+bool Pressed(double t)
+{
+  return (t >= 1.0 && t < 5.0) || (t >= 8.0 && t < 12.0);
 }
 } // namespace
 
@@ -52,21 +54,23 @@ SimulationScript SimulationScript::TwoHandBend()
   return SimulationScript(
     [](int station, double seconds)
     {
-      const double t = std::fmod(std::max(0.0, seconds), 8.0);
-      const double u = Bend(t);
-      const double tilt = u * Pi / 3.0;
+      const double t = std::fmod(std::max(0.0, seconds), Cycle);
+      const double angle = Bend(t) * BendAngle;
       TrackerPose pose;
       if (station == 1)
       {
-        pose.position = { -100.0 + 20.0 * u, 0.0, 0.0 };
-        pose.orientation = AxisAngle({ 0, 1, 0 }, -tilt);
-        pose.button = t >= 1.0 && t < 5.0;
+        pose.position = { -Span / 2.0, 0.0, 0.0 };
+        pose.button = Pressed(t);
       }
       else if (station == 2)
       {
-        pose.position = { 100.0 - 20.0 * u, 0.0, 0.0 };
-        pose.orientation = AxisAngle({ 0, 1, 0 }, tilt) * AxisAngle({ 0, 0, 1 }, Pi) *
-          AxisAngle({ 1, 0, 0 }, u * Pi / 4.0);
+        // On the circular arc of length Span that leaves the left hand along +x and turns by
+        // `angle` towards +z: the ribbon between the hands keeps its length.
+        const double along = angle > 1e-9 ? Span * std::sin(angle) / angle : Span;
+        const double up = angle > 1e-9 ? Span * (1.0 - std::cos(angle)) / angle : 0.0;
+        pose.position = { -Span / 2.0 + along, 0.0, up };
+        // +x towards the other hand (against the arc's tangent), +z the arc's normal.
+        pose.orientation = AxisAngle({ 0, 1, 0 }, -angle) * AxisAngle({ 0, 0, 1 }, Pi);
       }
       else
       {

@@ -4,6 +4,7 @@
 // the hands' rotations; between grabs the ribbon stays.
 #include "BenderSession.h"
 #include "LogicTestUtilities.h"
+#include "Ribbon.h"
 #include "TrackerSession.h"
 #include "TrackerTestUtilities.h"
 #include "TwoHandRibbonInput.h"
@@ -224,21 +225,22 @@ TEST(RelativeTracking, ConnectingTheSimulatorMovesNoPointAndNotTheRibbon)
 
 TEST(RelativeTracking, TheSimulatorBendsTheRibbonFromWhereItIs)
 {
-  // One 8-second cycle of the script: grab at 1 s, both hands 20 mm inwards and tilted by 60
-  // degrees (an arch), the right one rolled by 45 degrees, release at 5 s. Anchored to a 40 mm
-  // ribbon on a tube of radius 4, the automatic scale is 40 / 200: each end moves 4 mm
-  // inwards.
+  // The script's bend: grab at 1 s, the left hand still, the right one along the arc of the
+  // hands' span turning 50 degrees up, release at 5 s. Anchored to a 40 mm ribbon that ends at
+  // the open end of a tube of radius 4, as the demo's ribbon ends at its branch's open end
+  // (automatic scale 40 / 200), the ribbon's end moves onto the arc of length 40 mm that turns
+  // 50 degrees up: the start stays, the length too.
   test::TubeSession tubeSession(4, 301, 24);
   ASSERT_TRUE(tubeSession.ready);
   BenderSession& session = tubeSession.session;
   WarpParameters parameters;
   // As the window places a ribbon on a vessel: R = 2.2 radii, a plateau reaching 1.2 radii;
-  // R stays below the arch's smallest arc radius (about 32 / (2 sin 60) = 18.5 mm).
+  // R stays below the arc's radius (40 mm / 50 degrees = 45.8 mm).
   parameters.radius = 8.8;
   parameters.decay.shape = DecayShape::Plateau;
   parameters.decay.plateau = 1.2 / 2.2;
   ASSERT_TRUE(session.SetParameters(parameters));
-  const RibbonSpec placed = test::StraightRibbon(-20, 20);
+  const RibbonSpec placed = test::StraightRibbon(110, 150);
   ASSERT_TRUE(session.PlaceRibbon(placed));
   TrackerSession trackers(session);
   ASSERT_TRUE(trackers.Connect(Simulator(5.6)));
@@ -253,11 +255,15 @@ TEST(RelativeTracking, TheSimulatorBendsTheRibbonFromWhereItIs)
   const WarpSpec warp = session.GetPlan().warps.front();
   // No jump: the warp starts from the ribbon on screen.
   EXPECT_LT(RibbonDistance(warp.initial, placed), 1e-6);
-  EXPECT_NEAR(warp.final.start.position.x, -16.0, 0.2);
-  EXPECT_NEAR(warp.final.end.position.x, 16.0, 0.2);
-  // The arch stays in the ribbon's plane (x, z) and bends the tube up, not flat.
-  EXPECT_NEAR(warp.final.start.position.y, 0.0, 1e-6);
-  EXPECT_GT(Dot(Normalized(warp.final.start.tangent), { 0, 0, 1 }), 0.7);
+  const double a = 50.0 * 3.14159265358979323846 / 180.0;
+  EXPECT_LT(Distance(warp.final.start.position, placed.start.position), 1e-6);
+  EXPECT_NEAR(warp.final.end.position.x, 110.0 + 40.0 * std::sin(a) / a, 0.2);
+  EXPECT_NEAR(warp.final.end.position.z, 40.0 * (1.0 - std::cos(a)) / a, 0.2);
+  // The arc stays in the ribbon's plane (x, z), bends the tube up, not flat, and keeps the
+  // ribbon's length.
+  EXPECT_NEAR(warp.final.end.position.y, 0.0, 1e-6);
+  EXPECT_NEAR(Dot(Normalized(warp.final.end.tangent), { 0, 0, 1 }), std::sin(a), 0.01);
+  EXPECT_NEAR(Ribbon(warp.final).Wire().Length(), 40.0, 0.2);
   // The ribbon on the session is the committed one.
   ASSERT_TRUE(session.GetRibbon());
   EXPECT_LT(RibbonDistance(*session.GetRibbon(), warp.final), 1e-12);

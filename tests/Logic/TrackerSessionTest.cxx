@@ -209,6 +209,57 @@ TEST(TrackerSession, AlignPutsTheMappedHandsOnTheRibbonEndsAndBendsNothing)
   EXPECT_EQ(session.GetMessages().back().text, "Align: connect a tracker first");
 }
 
+TEST(TrackerSession, AKeyPressesTheHandsButtonForDevicesWithoutOne)
+{
+  // Hands that never press a button (an OpenIGTLink server without STRING messages), anchored
+  // to a placed ribbon: PressHands grabs from the ribbon as it is, the ribbon's end follows the
+  // right hand's displacement (scaled 40 / 200), ReleaseHands commits that warp. A cancel from
+  // the window lets go of the hands too.
+  test::TubeSession tubeSession(10, 121, 24, 30);
+  ASSERT_TRUE(tubeSession.ready);
+  BenderSession& session = tubeSession.session;
+  const RibbonSpec placed = test::StraightRibbon(-20, 20);
+  ASSERT_TRUE(session.PlaceRibbon(placed));
+  TrackerSession trackers(session);
+  EXPECT_FALSE(trackers.PressHands()); // not connected
+  test::HeldHands hands;
+  ASSERT_TRUE(trackers.Connect(hands.Device()));
+  ASSERT_TRUE(test::PollUntil(trackers, [&]() { return trackers.MappedHands().has_value(); }));
+  EXPECT_FALSE(trackers.ReleaseHands()); // nothing pressed
+
+  ASSERT_TRUE(trackers.PressHands());
+  EXPECT_TRUE(trackers.HandsPressed());
+  EXPECT_EQ(session.GetState(), GrabState::Grabbed);
+  EXPECT_LT(Distance(session.GetInitialRibbon().end.position, placed.end.position), 1e-9);
+  EXPECT_FALSE(trackers.PressHands()); // already grabbing
+  *hands.offsetX = -25.0;
+  const Vec3 expected = placed.end.position + Vec3{ -25, 0, 0 } * (40.0 / 200.0);
+  ASSERT_TRUE(test::PollUntil(
+    trackers, [&]() { return Distance(session.GetFinalRibbon().end.position, expected) < 1e-9; }));
+  ASSERT_TRUE(trackers.ReleaseHands());
+  EXPECT_FALSE(trackers.HandsPressed());
+  ASSERT_EQ(session.GetHistoryPosition(), 1u);
+  const WarpSpec warp = session.GetPlan().warps.front();
+  EXPECT_LT(Distance(warp.initial.end.position, placed.end.position), 1e-9);
+  EXPECT_LT(Distance(warp.final.end.position, expected), 1e-9);
+
+  // Pressed again, then the window cancels the grab (Esc): the hands let go, and the next
+  // press grabs from the session's ribbon, where the cancel left it.
+  ASSERT_TRUE(trackers.PressHands());
+  *hands.offsetX = 0.0;
+  ASSERT_TRUE(test::PollUntil(
+    trackers, [&]() { return Distance(session.GetFinalRibbon().end.position, expected) > 1.0; }));
+  session.CancelGrab("cancelled by the user");
+  trackers.Poll();
+  EXPECT_FALSE(trackers.HandsPressed());
+  ASSERT_TRUE(trackers.PressHands());
+  EXPECT_LT(Distance(session.GetInitialRibbon().end.position, warp.final.end.position), 1e-9);
+  EXPECT_LT(Distance(session.GetFinalRibbon().end.position, warp.final.end.position), 1e-9);
+  trackers.Disconnect();
+  EXPECT_FALSE(trackers.HandsPressed());
+  EXPECT_NE(session.GetState(), GrabState::Grabbed);
+}
+
 // TrackerStream: the device lifecycle under `bender-cli tracker` and the Trackers panel.
 TEST(TrackerStream, StreamsEveryPoseInOrderAndRecordsWhatReplaysToTheSame)
 {

@@ -35,17 +35,36 @@ TEST(SimulationScript, TwoHandBendFollowsItsScript)
   EXPECT_TRUE(script.PoseAt(1, 4.99).button);
   EXPECT_FALSE(script.PoseAt(1, 5.0).button);
   EXPECT_FALSE(script.PoseAt(2, 2.0).button);
-  // Periodic, unit quaternions.
-  for (double t = 0.0; t < 8.0; t += 0.37)
+  // The way back: pressed again over 8-12 s.
+  EXPECT_FALSE(script.PoseAt(1, 7.99).button);
+  EXPECT_TRUE(script.PoseAt(1, 8.0).button);
+  EXPECT_TRUE(script.PoseAt(1, 11.99).button);
+  EXPECT_FALSE(script.PoseAt(1, 12.0).button);
+  // Periodic (14 s), unit quaternions; the left hand stays put and the right one stays on the
+  // arc of length 200 mm leaving the left hand along +x (its chord: 2 (200 / a) sin(a / 2) for
+  // the arc's turn a, the angle between the hands' +x axes minus the half turn).
+  for (double t = 0.0; t < 14.0; t += 0.37)
   {
     for (int s : { 1, 2 })
     {
       const TrackerPose a = script.PoseAt(s, t);
-      const TrackerPose b = script.PoseAt(s, t + 8.0);
+      const TrackerPose b = script.PoseAt(s, t + 14.0);
       EXPECT_NEAR(std::sqrt(Dot4(a.orientation, a.orientation)), 1.0, 1e-12);
       ExpectVecNear(a.position, b.position, 1e-9);
     }
+    const TrackerPose left = script.PoseAt(1, t);
+    const TrackerPose right = script.PoseAt(2, t);
+    ExpectVecNear({ -100, 0, 0 }, left.position);
+    const Vec3 leftX = RotateByQuaternion(left.orientation, { 1, 0, 0 });
+    const Vec3 rightX = RotateByQuaternion(right.orientation, { 1, 0, 0 });
+    const double turn = Pi - std::acos(std::max(-1.0, std::min(1.0, Dot(leftX, rightX))));
+    const double chord = turn > 1e-9 ? 2.0 * (200.0 / turn) * std::sin(turn / 2.0) : 200.0;
+    EXPECT_NEAR(Distance(left.position, right.position), chord, 1e-6) << "t = " << t;
+    EXPECT_LE(turn, 50.0 * Pi / 180.0 + 1e-9);
   }
+  // Fully bent over 4-8 s: the arc turns by 50 degrees.
+  const Vec3 bentX = RotateByQuaternion(script.PoseAt(2, 6.0).orientation, { 1, 0, 0 });
+  EXPECT_NEAR(std::acos(-bentX.x), 50.0 * Pi / 180.0, 1e-9);
 }
 
 TEST(SimulatedDevice, ProducesTimedPosesAndButtonEvents)
@@ -249,8 +268,8 @@ TEST(TwoHandRibbonInput, ClutchFreezesTheRibbonAndReanchorsTheHands)
     before.start.position + Vec3{ 10, 0, 0 }, input.CurrentRibbon()->start.position, 1e-9);
 }
 
-// The simulator drives the ribbon: grab at 1 s on a straight ribbon, release at 5 s on
-// an arched, twisted one; both build valid geometry-core Ribbons.
+// The simulator drives the ribbon: grab at 1 s on a straight ribbon, release at 5 s on one
+// bent up into a circular arc of the same length; both build valid geometry-core Ribbons.
 TEST(TwoHandRibbonInput, SimulatorDrivesARibbonEndToEnd)
 {
   SimulatedDevice::Options options;
@@ -295,28 +314,26 @@ TEST(TwoHandRibbonInput, SimulatorDrivesARibbonEndToEnd)
   ExpectVecNear({ 1, 0, 0 }, initial.end.tangent, 1e-9);
   ExpectVecNear({ 0, 0, 1 }, initial.start.normal, 1e-9);
   ExpectVecNear({ 0, 0, 1 }, initial.end.normal, 1e-9);
-  // At the release (fully bent): an arch up from the left, down into the right, and the
-  // right end rolled by 45 degrees about its tangent.
-  const double c = std::cos(Pi / 3), s = std::sin(Pi / 3);
-  ExpectVecNear({ -80, 0, 0 }, final.start.position, 1e-9);
-  ExpectVecNear({ 80, 0, 0 }, final.end.position, 1e-9);
-  ExpectVecNear({ c, 0, s }, final.start.tangent, 1e-9);
-  ExpectVecNear({ c, 0, -s }, final.end.tangent, 1e-9);
-  EXPECT_NEAR(Dot(final.end.normal, final.end.tangent), 0.0, 1e-9);
-  EXPECT_NEAR(std::acos(Dot(final.end.normal, Normalized(Cross(final.end.tangent, { 0, 1, 0 })))),
-    Pi / 4,
-    1e-9);
+  // At the release (fully bent): the start where it was, the end on the arc of radius 200 / a
+  // that turns by a = 50 degrees up, its tangent and normal turned with it, no twist.
+  const double a = 50.0 * Pi / 180.0, rho = 200.0 / a;
+  const double c = std::cos(a), s = std::sin(a);
+  ExpectVecNear(initial.start.position, final.start.position, 1e-9);
+  ExpectVecNear({ 1, 0, 0 }, final.start.tangent, 1e-9);
+  ExpectVecNear({ -100 + rho * s, 0, rho * (1 - c) }, final.end.position, 1e-9);
+  ExpectVecNear({ c, 0, s }, final.end.tangent, 1e-9);
+  ExpectVecNear({ -s, 0, c }, final.end.normal, 1e-9);
 
   const Ribbon straight(initial);
-  const Ribbon arch(final);
+  const Ribbon arc(final);
   ExpectVecNear({ 0, 0, 0 }, straight.FrameAt(0.5).origin, 1e-6);
-  ExpectVecNear({ -80, 0, 0 }, arch.FrameAt(0.0).origin, 1e-6);
-  ExpectVecNear({ 80, 0, 0 }, arch.FrameAt(1.0).origin, 1e-6);
-  // The arch rises between the hands and is symmetric.
-  EXPECT_GT(arch.FrameAt(0.5).origin.z, 20.0);
-  EXPECT_NEAR(arch.FrameAt(0.5).origin.x, 0.0, 1e-6);
+  // The wire is that arc: same length as the straight ribbon, one radius, rising in the
+  // middle by rho (1 - cos(a / 2)).
+  EXPECT_NEAR(arc.Wire().Length(), straight.Wire().Length(), 1e-6);
+  EXPECT_NEAR(arc.Wire().MinimumRadius(), rho, 1e-6);
+  EXPECT_NEAR(arc.FrameAt(0.5).origin.z, rho * (1 - std::cos(a / 2)), 1e-6);
   EXPECT_NEAR(std::fabs(straight.Twist()), 0.0, 1e-9);
-  EXPECT_NEAR(std::fabs(arch.Twist()), Pi / 4, 1e-6);
+  EXPECT_NEAR(std::fabs(arc.Twist()), 0.0, 1e-9);
 }
 
 } // namespace

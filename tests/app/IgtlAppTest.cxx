@@ -4,10 +4,12 @@
 // turning; "Send to Slicer" makes a loopback receiver get the session's surface as POLYDATA and
 // a newer one during and after a bend; a server that goes away ends the connection and Connect
 // reconnects. A device kind registered in the device table appears in the panel's device list
-// and connects like any other. Loopback 127.0.0.1 on ephemeral ports only.
+// and connects like any other. A server that sends no button messages (PLUS's default): G and
+// Space held grab and release with the hands. Loopback 127.0.0.1 on ephemeral ports only.
 
 #include "AppTestUtilities.h"
 #include "BenderSession.h"
+#include "GestureController.h"
 #include "IgtlProtocol.h"
 #include "IgtlSender.h"
 #include "MainWindow.h"
@@ -529,6 +531,76 @@ private slots:
     QVERIFY(!this->Window->trackers().IsConnected());
     QVERIFY(!this->child<QLabel>("igtlCounters")->isVisible());
     this->panel()->setDeviceSpec("sim");
+  }
+
+  void withoutButtonsGAndSpaceGrabWithTheHands()
+  {
+    // PLUS sends no button messages (issue 22, item 9): with a ribbon placed the hands are
+    // anchored to it; G on the view grabs with the hands, the ribbon's start follows the left
+    // hand, G again commits that warp. Holding Space (what a foot pedal sends) does the same,
+    // released on letting go. The panel says which keys these are.
+    bender::BenderSession& session = this->Window->session();
+    QVERIFY(this->child<QLabel>("trackerGrabKeys")->text().contains("hold Space"));
+    QVERIFY(this->child<QLabel>("trackerGrabKeys")->text().contains("<b>G</b>"));
+    const bender::RibbonSpec placed = StraightRibbon(-50, 50);
+    this->Window->gesture()->showRibbon(placed, 10.0);
+    QVERIFY(session.GetRibbon().has_value());
+    this->Server = std::make_unique<TrackerServer>("LeftToolToTracker", "RightToolToTracker");
+    this->fillIgtl(this->Server->Port());
+    QSignalSpy finished(this->panel(), &TrackersPanel::connectFinished);
+    QTest::mouseClick(this->child<QPushButton>("trackerConnect"), Qt::LeftButton);
+    QVERIFY(finished.wait(20000));
+    QCOMPARE(finished.last().first().toBool(), true);
+    QVERIFY(this->Window->trackers().IsRelative());
+    QTRY_VERIFY_WITH_TIMEOUT(this->Window->trackers().MappedHands().has_value(), 20000);
+    auto* representation = this->Window->ribbonWidget()->GetRibbonRepresentation();
+    QWidget* view = this->Window->view();
+    // The keys go to the active window, as a user's do.
+    this->Window->activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(this->Window.get()));
+    const auto startX = [&]() { return representation->GetRibbon().start.position.x; };
+
+    // G: the hands hold the ribbon; the left hand moves 20 mm along LPS x, the start follows
+    // (auto scale: the hands' 200 mm span is the ribbon's 100 mm, so by 10 mm).
+    std::size_t position = session.GetHistoryPosition();
+    view->setFocus();
+    QTest::keyClick(view, Qt::Key_G);
+    QVERIFY2(
+      session.GetState() == bender::GrabState::Grabbed, session.GetMessages().back().text.c_str());
+    QVERIFY(this->Window->trackers().HandsPressed());
+    this->Server->LeftX = -80.0;
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(startX() - (placed.start.position.x + 10.0)) < 1e-3, 20000);
+    QVERIFY(std::abs(session.GetFinalRibbon().start.position.x - startX()) < 1e-9);
+    QTest::keyClick(view, Qt::Key_G);
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    QCOMPARE(session.GetHistoryPosition(), position + 1);
+    QVERIFY(!this->Window->trackers().HandsPressed());
+    const bender::WarpSpec first = session.GetPlan().warps.back();
+    QVERIFY(bender::Distance(first.initial.start.position, placed.start.position) < 1e-9);
+    QVERIFY(std::abs(first.final.start.position.x - (placed.start.position.x + 10.0)) < 1e-3);
+    // Released: the ribbon stays where the hands left it while they move freely.
+    this->Server->LeftX = -100.0;
+    QTest::qWait(300);
+    QVERIFY(std::abs(startX() - first.final.start.position.x) < 1e-9);
+
+    // Space held (a foot pedal): the hands, back at -100, hold the ribbon from where it is
+    // (anchored again: 1 mm of hand motion is now the 90 mm ribbon over the 200 mm span); the
+    // left hand moves 20 mm back, the start follows; letting go commits.
+    position = session.GetHistoryPosition();
+    const double scale =
+      bender::Distance(first.final.start.position, first.final.end.position) / 200.0;
+    const double expected = first.final.start.position.x - 20.0 * scale;
+    QTest::simulateEvent(view, true, Qt::Key_Space, Qt::NoModifier, " ", false);
+    QCOMPARE(session.GetState(), bender::GrabState::Grabbed);
+    QVERIFY(this->Window->trackers().HandsPressed());
+    this->Server->LeftX = -120.0;
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(startX() - expected) < 1e-3, 20000);
+    QTest::simulateEvent(view, false, Qt::Key_Space, Qt::NoModifier, " ", false);
+    QVERIFY(this->Window->waitUntilIdle(60000));
+    QCOMPARE(session.GetHistoryPosition(), position + 1);
+    QVERIFY(std::abs(session.GetPlan().warps.back().final.start.position.x - expected) < 1e-3);
+    QTest::mouseClick(this->child<QPushButton>("trackerDisconnect"), Qt::LeftButton);
+    this->Server.reset();
   }
 };
 

@@ -320,7 +320,7 @@ private slots:
     // ribbon below says the same whatever the timing.)
     Q_UNUSED(checked);
     QVERIFY(this->Window->saveScreenshot(this->artefact("safety-trackers-connected.png")));
-    // Mid-arch, for the documentation's screenshot (taken only when the grab is seen: the
+    // Mid-bend, for the documentation's screenshot (taken only when the grab is seen: the
     // checks below do not depend on it).
     // The Trackers panel in front: the picture shows the devices driving the ribbon.
     QVERIFY(bendertest::ShowPanel(*this->Window, panel));
@@ -329,14 +329,14 @@ private slots:
       QTest::qWait(2500);
       QVERIFY(this->Window->saveScreenshot(this->artefact("safety-trackers-bending.png")));
     }
-    // One press (1 s), the arch (1-4 s), the release (5 s): one commit, started where the
+    // One press (1 s), the bend (1-4 s), the release (5 s): one commit, started where the
     // ribbon was.
     QTRY_VERIFY_WITH_TIMEOUT(session.GetHistoryPosition() == 1 || session.IsCommitHeld(), 20000);
     this->Window->disconnectTrackers();
     QVERIFY(this->Window->waitUntilIdle(60000));
     if (session.IsCommitHeld())
     {
-      // The demo's R (10 mm) against the arch's r_min: only the space-inversion rule may hold
+      // The demo's R (10 mm) against the bend's r_min: only the space-inversion rule may hold
       // this bend, never a flipped or crossing triangle. The user reduces R and retries.
       const bender::CommitCheck& check = session.GetHeldCheck();
       QVERIFY2(
