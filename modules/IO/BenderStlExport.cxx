@@ -255,30 +255,30 @@ std::vector<std::size_t> LabelledTriangles::CountPerPatch() const
   return counts;
 }
 
-LabelledTriangles CollectLabelledTriangles(vtkPolyData* mesh)
+LabelledTriangles CollectLabelledTriangles(const LabelledSurface& mesh)
 {
-  if (!mesh)
+  if (!mesh.surface)
   {
     throw StlExportError("no mesh to export");
   }
   LabelledTriangles out;
   std::vector<vtkIdType> cells;
-  Triangulate(mesh, out.triangles, cells);
+  Triangulate(mesh.surface, out.triangles, cells);
   if (out.triangles.empty())
   {
     throw StlExportError("the mesh has no triangles");
   }
-  CheckFinite(mesh, out.triangles);
+  CheckFinite(mesh.surface, out.triangles);
   std::vector<int> ids;
   try
   {
-    out.patches = ReadPatchLabels(mesh);
-    ids = CellPatchIds(mesh);
+    ids = CellPatchIds(mesh.surface);
   }
   catch (const InputError& e)
   {
     throw StlExportError(e.what());
   }
+  out.patches = mesh.patches;
   std::map<int, std::size_t> index;
   for (std::size_t k = 0; k < out.patches.size(); ++k)
   {
@@ -287,28 +287,35 @@ LabelledTriangles CollectLabelledTriangles(vtkPolyData* mesh)
   out.patch.reserve(cells.size());
   for (vtkIdType cell : cells)
   {
-    out.patch.push_back(index.at(ids[static_cast<std::size_t>(cell)]));
+    const int id = ids[static_cast<std::size_t>(cell)];
+    const auto found = index.find(id);
+    if (found == index.end())
+    {
+      // A table taken from another surface: say so rather than write a patch without a name.
+      throw StlExportError("patch id " + std::to_string(id) + " of cell " + std::to_string(cell) +
+        " is not in the surface's patch table");
+    }
+    out.patch.push_back(found->second);
   }
   return out;
 }
 
-std::vector<std::string> PatchNames(vtkPolyData* mesh)
+LabelledSurface ReadExportLabels(vtkPolyData* mesh, const std::string& path)
 {
-  if (!mesh)
-  {
-    return { "wall" };
-  }
-  std::vector<PatchLabel> labels;
   try
   {
-    labels = ReadPatchLabels(mesh);
+    return ReadLabelledSurface(mesh);
   }
   catch (const InputError& e)
   {
-    throw StlExportError(e.what());
+    throw StlExportError(DisplayName(path) + ": " + e.what());
   }
+}
+
+std::vector<std::string> PatchNames(const LabelledSurface& mesh)
+{
   std::vector<std::string> names;
-  for (const PatchLabel& label : labels)
+  for (const PatchLabel& label : mesh.patches)
   {
     names.push_back(label.name);
   }
@@ -319,7 +326,7 @@ std::vector<std::string> PatchNames(vtkPolyData* mesh)
   return names;
 }
 
-std::vector<std::string> PlannedStlPaths(vtkPolyData* mesh,
+std::vector<std::string> PlannedStlPaths(const LabelledSurface& mesh,
   const std::string& path,
   const StlExportOptions& options)
 {
@@ -348,7 +355,7 @@ std::vector<std::string> PlannedStlPaths(vtkPolyData* mesh,
   return paths;
 }
 
-std::vector<AtomicFile> StlFiles(vtkPolyData* mesh,
+std::vector<AtomicFile> StlFiles(const LabelledSurface& mesh,
   const std::string& path,
   const StlExportOptions& options)
 {
@@ -358,7 +365,7 @@ std::vector<AtomicFile> StlFiles(vtkPolyData* mesh,
   {
     const ExportTransform transform(options.frame, options.unit);
     labels = CollectLabelledTriangles(mesh);
-    facets = Facets(mesh, labels, transform, options.patches != StlPatchMode::Single);
+    facets = Facets(mesh.surface, labels, transform, options.patches != StlPatchMode::Single);
   }
   catch (const StlExportError& e)
   {
@@ -434,7 +441,7 @@ std::vector<std::string> ExportStl(vtkPolyData* mesh,
   {
     throw StlExportError(DisplayName(path) + ": no mesh to export");
   }
-  const std::vector<AtomicFile> files = StlFiles(mesh, path, options);
+  const std::vector<AtomicFile> files = StlFiles(ReadExportLabels(mesh, path), path, options);
   std::string problem;
   if (!AtomicWriteAll(files, problem))
   {

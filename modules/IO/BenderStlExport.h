@@ -7,6 +7,7 @@
 
 #include "AtomicFile.h"
 #include "BenderErrors.h"
+#include "LabelledSurface.h"
 #include "PatchLabels.h"
 
 #include <vtkType.h>
@@ -83,30 +84,34 @@ struct LabelledTriangles
 {
   std::vector<std::array<vtkIdType, 3>> triangles; ///< point ids
   std::vector<std::size_t> patch;                  ///< per triangle, an index into patches
-  std::vector<PatchLabel> patches;                 ///< ReadPatchLabels: sorted by id
+  std::vector<PatchLabel> patches;                 ///< the surface's table: sorted by id
   /// Triangles per patch (same index as patches).
   std::vector<std::size_t> CountPerPatch() const;
 };
 
-/// Collects the labelled triangles of mesh. Throws StlExportError (no triangles, non-finite
-/// coordinates, labels ReadPatchLabels refuses: the message names the array).
-LabelledTriangles CollectLabelledTriangles(vtkPolyData* mesh);
+/// Collects the labelled triangles of `mesh` with the patch table it carries (read once, by
+/// ReadLabelledSurface). Throws StlExportError (no triangles, non-finite coordinates, a cell
+/// array CellPatchIds refuses: the message names the array).
+LabelledTriangles CollectLabelledTriangles(const LabelledSurface& mesh);
 
-/// Patch names in order of label (ReadPatchLabels): "wall", "inlet", "outlet_1", ...; legacy
-/// PatchId surfaces give "wall", "cap_1", ... Without labels: "wall". Throws StlExportError
-/// for labels ReadPatchLabels refuses.
-std::vector<std::string> PatchNames(vtkPolyData* mesh);
+/// The labelled surface of an export to `path`: ReadLabelledSurface of mesh, with labels it
+/// refuses thrown as StlExportError starting with path's base name.
+LabelledSurface ReadExportLabels(vtkPolyData* mesh, const std::string& path);
+
+/// Patch names in order of label: "wall", "inlet", "outlet_1", ...; legacy PatchId surfaces
+/// give "wall", "cap_1", ... Without labels: "wall".
+std::vector<std::string> PatchNames(const LabelledSurface& mesh);
 
 /// The files ExportStl would write for these arguments (one, or one per patch with
 /// triangles), so that callers can refuse to overwrite an input before anything is written.
-std::vector<std::string> PlannedStlPaths(vtkPolyData* mesh,
+std::vector<std::string> PlannedStlPaths(const LabelledSurface& mesh,
   const std::string& path,
   const StlExportOptions& options);
 
 /// The files of an STL export as producers for AtomicWriteAll (nothing is written yet), so
 /// that a caller can write them together with other files (the patches sidecar). Throws
 /// StlExportError like ExportStl.
-std::vector<AtomicFile> StlFiles(vtkPolyData* mesh,
+std::vector<AtomicFile> StlFiles(const LabelledSurface& mesh,
   const std::string& path,
   const StlExportOptions& options);
 
@@ -117,7 +122,7 @@ std::vector<AtomicFile> StlFiles(vtkPolyData* mesh,
 /// vertices bit for bit. The files are written all-or-nothing through AtomicWriteAll
 /// (AtomicFile.h). Returns the paths written. Throws StlExportError (non-finite coordinates,
 /// no triangles, bad labels, unknown unit, unwritable folder), what() starting with a file's
-/// base name.
+/// base name. The labels are read once (ReadExportLabels).
 std::vector<std::string> ExportStl(vtkPolyData* mesh,
   const std::string& path,
   const StlExportOptions& options);

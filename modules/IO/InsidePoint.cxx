@@ -144,7 +144,7 @@ std::optional<LumenPoint> FindLumenPoint(const std::vector<std::array<double, 3>
   return best;
 }
 
-std::optional<LumenPoint> FindInsidePoint(vtkPolyData* surface)
+std::optional<LumenPoint> FindInsidePoint(const LabelledSurface& surface)
 {
   const PatchSidecar measured = ComputePatchSidecar(surface, ExportTransform(StlFrame::LPS, "mm"));
   if (!measured.hasInsidePoint)

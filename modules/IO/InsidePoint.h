@@ -8,6 +8,7 @@
 // tube's chords stay inside although a straight line from an end would leave it), the one
 // farthest from the wall kept.
 
+#include "LabelledSurface.h"
 #include "Vec3.h"
 
 #include <vtkType.h>
@@ -53,10 +54,10 @@ std::optional<LumenPoint> FindLumenPoint(const std::vector<std::array<double, 3>
   const std::vector<bool>& shoot = {});
 
 /// The point inside the lumen of a closed surface in its own coordinates: FindLumenPoint with
-/// the ends of its patch labels (PatchLabels.h) as seeds and its wall triangles, as the
-/// patches.json sidecar measures it (PatchSidecar::insidePoint). None for an open surface or
-/// when none is found. Throws StlExportError (no triangles, non-finite coordinates, bad labels).
-std::optional<LumenPoint> FindInsidePoint(vtkPolyData* surface);
+/// the ends of its patch table as seeds and its wall triangles, as the patches.json sidecar
+/// measures it (PatchSidecar::insidePoint). None for an open surface or when none is found.
+/// Throws StlExportError (no triangles, non-finite coordinates, bad cell labels).
+std::optional<LumenPoint> FindInsidePoint(const LabelledSurface& surface);
 
 } // namespace bender
 

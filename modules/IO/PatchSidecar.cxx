@@ -45,17 +45,18 @@ bool IsClosed(const std::vector<std::array<vtkIdType, 3>>& triangles)
 
 } // namespace
 
-PatchSidecar ComputePatchSidecar(vtkPolyData* mesh, const ExportTransform& transform)
+PatchSidecar ComputePatchSidecar(const LabelledSurface& mesh, const ExportTransform& transform)
 {
   const LabelledTriangles labels = CollectLabelledTriangles(mesh);
   PatchSidecar out;
   out.unit = transform.Unit();
   out.frame = transform.Frame();
-  std::vector<Vec> points(static_cast<std::size_t>(mesh->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  vtkPolyData* surface = mesh.surface;
+  std::vector<Vec> points(static_cast<std::size_t>(surface->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
   {
     double in[3];
-    mesh->GetPoint(i, in);
+    surface->GetPoint(i, in);
     transform.Apply(in, points[static_cast<std::size_t>(i)].data());
   }
   out.closed = IsClosed(labels.triangles);
@@ -75,7 +76,7 @@ PatchSidecar ComputePatchSidecar(vtkPolyData* mesh, const ExportTransform& trans
     patch.area += area;
     for (int k = 0; k < 3; ++k)
     {
-      patch.centre[k] += area * (a[k] + b[k] + c[k]) / 3.0;
+      patch.areaMoment[k] += area * (a[k] + b[k] + c[k]) / 3.0;
     }
     normalSum[labels.patch[t]] += 0.5 * n;
   }
@@ -88,10 +89,14 @@ PatchSidecar ComputePatchSidecar(vtkPolyData* mesh, const ExportTransform& trans
     patch.label = labels.patches[k];
     if (patch.area > 0)
     {
-      for (double& c : patch.centre)
+      for (int a = 0; a < 3; ++a)
       {
-        c /= patch.area;
+        patch.centre[a] = patch.areaMoment[a] / patch.area;
       }
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      patch.vectorArea[a] = orientation * normalSum[k][a];
     }
     if (patch.label.id == kWallEntityId)
     {
@@ -105,7 +110,7 @@ PatchSidecar ComputePatchSidecar(vtkPolyData* mesh, const ExportTransform& trans
       patch.hasNormal = true;
       for (int a = 0; a < 3; ++a)
       {
-        patch.normal[a] = orientation * normalSum[k][a] / len;
+        patch.normal[a] = patch.vectorArea[a] / len;
       }
     }
   }
@@ -183,7 +188,7 @@ std::string PatchSidecarPath(const std::string& exportPath)
   return stem + ".patches.json";
 }
 
-AtomicFile PatchSidecarFile(vtkPolyData* mesh,
+AtomicFile PatchSidecarFile(const LabelledSurface& mesh,
   const std::string& path,
   const ExportTransform& transform,
   PatchSidecar* measured)

@@ -13,18 +13,23 @@
 #include <string>
 #include <vector>
 
-class vtkPolyData;
-
 namespace bender
 {
 
+/// One patch measured (ComputePatchSidecar: the one measure of Bender's patches, for the
+/// sidecar, the TetGen region point and the OpenFOAM case).
 struct PatchGeometry
 {
   PatchLabel label;
   std::size_t triangles = 0;
   double area = 0.0;
+  /// Sum over the patch's triangles of area x centroid (centre = areaMoment / area), so that a
+  /// change of unit scales the sum before the division, as the case's metres do.
+  std::array<double, 3> areaMoment{ { 0.0, 0.0, 0.0 } };
   /// Area-weighted centroid of the patch's triangles.
   std::array<double, 3> centre{ { 0.0, 0.0, 0.0 } };
+  /// Sum of the triangles' area vectors, turned outwards (the wall's too: nearly cancelled).
+  std::array<double, 3> vectorArea{ { 0.0, 0.0, 0.0 } };
   /// Unit area-weighted normal pointing out of the enclosed volume; only for the ends (the
   /// wall's normals cancel), and only when the patch is not degenerate.
   bool hasNormal = false;
@@ -51,9 +56,10 @@ struct PatchSidecar
   std::vector<PatchGeometry> patches;
 };
 
-/// Measures the patches of mesh (labels from PatchLabels.h) in the coordinates of transform.
-/// Throws StlExportError (no triangles, non-finite coordinates, bad labels).
-PatchSidecar ComputePatchSidecar(vtkPolyData* mesh, const ExportTransform& transform);
+/// Measures the patches of mesh (its patch table, read once by ReadLabelledSurface) in the
+/// coordinates of transform. Throws StlExportError (no triangles, non-finite coordinates, a
+/// cell array CellPatchIds refuses).
+PatchSidecar ComputePatchSidecar(const LabelledSurface& mesh, const ExportTransform& transform);
 
 /// The JSON text: {"format": "bender-patches", "version": 1, "unit", "frame", "closed",
 /// "volume", "insidePoint" (null when none was found), "patches": [{"name", "id", "type",
@@ -66,7 +72,7 @@ std::string PatchSidecarPath(const std::string& exportPath);
 
 /// The sidecar of mesh as a producer for AtomicWriteAll (measured now; throws like
 /// ComputePatchSidecar with the file's base name first).
-AtomicFile PatchSidecarFile(vtkPolyData* mesh,
+AtomicFile PatchSidecarFile(const LabelledSurface& mesh,
   const std::string& path,
   const ExportTransform& transform,
   PatchSidecar* measured = nullptr);

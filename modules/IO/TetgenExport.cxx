@@ -45,7 +45,7 @@ void AppendLine(std::string& text, const char* format, ...)
 }
 } // namespace
 
-std::string TetgenText(vtkPolyData* mesh,
+std::string TetgenText(const LabelledSurface& mesh,
   TetgenFormat format,
   const ExportTransform& transform,
   const double* insidePoint)
@@ -81,7 +81,7 @@ std::string TetgenText(vtkPolyData* mesh,
   for (std::size_t k = 0; k < order.size(); ++k)
   {
     double in[3], p[3];
-    mesh->GetPoint(order[k], in);
+    mesh.surface->GetPoint(order[k], in);
     transform.Apply(in, p);
     AppendLine(text, "%lld %.17g %.17g %.17g\n", static_cast<long long>(k) + 1, p[0], p[1], p[2]);
   }
@@ -118,7 +118,7 @@ std::string TetgenText(vtkPolyData* mesh,
   return text;
 }
 
-AtomicFile TetgenFile(vtkPolyData* mesh,
+AtomicFile TetgenFile(const LabelledSurface& mesh,
   const std::string& path,
   TetgenFormat format,
   const ExportTransform& transform,
@@ -134,6 +134,15 @@ AtomicFile TetgenFile(vtkPolyData* mesh,
     throw StlExportError(DisplayName(path) + ": " + e.what());
   }
   return { path, TextProducer(text) };
+}
+
+AtomicFile TetgenFile(vtkPolyData* mesh,
+  const std::string& path,
+  TetgenFormat format,
+  const ExportTransform& transform,
+  const double* insidePoint)
+{
+  return TetgenFile(ReadExportLabels(mesh, path), path, format, transform, insidePoint);
 }
 
 } // namespace bender

@@ -27,17 +27,23 @@ enum class TetgenFormat
 bool TetgenFormatForPath(const std::string& path, TetgenFormat& format);
 
 /// The whole text of the TetGen file of mesh: its triangles (polygons fanned) with their
-/// labels, nodes numbered from 1 (only the points of triangles) in the coordinates of
-/// `transform`, written with 17 significant digits. `insidePoint` (in those coordinates, may
-/// be null) becomes the one region point. Throws StlExportError (no triangles, non-finite
-/// coordinates, bad labels).
-std::string TetgenText(vtkPolyData* mesh,
+/// labels (its patch table), nodes numbered from 1 (only the points of triangles) in the
+/// coordinates of `transform`, written with 17 significant digits. `insidePoint` (in those
+/// coordinates, may be null) becomes the one region point. Throws StlExportError (no
+/// triangles, non-finite coordinates, a cell array CellPatchIds refuses).
+std::string TetgenText(const LabelledSurface& mesh,
   TetgenFormat format,
   const ExportTransform& transform,
   const double* insidePoint);
 
 /// The file as a producer for AtomicWriteAll (the text is built now; throws like TetgenText,
 /// the message starting with the file's base name).
+AtomicFile TetgenFile(const LabelledSurface& mesh,
+  const std::string& path,
+  TetgenFormat format,
+  const ExportTransform& transform,
+  const double* insidePoint);
+/// TetgenFile of a surface whose labels are not read yet (WriteMesh): read here, once.
 AtomicFile TetgenFile(vtkPolyData* mesh,
   const std::string& path,
   TetgenFormat format,

@@ -169,8 +169,18 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
   }
   const LabelledSurface labelled =
     known ? LabelledSurface{ surface, *known } : ReadLabelledSurface(surface);
-  const std::vector<PatchLabel>& labels = labelled.patches;
-  std::vector<CfdPatch> patches = MeasurePatches(surface, labels, name);
+  // The patches and the point inside the lumen, measured once (LPS millimetres); its one-line
+  // problems (non-finite coordinates, a bad cell array) get the surface's name.
+  PatchSidecar measured;
+  try
+  {
+    measured = ComputePatchSidecar(labelled, ExportTransform(StlFrame::LPS, "mm"));
+  }
+  catch (const StlExportError& e)
+  {
+    throw InputError(name + ": " + e.what());
+  }
+  std::vector<CfdPatch> patches = CfdPatchesOf(measured, name);
   std::string names;
   std::vector<std::size_t> ends;
   for (std::size_t i = 0; i < patches.size(); ++i)
@@ -276,7 +286,7 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     throw InputError("--cell-size " + CfdNumber(result.cellSize) + " m: the background mesh of " +
       name + " would have " + CfdShort(cells) + " cells; give a larger cell size");
   }
-  result.insidePoint = InsidePoint(surface, result.cellSize, name);
+  result.insidePoint = InsidePoint(measured, result.cellSize, name);
   result.patches = patches;
   const CfdPatch& in = patches[inlet];
   result.inletFlowRate = options.flowRate > 0.0 ? options.flowRate : options.velocity * in.area;

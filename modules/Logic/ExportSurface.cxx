@@ -161,12 +161,15 @@ ExportSurfaceResult ExportSurfaceWith(vtkPolyData* surface,
   result.triangles = static_cast<long long>(mesh->GetNumberOfPolys());
   result.surface = mesh;
 
-  result.patches = known && mesh.Get() == surface ? *known : ReadPatchLabels(mesh);
+  // The patch table of the surface written, read once for every file below.
+  const LabelledSurface labelled =
+    known && mesh.Get() == surface ? LabelledSurface{ mesh, *known } : ReadLabelledSurface(mesh);
+  result.patches = labelled.patches;
   const ExportTransform transform(options.frame, options.unit);
   std::vector<AtomicFile> files;
   if (rules.measure)
   {
-    AtomicFile sidecar = PatchSidecarFile(mesh, sidecarPath, transform, &result.sidecar);
+    AtomicFile sidecar = PatchSidecarFile(labelled, sidecarPath, transform, &result.sidecar);
     result.measured = true;
     if (rules.sidecar)
     {
@@ -183,7 +186,7 @@ ExportSurfaceResult ExportSurfaceWith(vtkPolyData* surface,
     if (!options.protectedPath.empty())
     {
       // With one file per patch the names derive from the output: none may be the input.
-      for (const std::string& planned : PlannedStlPaths(mesh, path, stlOptions))
+      for (const std::string& planned : PlannedStlPaths(labelled, path, stlOptions))
       {
         if (SameFile(planned, options.protectedPath))
         {
@@ -192,13 +195,13 @@ ExportSurfaceResult ExportSurfaceWith(vtkPolyData* surface,
         }
       }
     }
-    std::vector<AtomicFile> stlFiles = StlFiles(mesh, path, stlOptions);
+    std::vector<AtomicFile> stlFiles = StlFiles(labelled, path, stlOptions);
     files.insert(files.begin(), stlFiles.begin(), stlFiles.end());
   }
   else if (format.regionPoint && TetgenFormatForPath(path, tetgen))
   {
     files.insert(files.begin(),
-      TetgenFile(mesh,
+      TetgenFile(labelled,
         path,
         tetgen,
         transform,

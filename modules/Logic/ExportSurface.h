@@ -65,7 +65,7 @@ struct ExportSurfaceResult
   long long triangles = 0;          ///< of the written surface (caps included)
   /// The surface written (caps included), in LPS millimetres.
   vtkSmartPointer<vtkPolyData> surface;
-  /// The patches as written (names, ids, types; ReadPatchLabels of `surface`).
+  /// The patches as written (names, ids, types: the patch table of `surface`).
   std::vector<PatchLabel> patches;
   /// Measured for the sidecar, in the written frame and unit (when patchesJson or .smesh/.poly:
   /// the TetGen region point is its insidePoint).

@@ -312,8 +312,8 @@ TEST_F(CapExport, PatchFilesAreWrittenAllOrNothing)
   const std::string dir = TempDir();
   bender::StlExportOptions options;
   options.patches = bender::StlPatchMode::Files;
-  const std::vector<std::string> planned =
-    bender::PlannedStlPaths(cap->GetOutput(), dir + "/case.stl", options);
+  const std::vector<std::string> planned = bender::PlannedStlPaths(
+    bender::ReadLabelledSurface(cap->GetOutput()), dir + "/case.stl", options);
   ASSERT_EQ(planned.size(), 3u); // wall, cap_1, cap_2
   {
     std::ofstream(planned[0]) << "previous wall";

@@ -139,7 +139,7 @@ bool EnclosedByVtk(vtkPolyData* surface, const Vec3& p)
 
 void ExpectDeepInside(const BentTube& tube)
 {
-  const std::optional<LumenPoint> inside = FindInsidePoint(tube.surface);
+  const std::optional<LumenPoint> inside = FindInsidePoint(ReadLabelledSurface(tube.surface));
   ASSERT_TRUE(inside.has_value());
   EXPECT_TRUE(EnclosedByVtk(tube.surface, inside->point));
   // Far from the wall: within half a radius of the centreline, its clearance what that leaves.
@@ -181,7 +181,7 @@ TEST(InsidePoint, EitherOrientation)
 TEST(InsidePoint, LabelledCylinder)
 {
   const auto cylinder = bender_test::LabelledCylinder();
-  const std::optional<LumenPoint> inside = FindInsidePoint(cylinder);
+  const std::optional<LumenPoint> inside = FindInsidePoint(ReadLabelledSurface(cylinder));
   ASSERT_TRUE(inside.has_value());
   const double off = std::hypot(inside->point.x - bender_test::Offset, inside->point.y);
   EXPECT_LT(off, 0.5);
@@ -207,5 +207,5 @@ TEST(InsidePoint, NoneForAnOpenSurface)
   vtkNew<vtkPolyData> open;
   open->SetPoints(tube.surface->GetPoints());
   open->SetPolys(wall);
-  EXPECT_FALSE(FindInsidePoint(open).has_value());
+  EXPECT_FALSE(FindInsidePoint(ReadLabelledSurface(open)).has_value());
 }

@@ -159,7 +159,7 @@ TEST(MesherExport, SolidsAreNamedByPatchWithTheirTriangles)
   EXPECT_EQ(solids[2].vertices.size(), 3u * Segments);
   const std::string text = ReadText(written[0]);
   EXPECT_NE(text.find("endsolid wall  bender export: frame LPS, unit mm"), std::string::npos);
-  EXPECT_EQ(bender::PatchNames(LabelledCylinder()),
+  EXPECT_EQ(bender::PatchNames(bender::ReadLabelledSurface(LabelledCylinder())),
     (std::vector<std::string>{ "wall", "inlet", "outlet_1" }));
 }
 
@@ -211,7 +211,9 @@ TEST(MesherExport, PerPatchFilesShareTheirRimVerticesBitForBit)
   const auto written = bender::ExportStl(LabelledCylinder(), dir / "v.stl", options);
   ASSERT_EQ(written,
     (std::vector<std::string>{ dir / "v_wall.stl", dir / "v_inlet.stl", dir / "v_outlet_1.stl" }));
-  EXPECT_EQ(bender::PlannedStlPaths(LabelledCylinder(), dir / "v.stl", options), written);
+  EXPECT_EQ(bender::PlannedStlPaths(
+              bender::ReadLabelledSurface(LabelledCylinder()), dir / "v.stl", options),
+    written);
   std::string header;
   const auto wall = Bits(ReadBinaryVertices(written[0], header));
   EXPECT_NE(header.find("frame RAS, unit m, patch wall"), std::string::npos) << header;
@@ -242,7 +244,8 @@ TEST(MesherExport, LegacyPatchIdSurfacesKeepWorking)
   old->SetPoints(mesh->GetPoints());
   old->SetPolys(mesh->GetPolys());
   old->GetCellData()->AddArray(legacy);
-  EXPECT_EQ(bender::PatchNames(old), (std::vector<std::string>{ "wall", "cap_1", "cap_2" }));
+  EXPECT_EQ(bender::PatchNames(bender::ReadLabelledSurface(old)),
+    (std::vector<std::string>{ "wall", "cap_1", "cap_2" }));
   TempDir dir;
   bender::StlExportOptions options;
   options.patches = bender::StlPatchMode::Solids;
@@ -270,15 +273,17 @@ TEST(MesherExport, BadLabelsAndGeometryAreRefusedNamingTheProblem)
       std::string(e.what()).find("bad.stl: the cell array CellEntityIds"), std::string::npos)
       << e.what();
   }
-  EXPECT_THROW(bender::TetgenText(mesh,
+  // The table of a sound cylinder with the bad cell array: the cells are checked when collected.
+  const bender::LabelledSurface badCells{ mesh, bender::ReadPatchLabels(LabelledCylinder()) };
+  EXPECT_THROW(bender::TetgenText(badCells,
                  bender::TetgenFormat::Smesh,
                  bender::ExportTransform(bender::StlFrame::LPS, "mm"),
                  nullptr),
     bender::StlExportError);
   auto nan = LabelledCylinder();
   nan->GetPoints()->SetPoint(3, std::nan(""), 0, 0);
-  EXPECT_THROW(
-    bender::ComputePatchSidecar(nan, bender::ExportTransform(bender::StlFrame::LPS, "mm")),
+  EXPECT_THROW(bender::ComputePatchSidecar(bender::ReadLabelledSurface(nan),
+                 bender::ExportTransform(bender::StlFrame::LPS, "mm")),
     bender::StlExportError);
   vtkNew<vtkPolyData> empty;
   EXPECT_THROW(bender::ExportStl(empty, dir / "e.stl", options), bender::StlExportError);
@@ -379,12 +384,13 @@ ParsedTetgen ParseTetgen(const std::string& text, bool poly)
 TEST(MesherExport, SmeshAndPolyParseBackWithEveryMarker)
 {
   const auto mesh = LabelledCylinder();
+  const bender::LabelledSurface labelled = bender::ReadLabelledSurface(mesh);
   const bender::ExportTransform metres(bender::StlFrame::LPS, "m");
-  const auto sidecar = bender::ComputePatchSidecar(mesh, metres);
+  const auto sidecar = bender::ComputePatchSidecar(labelled, metres);
   ASSERT_TRUE(sidecar.hasInsidePoint);
   for (bool poly : { false, true })
   {
-    const std::string text = bender::TetgenText(mesh,
+    const std::string text = bender::TetgenText(labelled,
       poly ? bender::TetgenFormat::Poly : bender::TetgenFormat::Smesh,
       metres,
       sidecar.insidePoint.data());
@@ -425,7 +431,7 @@ TEST(MesherExport, SidecarMeasuresEachPatch)
   {
     const auto mesh = LabelledCylinder(flip);
     const bender::ExportTransform mm(bender::StlFrame::LPS, "mm");
-    const auto sidecar = bender::ComputePatchSidecar(mesh, mm);
+    const auto sidecar = bender::ComputePatchSidecar(bender::ReadLabelledSurface(mesh), mm);
     EXPECT_TRUE(sidecar.closed);
     ASSERT_EQ(sidecar.patches.size(), 3u);
     const auto& wall = sidecar.patches[0];
@@ -457,7 +463,7 @@ TEST(MesherExport, SidecarMeasuresEachPatch)
   // In RAS metres the same values, transformed.
   const auto mesh = LabelledCylinder();
   const bender::ExportTransform ras(bender::StlFrame::RAS, "m");
-  const auto sidecar = bender::ComputePatchSidecar(mesh, ras);
+  const auto sidecar = bender::ComputePatchSidecar(bender::ReadLabelledSurface(mesh), ras);
   EXPECT_NEAR(sidecar.patches[1].area, M_PI * 1e-6, 0.01 * M_PI * 1e-6);
   EXPECT_NEAR(sidecar.patches[1].centre[0], -Offset / 1000, 1e-12);
   EXPECT_NEAR(sidecar.patches[2].normal[2], 1.0, 1e-9);
@@ -500,8 +506,8 @@ TEST(MesherExport, AnOpenSurfaceHasNoInsidePoint)
   bender::WritePatchLabels(open,
     kept,
     { { 1, "wall", bender::PatchType::Wall }, { 2, "inlet", bender::PatchType::Inlet } });
-  const auto sidecar =
-    bender::ComputePatchSidecar(open, bender::ExportTransform(bender::StlFrame::LPS, "mm"));
+  const auto sidecar = bender::ComputePatchSidecar(
+    bender::ReadLabelledSurface(open), bender::ExportTransform(bender::StlFrame::LPS, "mm"));
   EXPECT_FALSE(sidecar.closed);
   EXPECT_FALSE(sidecar.hasInsidePoint);
   EXPECT_TRUE(nlohmann::json::parse(bender::PatchSidecarJson(sidecar)).at("insidePoint").is_null());

@@ -59,7 +59,7 @@ TEST(TetgenClient, MeshesTheSmeshWithEveryMarker)
     GTEST_SKIP() << Tetgen << " is not installed (scripts/setup installs Debian's tetgen)";
   }
   bender_test::TempDir dir;
-  const auto mesh = bender_test::LabelledCylinder();
+  const auto mesh = bender::ReadLabelledSurface(bender_test::LabelledCylinder());
   const bender::ExportTransform metres(bender::StlFrame::LPS, "m");
   const auto sidecar = bender::ComputePatchSidecar(mesh, metres);
   ASSERT_TRUE(sidecar.hasInsidePoint);

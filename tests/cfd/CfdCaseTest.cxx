@@ -148,7 +148,8 @@ TEST(CfdCase, WritesACompleteCaseInMetres)
   enclosed->Complete();
   // It is Bender's one inside point (the sidecar's), moved off the grid by a few hundredths
   // of a cell.
-  const std::optional<bender::LumenPoint> lumen = bender::FindInsidePoint(Aneurysm());
+  const std::optional<bender::LumenPoint> lumen =
+    bender::FindInsidePoint(bender::ReadLabelledSurface(Aneurysm()));
   ASSERT_TRUE(lumen.has_value());
   const double shared[3] = { lumen->point.x, lumen->point.y, lumen->point.z };
   for (int k = 0; k < 3; ++k)
