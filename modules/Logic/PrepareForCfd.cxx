@@ -257,7 +257,8 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
     result.surface = extended.surface;
     const std::vector<int> ids(
       static_cast<std::size_t>(result.surface->GetNumberOfPolys()), kWallEntityId);
-    WritePatchLabels(result.surface, ids, { { kWallEntityId, "wall", PatchType::Wall } });
+    result.patches = { { kWallEntityId, "wall", PatchType::Wall } };
+    WritePatchLabels(result.surface, ids, result.patches);
     return result;
   }
   progress.ThrowIfCancelled("flow extensions");
@@ -299,6 +300,13 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   std::sort(result.ends.begin(),
     result.ends.end(),
     [](const CfdEnd& a, const CfdEnd& b) { return a.id < b.id; });
+  // The table the cap filter wrote: the wall (the flow extensions keep no labels of the input)
+  // and the caps.
+  result.patches = { { kWallEntityId, "wall", PatchType::Wall } };
+  for (const CfdEnd& end : result.ends)
+  {
+    result.patches.push_back({ end.id, end.name, end.type });
+  }
   return result;
 }
 

@@ -80,7 +80,11 @@ struct CfdEnd
 struct PrepareForCfdResult
 {
   vtkSmartPointer<vtkPolyData> surface; ///< labelled (PatchLabels.h)
-  std::vector<CfdEnd> ends;             ///< by id
+  /// The patch table of `surface` as written (the wall, then each capped end by id; ReadPatchLabels
+  /// of it gives the same): LabelledSurface{ surface, patches } goes to the export and the case
+  /// without parsing the cell data again.
+  std::vector<PatchLabel> patches;
+  std::vector<CfdEnd> ends; ///< by id
   std::vector<std::string> warnings;
 };
 
