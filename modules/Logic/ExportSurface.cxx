@@ -47,7 +47,7 @@ FileProducer MeshProducer(vtkSmartPointer<vtkPolyData> mesh, MeshWriteOptions wr
     {
       WriteMesh(mesh, temp, writeOptions);
     }
-    catch (const std::exception& e)
+    catch (const std::exception& e) // MeshIOError, and std's: AtomicWriteAll takes a problem
     {
       problem = e.what();
       return false;

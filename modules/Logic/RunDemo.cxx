@@ -53,40 +53,28 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
 
   vtkSmartPointer<vtkPolyData> surface;
   WarpPlan plan;
-  try
+  if (options.segment)
   {
-    if (options.segment)
+    say("Segmenting the demo vessel (MRA-like phantom of " + vesselPath + ")...");
+    const DemoVessel demo = SegmentDemoVesselOrFallBack(vesselPath, options.demo, options.progress);
+    surface = demo.surface;
+    if (demo.fallback.empty())
     {
-      say("Segmenting the demo vessel (MRA-like phantom of " + vesselPath + ")...");
-      const DemoVessel demo =
-        SegmentDemoVesselOrFallBack(vesselPath, options.demo, options.progress);
-      surface = demo.surface;
-      if (demo.fallback.empty())
-      {
-        say(demo.summary);
-        WriteMesh(surface, out("demo-segmented.vtp"));
-        result.written.push_back(out("demo-segmented.vtp"));
-        result.segmented = true;
-      }
-      else
-      {
-        warn("segmentation failed (" + demo.fallback + "); using the vessel surface");
-      }
+      say(demo.summary);
+      WriteMesh(surface, out("demo-segmented.vtp"));
+      result.written.push_back(out("demo-segmented.vtp"));
+      result.segmented = true;
     }
     else
     {
-      surface = ReadMesh(vesselPath);
+      warn("segmentation failed (" + demo.fallback + "); using the vessel surface");
     }
-    plan = ReadWarpPlan(planPath);
   }
-  catch (const Cancelled&)
+  else
   {
-    throw;
+    surface = ReadMesh(vesselPath);
   }
-  catch (const std::exception& e)
-  {
-    throw InputError(e.what());
-  }
+  plan = ReadWarpPlan(planPath);
   options.progress.ThrowIfCancelled("demo plan");
 
   ApplyPlanOptions applyOptions;
@@ -138,7 +126,7 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
         warn(w);
       }
       options.progress.ThrowIfCancelled("demo CFD");
-      const vtkSmartPointer<vtkPolyData> cfdBent = prepared.surface;
+      const LabelledSurface cfdBent{ prepared.surface, prepared.patches };
       ExportSurfaceOptions stl;
       stl.output = out("demo-cfd.stl");
       stl.protectedPath = vesselPath;
@@ -175,19 +163,12 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
     {
       throw;
     }
-    catch (const std::exception& e)
+    catch (const std::exception& e) // bender's errors and std::filesystem_error of the case
     {
       warn(std::string("the CFD step failed: ") + e.what());
     }
   }
-  try
-  {
-    WriteWarpPlan(plan, out("demo-plan.bender.json"));
-  }
-  catch (const std::exception& e)
-  {
-    throw InputError(e.what());
-  }
+  WriteWarpPlan(plan, out("demo-plan.bender.json")); // WarpPlanError: an InputError
   result.written.push_back(out("demo-plan.bender.json"));
 
   if (options.screenshot)

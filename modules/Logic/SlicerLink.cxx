@@ -149,7 +149,7 @@ void SlicerLink::Loop()
       }
     }
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // nothing leaves the thread: TransportError, std::system_error
   {
     failure = e.what();
   }

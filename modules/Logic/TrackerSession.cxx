@@ -41,7 +41,7 @@ bool TrackerSession::Connect(const std::string& deviceSpec,
     stream.Create();
     device = stream.TakeDevice();
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // TrackingErrors, and std::system_error of the reader thread
   {
     this->Session.AddMessage(MessageSeverity::Error, "Tracker " + deviceSpec + ": " + e.what());
     return false;
@@ -71,7 +71,7 @@ bool TrackerSession::Connect(std::unique_ptr<TrackerDevice> device,
     device->Start();
     this->Input = std::move(input);
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // TrackingErrors, and std::system_error of the reader thread
   {
     device->Stop();
     device->Close();
@@ -191,7 +191,7 @@ TrackerSession::PollResult TrackerSession::Poll()
   {
     gestures = this->Input->Poll(*this->Device);
   }
-  catch (const std::exception& e)
+  catch (const Error& e) // a re-anchoring the hands refuse (TrackingConfigurationError)
   {
     this->Fail(e.what());
     result.cancelled = true;
@@ -467,7 +467,7 @@ bool TrackerSession::AlignTo(const RibbonSpec& target)
   {
     this->Input->AnchorTo(target);
   }
-  catch (const std::exception& e)
+  catch (const Error& e) // TrackingConfigurationError
   {
     this->Session.AddMessage(MessageSeverity::Error, std::string("Align: ") + e.what());
     return false;

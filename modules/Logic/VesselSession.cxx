@@ -1,6 +1,7 @@
 #include "VesselSession.h"
 
 #include "BenderSession.h"
+#include "GeometryErrors.h"
 #include "PolyDataCopy.h"
 #include "RibbonWarp.h"
 #include "Vec3.h"
@@ -80,7 +81,7 @@ void CenterlineJob::Run(const ProgressReporter& progress)
     progress.Report("centerlines", 1.0);
     this->Ok = true;
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // Cancelled, and ComputeCenterlines' std::invalid_argument
   {
     this->Problem = std::string("Centerlines: ") + e.what();
   }
@@ -388,7 +389,7 @@ bool VesselSession::HeldSamples(const WarpSpec* warp,
     }
     return true;
   }
-  catch (const std::exception&)
+  catch (const GeometryError&)
   {
     points.clear(); // an invalid live warp: the session does not apply it either
     radii.clear();
@@ -480,7 +481,7 @@ vtkSmartPointer<vtkPolyData> VesselSession::WarpedPaths(const WarpSpec& warp) co
     warped->SetPoints(points);
     return warped;
   }
-  catch (const std::exception&)
+  catch (const GeometryError&) // an invalid live warp
   {
     return nullptr;
   }

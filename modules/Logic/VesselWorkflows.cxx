@@ -161,7 +161,7 @@ Point3 ParsePoint(const std::string& text, const std::string& what)
     {
       p[c] = std::stod(field, &used);
     }
-    catch (const std::exception&)
+    catch (const std::exception&) // std::stod's invalid_argument and out_of_range
     {
       used = 0;
     }
