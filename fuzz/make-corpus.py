@@ -221,3 +221,22 @@ seed("fuzz_igtl", "described-all-types", bytes([0x40 | 2, 9, 30]) + described(0,
 # Found by fuzz_igtl (issue 25): a STATUS text with bytes outside printable ASCII reached the
 # status line as they were; a QTDATA element name with control bytes reached the names shown.
 regression("fuzz_igtl", "qtdata-element-name-not-printable", bytes([0x40]) + described(2, b"Tracker", struct.pack(">20sBB", b"Stylus\x1b[31m", 5, 0) + floats(1, 2, 3, 0, 0, 0, 1)))
+
+# --- session (autosave) files: version 1 (source, name, frame, plan) and version 2 with every
+# optional part, the plan being the IO tests' example.
+import json
+plan = json.load(open(os.path.join(here, "..", "tests", "data", "io", "example.bender.json")))
+session1 = {"format": "bender-session", "version": 1, "source": "/data/aneurysm.stl", "frame": "LPS", "plan": plan}
+end = lambda x: {"position": [x, 0, 0], "tangent": [1, 0, 0], "normal": [0, 0, 1]}
+session2 = dict(session1, version=2, name="aneurysm.stl (segmented)",
+    volume={"path": "/data/mra.nrrd", "name": "mra", "series": "1.2.3", "size": [64, 64, 32], "spacing": [0.5, 0.5, 1.0],
+            "origin": [-10.0, 5.5, 0.0], "direction": [1, 0, 0, 0, 1, 0, 0, 0, 1], "mask": "/tmp/autosave.mask.nrrd"},
+    segmentation={"method": "vesselness", "lower": 100.0, "upper": 900.5, "seeds": [[1, 2, 3]], "fillHoles": True,
+                  "closingRadius": 1.0, "minRadius": 0.5, "maxRadius": 4.0, "scales": 4, "alpha": 0.5, "beta": 0.5,
+                  "gamma": 5.0, "vesselnessThreshold": 0.05, "brightVessels": True, "levelSetIterations": 10,
+                  "levelSetSigma": 1.0, "levelSetPropagation": 0.0, "levelSetCurvature": 1.0, "extractor": "vtk",
+                  "smoothing": 0.5, "targetTriangles": 20000, "surfaceSeeds": [[0, 0, 0]]},
+    ribbon={"start": end(0), "end": end(40), "extraTurns": 0, "radius": 12.5, "decay": "plateau", "plateau": 0.5,
+            "vesselRadius": 2.5})
+seed("fuzz_session", "version-1.bender-session.json", json.dumps(session1, indent=2))
+seed("fuzz_session", "version-2-full.bender-session.json", json.dumps(session2, indent=2))

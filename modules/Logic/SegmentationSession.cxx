@@ -194,18 +194,8 @@ void SegmentationSession::Clear()
 
 bool SegmentationSession::SetSettings(const SegmentationSettings& settings, std::string& problem)
 {
-  try
+  if (!CheckSegmentationSettings(settings, problem))
   {
-    ValidateSegmentationParameters(settings.segmentation);
-  }
-  catch (const Error& e)
-  {
-    problem = e.what();
-    return false;
-  }
-  if (!(settings.surface.smoothing >= 0.0 && settings.surface.smoothing <= 1.0))
-  {
-    problem = "smoothing: must be in [0, 1]";
     return false;
   }
   this->Settings = settings;

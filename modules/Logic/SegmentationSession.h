@@ -39,6 +39,11 @@ struct SegmentationSettings
   SurfaceParameters surface;
 };
 
+/// The ranges the Segment panel, the session and the session file accept:
+/// ValidateSegmentationParameters and a smoothing in [0, 1]. False, and `problem` says why,
+/// otherwise. Needs no ITK (SegmentationSettings.cxx).
+bool CheckSegmentationSettings(const SegmentationSettings& settings, std::string& problem);
+
 /// The segmentation half of the application state, without Qt: the loaded volume, the mask of
 /// the last segmentation, the parameters, and the jobs that read and segment (run on a worker,
 /// finished on the session's thread, as BenderSession's jobs). The window shows the volume and

@@ -1,6 +1,7 @@
 #include "SessionAutosave.h"
 
 #include "AtomicFile.h"
+#include "InputValidation.h"
 #include "WarpPlanIO.h"
 
 #include <nlohmann/json.hpp>
@@ -356,9 +357,8 @@ public:
     f.targetTriangles = static_cast<std::size_t>(target);
     f.seeds = this->Points(j, "surfaceSeeds", field);
     // The ranges the Segment panel and the session accept.
-    SegmentationSession check;
     std::string problem;
-    if (!check.SetSettings(settings, problem))
+    if (!CheckSegmentationSettings(settings, problem))
     {
       this->Fail(field, problem);
     }
@@ -512,7 +512,9 @@ SessionSnapshot ReadSessionFile(const std::string& path)
   }
   catch (const nlohmann::json::exception& e)
   {
-    throw SessionFileError(Name(path) + ": not valid JSON (" + e.what() + ")");
+    // nlohmann quotes the bytes it last read, which come from the file and may be anything.
+    throw SessionFileError(
+      Name(path) + ": not valid JSON (" + io_detail::CleanMessage(e.what(), 300) + ")");
   }
   if (!root.is_object() || root.value("format", std::string()) != "bender-session")
   {

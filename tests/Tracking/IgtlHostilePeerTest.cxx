@@ -14,9 +14,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -168,6 +170,39 @@ TEST(IgtlHostilePeer, AnInStepHeaderAboveTheLimitIsARefusalGarbageIsNot)
   EXPECT_EQ(hunting.Statistics().oversized, 1u);
   hunting.Reset();
   EXPECT_EQ(hunting.Statistics().garbageBytes, 0u);
+}
+
+TEST(IgtlHostilePeer, TextsFromThePeerAreMadeFitToShow)
+{
+  // Found by fuzz_igtl: a STATUS text and a QTDATA element name are shown (status line, names
+  // seen, the terminal); control bytes and escape sequences from the peer must not get there.
+  Bytes status = { 0, 4, 0, 0, 0, 0, 0, 0, 0, 0 };
+  const std::string name = "Not\x1b[31mReady";
+  status.insert(status.end(), name.begin(), name.end());
+  status.resize(30, 0);
+  const std::string text = "tool\x07 out of view\xf7";
+  status.insert(status.end(), text.begin(), text.end());
+  status.push_back(0);
+  bender::IgtlMessage message;
+  message.type = "STATUS";
+  message.deviceName = "Tracker";
+  message.content = status;
+  const std::optional<bender::IgtlStatus> decoded = bender::DecodeIgtlStatus(message);
+  ASSERT_TRUE(decoded);
+  EXPECT_EQ(decoded->code, 4);
+  EXPECT_EQ(decoded->errorName, "Not?[31mReady");
+  EXPECT_EQ(decoded->text, "tool? out of view?");
+
+  Bytes element(50, 0);
+  const std::string elementName = "Stylus\x1b]0;x";
+  std::copy(elementName.begin(), elementName.end(), element.begin());
+  message.type = "QTDATA";
+  message.content = element;
+  std::vector<bender::IgtlToolPose> poses;
+  std::string problem;
+  EXPECT_FALSE(bender::DecodeIgtlPoses(message, poses, problem));
+  EXPECT_EQ(problem, "QTDATA 'Tracker': element 1: name is not printable ASCII");
+  EXPECT_TRUE(poses.empty());
 }
 
 TEST(IgtlHostilePeer, AServerAnnouncingA2To60ByteBodyIsDroppedAndReconnectWorks)
