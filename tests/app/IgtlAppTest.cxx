@@ -1,11 +1,12 @@
 // The Trackers panel's OpenIGTLink side on the real window (QTest under Xvfb): a loopback
 // server streams TRANSFORMs for two tool names and the panel, connected through its own
 // widgets, moves the ribbon; a connect to a port that does not answer leaves the event loop
-// turning; "Send to Slicer" makes a loopback receiver get the session's surface as POLYDATA and
-// a newer one during and after a bend; a server that goes away ends the connection and Connect
-// reconnects. A device kind registered in the device table appears in the panel's device list
-// and connects like any other. A server that sends no button messages (PLUS's default): G and
-// Space held grab and release with the hands. Loopback 127.0.0.1 on ephemeral ports only.
+// turning, and so does a connected server that never sends (the view keeps rendering); "Send to
+// Slicer" makes a loopback receiver get the session's surface as POLYDATA and a newer one during
+// and after a bend; a server that goes away ends the connection and Connect reconnects. A device
+// kind registered in the device table appears in the panel's device list and connects like any
+// other. A server that sends no button messages (PLUS's default): G and Space held grab and release
+// with the hands. Loopback 127.0.0.1 on ephemeral ports only.
 
 #include "AppTestUtilities.h"
 #include "BenderSession.h"
@@ -25,6 +26,7 @@
 #include <QComboBox>
 #include <QCompleter>
 #include <QDir>
+#include <QElapsedTimer>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
@@ -40,6 +42,7 @@
 #include <vtkCellArray.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -48,6 +51,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -363,6 +367,56 @@ private slots:
     for (int c : fillers)
       ::close(c);
     ::close(silent);
+  }
+
+  void aConnectedPeerThatNeverAnswersLeavesTheWindowDrawing()
+  {
+    // A server that accepts and then sends nothing (issue 25): the panel connects, the device
+    // waits for bytes on its reader thread, and the GUI thread keeps rendering the 3D view;
+    // Disconnect returns at once.
+    int port = 0;
+    const int listener = ListenLoopback(1, port);
+    QVERIFY(listener >= 0);
+    std::atomic<bool> stop{ false };
+    std::thread server(
+      [listener, &stop]()
+      {
+        const int fd = AcceptUnlessStopped(listener, stop);
+        while (!stop)
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        if (fd >= 0)
+          ::close(fd);
+      });
+    this->fillIgtl(port);
+    QSignalSpy finished(this->panel(), &TrackersPanel::connectFinished);
+    QTest::mouseClick(this->child<QPushButton>("trackerConnect"), Qt::LeftButton);
+    QVERIFY(finished.wait(20000));
+    QCOMPARE(finished.last().first().toBool(), true);
+    auto* view = this->Window->findChild<QVTKOpenGLNativeWidget*>();
+    QVERIFY(view);
+    int renders = 0;
+    QTimer ticker;
+    ticker.setInterval(10);
+    connect(&ticker,
+      &QTimer::timeout,
+      [view, &renders]()
+      {
+        view->renderWindow()->Render();
+        ++renders;
+      });
+    ticker.start();
+    QTest::qWait(1000);
+    ticker.stop();
+    QVERIFY(this->Window->trackers().IsConnected());
+    QVERIFY2(renders > 10, qPrintable(QString("%1 renders in 1 s").arg(renders)));
+    QElapsedTimer disconnecting;
+    disconnecting.start();
+    QTest::mouseClick(this->child<QPushButton>("trackerDisconnect"), Qt::LeftButton);
+    QVERIFY(!this->Window->trackers().IsConnected());
+    QVERIFY(disconnecting.elapsed() < 2000);
+    stop = true;
+    server.join();
+    ::close(listener);
   }
 
   void igtlServerDrivesTheRibbon()
