@@ -58,8 +58,9 @@ struct IgtlStatistics
 ///   says why ("dropped the connection: ..."), when an in-step header announces a body above
 ///   `maxBodyBytes` (see IgtlStreamDecoder::Refusal), when more than `maxGarbageBytes` arrive
 ///   without a valid message, or when bytes stay pending without completing a message for
-///   `stallTimeout` (a peer trickling bytes). The decoder then never holds more than
-///   58 + maxBodyBytes bytes (IgtlStreamDecoder::BufferCap; IgtlStats().decoder.peakBuffered).
+///   `stallTimeout` (a peer trickling bytes). Between reads the decoder holds fewer than
+///   58 + maxBodyBytes bytes (IgtlStreamDecoder::BufferCap; IgtlStats().decoder.peakBuffered),
+///   and while decoding a read at most 64 KiB more.
 ///   A server that accepts and sends nothing is not dropped: it is idle, and Stop() still
 ///   returns within `readTimeout`.
 class IgtlDevice : public TrackerDevice
