@@ -3,7 +3,9 @@
 #include "BenderErrors.h"
 #include "CliHelpFormatter.h"
 #include "VesselWorkflows.h"
+#include "VtkMessageGuard.h"
 
+#include <vtkLogger.h>
 #include <vtkOutputWindow.h>
 
 #include <cmath>
@@ -163,7 +165,7 @@ int RunCli(CLI::App& cli,
   }
   catch (const std::exception& e)
   {
-    err << Prefix(CommandOf(cli)) << ": " << e.what() << "\n";
+    err << Prefix(CommandOf(cli)) << ": " << ErrorLine(e.what()) << "\n";
   }
   std::fflush(stdout);
   return 1;
@@ -184,8 +186,11 @@ CLI::App* AddCommand(CLI::App& cli,
   command->callback(
     [run = std::move(run)]
     {
-      // VTK's own messages would repeat ours; every failure is reported in one line.
+      // VTK's own messages would repeat ours; every failure is reported in one line. VTK
+      // writes them twice: through the output window, and through its logger (loguru), which
+      // also prints the executive's multi-line "returned failure for request" report.
       vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+      vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
       if (const int status = run())
       {
         throw CLI::RuntimeError(status); // RunCli returns it
@@ -209,13 +214,18 @@ int RunAlone(const std::string& name,
 
 int CommandError(const std::string& command, const std::string& message)
 {
-  std::fprintf(stderr, "bender-cli %s: %s\n", command.c_str(), message.c_str());
+  std::fprintf(stderr, "bender-cli %s: %s\n", command.c_str(), ErrorLine(message).c_str());
   return 1;
+}
+
+std::string ErrorLine(const std::string& message)
+{
+  return io_detail::OneLine(message, MaxErrorLine);
 }
 
 int UsageError(std::ostream& err, const std::string& command, const std::string& problem)
 {
-  std::string line = problem;
+  std::string line = ErrorLine(problem);
   while (!line.empty() && (line.back() == '\n' || line.back() == ' '))
   {
     line.pop_back();

@@ -53,6 +53,13 @@ int RunAlone(const std::string& name,
   std::ostream& err,
   const std::function<void(CLI::App&)>& add);
 
+/// The longest error line bender-cli prints (a longer message is cut).
+constexpr std::size_t MaxErrorLine = 2000;
+
+/// message as the one line bender-cli prints for an error: newlines as spaces, at most
+/// MaxErrorLine bytes. Every error path of the command line goes through it.
+std::string ErrorLine(const std::string& message);
+
 /// A command's failure: prints "bender-cli <command>: <message>" on stderr and returns 1.
 int CommandError(const std::string& command, const std::string& message);
 

@@ -69,7 +69,7 @@ int RunIgtlSend(const IgtlSendArguments& a)
   }
   catch (const std::exception& e)
   {
-    std::fprintf(stderr, "bender-cli igtl-send: %s\n", e.what());
+    std::fprintf(stderr, "bender-cli igtl-send: %s\n", bender::ErrorLine(e.what()).c_str());
     return 1;
   }
   try
@@ -95,7 +95,7 @@ int RunIgtlSend(const IgtlSendArguments& a)
   }
   catch (const std::exception& e)
   {
-    std::fprintf(stderr, "bender-cli igtl-send: %s\n", e.what());
+    std::fprintf(stderr, "bender-cli igtl-send: %s\n", bender::ErrorLine(e.what()).c_str());
     return 1;
   }
   return 0;

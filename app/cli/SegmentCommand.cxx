@@ -311,7 +311,7 @@ int RunSegment(SegmentState state, std::ostream& out, std::ostream& err)
   catch (const std::exception& e)
   {
     terminal.Finish();
-    err << "bender-cli segment: " << e.what() << "\n";
+    err << "bender-cli segment: " << ErrorLine(e.what()) << "\n";
     return 1;
   }
 }
@@ -336,7 +336,7 @@ int RunPhantom(const PhantomRequest& request, std::ostream& out, std::ostream& e
   }
   catch (const std::exception& e)
   {
-    err << "bender-cli phantom: " << e.what() << "\n";
+    err << "bender-cli phantom: " << ErrorLine(e.what()) << "\n";
     return 1;
   }
 }

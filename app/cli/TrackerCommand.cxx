@@ -243,7 +243,7 @@ int RunTracker(TrackerArguments a, std::ostream& out, std::ostream& err)
   }
   catch (const TrackingError& e)
   {
-    err << "bender-cli tracker: " << e.what() << "\n";
+    err << "bender-cli tracker: " << ErrorLine(e.what()) << "\n";
     return 2;
   }
 
@@ -295,7 +295,7 @@ int RunTracker(TrackerArguments a, std::ostream& out, std::ostream& err)
   }
   catch (const std::exception& e)
   {
-    err << "bender-cli tracker: " << e.what() << "\n";
+    err << "bender-cli tracker: " << ErrorLine(e.what()) << "\n";
     return 1;
   }
   return status;

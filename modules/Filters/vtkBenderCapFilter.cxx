@@ -1,12 +1,13 @@
 #include "vtkBenderCapFilter.h"
 
 #include "BenderErrors.h"
+#include "CapTriangulation.h"
 #include "MeshTopology.h"
 #include "PatchLabels.h"
+#include "StringUtil.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkDelaunay2D.h"
 #include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -28,251 +29,12 @@ vtkStandardNewMacro(vtkBenderCapFilter);
 
 namespace
 {
-using P2 = std::array<double, 2>;
-using Tri = std::array<int, 3>;
-
-double Cross2(const P2& o, const P2& a, const P2& b)
-{
-  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
-
-bool InsidePolygon(const std::vector<P2>& poly, const P2& p)
-{
-  bool inside = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
-  {
-    const P2& a = poly[i];
-    const P2& b = poly[j];
-    if ((a[1] > p[1]) != (b[1] > p[1]) &&
-      p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
-    {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-
-double SegmentDistance(const P2& p, const P2& a, const P2& b)
-{
-  const double dx = b[0] - a[0], dy = b[1] - a[1];
-  const double l2 = dx * dx + dy * dy;
-  double t = l2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  const double ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
-  return std::sqrt(ex * ex + ey * ey);
-}
-
-/// Smallest angle of a triangle, degrees (0 for a degenerate one).
-double MinAngle2(const P2& a, const P2& b, const P2& c)
-{
-  const P2* v[3] = { &a, &b, &c };
-  double best = 180.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    const P2& o = *v[k];
-    const P2& p = *v[(k + 1) % 3];
-    const P2& q = *v[(k + 2) % 3];
-    const double ux = p[0] - o[0], uy = p[1] - o[1], wx = q[0] - o[0], wy = q[1] - o[1];
-    const double nu = std::hypot(ux, uy), nw = std::hypot(wx, wy);
-    if (nu <= 0 || nw <= 0)
-    {
-      return 0.0;
-    }
-    const double cosine = std::clamp((ux * wx + uy * wy) / (nu * nw), -1.0, 1.0);
-    best = std::min(best, std::acos(cosine) * 180.0 / M_PI);
-  }
-  return best;
-}
-
-/// Constrained Delaunay triangulation of the counter-clockwise rim polygon (ids 0..m-1) and
-/// the interior points (ids m..), counter-clockwise triangles. Empty when the triangulation
-/// does not cover the polygon exactly (a rim edge missing, a triangle outside, a point unused).
-std::vector<Tri> ConstrainedDelaunay(const std::vector<P2>& rim, const std::vector<P2>& interior)
-{
-  const int m = static_cast<int>(rim.size());
-  const int n = m + static_cast<int>(interior.size());
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (const P2& p : rim)
-  {
-    points->InsertNextPoint(p[0], p[1], 0.0);
-  }
-  for (const P2& p : interior)
-  {
-    points->InsertNextPoint(p[0], p[1], 0.0);
-  }
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  vtkNew<vtkCellArray> boundary;
-  boundary->InsertNextCell(m);
-  for (int i = 0; i < m; ++i)
-  {
-    boundary->InsertCellPoint(i);
-  }
-  vtkNew<vtkPolyData> source;
-  source->SetPoints(points);
-  source->SetPolys(boundary);
-  vtkNew<vtkDelaunay2D> delaunay;
-  delaunay->SetInputData(input);
-  delaunay->SetSourceData(source);
-  delaunay->SetTolerance(1e-12);
-  delaunay->SetProjectionPlaneMode(VTK_DELAUNAY_XY_PLANE);
-  delaunay->BoundingTriangulationOff();
-  delaunay->Update();
-  vtkPolyData* out = delaunay->GetOutput();
-  std::vector<Tri> tris;
-  if (out->GetNumberOfPoints() != n)
-  {
-    return {};
-  }
-  std::vector<P2> all(rim);
-  all.insert(all.end(), interior.begin(), interior.end());
-  std::set<std::pair<int, int>> edges;
-  std::vector<char> used(static_cast<std::size_t>(n), 0);
-  vtkIdType npts;
-  const vtkIdType* pts;
-  vtkCellArray* polys = out->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(npts, pts);)
-  {
-    if (npts != 3)
-    {
-      return {};
-    }
-    Tri t{ { static_cast<int>(pts[0]), static_cast<int>(pts[1]), static_cast<int>(pts[2]) } };
-    const double area = Cross2(all[t[0]], all[t[1]], all[t[2]]);
-    if (area == 0.0)
-    {
-      return {};
-    }
-    if (area < 0)
-    {
-      std::swap(t[1], t[2]);
-    }
-    const P2 centroid{ { (all[t[0]][0] + all[t[1]][0] + all[t[2]][0]) / 3.0,
-      (all[t[0]][1] + all[t[1]][1] + all[t[2]][1]) / 3.0 } };
-    if (!InsidePolygon(rim, centroid))
-    {
-      return {};
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      edges.insert({ t[k], t[(k + 1) % 3] });
-      used[static_cast<std::size_t>(t[k])] = 1;
-    }
-    tris.push_back(t);
-  }
-  // A triangulation of a polygon with m rim and k interior points has m + 2k - 2 triangles.
-  if (static_cast<int>(tris.size()) != m + 2 * (n - m) - 2 ||
-    std::count(used.begin(), used.end(), 0) != 0)
-  {
-    return {};
-  }
-  for (int i = 0; i < m; ++i)
-  {
-    if (!edges.count({ i, (i + 1) % m }))
-    {
-      return {};
-    }
-  }
-  return tris;
-}
-
-/// The cap of a counter-clockwise rim: interior points and counter-clockwise triangles.
-/// False when no triangulation covers the rim.
-bool TriangulateCap(const std::vector<P2>& rim, std::vector<P2>& interior, std::vector<Tri>& tris)
-{
-  const std::size_t m = rim.size();
-  double h = 0.0;
-  double lo[2] = { rim[0][0], rim[0][1] }, hi[2] = { rim[0][0], rim[0][1] };
-  for (std::size_t i = 0; i < m; ++i)
-  {
-    h += std::hypot(rim[(i + 1) % m][0] - rim[i][0], rim[(i + 1) % m][1] - rim[i][1]);
-    for (int a = 0; a < 2; ++a)
-    {
-      lo[a] = std::min(lo[a], rim[i][a]);
-      hi[a] = std::max(hi[a], rim[i][a]);
-    }
-  }
-  h /= static_cast<double>(m);
-  for (const double margin : { 0.6, 0.9 })
-  {
-    // A triangular lattice of spacing h through the origin (the rim's centroid).
-    interior.clear();
-    const double dy = h * std::sqrt(3.0) / 2.0;
-    const long j0 = static_cast<long>(std::floor(lo[1] / dy)) - 1;
-    const long j1 = static_cast<long>(std::ceil(hi[1] / dy)) + 1;
-    const long i0 = static_cast<long>(std::floor(lo[0] / h)) - 1;
-    const long i1 = static_cast<long>(std::ceil(hi[0] / h)) + 1;
-    for (long j = j0; j <= j1; ++j)
-    {
-      for (long i = i0; i <= i1; ++i)
-      {
-        const P2 p{ { (static_cast<double>(i) + ((j % 2) != 0 ? 0.5 : 0.0)) * h,
-          static_cast<double>(j) * dy } };
-        if (!InsidePolygon(rim, p))
-        {
-          continue;
-        }
-        bool farEnough = true;
-        for (std::size_t k = 0; k < m && farEnough; ++k)
-        {
-          farEnough = SegmentDistance(p, rim[k], rim[(k + 1) % m]) >= margin * h;
-        }
-        if (farEnough)
-        {
-          interior.push_back(p);
-        }
-      }
-    }
-    tris = ConstrainedDelaunay(rim, interior);
-    if (tris.empty())
-    {
-      continue;
-    }
-    // Laplacian smoothing of the interior points, each pass followed by a new triangulation;
-    // a pass whose triangulation fails is dropped.
-    for (int pass = 0; pass < 3; ++pass)
-    {
-      std::vector<std::set<int>> neighbours(m + interior.size());
-      for (const Tri& t : tris)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          neighbours[t[k]].insert(t[(k + 1) % 3]);
-          neighbours[t[k]].insert(t[(k + 2) % 3]);
-        }
-      }
-      std::vector<P2> moved(interior);
-      for (std::size_t q = 0; q < interior.size(); ++q)
-      {
-        const auto& around = neighbours[m + q];
-        P2 mean{ { 0, 0 } };
-        for (int v : around)
-        {
-          const P2& p = v < static_cast<int>(m) ? rim[v] : interior[v - m];
-          mean[0] += p[0] / static_cast<double>(around.size());
-          mean[1] += p[1] / static_cast<double>(around.size());
-        }
-        if (!around.empty() && InsidePolygon(rim, mean))
-        {
-          moved[q] = mean;
-        }
-      }
-      std::vector<Tri> retriangulated = ConstrainedDelaunay(rim, moved);
-      if (retriangulated.empty())
-      {
-        break;
-      }
-      interior = moved;
-      tris = retriangulated;
-    }
-    return true;
-  }
-  // Last resort: the rim alone.
-  interior.clear();
-  tris = ConstrainedDelaunay(rim, interior);
-  return !tris.empty();
-}
+using bender::cap_detail::Cross2;
+using bender::cap_detail::MinAngle2;
+using bender::cap_detail::P2;
+using bender::cap_detail::RimProblem;
+using bender::cap_detail::Tri;
+using bender::cap_detail::TriangulateCap;
 
 struct Loop
 {
@@ -453,6 +215,16 @@ int vtkBenderCapFilter::RequestData(vtkInformation*,
       }
     }
     loop.area = 0.5 * std::abs(twiceArea);
+    // vtkDelaunay2D is handed simple polygons only (a degenerate or self-overlapping rim makes
+    // it read outside its arrays): a planar rim that is not one cannot be capped.
+    const std::string rimProblem = RimProblem(loop.rim2);
+    if (!rimProblem.empty())
+    {
+      const auto& first = x[static_cast<std::size_t>(loop.rim.front())];
+      return fail("cannot cap the open end of " + std::to_string(loop.rim.size()) +
+        " vertices from point " + std::to_string(loop.rim.front()) + " " +
+        bender::FormatPoint({ { first[0], first[1], first[2] } }) + ": " + rimProblem);
+    }
     if (!TriangulateCap(loop.rim2, loop.interior, loop.tris))
     {
       ++this->NumberOfSkippedLoops;

@@ -39,9 +39,11 @@
  * Coordinates and units are those of the input (LPS mm for segmented vessels).
  *
  * Errors (vtkErrorMacro, return 0, empty output, GetLastError() one line): a non-finite input
- * coordinate, an invalid or duplicated cap name, two names pointing at the same cap, invalid
- * labels on the input. An empty input or a closed surface is not an error (output = input,
- * triangulated, all wall unless labelled).
+ * coordinate, a planar-ish loop whose rim is not a simple polygon in its plane (coincident
+ * vertices, no area, or edges that cross: a corrupt surface, which the triangulator must not
+ * see; the message names the loop's first point and the problem), an invalid or duplicated cap
+ * name, two names pointing at the same cap, invalid labels on the input. An empty input or a closed
+ * surface is not an error (output = input, triangulated, all wall unless labelled).
  */
 
 #ifndef vtkBenderCapFilter_h

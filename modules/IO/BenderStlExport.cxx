@@ -2,6 +2,7 @@
 
 #include "AtomicFile.h"
 #include "BenderErrors.h"
+#include "CoordinateRange.h"
 #include "FileUtilities.h"
 #include "StringUtil.h"
 
@@ -76,7 +77,7 @@ void Triangulate(vtkPolyData* mesh,
   }
 }
 
-// Throws for a corner of a triangle with a non-finite coordinate.
+// Throws for a corner of a triangle outside the coordinate range (CoordinateRange.h).
 void CheckFinite(vtkPolyData* mesh, const std::vector<std::array<vtkIdType, 3>>& tris)
 {
   for (const auto& tri : tris)
@@ -85,9 +86,9 @@ void CheckFinite(vtkPolyData* mesh, const std::vector<std::array<vtkIdType, 3>>&
     {
       double p[3];
       mesh->GetPoint(id, p);
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      if (!InMeshCoordinateRange(p))
       {
-        throw StlExportError("the mesh has non-finite (NaN or infinite) coordinates");
+        throw StlExportError("point " + std::to_string(id) + ": " + CoordinateRangeProblem(p));
       }
     }
   }
@@ -108,6 +109,12 @@ std::vector<std::vector<Facet>> Facets(vtkPolyData* mesh,
       double in[3];
       mesh->GetPoint(labels.triangles[t][k], in);
       transform.Apply(in, p[k].data());
+      if (!InMeshCoordinateRange(p[k].data()))
+      {
+        throw StlExportError("point " + std::to_string(labels.triangles[t][k]) + " in " +
+          StlFrameName(transform.Frame()) + " " + transform.Unit() + ": " +
+          CoordinateRangeProblem(p[k].data()));
+      }
     }
     const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
     const double w[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };

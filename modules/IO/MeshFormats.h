@@ -47,11 +47,11 @@ namespace bender
 /// Reads the file at `path` (`size` bytes; ReadMesh has checked it is a readable regular
 /// file within the mesh size budget) and returns its mesh. Throws MeshIOError naming the
 /// file (any other exception is reported by ReadMesh as a corrupt file). ReadMesh checks the
-/// result (finite points, cell indices in range).
+/// result (coordinates within CoordinateRange.h's rule, cell indices in range).
 using MeshReader =
   std::function<vtkSmartPointer<vtkPolyData>(const std::string& path, std::uintmax_t size)>;
 
-/// Writes `mesh` (non-empty, finite, within the format's precision) to `file` (the temporary
+/// Writes `mesh` (non-empty, coordinates within CoordinateRange.h's rule) to `file` (the temporary
 /// file of WriteMesh's atomic write). Returns false with a one-line `problem` (without the
 /// file name) on failure.
 using MeshWriter = std::function<bool(vtkPolyData* mesh,
@@ -62,7 +62,7 @@ using MeshWriter = std::function<bool(vtkPolyData* mesh,
 /// Coordinate precision a format stores.
 enum class MeshPrecision
 {
-  Float, ///< single precision: WriteMesh refuses coordinates beyond the float range
+  Float, ///< single precision
   Double
 };
 

@@ -1,5 +1,6 @@
 #include "MeshIO.h"
 
+#include "CoordinateRange.h"
 #include "FileUtilities.h"
 #include "InputValidation.h"
 #include "MeshFormats.h"
@@ -15,9 +16,7 @@
 #include <vtkPolyData.h>
 
 #include <array>
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <sstream>
 #include <tuple>
 
@@ -37,18 +36,10 @@ void CheckMesh(const std::string& path, vtkPolyData* mesh)
     FailMesh(path, "no points in the file");
   }
   const vtkIdType n = mesh->GetNumberOfPoints();
-  vtkPoints* points = mesh->GetPoints();
-  for (vtkIdType i = 0; i < n; ++i)
+  const std::string range = MeshCoordinateRangeProblem(mesh);
+  if (!range.empty())
   {
-    double p[3];
-    points->GetPoint(i, p);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-    {
-      std::ostringstream msg;
-      msg << "point " << i << " has a non-finite coordinate (" << p[0] << ", " << p[1] << ", "
-          << p[2] << ")";
-      FailMesh(path, msg.str());
-    }
+    FailMesh(path, range);
   }
   const std::array<std::pair<vtkCellArray*, const char*>, 4> arrays{ {
     { mesh->GetVerts(), "vertex cell" },
@@ -159,39 +150,15 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOption
   {
     FailMesh(path, "refusing to write a mesh without points");
   }
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  const std::string range = MeshCoordinateRangeProblem(mesh);
+  if (!range.empty())
   {
-    double p[3];
-    mesh->GetPoint(i, p);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-    {
-      FailMesh(path,
-        "refusing to write a mesh with a non-finite coordinate (point " + std::to_string(i) + ")");
-    }
+    FailMesh(path, "refusing to write " + range);
   }
   const std::optional<MeshFormat> format = FindMeshFormat(path);
   if (!format || !format->CanWrite())
   {
     FailMesh(path, UnknownExtension(path, MeshAccess::Write));
-  }
-  // A single-precision format would write a coordinate beyond the float range as inf.
-  if (format->precision == MeshPrecision::Float)
-  {
-    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      mesh->GetPoint(i, p);
-      for (const double c : p)
-      {
-        if (std::fabs(c) > static_cast<double>(std::numeric_limits<float>::max()))
-        {
-          std::ostringstream msg;
-          msg << "refusing to write point " << i << ": coordinate " << c
-              << " is beyond the single-precision range of " << LowerExtension(path) << " files";
-          FailMesh(path, msg.str());
-        }
-      }
-    }
   }
   const MeshWriter write = format->write;
   std::string problem;

@@ -47,7 +47,8 @@ struct MeshWriteOptions
 /// anywhere, counts on the keyword line or the next). Coordinates keep the file's precision
 /// (double for .vtp, .vtk and .off; float for STL, OBJ, PLY).
 /// Throws MeshIOError for a missing, unreadable, truncated or corrupt file, an unknown
-/// extension, non-finite coordinates, cell indices out of range or a file with no points;
+/// extension, coordinates that are not finite or beyond single precision (CoordinateRange.h,
+/// also for the double-precision formats), cell indices out of range or a file with no points;
 /// what() is one line starting with the file's base name. VTK's own messages are collected
 /// into that line instead of stderr (the VTK output window is redirected while a file is
 /// read, so reads and writes of meshes run one at a time across threads).
@@ -64,8 +65,9 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path);
 /// Atomic: writes a temporary file beside the target, flushes it to disk and renames it
 /// over the target, so a failure leaves the previous file (if any) and no partial or
 /// temporary file. Throws MeshIOError (unknown extension, missing or unwritable folder, a
-/// folder at the target, a null mesh or one without points, non-finite coordinates, no
-/// triangles for STL, a writer error).
+/// folder at the target, a null mesh or one without points, coordinates that are not finite
+/// or beyond single precision (CoordinateRange.h, in every format), no triangles for STL, a
+/// writer error).
 void WriteMesh(vtkPolyData* mesh, const std::string& path, const MeshWriteOptions& options = {});
 
 } // namespace bender

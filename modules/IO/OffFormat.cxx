@@ -1,5 +1,6 @@
 #include "OffFormat.h"
 
+#include "CoordinateRange.h"
 #include "StringUtil.h"
 #include "ValidationText.h"
 
@@ -218,9 +219,9 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
     {
       FailAt(lines.Line(), "expected 3 coordinates");
     }
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    if (!InMeshCoordinateRange(p))
     {
-      FailAt(lines.Line(), "non-finite coordinate");
+      FailAt(lines.Line(), CoordinateRangeProblem(p));
     }
     points->InsertNextPoint(p);
   }

@@ -126,7 +126,7 @@ ExportSurfaceResult ExportSurfaceWith(vtkPolyData* surface,
     caps->Update();
     if (!caps->GetLastError().empty())
     {
-      throw InputError(path + ": capping failed: " + caps->GetLastError());
+      throw InputError(source + ": capping failed: " + caps->GetLastError());
     }
     bool labelledEnds = false;
     try
