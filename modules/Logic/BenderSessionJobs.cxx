@@ -1,5 +1,6 @@
 #include "BenderSession.h"
 
+#include "FaultInjection.h"
 #include "FileIdentity.h"
 #include "RibbonLengthChange.h"
 #include "StringUtil.h"
@@ -269,6 +270,7 @@ bool BenderSession::FinishRelease(SessionJob& job)
     return false;
   }
   this->History.Commit(warp, result);
+  FaultPoint("commit");
   ++this->ChangeCount;
   this->State = GrabState::Released;
   this->ShowCommitted(job.Proxy);
@@ -305,6 +307,7 @@ bool BenderSession::FinishReplay(SessionJob& job)
   for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)
   {
     this->History.Commit(job.Plan.warps[i], job.Steps.steps[i]);
+    FaultPoint("commit");
   }
   if (!job.Plan.warps.empty())
   {

@@ -1,21 +1,21 @@
 #include "CfdCase.h"
 
 #include "AtomicFile.h"
+#include "AtomicFileRecovery.h"
 #include "BenderErrors.h"
 #include "BenderMeshCheck.h"
 #include "CfdCaseFile.h"
 #include "CfdDictionaries.h"
 #include "CfdPatches.h"
 #include "ExportSurface.h"
+#include "FaultInjection.h"
 
 #include <vtkPolyData.h>
 
 #include <nlohmann/json.hpp>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -39,22 +39,6 @@ void WriteText(const fs::path& path, const std::string& text)
   {
     throw InputError(path.string() + ": " + (ec ? ec.message() : problem));
   }
-}
-
-/// A fresh sibling of target: "<parent>/.<name>.<tag>-XXXXXX".
-fs::path TemporarySibling(const fs::path& target, const char* tag)
-{
-  const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::string pattern =
-    (parent / ("." + target.filename().string() + "." + tag + "-XXXXXX")).string();
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  if (!mkdtemp(buffer.data()))
-  {
-    throw InputError(
-      target.string() + ": cannot create a folder beside it (" + std::strerror(errno) + ")");
-  }
-  return fs::path(buffer.data());
 }
 
 nlohmann::ordered_json CaseJson(const CfdCaseResult& r, const CfdCaseOptions& options)
@@ -293,8 +277,18 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
   result.inletVelocity = in.area > 0.0 ? result.inletFlowRate / in.area : 0.0;
   result.reynolds = result.inletVelocity * in.diameter / options.viscosity;
 
-  // Everything into a temporary sibling, renamed into place when complete.
-  const fs::path temp = TemporarySibling(target, "bender-new");
+  // Everything into a temporary sibling, put in place in one step when complete
+  // (AtomicFileRecovery.h): a crash leaves the previous case or none, never half of one.
+  fs::path temp;
+  try
+  {
+    temp = TemporaryFolderBeside(target.string());
+  }
+  catch (const fs::filesystem_error& e)
+  {
+    throw InputError(
+      options.caseDirectory + ": cannot create a folder beside it (" + e.code().message() + ")");
+  }
   try
   {
     fs::permissions(temp,
@@ -333,6 +327,7 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     {
       WriteText(temp / path, text);
       result.written.push_back(path);
+      FaultPoint("cfd-case");
     }
     fs::permissions(temp / "Allrun",
       fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
@@ -344,34 +339,11 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     throw;
   }
 
-  // Into place: over an empty folder directly; a non-empty one (force) is moved aside first
-  // and removed once the new case is there.
-  fs::path old;
-  if (fs::exists(target, ec) && !fs::is_empty(target, ec))
+  std::string problem;
+  if (!AtomicReplaceFolder(temp.string(), target.string(), problem))
   {
-    old = TemporarySibling(target, "bender-old");
-    fs::remove(old, ec);
-    fs::rename(target, old, ec);
-    if (ec)
-    {
-      fs::remove_all(temp, ec);
-      throw InputError(options.caseDirectory + ": cannot be replaced (" + ec.message() + ")");
-    }
-  }
-  fs::rename(temp, target, ec);
-  if (ec)
-  {
-    const std::string problem = ec.message();
-    if (!old.empty())
-    {
-      fs::rename(old, target, ec);
-    }
     fs::remove_all(temp, ec);
-    throw InputError(options.caseDirectory + ": cannot be written (" + problem + ")");
-  }
-  if (!old.empty())
-  {
-    fs::remove_all(old, ec);
+    throw InputError(options.caseDirectory + ": " + problem);
   }
   return result;
 }

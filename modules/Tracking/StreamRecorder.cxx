@@ -1,5 +1,6 @@
 #include "StreamRecorder.h"
 
+#include "FaultInjection.h"
 #include "TrackingErrors.h"
 
 #include <cerrno>
@@ -44,11 +45,18 @@ void StreamRecorder::Append(const std::uint8_t* data, std::size_t size, double t
   {
     return;
   }
-  const bool ok = std::fwrite(data, 1, size, this->Data) == size &&
+  // The bytes on disk first, then the line that lists them: a recording cut short between
+  // the two holds one chunk more than its timestamps list, never a line without its bytes.
+  bool ok = std::fwrite(data, 1, size, this->Data) == size && std::fflush(this->Data) == 0;
+  if (ok)
+  {
+    FaultPoint("recording");
+  }
+  ok = ok &&
     std::fprintf(
       this->Times, "%llu %zu %.6f\n", static_cast<unsigned long long>(this->Offset), size, time) >
       0 &&
-    std::fflush(this->Data) == 0 && std::fflush(this->Times) == 0;
+    std::fflush(this->Times) == 0;
   if (!ok)
   {
     throw RecordingError(

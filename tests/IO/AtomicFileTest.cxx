@@ -3,6 +3,8 @@
 
 #include "AtomicFile.h"
 
+#include "AtomicFileRecovery.h"
+#include "FaultInjection.h"
 #include "IOTestUtilities.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +14,10 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+
+#include <cstdlib>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace
 {
@@ -192,6 +198,98 @@ TEST(AtomicWriteAll, RefusesAnEmptySetAndDuplicates)
     problem));
   EXPECT_EQ(problem, "a.stl: named twice in one write");
   EXPECT_TRUE(dir.Entries().empty());
+}
+
+// A writer killed (SIGKILL, BENDER_FAULT_AT) at `point` in a child process while it writes
+// the set a, b, c over "old" files; returns whether it died by SIGKILL.
+bool KillWriterAt(const TempDir& dir, const std::string& point)
+{
+  const pid_t child = ::fork();
+  if (child == 0)
+  {
+    ::setenv(bender::FaultInjectionVariable, point.c_str(), 1);
+    std::string problem;
+    bender::AtomicWriteAll(
+      { { dir / "a.stl", Text("A") }, { dir / "b.stl", Text("B") }, { dir / "c.stl", Text("C") } },
+      problem);
+    std::_Exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+std::set<std::string> Contents(const TempDir& dir)
+{
+  return { ReadText(dir / "a.stl"), ReadText(dir / "b.stl"), ReadText(dir / "c.stl") };
+}
+
+// Killed with every temporary complete and nothing published: the old files stay, the
+// temporaries are left, and the next write there (or RecoverInterruptedWrites) removes them.
+TEST(AtomicWriteAll, KilledBeforePublishingLeavesTheOldSet)
+{
+  TempDir dir;
+  for (const char* name : { "a.stl", "b.stl", "c.stl" })
+  {
+    WriteText(dir / name, "old");
+  }
+  ASSERT_TRUE(KillWriterAt(dir, "atomic-write"));
+  EXPECT_EQ(Contents(dir), std::set<std::string>{ "old" });
+  EXPECT_EQ(dir.Entries().size(), 6u); // three temporaries of the dead writer
+  std::string problem;
+  ASSERT_TRUE(bender::AtomicWriteText(dir / "other.txt", "x", problem)) << problem;
+  EXPECT_EQ(dir.Entries(), (std::set<std::string>{ "a.stl", "b.stl", "c.stl", "other.txt" }));
+  EXPECT_EQ(Contents(dir), std::set<std::string>{ "old" });
+}
+
+// Killed after the first file was published: each file is whole (old or new), and recovery
+// finishes the set from the journal (every new file was complete before the first rename).
+TEST(AtomicWriteAll, KilledWhilePublishingIsFinishedByRecovery)
+{
+  TempDir dir;
+  for (const char* name : { "a.stl", "b.stl", "c.stl" })
+  {
+    WriteText(dir / name, "old");
+  }
+  ASSERT_TRUE(KillWriterAt(dir, "atomic-publish"));
+  EXPECT_EQ(ReadText(dir / "a.stl"), "A");
+  EXPECT_EQ(ReadText(dir / "b.stl"), "old");
+  bender::RecoverInterruptedWrites(dir.path().string());
+  EXPECT_EQ(ReadText(dir / "a.stl"), "A");
+  EXPECT_EQ(ReadText(dir / "b.stl"), "B");
+  EXPECT_EQ(ReadText(dir / "c.stl"), "C");
+  EXPECT_EQ(dir.Entries(), (std::set<std::string>{ "a.stl", "b.stl", "c.stl" }));
+}
+
+// Killed half-way through a text: the target keeps its previous content.
+TEST(AtomicWrite, KilledHalfWayThroughATextKeepsThePreviousFile)
+{
+  TempDir dir;
+  WriteText(dir / "plan.json", "previous");
+  const pid_t child = ::fork();
+  if (child == 0)
+  {
+    ::setenv(bender::FaultInjectionVariable, "text-write", 1);
+    std::string problem;
+    bender::AtomicWriteText(dir / "plan.json", std::string(100000, 'x'), problem);
+    std::_Exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  EXPECT_EQ(ReadText(dir / "plan.json"), "previous");
+  bender::RecoverInterruptedWrites(dir.path().string());
+  EXPECT_EQ(dir.Entries(), std::set<std::string>{ "plan.json" });
+}
+
+// Leftovers of a live writer (this process) are not touched.
+TEST(AtomicWrite, RecoveryLeavesTheTemporariesOfLiveWriters)
+{
+  TempDir dir;
+  const std::string mine = dir / (".a.tmp-" + std::to_string(::getpid()) + "-0.stl");
+  WriteText(mine, "in progress");
+  bender::RecoverInterruptedWrites(dir.path().string());
+  EXPECT_EQ(dir.Entries().count(".a.tmp-" + std::to_string(::getpid()) + "-0.stl"), 1u);
 }
 
 } // namespace
