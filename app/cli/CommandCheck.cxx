@@ -5,6 +5,7 @@
 #include "CliParsing.h"
 
 #include "CheckSurface.h"
+#include "MeshFormats.h"
 #include "StringUtil.h"
 
 #include <cstdio>
@@ -13,16 +14,23 @@
 
 namespace
 {
-const char* const Details =
-  "Reports what a CFD engineer checks before meshing a surface: triangle and point counts, "
-  "connected components, boundary loops (open vessel ends) with their sizes, non-manifold "
-  "edges and vertices, inconsistently oriented edges, degenerate triangles, self-intersections "
-  "(pairs of triangles sharing no vertex), area, enclosed volume when closed, edge-length and "
-  "minimum-angle statistics.\n"
-  "\n"
-  "Mesh formats (by extension): .stl .obj .ply .vtp .vtk .off. Lengths in the mesh's unit.\n"
-  "\n"
-  "exit status: 0 clean, 1 problems found, 2 the mesh could not be read or usage error";
+// The formats are the mesh-format table's readable rows (.smesh and .poly, which export
+// writes, included).
+std::string Details()
+{
+  return "Reports what a CFD engineer checks before meshing a surface: triangle and point "
+         "counts, connected components, boundary loops (open vessel ends) with their sizes, "
+         "non-manifold edges and vertices, inconsistently oriented edges, degenerate triangles, "
+         "self-intersections (pairs of triangles sharing no vertex), area, enclosed volume when "
+         "closed, edge-length and minimum-angle statistics.\n"
+         "\n"
+         "Mesh formats (by extension): " +
+    bender::MeshExtensionList(bender::MeshAccess::Read) +
+    ". Lengths in millimetres (a file that states metres, as an export in metres does, is read "
+    "in millimetres).\n"
+    "\n"
+    "exit status: 0 clean, 1 problems found, 2 the mesh could not be read or usage error";
+}
 
 struct CheckArguments
 {
@@ -58,7 +66,7 @@ void bender::AddCheckCommand(CLI::App& cli)
   CLI::App* check = AddCommand(cli,
     "check",
     "check a mesh for CFD: watertight, manifold, flips, self-intersections",
-    Details,
+    Details(),
     [a] { return RunCheck(*a); });
   check->add_option("MESH", a->options.input, "the mesh to check")
     ->required()

@@ -3,6 +3,7 @@
 #include "MeshReaders.h"
 #include "MeshWriters.h"
 #include "StringUtil.h"
+#include "TetgenReader.h"
 
 #include <algorithm>
 #include <mutex>
@@ -30,8 +31,8 @@ std::vector<MeshFormat> BuiltInFormats()
     { "vtp",   { ".vtp" },   "VTK XML polydata with patch labels", ReadVtpMesh,       WriteVtpMesh,       false, true,  false, Double, false },
     { "vtk",   { ".vtk" },   "Legacy VTK polydata",                ReadLegacyVtkMesh, WriteLegacyVtkMesh, false, false, false, Double, false },
     { "off",   { ".off" },   "OFF",                                ReadOffMesh,       WriteOffMesh,       false, false, false, Double, false },
-    { "smesh", { ".smesh" }, "TetGen surface mesh",                nullptr,           WriteSmeshMesh,     false, false, true,  Double, false },
-    { "poly",  { ".poly" },  "TetGen piecewise linear complex",    nullptr,           WritePolyMesh,      false, false, true,  Double, false },
+    { "smesh", { ".smesh" }, "TetGen surface mesh",                ReadTetgenMesh,    WriteSmeshMesh,     false, false, true,  Double, false },
+    { "poly",  { ".poly" },  "TetGen piecewise linear complex",    ReadTetgenMesh,    WritePolyMesh,      false, false, true,  Double, false },
   };
   // clang-format on
 }

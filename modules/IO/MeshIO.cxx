@@ -4,6 +4,7 @@
 #include "FileUtilities.h"
 #include "InputValidation.h"
 #include "MeshFormats.h"
+#include "MeshUnit.h"
 #include "StringUtil.h"
 #include "VtkMessageGuard.h"
 
@@ -122,6 +123,12 @@ vtkSmartPointer<vtkPolyData> ReadMeshUnchecked(const std::string& path)
 
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
 {
+  std::string statedUnit;
+  return ReadMesh(path, statedUnit);
+}
+
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& statedUnit)
+{
   vtkSmartPointer<vtkPolyData> mesh;
   try
   {
@@ -141,6 +148,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
     FailMesh(path, std::string("corrupt file (") + e.what() + ")");
   }
   CheckMesh(path, mesh);
+  statedUnit = ToMillimetres(path, mesh);
   return mesh;
 }
 

@@ -35,7 +35,8 @@ struct MeshWriteOptions
   /// e.g. "bender: LPS mm"). Truncated to what the format allows: binary STL's 80-byte
   /// header (prefixed "# " when it starts with "solid", which would make readers take the
   /// file for ASCII), ASCII STL's "solid" line, the legacy .vtk title line, a "#" comment
-  /// line in .off. Newlines become spaces. Not stored in .obj, .ply or .vtp.
+  /// line in .off and .obj, a PLY "comment" line. Newlines become spaces. Not stored in .vtp
+  /// (an export states its unit in the field data instead).
   std::string header;
 };
 
@@ -53,7 +54,11 @@ struct MeshWriteOptions
 /// into that line instead of stderr (the VTK output window is redirected while a file is
 /// read, so reads and writes of meshes run one at a time across threads).
 /// A mesh with points but no polygons is returned as is (callers decide).
+/// Always in millimetres: a file that states metres (an export of Bender's, MeshUnit.h) is
+/// scaled by 1000.
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path);
+/// The same, and the unit the file states ("m", "mm", or empty when none) in `statedUnit`.
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& statedUnit);
 
 /// Writes a surface mesh; the format is the row of the mesh-format table (MeshFormats.h) for
 /// the extension. The built-in writable formats: .stl (binary or ASCII per

@@ -16,6 +16,9 @@
 #include <vtkTriangleFilter.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <fstream>
+#include <iterator>
+
 namespace bender
 {
 namespace io_detail
@@ -112,24 +115,55 @@ bool WriteStlMesh(vtkPolyData* mesh,
 
 bool WriteObjMesh(vtkPolyData* mesh,
   const std::string& file,
-  const MeshWriteOptions&,
+  const MeshWriteOptions& options,
   std::string& problem)
 {
   vtkNew<vtkOBJWriter> writer;
   writer->SetInputData(mesh);
   writer->SetFileName(file.c_str());
-  return RunWriter(writer.Get(), problem);
+  if (!RunWriter(writer.Get(), problem))
+  {
+    return false;
+  }
+  if (options.header.empty())
+  {
+    return true;
+  }
+  // vtkOBJWriter takes no comment: the header goes first as a "#" line (the unit of an export).
+  std::string text;
+  {
+    std::ifstream in(file, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof())
+    {
+      problem = "cannot read the written OBJ back to add its header";
+      return false;
+    }
+  }
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out << "# " << OneLine(options.header, 200) << "\n" << text;
+  out.flush();
+  if (!out)
+  {
+    problem = "write failed (adding the OBJ header)";
+    return false;
+  }
+  return true;
 }
 
 bool WritePlyMesh(vtkPolyData* mesh,
   const std::string& file,
-  const MeshWriteOptions&,
+  const MeshWriteOptions& options,
   std::string& problem)
 {
   vtkNew<vtkPLYWriter> writer;
   writer->SetInputData(mesh);
   writer->SetFileName(file.c_str());
   writer->SetFileTypeToBinary();
+  if (!options.header.empty())
+  {
+    writer->AddComment(OneLine(options.header, 200)); // the unit of an export
+  }
   return RunWriter(writer.Get(), problem);
 }
 

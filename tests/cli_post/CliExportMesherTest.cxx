@@ -59,12 +59,26 @@ TEST_F(CliMesherExport, NamedSolidsInMetresWithTheSidecar)
     EXPECT_NE(text.find(solid), std::string::npos) << solid;
   }
   EXPECT_NE(text.find("frame LPS, unit m\n"), std::string::npos);
-  // Metres: the 10 mm vessel is 0.01 long.
-  const auto back = bender::ReadMesh(Tmp("v.stl"));
+  // Metres: the 10 mm vessel is 0.01 long in the file...
+  double topZ = -HUGE_VAL;
+  std::istringstream lines(text);
+  for (std::string word; lines >> word;)
+  {
+    double x, y, z;
+    if (word == "vertex" && lines >> x >> y >> z)
+    {
+      topZ = std::max(topZ, z);
+    }
+  }
+  EXPECT_NEAR(topZ, 0.01, 1e-8);
+  // ... and read back in millimetres, as the file says.
+  std::string unit;
+  const auto back = bender::ReadMesh(Tmp("v.stl"), unit);
+  EXPECT_EQ(unit, "m");
   double bounds[6];
   back->GetBounds(bounds);
-  EXPECT_NEAR(bounds[5] - bounds[4], 0.01, 1e-8);
-  EXPECT_NEAR(bounds[1], 0.101, 1e-8);
+  EXPECT_NEAR(bounds[5] - bounds[4], 10.0, 1e-5);
+  EXPECT_NEAR(bounds[1], 101.0, 1e-5);
   // The sidecar, always written with patches.
   const auto sidecar = nlohmann::json::parse(ReadText(Tmp("v.patches.json")));
   EXPECT_EQ(sidecar.at("unit"), "m");
@@ -89,7 +103,8 @@ TEST_F(CliMesherExport, VtpKeepsLabelsNamesUnitAndFrame)
   ASSERT_EQ(r.status, 0) << r.errors;
   EXPECT_EQ(r.output, "");
   EXPECT_FALSE(std::filesystem::exists(Tmp("v.patches.json"))); // not asked for
-  const auto back = bender::ReadMesh(Tmp("v.vtp"));
+  std::string unit;
+  const auto back = bender::ReadMesh(Tmp("v.vtp"), unit);
   const auto original = bender::ReadMesh(Input);
   EXPECT_EQ(bender::CellPatchIds(back), bender::CellPatchIds(original));
   ASSERT_NE(back->GetCellData()->GetArray(bender::kModelFaceIdArrayName), nullptr);
@@ -97,14 +112,16 @@ TEST_F(CliMesherExport, VtpKeepsLabelsNamesUnitAndFrame)
   ASSERT_EQ(labels.size(), 3u);
   EXPECT_EQ(labels[1].name, "inlet");
   EXPECT_EQ(labels[1].type, bender::PatchType::Inlet);
-  EXPECT_EQ(FieldString(back, "Unit"), "m");
+  // The file states metres; read back in millimetres (its field now says so), RAS kept.
+  EXPECT_EQ(unit, "m");
+  EXPECT_EQ(FieldString(back, "Unit"), "mm");
   EXPECT_EQ(FieldString(back, "Frame"), "RAS");
   double p[3], q[3];
   original->GetPoint(7, p);
   back->GetPoint(7, q);
-  EXPECT_EQ(q[0], -p[0] / 1000.0);
-  EXPECT_EQ(q[1], -p[1] / 1000.0);
-  EXPECT_EQ(q[2], p[2] / 1000.0);
+  EXPECT_NEAR(q[0], -p[0], 1e-12 * (1 + std::abs(p[0])));
+  EXPECT_NEAR(q[1], -p[1], 1e-12 * (1 + std::abs(p[1])));
+  EXPECT_NEAR(q[2], p[2], 1e-12 * (1 + std::abs(p[2])));
 }
 
 TEST_F(CliMesherExport, SmeshHasEveryMarkerAndTheSidecar)
@@ -139,6 +156,24 @@ TEST_F(CliMesherExport, SmeshHasEveryMarkerAndTheSidecar)
   }
   EXPECT_EQ(markers.size(), 3u);
   EXPECT_EQ(markers[2], bender_test::Segments);
+}
+
+TEST_F(CliMesherExport, CheckReadsTheSmeshAndPolyItWrote)
+{
+  // The same surface as its source, in millimetres (the files say unit m).
+  const nlohmann::json source = nlohmann::json::parse(Run("check " + Q(Input) + " --json").output);
+  for (const char* name : { "v.smesh", "v.poly" })
+  {
+    ASSERT_EQ(Run("export " + Q(Input) + " -o " + Q(Tmp(name)) + " --unit m --quiet").status, 0);
+    const Result r = Run("check " + Q(Tmp(name)) + " --json");
+    ASSERT_NE(r.status, 2) << r.errors;
+    const nlohmann::json report = nlohmann::json::parse(r.output);
+    EXPECT_EQ(report.at("triangles"), source.at("triangles")) << name;
+    EXPECT_NEAR(report.at("area").get<double>(),
+      source.at("area").get<double>(),
+      1e-6 * source.at("area").get<double>())
+      << name;
+  }
 }
 
 TEST_F(CliMesherExport, PolyAndTheSidecarOnRequest)
