@@ -6,6 +6,7 @@
 #include "GestureController.h"
 #include "SegmentPanel.h"
 #include "SessionAutosave.h"
+#include "StringUtil.h"
 #include "VolumeIO.h"
 #include "WorkRunner.h"
 #include "vtkBenderRibbonRepresentation.h"
@@ -85,9 +86,7 @@ void AutosaveController::offerRecovery()
       ? QFileInfo(QString::fromStdString(snapshot.sourcePath)).fileName().toStdString()
       : snapshot.surfaceName;
     parts << QString("the surface \"%1\"").arg(QString::fromStdString(surface));
-    parts << QString("%1 warp%2")
-               .arg(snapshot.plan.warps.size())
-               .arg(snapshot.plan.warps.size() == 1 ? "" : "s");
+    parts << QString::fromStdString(bender::CountOf(snapshot.plan.warps.size(), "warp"));
     if (snapshot.volume)
     {
       parts << QString("the volume \"%1\" (%2)")
@@ -260,11 +259,10 @@ void AutosaveController::finishRecovery(const bender::SessionSnapshot& snapshot,
   }
   this->View->resetCamera();
   emit this->panelWanted(this->Bend);
-  const std::size_t warps = snapshot.plan.warps.size();
   std::string text = "Recovered the surface " +
     (this->Session.GetSurfaceName().empty() ? std::string()
                                             : "\"" + this->Session.GetSurfaceName() + "\"") +
-    ", " + std::to_string(warps) + (warps == 1 ? " warp" : " warps");
+    ", " + bender::CountOf(snapshot.plan.warps.size(), "warp");
   if (volumeLoaded)
   {
     text += ", the volume \"" + this->Segmentation.GetVolumeName() + "\"";

@@ -1,6 +1,7 @@
 #include "BendPanel.h"
 
 #include "MainActions.h"
+#include "StringUtil.h"
 
 #include <QAction>
 #include <QCheckBox>
@@ -157,8 +158,9 @@ void BendPanel::showState(const bender::BenderSession& session, bool placingRibb
   switch (session.GetState())
   {
     case bender::GrabState::Idle:
-      state =
-        session.HasSurface() ? "Idle: place the ribbon, then grab" : "Load or segment a surface";
+      state = !session.HasSurface() ? "Load or segment a surface"
+        : session.GetRibbon()       ? "Idle: ribbon placed; grab (G) to bend"
+                                    : "Idle: place the ribbon (P), then grab";
       break;
     case bender::GrabState::Grabbed:
       state =
@@ -169,7 +171,8 @@ void BendPanel::showState(const bender::BenderSession& session, bool placingRibb
       }
       break;
     case bender::GrabState::Released:
-      state = QString("Released: %1 warps committed").arg(session.GetHistoryPosition());
+      state = QString("Released: %1 committed")
+                .arg(QString::fromStdString(bender::CountOf(session.GetHistoryPosition(), "warp")));
       break;
   }
   this->State->setText(state);

@@ -3,6 +3,7 @@
 #include "BenderSession.h"
 #include "MainActions.h"
 #include "SegmentationSession.h"
+#include "StringUtil.h"
 
 #include <QFileInfo>
 #include <QLabel>
@@ -34,11 +35,11 @@ void DataPanel::showState(const bender::BenderSession& session,
   if (session.HasSurface())
   {
     vtkPolyData* surface = session.GetSurface();
-    text = QString("%1\n%2 points, %3 triangles (LPS mm)\n%4 warps committed")
+    text = QString("%1\n%2 points, %3 triangles (LPS mm)\n%4 committed")
              .arg(QString::fromStdString(session.GetSurfaceName()))
              .arg(surface->GetNumberOfPoints())
              .arg(surface->GetNumberOfPolys())
-             .arg(session.GetHistoryPosition());
+             .arg(QString::fromStdString(bender::CountOf(session.GetHistoryPosition(), "warp")));
   }
   if (volumes.HasVolume())
   {

@@ -4,14 +4,17 @@
 #include "BendPanel.h"
 #include "BenderSession.h"
 #include "BenderView.h"
+#include "FileIdentity.h"
 #include "FileKind.h"
 #include "GestureController.h"
 #include "MainActions.h"
 #include "MeshFormats.h"
 #include "SegmentPanel.h"
 #include "SegmentationSession.h"
+#include "StringUtil.h"
 #include "WarpPlanIO.h"
 #include "WorkRunner.h"
+#include "vtkBenderRibbonWidget.h"
 
 #include <QAction>
 #include <QDir>
@@ -120,19 +123,13 @@ bool FileOpener::openFile(const QString& path)
   }
   const std::string file = path.toStdString();
   const bender::FileKind kind = bender::ClassifyFile(file, QFileInfo(path).isDir());
-  if (kind == bender::FileKind::Plan)
-  {
-    return this->openPlan(path);
-  }
-  if (kind != bender::FileKind::Unknown &&
-    !this->confirmDiscard("Open " + QFileInfo(path).fileName()))
-  {
-    return false;
-  }
   switch (kind)
   {
     case bender::FileKind::Session:
-      return this->Recovery->recoverSession(path);
+      // A session file replaces the work as a whole: asked first (a recovery that fails
+      // changes nothing: the work stays unsaved and autosaved).
+      return this->confirmDiscard("Open " + QFileInfo(path).fileName()) &&
+        this->Recovery->recoverSession(path);
     case bender::FileKind::Plan:
       return this->openPlan(path);
     case bender::FileKind::Mesh:
@@ -162,10 +159,10 @@ bool FileOpener::openPlan(const QString& path)
   }
   if (this->Session.IsPlanApplied(plan))
   {
-    const QString text = QString("%1: its %2 warps are the last ones applied to this surface; "
+    const QString text = QString("%1: its %2 are the last ones applied to this surface; "
                                  "replaying it would bend the bent surface again")
                            .arg(QFileInfo(path).fileName())
-                           .arg(plan.warps.size());
+                           .arg(QString::fromStdString(bender::CountOf(plan.warps.size(), "warp")));
     if (!this->Interactive)
     {
       this->Session.AddMessage(
@@ -220,7 +217,8 @@ bool FileOpener::confirmDiscard(const QString& what)
     {
       this->Session.CancelGrab("discarded");
     }
-    this->Session.MarkSaved(); // explicitly discarded: nothing left to keep
+    // The warps stay unsaved until what replaces them is in: a replacement that fails
+    // leaves them as they were (and a quit without them is the window's to settle).
     return true;
   }
   if (answer != QMessageBox::Save)
@@ -272,34 +270,87 @@ void FileOpener::rememberFolder(const QString& kind, const QString& path)
 
 bool FileOpener::openMesh(const QString& path)
 {
-  this->Actions->addRecentFile(path);
-  return this->Worker->runSessionJob(this->Session,
-    this->Session.BeginLoadSurface(path.toStdString()),
-    [this](bender::SessionJob&, bool ok)
-    {
-      if (ok)
-      {
-        // A mesh file has no volume behind it.
-        this->Segmentation.Clear();
-        emit this->volumeChanged();
-        this->View->resetCamera();
-      }
-    });
-}
-
-bool FileOpener::openVolume(const QString& path)
-{
-  this->Actions->addRecentFile(path);
-  auto job = this->Segmentation.BeginRead(path.toStdString());
+  auto job = this->Session.BeginLoadSurface(path.toStdString());
+  if (!job)
+  {
+    return false;
+  }
   return this->Worker->runReporting(this->Session,
-    "Reading " + QFileInfo(path).fileName(),
+    QString::fromStdString(job->GetTitle()),
     [this, job, path](const bender::ProgressReporter& progress)
     {
       job->Run(progress);
       return WorkRunner::Finisher(
         [this, job, path]()
         {
+          // Read first, asked then: a file that cannot be read changes nothing (the warps,
+          // their unsaved state, the autosave).
+          if (job->GetOutcome() == bender::SessionJob::Outcome::Done &&
+            !this->confirmDiscard("Open " + QFileInfo(path).fileName()))
+          {
+            this->Session.Abandon(*job, "not opened, the work is unchanged");
+            return;
+          }
+          if (!this->Session.Finish(*job))
+          {
+            return;
+          }
+          this->Actions->addRecentFile(path);
+          // Another file is another patient: a mesh file has no volume behind it, and the
+          // ribbon lay on the previous surface.
+          this->Segmentation.Clear();
+          this->View->ribbonWidget()->Off();
+          emit this->volumeChanged();
+          this->View->resetCamera();
+        });
+    });
+}
+
+bool FileOpener::isSamePatient(const QString& volumePath) const
+{
+  return this->Segmentation.HasVolume() &&
+    bender::SameFile(this->Segmentation.GetVolumeSource().path, volumePath.toStdString());
+}
+
+void FileOpener::closePatient(const std::string& reason)
+{
+  if (!this->Session.HasSurface())
+  {
+    return;
+  }
+  this->Session.Clear(reason);
+  // The autosave held the closed work: a crash now must not offer it back with this patient.
+  this->Recovery->discardAutosave();
+  this->View->ribbonWidget()->Off();
+}
+
+bool FileOpener::openVolume(const QString& path)
+{
+  auto job = this->Segmentation.BeginRead(path.toStdString());
+  return this->Worker->runReporting(this->Session,
+    "Reading " + QFileInfo(path).fileName(),
+    [this, job, path](const bender::ProgressReporter& progress)
+    {
+      job->Run(progress); // throws when the volume cannot be read: nothing changes
+      return WorkRunner::Finisher(
+        [this, job, path]()
+        {
+          // Another volume file is another patient: the surface, its warps, ribbon and
+          // centerlines go (asked first when unsaved), once the volume has been read.
+          const bool newPatient = this->Session.HasSurface() && !this->isSamePatient(path);
+          const std::string name = QFileInfo(path).fileName().toStdString();
+          if (newPatient && !this->confirmDiscard("Open " + QFileInfo(path).fileName()))
+          {
+            this->Session.AddMessage(
+              bender::MessageSeverity::Info, name + ": not opened, the work is unchanged");
+            return;
+          }
+          this->Actions->addRecentFile(path);
           this->Segmentation.FinishRead(*job);
+          if (newPatient)
+          {
+            this->closePatient("another patient's volume, " + name + ", was opened");
+          }
           emit this->volumeChanged();
           emit this->panelWanted(this->Segment);
           const auto& size = job->volume->geometry.size;

@@ -6,6 +6,8 @@
 #include <QObject>
 #include <QString>
 
+#include <string>
+
 class AutosaveController;
 
 /// Brings data into a window: File > Open, Open Recent, Load plan, the demo, a volume's
@@ -16,7 +18,12 @@ class AutosaveController;
 ///
 /// No lost work: Open (a mesh, a volume, a session), Demo and segmenting again ask "Save
 /// changes?" (Save plan / Discard / Cancel) while the session has unsaved warps
-/// (BenderSession::HasUnsavedChanges); a plan whose warps are already the last ones committed
+/// (BenderSession::HasUnsavedChanges). A mesh or a volume is read first and the question comes
+/// once it has been read: a file that cannot be read changes nothing (the warps, their unsaved
+/// state, the autosave). Another file is another patient: a mesh replaces the surface and drops
+/// the volume; a volume other than the loaded one's file closes the surface with its history,
+/// ribbon and centerlines (and the autosave that held them). A plan whose warps are already the
+/// last ones committed
 /// is not replayed again without asking (refused with a message when not interactive). The
 /// file dialogs start in the folder used last (QSettings "folders/<kind>"); File > Open takes a
 /// DICOM series by any file of its folder, File > Open DICOM folder by the folder (several
@@ -39,8 +46,9 @@ public:
   void setInteractive(bool interactive) { this->Interactive = interactive; }
   bool isInteractive() const { return this->Interactive; }
   /// Before `what` (Open, Demo, Quit, ...) replaces the work: true to go on. With unsaved
-  /// warps and interactive, asks Save plan (then goes on when saved) / Discard (the work counts
-  /// as discarded: the autosave may go) / Cancel.
+  /// warps and interactive, asks Save plan (then goes on when saved) / Discard / Cancel. The
+  /// answer changes nothing else: the warps stay unsaved (and autosaved) until what replaces
+  /// them is in, so that a replacement that fails loses nothing.
   bool confirmDiscard(const QString& what);
   /// The Open dialog's filters: all supported files (every readable mesh format of
   /// bender::MeshFormats, plans, sessions, volumes, DICOM), then each mesh format, DICOM, all.
@@ -64,6 +72,10 @@ private:
   bool openMesh(const QString& path);
   bool openVolume(const QString& path);
   bool openPlan(const QString& path);
+  /// True when `volumePath` is the file of the volume loaded (the surface is that patient's).
+  bool isSamePatient(const QString& volumePath) const;
+  /// Another patient: the surface goes with its history, ribbon and autosave (`reason` said).
+  void closePatient(const std::string& reason);
 
   bender::BenderSession& Session;
   bender::SegmentationSession& Segmentation;

@@ -9,6 +9,8 @@
 #include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QScreen>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSizePolicy>
 #include <QStringList>
@@ -16,6 +18,8 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 #include <QWidget>
+
+#include <algorithm>
 
 namespace
 {
@@ -247,13 +251,30 @@ void MainActions::showShortcuts()
       table->setItem(r, c, new QTableWidgetItem(rows[r].value(c)));
     }
   }
+  // Sized to fit, never scrolled sideways: the key and command columns as wide as their text,
+  // the explanations wrapped in a column of at most 420 px, the dialog as wide as the table
+  // (within the screen) and as tall as the screen allows.
+  table->setWordWrap(true);
   table->resizeColumnsToContents();
+  table->setColumnWidth(2, std::min(table->columnWidth(2), 420));
   table->horizontalHeader()->setStretchLastSection(true);
+  table->resizeRowsToContents();
   layout->addWidget(table);
   auto* close = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
   connect(close, &QDialogButtonBox::rejected, dialog, &QDialog::close);
   layout->addWidget(close);
-  dialog->resize(760, 520);
+  const QMargins margins = layout->contentsMargins();
+  const int tableWidth = table->horizontalHeader()->length() + 2 * table->frameWidth() +
+    table->verticalScrollBar()->sizeHint().width();
+  const QRect screen = (this->Window && this->Window->screen())
+    ? this->Window->screen()->availableGeometry()
+    : QRect(0, 0, 1280, 900);
+  const int rowsHeight = table->verticalHeader()->length() + table->horizontalHeader()->height() +
+    2 * table->frameWidth();
+  dialog->resize(std::min(tableWidth + margins.left() + margins.right(), screen.width() - 40),
+    std::min(rowsHeight + close->sizeHint().height() + margins.top() + margins.bottom() +
+        layout->spacing(),
+      screen.height() - 80));
   dialog->show();
 }
 

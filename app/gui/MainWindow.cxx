@@ -381,9 +381,9 @@ void MainWindow::closeEvent(QCloseEvent* event)
   }
   this->Worker->cancelAndWait();
   this->disconnectTrackers();
-  // The autosave goes only once the work was saved or explicitly discarded: otherwise the next
-  // start offers to recover it.
-  if (!this->Session.HasUnsavedChanges())
+  // The autosave goes only once the work was saved or explicitly discarded (an interactive
+  // window asked just now): otherwise the next start offers to recover it.
+  if (!this->Session.HasUnsavedChanges() || this->Files->isInteractive())
   {
     this->Recovery->discardAutosave();
   }

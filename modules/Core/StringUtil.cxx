@@ -81,6 +81,11 @@ std::string FormatPoint(const std::array<double, 3>& p)
   return s.str();
 }
 
+std::string CountOf(std::size_t count, std::string_view noun)
+{
+  return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
+}
+
 std::string_view Trim(std::string_view text)
 {
   const char* blanks = " \t\r\n\f\v";

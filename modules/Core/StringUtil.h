@@ -3,7 +3,7 @@
 
 // The small string helpers every layer needs, written once: case folding for file extensions
 // and keywords, the extension of a path, the display name used to prefix messages and
-// the text of a point in them, trimming.
+// the text of a point in them, a count with its noun, trimming.
 // ASCII only (file extensions, keywords, device names); no locale is consulted.
 
 #include <array>
@@ -36,6 +36,9 @@ std::string DisplayName(const std::string& path);
 
 /// How messages name a point: "(x, y, z)" with 4 significant digits.
 std::string FormatPoint(const std::array<double, 3>& p);
+
+/// "1 warp", "2 warps", "0 warps": a count with its noun (regular English plural, "s" added).
+std::string CountOf(std::size_t count, std::string_view noun);
 
 /// text without leading and trailing blanks (space, tab, CR, LF, FF, VT).
 std::string_view Trim(std::string_view text);

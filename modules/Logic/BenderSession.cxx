@@ -169,6 +169,36 @@ bool BenderSession::SetSurface(vtkPolyData* surface,
   return true;
 }
 
+bool BenderSession::Clear(const std::string& reason)
+{
+  if (!this->HasSurface())
+  {
+    return true;
+  }
+  if (this->RefuseWhenBusy(this->SurfaceName))
+  {
+    return false;
+  }
+  if (this->State == GrabState::Grabbed)
+  {
+    this->CancelGrab(reason);
+  }
+  const std::string name = this->SurfaceName;
+  this->History.Reset(nullptr);
+  this->State = GrabState::Idle;
+  this->Held.reset();
+  this->SetRibbonInformation(std::nullopt);
+  this->ChangeCount = this->SavedChangeCount = 0;
+  this->SourcePath.clear();
+  this->SurfaceName.clear();
+  this->AutosaveSourcePath.clear();
+  this->AutosavedRibbon.reset();
+  this->ShowCommitted(nullptr);
+  this->Report(MessageSeverity::Info, "Closed " + name + ": " + reason);
+  this->Changed();
+  return true;
+}
+
 bool BenderSession::HasUnsavedChanges() const
 {
   return this->State == GrabState::Grabbed || this->ChangeCount != this->SavedChangeCount;
@@ -194,8 +224,7 @@ bool BenderSession::SavePlan(const std::string& path)
   }
   this->MarkSaved();
   this->Report(MessageSeverity::Info,
-    "Saved the plan (" + std::to_string(this->History.Position()) + " warps) to " +
-      DisplayName(path));
+    "Saved the plan (" + CountOf(this->History.Position(), "warp") + ") to " + DisplayName(path));
   return true;
 }
 

@@ -95,6 +95,11 @@ public:
   bool SetSurface(vtkPolyData* surface,
     const std::string& name,
     const std::string& sourcePath = {});
+  /// Forgets the surface and all that belongs to it (the grab, a held commit, the history and
+  /// its plan, the ribbon): another patient's data comes next. Says so in one message ending
+  /// in `reason`; refused (false, with a message) while busy. The autosave file is the
+  /// caller's (DiscardAutosave).
+  bool Clear(const std::string& reason);
   bool HasSurface() const { return !this->History.Empty(); }
   /// The committed surface (after the current history step); owned by the session.
   vtkPolyData* GetSurface() const { return this->History.Current(); }
@@ -254,6 +259,10 @@ public:
     bool proceedOnProblems);
   /// Commits a job that ran (or reports why not); returns whether it succeeded.
   bool Finish(SessionJob& job);
+  /// Drops a job that ran instead of finishing it (the user declined its result, e.g. a mesh
+  /// read and then not opened): nothing changes, the session is no longer busy, and one
+  /// message says "<the job's file or plan>: `reason`".
+  void Abandon(SessionJob& job, const std::string& reason);
   bool IsBusy() const { return this->Busy; }
   ///@}
 

@@ -223,6 +223,16 @@ bool BenderSession::Finish(SessionJob& job)
   return false;
 }
 
+void BenderSession::Abandon(SessionJob& job, const std::string& reason)
+{
+  // The jobs that made the session busy (see Finish).
+  if (job.JobKind != SessionJob::Kind::Check && job.JobKind != SessionJob::Kind::Export)
+  {
+    this->Busy = false;
+  }
+  this->Report(MessageSeverity::Info, job.Name + ": " + reason);
+}
+
 bool BenderSession::FinishLoad(SessionJob& job)
 {
   if (job.Result != SessionJob::Outcome::Done)
@@ -232,7 +242,19 @@ bool BenderSession::FinishLoad(SessionJob& job)
       cancelled ? job.Name + ": reading cancelled, the surface is unchanged" : job.Problem);
     return false;
   }
-  return this->SetSurface(job.Input, job.Name, AbsolutePath(job.Path));
+  if (!this->SetSurface(job.Input, job.Name, AbsolutePath(job.Path)))
+  {
+    return false;
+  }
+  if (job.StatedUnit == "m")
+  {
+    // The status line's last word: the numbers in the file are not those shown.
+    this->Report(MessageSeverity::Info,
+      job.Name +
+        ": the file is in metres (it says unit m); read in millimetres, as everything "
+        "in Bender");
+  }
+  return true;
 }
 
 bool BenderSession::FinishRelease(SessionJob& job)
@@ -317,7 +339,7 @@ bool BenderSession::FinishReplay(SessionJob& job)
   this->State = GrabState::Idle;
   this->ShowCommitted(nullptr);
   this->Report(MessageSeverity::Info,
-    "Replayed " + std::to_string(job.Plan.warps.size()) + " warps of " + job.Name);
+    "Replayed " + CountOf(job.Plan.warps.size(), "warp") + " of " + job.Name);
   this->Autosave();
   this->Changed();
   return true;
@@ -366,8 +388,8 @@ bool BenderSession::FinishRecover(SessionJob& job)
     this->AutosaveSourcePath = job.SourcePath;
   }
   this->Autosave();
-  this->Report(MessageSeverity::Info,
-    "Recovered the session: " + std::to_string(job.Plan.warps.size()) + " warps");
+  this->Report(
+    MessageSeverity::Info, "Recovered the session: " + CountOf(job.Plan.warps.size(), "warp"));
   this->Changed();
   return true;
 }

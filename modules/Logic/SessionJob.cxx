@@ -17,7 +17,7 @@ void SessionJob::Run(const ProgressReporter& progress)
     switch (this->JobKind)
     {
       case Kind::Load:
-        this->Input = ReadMesh(this->Path);
+        this->Input = ReadMesh(this->Path, this->StatedUnit);
         break;
       case Kind::Recover:
       {

@@ -72,6 +72,7 @@ private:
   std::string SourcePath;              // Recover: the source read by the job
   std::string SurfaceName;             // Recover: the surface's name in the session file
   std::string Path;                    // Load: the mesh read; Export: the file written
+  std::string StatedUnit;              // Load: the unit the mesh file states (ReadMesh)
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
   bool MakeProxy = false; // Release: decimate the result for the level of detail

@@ -31,6 +31,13 @@ TEST(StringUtil, PointsInMessages)
   EXPECT_EQ(bender::FormatPoint({ { 12.34567, 1e-7, 123456.0 } }), "(12.35, 1e-07, 1.235e+05)");
 }
 
+TEST(StringUtil, CountsWithTheirNoun)
+{
+  EXPECT_EQ(bender::CountOf(1, "warp"), "1 warp");
+  EXPECT_EQ(bender::CountOf(0, "warp"), "0 warps");
+  EXPECT_EQ(bender::CountOf(2, "warp"), "2 warps");
+}
+
 TEST(StringUtil, AffixesAndTrim)
 {
   EXPECT_TRUE(bender::StartsWith("solid wall", "solid"));
