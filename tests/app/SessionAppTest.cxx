@@ -150,6 +150,17 @@ private:
   bool Chosen = false;
 };
 
+// A key typed on the window, as the user does once it is the active window again (after a
+// dialog, the window manager gives it back the focus).
+bool TypeOnWindow(MainWindow& window, Qt::Key key, Qt::KeyboardModifiers modifiers)
+{
+  window.activateWindow();
+  if (!QTest::qWaitForWindowActive(&window))
+    return false;
+  QTest::keyClick(&window, key, modifiers);
+  return true;
+}
+
 // The end of `ribbon` swung by `degrees` about its normal around its start.
 bender::RibbonSpec Swung(const bender::RibbonSpec& ribbon, double degrees)
 {
@@ -244,7 +255,7 @@ private slots:
     {
       OpenDialogAnswer choose(truncated);
       SaveChangesAnswer discard(QMessageBox::Discard);
-      QTest::keyClick(window.get(), Qt::Key_O, Qt::ControlModifier);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
       QTRY_VERIFY(choose.chosen());
       QVERIFY(window->waitUntilIdle(60000));
       // Read first: a file that cannot be read is not asked about.
@@ -262,7 +273,7 @@ private slots:
     {
       OpenDialogAnswer choose(whole);
       SaveChangesAnswer cancel(QMessageBox::Cancel);
-      QTest::keyClick(window.get(), Qt::Key_O, Qt::ControlModifier);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
       QTRY_VERIFY(choose.chosen());
       QVERIFY(window->waitUntilIdle(60000));
       QCOMPARE(cancel.count(), 1);
@@ -279,7 +290,7 @@ private slots:
     // Ctrl+Q asks (the warps are unsaved): Cancel keeps the window and the autosave.
     {
       SaveChangesAnswer cancel(QMessageBox::Cancel);
-      QTest::keyClick(window.get(), Qt::Key_Q, Qt::ControlModifier);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_Q, Qt::ControlModifier));
       QTRY_COMPARE(cancel.count(), 1);
     }
     QVERIFY(window->isVisible());
@@ -289,7 +300,7 @@ private slots:
     {
       OpenDialogAnswer choose(whole);
       SaveChangesAnswer discard(QMessageBox::Discard);
-      QTest::keyClick(window.get(), Qt::Key_O, Qt::ControlModifier);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
       QTRY_VERIFY(choose.chosen());
       QVERIFY(window->waitUntilIdle(60000));
       QCOMPARE(discard.count(), 1);
@@ -330,7 +341,7 @@ private slots:
     {
       OpenDialogAnswer choose(nrrd);
       SaveChangesAnswer cancel(QMessageBox::Cancel);
-      QTest::keyClick(window.get(), Qt::Key_O, Qt::ControlModifier);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
       QTRY_VERIFY(choose.chosen());
       QVERIFY(window->waitUntilIdle(60000));
       QCOMPARE(cancel.count(), 1);
@@ -346,7 +357,7 @@ private slots:
     {
       OpenDialogAnswer choose(nrrd);
       SaveChangesAnswer discard(QMessageBox::Discard);
-      QTest::keyClick(window.get(), Qt::Key_O, Qt::ControlModifier);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
       QTRY_VERIFY(choose.chosen());
       QVERIFY(window->waitUntilIdle(60000));
       QCOMPARE(discard.count(), 1);
@@ -369,7 +380,7 @@ private slots:
     // Nothing unsaved is left: Ctrl+Q closes without a question.
     {
       SaveChangesAnswer asked(QMessageBox::Cancel);
-      QTest::keyClick(window.get(), Qt::Key_Q, Qt::ControlModifier);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_Q, Qt::ControlModifier));
       QTRY_VERIFY(!window->isVisible());
       QCOMPARE(asked.count(), 0);
     }
@@ -475,7 +486,7 @@ private slots:
     QTemporaryDir folder;
     auto window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(folder.path()));
     QVERIFY(bendertest::ShowTestWindow(*window, true));
-    QTest::keyClick(window.get(), Qt::Key_F1);
+    QVERIFY(TypeOnWindow(*window, Qt::Key_F1, Qt::NoModifier));
     QDialog* dialog = nullptr;
     QTRY_VERIFY((dialog = window->findChild<QDialog*>("shortcutsDialog")) && dialog->isVisible());
     auto* table = dialog->findChild<QTableWidget*>("shortcutsTable");
