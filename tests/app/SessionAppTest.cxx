@@ -92,6 +92,20 @@ QByteArray ReadAll(const QString& path)
   return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
 }
 
+// The visible top-level widget of type T (named `name` when given): a dialog on screen, whether
+// or not it is the active modal widget yet.
+template<typename T>
+T* VisibleTopLevel(const QString& name = {})
+{
+  for (QWidget* widget : QApplication::topLevelWidgets())
+  {
+    auto* found = qobject_cast<T*>(widget);
+    if (found && found->isVisible() && (name.isEmpty() || found->objectName() == name))
+      return found;
+  }
+  return nullptr;
+}
+
 // Answers every "Save changes?" box with `button` while it lives, counting them.
 class SaveChangesAnswer
 {
@@ -103,8 +117,8 @@ public:
       &QTimer::timeout,
       [this, button]()
       {
-        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-        if (!box || box->objectName() != "saveChanges" || !box->isVisible())
+        auto* box = VisibleTopLevel<QMessageBox>("saveChanges");
+        if (!box)
           return;
         ++this->Count;
         this->Text = box->text();
@@ -133,7 +147,7 @@ public:
       &QTimer::timeout,
       [this, path]()
       {
-        auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+        auto* dialog = VisibleTopLevel<QFileDialog>();
         if (!dialog)
           return;
         this->Timer.stop();
