@@ -155,7 +155,19 @@ public:
   /// damage; its warning is shown while bending.
   void SetCommitGuardRule(bool on) { this->GuardSpaceInversionRule = on; }
   bool GetCommitGuard() const { return this->GuardCommits; }
+  bool GetCommitGuardRule() const { return this->GuardSpaceInversionRule; }
   bool IsCommitHeld() const { return this->Held.has_value(); }
+  /// The lumen guard of the commit guard (LumenGuard.h): a release whose warp narrows a branch
+  /// it moved by more than options.maxNarrowing is held like a fold. Off by default (the
+  /// window turns it on): it computes the centerlines after the bend at every release.
+  void SetLumenGuard(const LumenGuardOptions& options) { this->LumenGuard = options; }
+  const LumenGuardOptions& GetLumenGuard() const { return this->LumenGuard; }
+  /// The centerlines of `surface` (the committed surface) for the lumen guard, when known
+  /// elsewhere (the window's vessel job); else the first release of a grab computes them and
+  /// later releases of the same surface reuse them. Null `centerlines` forgets them.
+  void SetLumenBaseline(vtkPolyData* surface, std::shared_ptr<const CenterlineResult> centerlines);
+  /// The centerlines kept for `surface`; null when none or kept for another surface.
+  std::shared_ptr<const CenterlineResult> LumenBaselineOf(vtkPolyData* surface) const;
   /// The failed check of the held commit (an unchecked, empty one when none is held).
   const CommitCheck& GetHeldCheck() const;
   /// Commits the held warp as it is (the user chose to keep it).
@@ -332,6 +344,9 @@ private:
   static vtkSmartPointer<vtkPolyData> InputOrEmpty(vtkPolyData* surface);
   void SetRibbonInformation(const std::optional<RibbonSpec>& ribbon);
   void DropHeld();
+  /// After a commit: the lumen guard's centerlines after the bend are those of the committed
+  /// surface (unless subdivided), the next bend's "before".
+  void KeepLumenAfter(const WarpSpec& warp, const CommitCheck& check);
 
   struct HeldCommit
   {
@@ -360,6 +375,10 @@ private:
   bool GuardCommits = true;
   bool GuardSpaceInversionRule = false;
   std::optional<HeldCommit> Held;
+  LumenGuardOptions LumenGuard{ false, 0.05 };
+  std::shared_ptr<const CenterlineResult> LumenBaseline;
+  vtkPolyData* LumenBaselineSurface = nullptr; // the surface it was computed for, and when
+  vtkMTimeType LumenBaselineTime = 0;
   unsigned long long ChangeCount = 0;
   unsigned long long SavedChangeCount = 0;
 

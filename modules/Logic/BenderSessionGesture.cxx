@@ -199,6 +199,7 @@ bool BenderSession::KeepHeldCommit()
   const HeldCommit held = *this->Held;
   this->Held.reset();
   this->History.Commit(held.warp, held.result);
+  this->KeepLumenAfter(held.warp, held.check);
   ++this->ChangeCount;
   this->State = GrabState::Released;
   this->ShowCommitted(held.proxy);

@@ -78,6 +78,8 @@ std::shared_ptr<SessionJob> BenderSession::BeginRelease()
   job->MakeProxy = this->ProxyDrag;
   job->Guard = this->GuardCommits;
   job->GuardRule = this->GuardSpaceInversionRule;
+  job->Lumen = this->LumenGuard;
+  job->LumenBefore = this->LumenBaselineOf(this->History.Current());
   this->Busy = true;
   return job;
 }
@@ -282,6 +284,8 @@ bool BenderSession::FinishRelease(SessionJob& job)
   }
   const WarpSpec& warp = job.Plan.warps.front();
   vtkPolyData* result = job.Steps.output;
+  // The centerlines before the bend serve every release of the surface (once per grab).
+  this->SetLumenBaseline(this->History.Current(), job.LumenBefore);
   if (job.Guard && job.Check.checked && !job.Check.Passed())
   {
     // Held: the grab goes on with the live warp on screen until the user chooses.
@@ -293,6 +297,7 @@ bool BenderSession::FinishRelease(SessionJob& job)
   }
   this->History.Commit(warp, result);
   FaultPoint("commit");
+  this->KeepLumenAfter(warp, job.Check);
   ++this->ChangeCount;
   this->State = GrabState::Released;
   this->ShowCommitted(job.Proxy);

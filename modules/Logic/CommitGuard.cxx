@@ -131,7 +131,8 @@ std::string CommitCheck::Summary() const
 CommitCheck CheckCommit(vtkPolyData* before,
   vtkPolyData* after,
   const WarpSpec& warp,
-  const CommitCheckOptions& options)
+  const CommitCheckOptions& options,
+  const CenterlineResult* lumenBefore)
 {
   if (!before || !after || before->GetNumberOfPoints() != after->GetNumberOfPoints() ||
     before->GetNumberOfCells() != after->GetNumberOfCells())
@@ -299,6 +300,12 @@ CommitCheck CheckCommit(vtkPolyData* before,
          << " mm is not smaller than r_min = " << check.minimumRadius
          << " mm, the ribbon's smallest arc radius";
     check.problems.push_back(text.str());
+  }
+  if (options.lumen.enabled && check.movedPoints > 0)
+  {
+    check.lumen = CheckLumen(before, after, options.lumen, lumenBefore);
+    check.problems.insert(
+      check.problems.end(), check.lumen.problems.begin(), check.lumen.problems.end());
   }
 
   check.problemCells.assign(problemCells.begin(), problemCells.end());

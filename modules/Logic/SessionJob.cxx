@@ -61,7 +61,15 @@ void SessionJob::Run(const ProgressReporter& progress)
             // in the check and in the warning shown while bending.
             CommitCheckOptions options;
             options.spaceInversionRule = this->GuardRule;
-            this->Check = CheckCommit(this->Input, same, warp, options);
+            options.lumen = this->Lumen;
+            if (this->Lumen.enabled && !this->LumenBefore)
+            {
+              progress.Report("centerlines before the bend", 0.0);
+              this->LumenBefore =
+                std::make_shared<const CenterlineResult>(LumenCenterlines(this->Input));
+              progress.ThrowIfCancelled("commit check");
+            }
+            this->Check = CheckCommit(this->Input, same, warp, options, this->LumenBefore.get());
           }
           if (this->JobKind == Kind::Release && this->MakeProxy)
           {

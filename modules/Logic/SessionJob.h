@@ -11,6 +11,7 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -75,9 +76,13 @@ private:
   std::string StatedUnit;              // Load: the unit the mesh file states (ReadMesh)
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
-  bool MakeProxy = false; // Release: decimate the result for the level of detail
-  bool Guard = false;     // Release: check the changed region before committing
-  bool GuardRule = false; // ... and hold on the space-inversion rule alone
+  bool MakeProxy = false;                 // Release: decimate the result for the level of detail
+  bool Guard = false;                     // Release: check the changed region before committing
+  bool GuardRule = false;                 // ... and hold on the space-inversion rule alone
+  LumenGuardOptions Lumen{ false, 0.05 }; // ... and measure the lumen (LumenGuard.h)
+  // The centerlines of Input for the lumen guard: given when known (computed once per grab),
+  // else computed by the job and kept by the session for the next release of the grab.
+  std::shared_ptr<const CenterlineResult> LumenBefore;
   CommitCheck Check;
   ApplyPlanResult Steps;
   vtkSmartPointer<vtkPolyData> Proxy; // Release of a big surface: the result's decimated copy
