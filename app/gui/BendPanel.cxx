@@ -35,6 +35,10 @@ BendPanel::BendPanel(MainActions* actions, QWidget* parent)
                                   "(paper 3.8)");
   this->MinimumRadius->setObjectName("minimumRadius");
   this->MinimumRadius->setWordWrap(true);
+  this->MinimumRadius->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  // The r_min line and the space-inversion warning's lines are reserved: the warning appears
+  // mid-grab, and the buttons below must not move under the pointer.
+  this->MinimumRadius->setMinimumHeight(6 * this->MinimumRadius->fontMetrics().lineSpacing());
   form->addRow("", this->MinimumRadius);
 
   this->Decay = new QComboBox(this);
@@ -67,6 +71,18 @@ BendPanel::BendPanel(MainActions* actions, QWidget* parent)
   this->Tolerance->setToolTip("Largest distance (mm) between the exact warp and the subdivided "
                               "surface at a triangle's edge midpoint");
   form->addRow("Subdivision tolerance", this->Tolerance);
+  this->MaxNarrowing = new QDoubleSpinBox(this);
+  this->MaxNarrowing->setObjectName("maxNarrowing");
+  this->MaxNarrowing->setRange(0.0, 50.0);
+  this->MaxNarrowing->setDecimals(1);
+  this->MaxNarrowing->setSingleStep(1.0);
+  this->MaxNarrowing->setSuffix(" %");
+  this->MaxNarrowing->setSpecialValueText("off");
+  this->MaxNarrowing->setValue(100.0 * bender::LumenGuardOptions{}.maxNarrowing);
+  this->MaxNarrowing->setToolTip(
+    "Lumen guard: a bend that narrows a branch it moved (its minimal inscribed radius along "
+    "the centerline) by more than this is held before it is committed; 0 turns it off");
+  form->addRow("Lumen guard: max narrowing", this->MaxNarrowing);
 
   // The gesture buttons show the window's shared actions (menus and keys do the same).
   layout->addWidget(ActionButton(actions->PlaceRibbon, this, "placeRibbon"));
@@ -94,6 +110,23 @@ BendPanel::BendPanel(MainActions* actions, QWidget* parent)
   connect(this->ReverseScrews, &QCheckBox::toggled, this, changed);
   connect(this->Subdivide, &QCheckBox::toggled, this, changed);
   connect(this->Tolerance, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, changed);
+  connect(this->MaxNarrowing,
+    QOverload<double>::of(&QDoubleSpinBox::valueChanged),
+    this,
+    &BendPanel::lumenGuardChanged);
+}
+
+bender::LumenGuardOptions BendPanel::lumenGuard() const
+{
+  bender::LumenGuardOptions options;
+  options.enabled = this->MaxNarrowing->value() > 0.0;
+  options.maxNarrowing = this->MaxNarrowing->value() / 100.0;
+  return options;
+}
+
+void BendPanel::setMaxNarrowing(double percent)
+{
+  this->MaxNarrowing->setValue(percent);
 }
 
 bender::WarpParameters BendPanel::parameters() const

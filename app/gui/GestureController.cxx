@@ -5,9 +5,11 @@
 #include "BenderView.h"
 #include "MainActions.h"
 #include "ProblemOverlay.h"
+#include "RadiusSearch.h"
 #include "RibbonPlacement.h"
 #include "TrackerSession.h"
 #include "VesselController.h"
+#include "VesselSession.h"
 #include "WorkRunner.h"
 #include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
@@ -26,6 +28,9 @@
 #include <QTextEdit>
 #include <QTimer>
 #include <QVBoxLayout>
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 
 #include <algorithm>
 #include <cmath>
@@ -131,7 +136,14 @@ GestureController::GestureController(bender::BenderSession& session,
   // The ghost of the original: only where the surface may differ from it.
   this->View->setOriginalInPlay([this]() { return this->Session.GetOriginalInPlay(); });
 
-  this->Overlay = std::make_unique<ProblemOverlay>(this->View->renderer());
+  this->Overlay =
+    std::make_unique<ProblemOverlay>(this->View->renderer(), this->View->ribbonRenderer());
+  // The lumen guard as the Bend panel sets it (on at 5 % unless changed).
+  this->Session.SetLumenGuard(this->Bend->lumenGuard());
+  connect(this->Bend,
+    &BendPanel::lumenGuardChanged,
+    this,
+    [this]() { this->Session.SetLumenGuard(this->Bend->lumenGuard()); });
   this->GuardDialog = new QDialog(window);
   this->GuardDialog->setObjectName("commitGuard");
   this->GuardDialog->setWindowTitle("Commit held: check the bend");
@@ -145,8 +157,9 @@ GestureController::GestureController(bender::BenderSession& session,
   auto* buttons = new QDialogButtonBox(this->GuardDialog);
   auto* reduce = buttons->addButton("Reduce R and retry", QDialogButtonBox::AcceptRole);
   reduce->setObjectName("guardReduce");
-  reduce->setToolTip("A smaller region of influence: below r_min when the space-inversion rule "
-                     "failed, else 80% of R; the release is checked again");
+  reduce->setToolTip("The largest smaller region of influence, never below the vessel's "
+                     "radius, whose bend passes the same checks; found by trying, then "
+                     "released");
   auto* cancel = buttons->addButton("Cancel the bend", QDialogButtonBox::RejectRole);
   cancel->setObjectName("guardCancel");
   cancel->setToolTip("Nothing is committed; the surface and the ribbon go back (Esc)");
@@ -206,6 +219,7 @@ bool GestureController::grab()
   {
     return false;
   }
+  this->RadiusBeforeReduce = 0.0;
   if (this->Vessels)
   {
     this->Vessels->grabbed();
@@ -263,6 +277,15 @@ void GestureController::showCommitGuard()
     text += QString("The %1 triangles concerned are drawn in yellow and red on the vessel.<br>")
               .arg(check.problemCells.size());
   }
+  const bender::LumenCheck& lumen = check.lumen;
+  const bender::BranchLumenChange* narrowed =
+    lumen.worst >= 0 && lumen.branches[static_cast<std::size_t>(lumen.worst)].tooNarrow
+    ? &lumen.branches[static_cast<std::size_t>(lumen.worst)]
+    : nullptr;
+  if (narrowed)
+  {
+    text += "The branch's narrowest point is marked in magenta on the vessel.<br>";
+  }
   const double rmin = check.minimumRadius;
   text += QString("R = %1 mm, r_min = %2.")
             .arg(check.radius, 0, 'f', 2)
@@ -270,6 +293,16 @@ void GestureController::showCommitGuard()
                                                    : QString("none (straight wire)"));
   this->GuardText->setText(text);
   this->Overlay->Show(check.problemTriangles);
+  if (narrowed)
+  {
+    this->Overlay->ShowNarrowing(narrowed->narrowest.data(),
+      narrowed->afterMinRadius,
+      QString("-%1 %: %2 -> %3 mm")
+        .arg(100.0 * narrowed->narrowing, 0, 'f', 1)
+        .arg(narrowed->beforeMinRadius, 0, 'f', 2)
+        .arg(narrowed->afterMinRadius, 0, 'f', 2)
+        .toStdString());
+  }
   this->GuardDialog->show();
   this->GuardDialog->raise();
   this->View->render();
@@ -288,30 +321,109 @@ bool GestureController::reduceRadiusAndRetry()
     this->hideCommitGuard();
     return false;
   }
-  const bender::CommitCheck check = this->Session.GetHeldCheck();
-  bender::WarpParameters parameters = this->Bend->parameters();
-  const double radius = this->Session.GetParameters().radius;
-  double reduced = 0.8 * radius;
-  if (check.spaceInversionRisk && std::isfinite(check.minimumRadius))
+  if (this->Worker->refuseWhenBusy(this->Session))
   {
-    reduced = std::min(reduced, 0.9 * check.minimumRadius);
+    return false;
   }
-  parameters.radius = std::max(reduced, 1e-3);
-  this->Bend->setParameters(parameters);
-  this->applyParameters();
-  this->Session.AddMessage(bender::MessageSeverity::Info,
-    QString("R reduced from %1 to %2 mm; checking the bend again")
-      .arg(radius, 0, 'f', 2)
-      .arg(parameters.radius, 0, 'f', 2)
-      .toStdString());
+  const double radius = this->Session.GetParameters().radius;
+  const double lowest = this->vesselRadius();
+  if (!(lowest > 0.0))
+  {
+    this->Session.AddMessage(bender::MessageSeverity::Error,
+      "Reduce R: the vessel's radius is unknown (place the ribbon on the vessel with P); R "
+      "stays");
+    return false;
+  }
+  bender::RadiusSearchOptions options;
+  options.lowest = lowest;
+  options.step = 0.01; // the Bend panel sets R to 0.01 mm
+  options.check.spaceInversionRule = this->Session.GetCommitGuardRule();
+  options.check.lumen = this->Session.GetLumenGuard();
+  options.lumenBefore = this->Session.LumenBaselineOf(this->Session.GetSurface());
+  vtkSmartPointer<vtkPolyData> surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->DeepCopy(this->Session.GetSurface());
+  const bender::WarpSpec warp = bender::LiveWarpOf(this->Session);
   this->hideCommitGuard();
-  return this->release();
+  return this->Worker->runReporting(this->Session,
+    "Searching for an R that passes",
+    [this, surface, warp, options, radius, lowest](
+      const bender::ProgressReporter& progress) -> WorkRunner::Finisher
+    {
+      bender::RadiusSearchOptions search = options;
+      search.progress = progress;
+      const bender::RadiusSearchResult result = bender::FindPassingRadius(surface, warp, search);
+      return [this, result, radius, lowest]()
+      {
+        if (this->Session.GetState() != bender::GrabState::Grabbed)
+        {
+          return;
+        }
+        if (!result.found)
+        {
+          this->Session.AddMessage(bender::MessageSeverity::Warning,
+            QString("Reduce R: no R from %1 down to the vessel's radius %2 mm passes the "
+                    "checks (%3); R stays: cancel the bend, change it, or keep it")
+              .arg(radius, 0, 'f', 2)
+              .arg(lowest, 0, 'f', 2)
+              .arg(QString::fromStdString(result.check.Summary()))
+              .toStdString());
+          if (this->Session.IsCommitHeld())
+          {
+            this->showCommitGuard();
+          }
+          return;
+        }
+        if (this->RadiusBeforeReduce <= 0.0)
+        {
+          this->RadiusBeforeReduce = radius;
+        }
+        bender::WarpParameters parameters = this->Bend->parameters();
+        parameters.radius = result.radius;
+        this->Bend->setParameters(parameters);
+        this->applyParameters();
+        this->Session.AddMessage(bender::MessageSeverity::Info,
+          QString("R reduced from %1 to %2 mm, the largest that passes the checks; releasing")
+            .arg(radius, 0, 'f', 2)
+            .arg(result.radius, 0, 'f', 2)
+            .toStdString());
+        // The worker is still finishing this job: the release starts right after.
+        QTimer::singleShot(0, this, [this]() { this->release(); });
+      };
+    });
+}
+
+double GestureController::vesselRadius() const
+{
+  if (this->PlacedVesselRadius > 0.0)
+  {
+    return this->PlacedVesselRadius;
+  }
+  const bender::LumenCheck& lumen = this->Session.GetHeldCheck().lumen;
+  double smallest = 0.0;
+  for (const bender::BranchLumenChange& branch : lumen.branches)
+  {
+    if (branch.moved && (smallest == 0.0 || branch.beforeMinRadius < smallest))
+    {
+      smallest = branch.beforeMinRadius;
+    }
+  }
+  return smallest;
 }
 
 void GestureController::cancelHeld()
 {
   this->hideCommitGuard();
+  const bool grabbed = this->Session.GetState() == bender::GrabState::Grabbed;
   this->Session.CancelGrab("cancelled by the user");
+  if (grabbed && this->RadiusBeforeReduce > 0.0)
+  {
+    // Nothing of the bend stays, the R that "Reduce R" set included.
+    bender::WarpParameters parameters = this->Bend->parameters();
+    parameters.radius = this->RadiusBeforeReduce;
+    this->Bend->setParameters(parameters);
+    this->applyParameters();
+  }
+  this->RadiusBeforeReduce = 0.0;
   this->showSessionRibbon();
 }
 
@@ -365,6 +477,7 @@ void GestureController::showSessionRibbon()
 
 void GestureController::showRibbon(const bender::RibbonSpec& ribbon, double vesselRadius)
 {
+  this->PlacedVesselRadius = vesselRadius;
   auto* rep = this->View->ribbonWidget()->GetRibbonRepresentation();
   rep->SetHandleLength(1.2 * vesselRadius);
   rep->SetHandleRadius(0.22 * vesselRadius);
@@ -389,6 +502,7 @@ void GestureController::showRibbon(const bender::RibbonSpec& ribbon,
   }
   else
   {
+    this->PlacedVesselRadius = 0.0;
     this->setRibbon(ribbon);
     this->View->ribbonWidget()->On();
   }

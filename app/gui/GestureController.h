@@ -100,9 +100,15 @@ public:
   /// The commit guard's dialog and overlay (for tests): null / hidden when nothing is held.
   QDialog* commitGuardDialog() const { return this->GuardDialog; }
   ProblemOverlay* problemOverlay() const { return this->Overlay.get(); }
-  /// The guard's choices, as its buttons do them. reduceRadiusAndRetry sets R below r_min when
-  /// the space-inversion rule failed (0.9 r_min), else to 0.8 R, and starts the release again.
+  /// The guard's choices, as its buttons do them. reduceRadiusAndRetry searches, on the
+  /// worker, the largest R below the held one and not below the vessel's radius whose warp
+  /// passes the same checks (bender::FindPassingRadius: both guards), sets it and releases
+  /// again; when none passes, R stays and the commit stays held. Cancel puts back the R that
+  /// "Reduce R" changed.
   bool reduceRadiusAndRetry();
+  /// The floor of "Reduce R": the vessel's radius where the ribbon was placed (or, without a
+  /// placement, the held branch's minimal radius before the bend); 0 when unknown.
+  double vesselRadius() const;
   void cancelHeld();
   bool keepHeld();
   /// Puts the widget's ribbon back to the session's ribbon (nothing grabbed).
@@ -147,6 +153,8 @@ private:
   QDialog* GuardDialog = nullptr;
   QLabel* GuardText = nullptr;
   QTimer* RibbonRest = nullptr;
+  double PlacedVesselRadius = 0.0; // the placement's inscribed (or local) radius
+  double RadiusBeforeReduce = 0.0; // R before "Reduce R" changed it in this grab (0: it did not)
 };
 
 #endif

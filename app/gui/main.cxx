@@ -4,6 +4,7 @@
 //   bender --demo --headless [--out DIR]
 //                                    the same job without a window: segment, apply the demo
 //                                    plan, check, export and screenshot into DIR (default out)
+#include "BendPanel.h"
 #include "HeadlessDemo.h"
 #include "MainWindow.h"
 
@@ -56,10 +57,24 @@ int main(int argc, char** argv)
   parser.addOption({ "demo", "Open on the built-in demo: segmented vessel, ribbon on a branch." });
   parser.addOption({ "headless", "No window (with --demo): run the job and write files." });
   parser.addOption({ "out", "Output folder of --headless (default: out).", "DIR", "out" });
+  parser.addOption({ "max-narrowing",
+    "Lumen guard: hold a bend that narrows a branch by more than PERCENT (default 5; 0: off).",
+    "PERCENT",
+    "5" });
   parser.addPositionalArgument("files", "Meshes, volumes or plans to open.", "[FILE...]");
   parser.process(application);
+  bool percentOk = false;
+  const double maxNarrowing = parser.value("max-narrowing").toDouble(&percentOk);
+  if (!percentOk || maxNarrowing < 0.0 || maxNarrowing > 50.0)
+  {
+    std::fprintf(stderr,
+      "bender: --max-narrowing %s: give a percentage from 0 (off) to 50\n",
+      qPrintable(parser.value("max-narrowing")));
+    return 2;
+  }
 
   MainWindow window;
+  window.bendPanel()->setMaxNarrowing(maxNarrowing);
   window.show();
   if (parser.isSet("demo"))
   {
