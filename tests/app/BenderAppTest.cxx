@@ -511,6 +511,10 @@ private slots:
     parameters.decay = bender::DecaySpec{};
     this->Window->bendPanel()->setParameters(parameters);
     QVERIFY(session.SetParameters(parameters));
+    // The lumen guard off here: the bell's blend into the tube beyond the right hand narrows it
+    // there by more than 5 % (a waist the guard holds), and what is tested is the tracker path.
+    this->Window->bendPanel()->setMaxNarrowing(0.0);
+    QVERIFY(!session.GetLumenGuard().enabled);
 
     this->Window->trackersPanel()->setDeviceSpec(
       QString("replay:%1/tracking/two-hands.fastrak").arg(BENDER_TEST_DATA_DIR));
@@ -541,6 +545,7 @@ private slots:
     this->Window->renderer()->GetActiveCamera()->OrthogonalizeViewUp();
     this->Window->renderer()->ResetCamera();
     this->Window->saveScreenshot(this->artefact("bender-tracker-bend.png"));
+    this->Window->bendPanel()->setMaxNarrowing(5.0);
   }
 
   void placeRibbonByClickingOnTheVessel()
