@@ -22,24 +22,18 @@ std::string Details()
          "counts, connected components, boundary loops (open vessel ends) with their sizes, "
          "non-manifold edges and vertices, inconsistently oriented edges, degenerate triangles, "
          "self-intersections (pairs of triangles sharing no vertex), area, enclosed volume when "
-         "closed, edge-length and minimum-angle statistics.
-         "
-         "
-         "
+         "closed, edge-length and minimum-angle statistics.\n"
+         "\n"
          "With --before, also the lumen guard: the centerlines of both shapes (the after's "
          "seeded with the before's ends), each branch's minimal inscribed radius before and "
          "after; a branch the bend moved that narrows by more than --max-narrowing is a problem "
-         "(a false stenosis).
-         "
-         "
-         "
+         "(a false stenosis).\n"
+         "\n"
          "Mesh formats (by extension): " +
     bender::MeshExtensionList(bender::MeshAccess::Read) +
     ". Lengths in millimetres (a file that states metres, as an export in metres does, is read "
-    "in millimetres).
-    "
-    "
-    "
+    "in millimetres).\n"
+    "\n"
     "exit status: 0 clean, 1 problems found (or a branch narrowed), 2 the mesh could not be "
     "read or usage error";
 }

@@ -4,15 +4,21 @@
 // Pieces shared by the window test suites (AppTests, IgtlAppTests, VesselAppTests).
 
 #include "MainWindow.h"
+#include "Vec3.h"
 
+#include <QPoint>
 #include <QString>
 #include <QTabWidget>
+#include <QVTKOpenGLNativeWidget.h>
 #include <QtTest>
 
+#include <vtkCamera.h>
 #include <vtkCellArray.h>
+#include <vtkInteractorObserver.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 
 #include <cmath>
@@ -89,6 +95,36 @@ inline bool ShowPanel(MainWindow& window, QWidget* panel)
   }
   panels->setCurrentWidget(panel);
   return true;
+}
+
+/// Points the 3D view's camera at `target` from `direction` (unit), far enough to see `span` mm
+/// around it, and renders.
+inline void Look(MainWindow& window,
+  const bender::Vec3& target,
+  const bender::Vec3& direction,
+  double span)
+{
+  vtkCamera* camera = window.renderer()->GetActiveCamera();
+  camera->SetFocalPoint(target.x, target.y, target.z);
+  const bender::Vec3 eye = target + 3.0 * span * direction;
+  camera->SetPosition(eye.x, eye.y, eye.z);
+  const bender::Vec3 up =
+    std::abs(direction.z) < 0.9 ? bender::Vec3{ 0, 0, 1 } : bender::Vec3{ 0, 1, 0 };
+  camera->SetViewUp(up.x, up.y, up.z);
+  camera->SetViewAngle(30);
+  window.renderer()->ResetCameraClippingRange();
+  window.render();
+}
+
+/// The 3D view's widget (Qt) coordinates of a model point.
+inline QPoint Project(MainWindow& window, const bender::Vec3& p)
+{
+  double display[3];
+  vtkInteractorObserver::ComputeWorldToDisplay(window.renderer(), p.x, p.y, p.z, display);
+  const double ratio = window.view()->devicePixelRatioF();
+  const int height = window.view()->height();
+  return QPoint(static_cast<int>(std::lround(display[0] / ratio)),
+    height - 1 - static_cast<int>(std::lround(display[1] / ratio)));
 }
 
 } // namespace bendertest

@@ -111,28 +111,11 @@ private:
   /// Looks at `target` from `direction` (unit), far enough to see `span` mm around it.
   void look(const bender::Vec3& target, const bender::Vec3& direction, double span)
   {
-    vtkCamera* camera = this->Window->renderer()->GetActiveCamera();
-    camera->SetFocalPoint(target.x, target.y, target.z);
-    const bender::Vec3 eye = target + 3.0 * span * direction;
-    camera->SetPosition(eye.x, eye.y, eye.z);
-    const bender::Vec3 up =
-      std::abs(direction.z) < 0.9 ? bender::Vec3{ 0, 0, 1 } : bender::Vec3{ 0, 1, 0 };
-    camera->SetViewUp(up.x, up.y, up.z);
-    camera->SetViewAngle(30);
-    this->Window->renderer()->ResetCameraClippingRange();
-    this->Window->render();
+    bendertest::Look(*this->Window, target, direction, span);
   }
 
   /// Widget (Qt) coordinates of a model point.
-  QPoint project(const bender::Vec3& p)
-  {
-    double display[3];
-    vtkInteractorObserver::ComputeWorldToDisplay(this->Window->renderer(), p.x, p.y, p.z, display);
-    const double ratio = this->Window->view()->devicePixelRatioF();
-    const int height = this->Window->view()->height();
-    return QPoint(static_cast<int>(std::lround(display[0] / ratio)),
-      height - 1 - static_cast<int>(std::lround(display[1] / ratio)));
-  }
+  QPoint project(const bender::Vec3& p) { return bendertest::Project(*this->Window, p); }
 
   /// How far from `p` a click at its projection lands on the surface; infinity on a miss.
   double pickError(const bender::Vec3& p)
