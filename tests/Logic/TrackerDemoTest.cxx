@@ -1,12 +1,14 @@
 // The bundled demos bend the demo vessel cleanly (issue 22, item 3). On the window's demo (the
 // segmented demo vessel, the demo plan's ribbon, R and decay placed on it), the mouse demo plan,
 // the simulator run to the end of its cycle and the bundled recording replayed to its end commit
-// every warp through the session's commit path with the commit guard on: every commit passes the
-// guard, none changes the ribbon's length by more than NotableRibbonLengthChange, and the
+// every warp through the session's commit path with the commit guard and the lumen guard on:
+// every commit passes both (no branch's minimal inscribed radius narrows by more than 5 %),
+// none changes the ribbon's length by more than NotableRibbonLengthChange, and the
 // simulator's way back leaves the vessel where it was, so that its endless repetition stays
 // clean. A commit that shortens the ribbon a lot says so in its message.
 #include "BenderSession.h"
 #include "LogicTestUtilities.h"
+#include "LumenGuard.h"
 #include "RibbonLengthChange.h"
 #include "SegmentationSession.h"
 #include "TrackerDevice.h"
@@ -42,8 +44,8 @@ std::string Describe(const Commit& commit)
 {
   std::ostringstream text;
   text << (commit.committed ? "committed" : "not committed") << ": " << commit.check.Summary()
-       << "; ribbon length change " << RibbonLengthChange(commit.warp) * 100.0 << " %; "
-       << commit.message;
+       << "; lumen: " << commit.check.lumen.Summary() << "; ribbon length change "
+       << RibbonLengthChange(commit.warp) * 100.0 << " %; " << commit.message;
   return text.str();
 }
 
@@ -72,6 +74,7 @@ protected:
     ASSERT_TRUE(this->Session.SetParameters(parameters));
     ASSERT_TRUE(this->Session.PlaceRibbon(warp.initial));
     ASSERT_TRUE(this->Session.GetCommitGuard());
+    this->Session.SetLumenGuard(LumenGuardOptions{}); // on, 5 %, as in the window
     this->Original = vtkSmartPointer<vtkPolyData>::New();
     this->Original->DeepCopy(this->Session.GetSurface());
   }
@@ -133,6 +136,8 @@ protected:
       EXPECT_TRUE(commit.committed) << Describe(commit);
       EXPECT_TRUE(commit.check.checked) << Describe(commit);
       EXPECT_TRUE(commit.check.Passed()) << Describe(commit);
+      EXPECT_TRUE(commit.check.lumen.checked) << commit.check.lumen.notMeasured;
+      EXPECT_TRUE(commit.check.lumen.Passed()) << Describe(commit);
       EXPECT_LT(std::abs(RibbonLengthChange(commit.warp)), NotableRibbonLengthChange)
         << Describe(commit);
       EXPECT_EQ(commit.message.find("shorter"), std::string::npos) << commit.message;
