@@ -22,8 +22,11 @@ const char* const Details =
   "Applies the warps of PLAN (a .bender.json warp plan) in order to IN_MESH and writes the "
   "result to OUT_MESH. A warp with a \"subdivision\" object is followed by adaptive subdivision "
   "(spec 7) instead of the plain warp: edges the warp bends by more than its tolerance are "
-  "split. The plan is validated whole before anything is written; on any error nothing is "
-  "written. OUT_MESH must differ from IN_MESH (an input is never overwritten).\n"
+  "split. A plan saved after Prepare for CFD (version 2, \"prepareForCfd\") also clips, names, "
+  "extends and caps the vessel ends where the window did (as `bender-cli clip`); write .vtp or "
+  ".vtk to keep the labels. The plan is validated whole before anything is written; on any "
+  "error nothing is written. OUT_MESH must differ from IN_MESH (an input is never "
+  "overwritten).\n"
   "\n"
   "Mesh formats (by extension): .stl .obj .ply .vtp .vtk .off (reading and writing). "
   "Coordinates stay in the mesh's own frame (LPS mm for Bender's segmentations).\n"
@@ -104,6 +107,26 @@ int RunWarp(const WarpArguments& a)
       PrintStep(info, i, plan.warps[i].radius);
     }
   }
+  for (std::size_t j = 0; j < result.prepared.size(); ++j)
+  {
+    for (const std::string& warning : result.prepared[j].warnings)
+    {
+      std::fprintf(stderr,
+        "bender-cli warp: warning: %s: prepareForCfd[%zu]: %s\n",
+        planName.c_str(),
+        j,
+        warning.c_str());
+    }
+    if (!a.quiet)
+    {
+      std::printf("prepare for CFD %zu (after %zu warps): %zu ends%s%s\n",
+        j,
+        plan.cfdSteps[j].afterWarps,
+        result.prepared[j].ends.size(),
+        plan.cfdSteps[j].clip ? " clipped" : "",
+        plan.cfdSteps[j].cap ? ", capped and labelled" : ", labelled");
+    }
+  }
 
   vtkPolyData* current = result.output;
   bender::MeshWriteOptions writeOptions;
@@ -118,11 +141,12 @@ int RunWarp(const WarpArguments& a)
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet)
   {
-    std::printf("wrote %s: %lld points, %lld cells, %zu warps in %.3f s\n",
+    std::printf("wrote %s: %lld points, %lld cells, %zu warps%s in %.3f s\n",
       a.output.c_str(),
       static_cast<long long>(current->GetNumberOfPoints()),
       static_cast<long long>(current->GetNumberOfCells()),
       plan.warps.size(),
+      plan.cfdSteps.empty() ? "" : " and Prepare for CFD",
       seconds);
   }
   return 0;

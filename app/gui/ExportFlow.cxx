@@ -8,8 +8,13 @@
 #include "VesselController.h"
 #include "WorkRunner.h"
 
+#include "ApplyPlan.h"
 #include "BenderErrors.h"
+#include "MeshFormats.h"
+#include "PatchSidecar.h"
+#include "PolyDataCopy.h"
 #include "PrepareForCfd.h"
+#include "SegmentationSession.h"
 
 #include <vtkPolyData.h>
 
@@ -28,8 +33,67 @@
 #include <QMessageBox>
 #include <QPointer>
 #include <QPushButton>
+#include <QStandardPaths>
 #include <QTimer>
 #include <QVBoxLayout>
+
+namespace
+{
+// A file name made of the data's name: ASCII letters and digits, '-', '.' and '_'; each run of
+// anything else (spaces, parentheses) becomes one '_'. "vessel" when nothing is left.
+QString FileStem(const QString& name)
+{
+  QString stem;
+  for (const QChar c : name)
+  {
+    if ((c.unicode() < 128 && c.isLetterOrNumber()) || c == '-' || c == '_' || c == '.')
+    {
+      stem += c;
+    }
+    else if (!stem.isEmpty() && !stem.endsWith('_'))
+    {
+      stem += '_';
+    }
+  }
+  while (stem.endsWith('_') || stem.endsWith('.'))
+  {
+    stem.chop(1);
+  }
+  return stem.isEmpty() ? QString("vessel") : stem;
+}
+
+// The files an export to `path` with `options` would replace: the file, its patches sidecar
+// and, one STL file per patch, the folder's <stem>_*.stl.
+QStringList ExistingFiles(const bender::ExportSurfaceOptions& options, const QString& path)
+{
+  QStringList existing;
+  const QFileInfo file(path);
+  if (file.exists())
+  {
+    existing << file.fileName();
+  }
+  const auto format = bender::FindMeshFormat(path.toStdString());
+  if (!format)
+  {
+    return existing;
+  }
+  bender::MeshExportRequest request;
+  request.encoding = options.stlEncoding;
+  request.patches = options.patches;
+  request.sidecar = options.patchesJson ? bender::SidecarChoice::On : bender::SidecarChoice::Off;
+  const bender::MeshExportRules rules = bender::ResolveMeshExport(*format, request);
+  const QFileInfo sidecar(QString::fromStdString(bender::PatchSidecarPath(path.toStdString())));
+  if (rules.sidecar && sidecar.exists())
+  {
+    existing << sidecar.fileName();
+  }
+  if (rules.patches == bender::StlPatchMode::Files)
+  {
+    existing << file.absoluteDir().entryList({ file.completeBaseName() + "_*.stl" }, QDir::Files);
+  }
+  return existing;
+}
+} // namespace
 
 ExportDialog::ExportDialog(const ExportOptionsForm& start, const QString& path, QWidget* parent)
   : QDialog(parent)
@@ -96,8 +160,13 @@ void ExportDialog::followFormat()
 
 void ExportDialog::browse()
 {
-  const QString f =
-    QFileDialog::getSaveFileName(this, "Export surface", this->path(), ExportPanel::fileFilter());
+  // Replacing is asked once, in accept(), for every file the export would write.
+  const QString f = QFileDialog::getSaveFileName(this,
+    "Export surface",
+    this->path(),
+    ExportPanel::fileFilter(),
+    nullptr,
+    QFileDialog::DontConfirmOverwrite);
   if (f.isEmpty())
   {
     return;
@@ -114,10 +183,28 @@ void ExportDialog::browse()
 
 void ExportDialog::accept()
 {
-  if (this->path().isEmpty())
+  const QString path = this->path();
+  if (path.isEmpty())
   {
     this->Problem->setText("Choose the file to write.");
     return;
+  }
+  const QStringList existing = ExistingFiles(this->Form->options(path), path);
+  if (!existing.isEmpty())
+  {
+    QMessageBox question(QMessageBox::Warning,
+      "Replace files?",
+      "These files exist in " + QDir::toNativeSeparators(QFileInfo(path).absolutePath()) + ":\n  " +
+        existing.join("\n  ") + "\n\nReplace them?",
+      QMessageBox::Yes | QMessageBox::No,
+      this);
+    question.setObjectName("replaceQuestion");
+    question.setDefaultButton(QMessageBox::No);
+    if (question.exec() != QMessageBox::Yes)
+    {
+      this->Problem->setText("Not replaced: choose another file.");
+      return;
+    }
   }
   QDialog::accept();
 }
@@ -144,24 +231,83 @@ ExportFlow::ExportFlow(bender::BenderSession& session,
     this,
     [this]()
     {
-      const QString f = QFileDialog::getSaveFileName(
-        this->Window, "Save plan", "plan.bender.json", "Plans (*.bender.json)");
-      if (!f.isEmpty())
-        this->Session.SavePlan(f.toStdString());
+      const auto [folder, stem] = this->dataFolderAndStem();
+      const QString f = QFileDialog::getSaveFileName(this->Window,
+        "Save plan",
+        QDir(folder).filePath(stem + ".bender.json"),
+        "Plans (*.bender.json)");
+      if (!f.isEmpty() && this->Session.SavePlan(f.toStdString()))
+      {
+        this->rememberFolder(f);
+      }
     });
+}
+
+void ExportFlow::setSegmentation(const bender::SegmentationSession* segmentation)
+{
+  this->Segmentation = segmentation;
+}
+
+QString ExportFlow::dataKey() const
+{
+  const QString volume = this->Segmentation && this->Segmentation->HasVolume()
+    ? QString::fromStdString(this->Segmentation->GetVolumeSource().path)
+    : QString();
+  return QString::fromStdString(this->Session.GetSourcePath()) + '\n' + volume + '\n' +
+    QString::fromStdString(this->Session.GetSurfaceName());
+}
+
+std::pair<QString, QString> ExportFlow::dataFolderAndStem() const
+{
+  // Where the data came from: the surface's file, else the volume's file (or DICOM folder)
+  // it was segmented from; data made here (the demo): the user's documents.
+  const QFileInfo source(QString::fromStdString(this->Session.GetSourcePath()));
+  const QFileInfo volume(this->Segmentation && this->Segmentation->HasVolume()
+      ? QString::fromStdString(this->Segmentation->GetVolumeSource().path)
+      : QString());
+  QString folder, name;
+  if (!source.filePath().isEmpty())
+  {
+    folder = source.absolutePath();
+    name = source.completeBaseName();
+  }
+  else if (!volume.filePath().isEmpty())
+  {
+    folder = volume.absolutePath(); // a DICOM folder's parent: never into the series
+    name = volume.isDir() ? volume.fileName() : volume.baseName();
+  }
+  else
+  {
+    folder = QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation);
+    if (folder.isEmpty() || !QDir(folder).exists())
+    {
+      folder = QDir::homePath();
+    }
+    name = QString::fromStdString(this->Session.GetSurfaceName());
+  }
+  // The same data saved or exported again: where it went last time.
+  if (!this->LastFolder.isEmpty() && this->LastFolderData == this->dataKey())
+  {
+    folder = this->LastFolder;
+  }
+  return { folder, FileStem(name) };
+}
+
+QString ExportFlow::defaultExportPath() const
+{
+  const auto [folder, stem] = this->dataFolderAndStem();
+  return QDir(folder).filePath(stem + "_export" + this->Panel->form()->suffix());
+}
+
+void ExportFlow::rememberFolder(const QString& path)
+{
+  this->LastFolder = QFileInfo(path).absolutePath();
+  this->LastFolderData = this->dataKey();
 }
 
 ExportDialog* ExportFlow::openExportDialog()
 {
-  QString path = this->LastPath;
-  if (path.isEmpty())
-  {
-    const QString name =
-      QFileInfo(QString::fromStdString(this->Session.GetSurfaceName())).completeBaseName();
-    path = QDir::current().filePath(
-      (name.isEmpty() ? QString("vessel") : name) + "_export" + this->Panel->form()->suffix());
-  }
-  auto* dialog = new ExportDialog(*this->Panel->form(), path, this->Window);
+  auto* dialog = new ExportDialog(*this->Panel->form(), this->defaultExportPath(), this->Window);
   dialog->setAttribute(Qt::WA_DeleteOnClose);
   connect(dialog,
     &QDialog::accepted,
@@ -169,7 +315,7 @@ ExportDialog* ExportFlow::openExportDialog()
     [this, dialog]()
     {
       this->Panel->form()->copyFrom(*dialog->form());
-      this->LastPath = dialog->path();
+      this->rememberFolder(dialog->path());
       this->exportSurface(dialog->path());
     });
   dialog->open();
@@ -184,6 +330,11 @@ void ExportFlow::attachView(BenderView* view, VesselController* vessels)
   this->Overlay = new CfdEndsOverlay(view->renderer(), view->ribbonRenderer(), this);
   connect(vessels, &VesselController::centerlinesChanged, this, &ExportFlow::listEnds);
   connect(this->Worker, &WorkRunner::finished, this, &ExportFlow::followSurface);
+  // Undo and redo change the surface without a job: after the window has applied them.
+  for (QAction* action : { this->Actions->Undo, this->Actions->Redo })
+  {
+    connect(action, &QAction::triggered, this, &ExportFlow::followSurface, Qt::QueuedConnection);
+  }
   // Shown with the Export panel; the discs only while the ends are to be clipped.
   connect(this->Panel, &ExportPanel::shownChanged, this, &ExportFlow::showOverlay);
   connect(this->Panel->Clip, &QCheckBox::toggled, this, &ExportFlow::showOverlay);
@@ -257,8 +408,12 @@ void ExportFlow::listEnds()
     return;
   }
   vtkPolyData* current = this->Session.HasSurface() ? this->Session.GetSurface() : nullptr;
-  if (current && current == this->Prepared && current->GetMTime() == this->PreparedTime)
+  if (this->showsPrepared(current))
   {
+    if (!this->Overlay->showsPatches())
+    {
+      this->showPreparedEnds();
+    }
     return; // the prepared surface: its caps stay shown
   }
   const bender::VesselSession& vessels = this->Vessels->vessels();
@@ -301,6 +456,22 @@ void ExportFlow::listEnds()
   this->renderView();
 }
 
+bool ExportFlow::showsPrepared(vtkPolyData* surface) const
+{
+  return surface && surface == this->Prepared && surface->GetMTime() == this->PreparedTime;
+}
+
+void ExportFlow::showPreparedEnds()
+{
+  this->Panel->showEnds(this->PreparedEnds);
+  if (this->Overlay)
+  {
+    this->Overlay->setPatches(this->Prepared, this->PreparedEnds);
+    this->showOverlay();
+    this->renderView();
+  }
+}
+
 void ExportFlow::followSurface()
 {
   if (!this->Overlay)
@@ -308,8 +479,12 @@ void ExportFlow::followSurface()
     return;
   }
   vtkPolyData* current = this->Session.HasSurface() ? this->Session.GetSurface() : nullptr;
-  const bool prepared =
-    current && current == this->Prepared && current->GetMTime() == this->PreparedTime;
+  const bool prepared = this->showsPrepared(current);
+  if (prepared && !this->Overlay->showsPatches())
+  {
+    this->showPreparedEnds(); // back by a redo
+    return;
+  }
   const bool listed =
     current && current == this->EndsFor && current->GetMTime() == this->EndsForTime;
   if ((this->Overlay->showsPatches() && !prepared) ||
@@ -337,44 +512,45 @@ bool ExportFlow::prepareForCfd()
     this->Panel->showReport("Prepare for CFD: release the bend first.");
     return false;
   }
-  const bool again =
-    this->PreparedFrom && current == this->Prepared && current->GetMTime() == this->PreparedTime;
+  // Pressed again on the surface a Prepare made: from the surface before it, the new step taking
+  // the old one's place in the history.
+  const bool again = this->Session.GetCurrentCfdStep() != nullptr;
+  vtkPolyData* from = again ? this->Session.GetPreviousSurface() : current;
   const bool listed = this->Panel->listsCenterlineEnds() && this->EndCenterlines &&
     current == this->EndsFor && current->GetMTime() == this->EndsForTime;
-  if (!again && !listed)
+  if (!again && !listed && !this->showsPrepared(current))
   {
     this->Panel->clearEnds(); // the listed ends belong to another surface
   }
-  vtkSmartPointer<vtkPolyData> source = again ? this->PreparedFrom : nullptr;
-  if (!source)
-  {
-    source = vtkSmartPointer<vtkPolyData>::New();
-    source->DeepCopy(current);
-  }
-  // The centerlines the discs were placed on (the cuts are arc lengths on them); computed in
-  // the job when there are none yet.
+  // The step clips by the centerlines ComputeCenterlines gives for the surface, as the plan's
+  // replay does (ApplyCfdStep); those the discs were placed on are passed when they are those:
+  // the centerlines of an unbent surface (the vessels' "before"), or those of the last Prepare.
   vtkSmartPointer<vtkPolyData> centerlines;
-  vtkPolyData* known = again ? this->PreparedCenterlines.GetPointer()
-                             : (listed ? this->EndCenterlines.GetPointer() : nullptr);
-  if (known)
+  if (again && from == this->PreparedFrom && this->PreparedCenterlines)
   {
-    centerlines = vtkSmartPointer<vtkPolyData>::New();
-    centerlines->DeepCopy(known); // the job's own copy
+    centerlines = bender::DeepCopyOf(this->PreparedCenterlines);
   }
-  bender::PrepareForCfdOptions options = this->Panel->prepareOptions();
-  options.centerlines = centerlines;
+  else if (!again && listed && current == this->Session.GetOriginalSurface())
+  {
+    centerlines = bender::DeepCopyOf(this->EndCenterlines);
+  }
+  const bender::PrepareForCfdOptions options = this->Panel->prepareOptions();
+  const bender::CfdStep step = bender::CfdStepOf(options, 0);
+  const vtkSmartPointer<vtkPolyData> source = bender::DeepCopyOf(from);
   const std::string name = this->Session.GetSurfaceName();
-  options.inputName = name.empty() ? "the surface" : name;
   const vtkMTimeType time = current->GetMTime();
   QPointer<ExportFlow> self(this);
   return this->Worker->run("Prepare for CFD",
-    [self, source, options, centerlines, current, time](
+    [self, source, step, centerlines, name, again, current, time](
       const bender::ProgressReporter& progress) -> WorkRunner::Finisher
     {
       auto result = std::make_shared<bender::PrepareForCfdResult>();
       try
       {
-        *result = bender::PrepareForCfd(source, options, progress);
+        bender::ApplyPlanOptions apply;
+        apply.planName = name.empty() ? "the surface" : name;
+        apply.progress = progress;
+        *result = bender::ApplyCfdStep(source, step, apply, centerlines);
       }
       catch (const bender::Cancelled&)
       {
@@ -393,19 +569,21 @@ bool ExportFlow::prepareForCfd()
           }
         };
       }
-      return [self, result, source, centerlines, current, time]()
+      // The plan keeps what was made: every end's cut, name and extension factor.
+      auto made = std::make_shared<bender::CfdStep>(bender::ResolvedCfdStep(step, *result));
+      return [self, result, made, again, current, time]()
       {
         if (self)
         {
-          self->applyPrepared(result, source, centerlines, current, time);
+          self->applyPrepared(result, *made, again, current, time);
         }
       };
     });
 }
 
 void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult>& result,
-  const vtkSmartPointer<vtkPolyData>& source,
-  const vtkSmartPointer<vtkPolyData>& centerlines,
+  const bender::CfdStep& step,
+  bool again,
   vtkPolyData* from,
   vtkMTimeType fromTime)
 {
@@ -418,24 +596,18 @@ void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult
     this->Worker->markFailed();
     return;
   }
-  const std::string name = this->Session.GetSurfaceName();
-  if (!this->Session.SetSurface(result->surface, name, this->Session.GetSourcePath()))
+  if (!this->Session.CommitCfdStep(step, result->surface, again))
   {
-    this->Panel->showReport("Prepare for CFD: the prepared surface could not be loaded.");
+    this->Panel->showReport("Prepare for CFD: the prepared surface could not be committed.");
     this->Worker->markFailed();
     return;
   }
-  this->PreparedFrom = source;
-  this->PreparedCenterlines = centerlines;
+  this->PreparedFrom = this->Session.GetPreviousSurface();
+  this->PreparedCenterlines = result->centerlines;
   this->Prepared = this->Session.GetSurface();
-  this->PreparedTime = this->Prepared ? this->Prepared->GetMTime() : 0;
-  this->Panel->showEnds(result->ends);
-  if (this->Overlay)
-  {
-    this->Overlay->setPatches(this->Prepared, result->ends);
-    this->showOverlay();
-    this->renderView();
-  }
+  this->PreparedTime = this->Prepared->GetMTime();
+  this->PreparedEnds = result->ends;
+  this->showPreparedEnds();
   QString report = QString("Prepared for CFD: %1 ends, capped and labelled (wall 1, ends 2..)\n")
                      .arg(result->ends.size());
   for (const bender::CfdEnd& end : result->ends)
@@ -456,7 +628,7 @@ void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult
   {
     report += "  warning: " + QString::fromStdString(warning) + "\n";
   }
-  this->Panel->showReport(report);
+  this->Panel->showReport(report + "Undo (Ctrl+Z) gives back the surface before.");
   bool extended = false;
   for (const bender::CfdEnd& end : result->ends)
   {
@@ -465,7 +637,7 @@ void ExportFlow::applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult
   this->Session.AddMessage(bender::MessageSeverity::Info,
     "Prepared for CFD: " + std::to_string(result->ends.size()) + " ends" +
       (result->ends.front().clipDistance >= 0 ? " clipped," : "") + (extended ? " extended," : "") +
-      " capped and labelled (Export panel)");
+      " capped and labelled (Export panel; Ctrl+Z undoes it)");
 }
 
 bool ExportFlow::exportSurface(const QString& path, bool proceedOnProblems)
@@ -474,11 +646,13 @@ bool ExportFlow::exportSurface(const QString& path, bool proceedOnProblems)
   {
     return false;
   }
-  // Interactive: check first, ask on problems, then write (a second job).
+  // Interactive: check first, ask on problems, then write (a second job); no result is claimed
+  // while the question is open.
   const bool proceed = proceedOnProblems && !this->Interactive;
   const std::string name = QFileInfo(path).fileName().toStdString();
   return this->Worker->runSessionJob(this->Session,
-    this->Session.BeginExport(path.toStdString(), this->Panel->options(path), proceed),
+    this->Session.BeginExport(
+      path.toStdString(), this->Panel->options(path), proceed, this->Interactive),
     [this, path, name](bender::SessionJob& job, bool ok)
     {
       this->Panel->showReport(
@@ -504,15 +678,21 @@ bool ExportFlow::exportSurface(const QString& path, bool proceedOnProblems)
 
 void ExportFlow::askToExportAnyway(const QString& path, const QString& problems)
 {
-  if (QMessageBox::warning(this->Window,
-        "The surface has problems",
-        "The check found:\n" + problems + "\nExport anyway?",
-        QMessageBox::Yes | QMessageBox::No,
-        QMessageBox::No) == QMessageBox::Yes)
+  QMessageBox question(QMessageBox::Warning,
+    "The surface has problems",
+    "The check found:\n" + problems + "\nExport anyway?",
+    QMessageBox::Yes | QMessageBox::No,
+    this->Window);
+  question.setObjectName("exportAnywayQuestion");
+  question.setDefaultButton(QMessageBox::No);
+  if (question.exec() == QMessageBox::Yes)
   {
     this->Worker->runSessionJob(this->Session,
       this->Session.BeginExport(path.toStdString(), this->Panel->options(path), true));
+    return;
   }
+  this->Session.AddMessage(
+    bender::MessageSeverity::Warning, "Export not written: the check found problems");
 }
 
 bool ExportFlow::checkSurface()

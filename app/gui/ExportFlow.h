@@ -1,6 +1,8 @@
 #ifndef ExportFlow_h
 #define ExportFlow_h
 
+#include "PrepareForCfd.h"
+
 #include <QDialog>
 #include <QObject>
 #include <QString>
@@ -9,13 +11,15 @@
 #include <vtkType.h>
 
 #include <memory>
+#include <utility>
+#include <vector>
 
 class vtkPolyData;
 
 namespace bender
 {
 class BenderSession;
-struct PrepareForCfdResult;
+class SegmentationSession;
 }
 class BenderView;
 class CfdEndsOverlay;
@@ -39,7 +43,9 @@ public:
   QString path() const;
   void setPath(const QString& path);
   ExportOptionsForm* form() const { return this->Form; }
-  /// Accepts unless the file is empty (then says so in the dialog).
+  /// Accepts unless the file is empty (then says so in the dialog) or the export would replace
+  /// files that exist (the file, its sidecar, its per-patch files) and the user, asked (default
+  /// No), does not want them replaced.
   void accept() override;
 
 private:
@@ -70,18 +76,28 @@ public:
   /// See MainWindow::exportSurface.
   bool exportSurface(const QString& path, bool proceedOnProblems = false);
   bool checkSurface();
-  /// Opens the export dialog (window-modal, not blocking; the Export action's slot). On
-  /// Export it copies its options to the Export panel and exports. Deleted when closed.
+  /// Opens the export dialog (window-modal, not blocking; the Export action's slot) on
+  /// defaultExportPath(). On Export it copies its options to the Export panel and exports.
+  /// Deleted when closed.
   ExportDialog* openExportDialog();
-  /// The Export panel's "Prepare for CFD": runs bender::PrepareForCfd on a copy of the
-  /// session's surface with the panel's options (the cuts where the ends' discs are, the
-  /// centerlines the discs were placed on) as a job on the worker (progress and Cancel in the
-  /// status bar; the window keeps working). On the GUI thread the result becomes the session's
-  /// surface (a new start: the history is dropped), its ends are listed in the panel and its
-  /// caps shown labelled in the view; nothing is applied when the surface changed meanwhile or
-  /// the job was cancelled. Pressed again on the surface it made, it starts again from the
-  /// surface before (with the names, extensions and cuts as edited). Problems go to the
-  /// panel's report. Returns whether the job started.
+  /// Where the dialog proposes to write: the folder of the data's file (the surface's, else the
+  /// volume's it was segmented from; the user's documents, else home, for data made here such
+  /// as the demo; the last export's folder when the same data was exported before), never the
+  /// process's working folder; the name the data's, without spaces or parentheses, with
+  /// "_export" and the format's extension ("demo_vessel_segmented_export.stl").
+  QString defaultExportPath() const;
+  /// The volume the surface may have been segmented from (for defaultExportPath).
+  void setSegmentation(const bender::SegmentationSession* segmentation);
+  /// The Export panel's "Prepare for CFD": the plan's step (bender::ApplyCfdStep) with the
+  /// panel's options (the cuts where the ends' discs are) on a copy of the session's surface,
+  /// as a job on the worker (progress and Cancel in the status bar; the window keeps working).
+  /// On the GUI thread the result is committed as a step of the history
+  /// (BenderSession::CommitCfdStep: undoable, saved in the plan with every end's cut, name and
+  /// extension factor), its ends are listed in the panel and its caps shown labelled in the
+  /// view; nothing is applied when the surface changed meanwhile or the job was cancelled.
+  /// Pressed again on the surface it made, it starts again from the surface before (with the
+  /// names, extensions and cuts as edited) and the new step replaces the old one. Problems go
+  /// to the panel's report. Returns whether the job started.
   bool prepareForCfd();
 
   /// Shows the vessel ends in `view` (CfdEndsOverlay: a disc per end, draggable along its
@@ -98,10 +114,14 @@ private:
   /// After a job: forgets the ends drawn for a surface that is no longer the session's.
   void followSurface();
   void applyPrepared(const std::shared_ptr<bender::PrepareForCfdResult>& result,
-    const vtkSmartPointer<vtkPolyData>& source,
-    const vtkSmartPointer<vtkPolyData>& centerlines,
+    const bender::CfdStep& step,
+    bool again,
     vtkPolyData* from,
     vtkMTimeType fromTime);
+  /// Whether `surface` is the one the last Prepare made (as committed).
+  bool showsPrepared(vtkPolyData* surface) const;
+  /// The last Prepare's ends in the panel and its caps in the view.
+  void showPreparedEnds();
   /// The overlay drawn while the Export panel is shown: the caps after Prepare, the discs
   /// while the ends are to be clipped.
   void showOverlay();
@@ -113,11 +133,21 @@ private:
   ExportPanel* Panel;
   bool Interactive;
   QWidget* Window;
-  QString LastPath;
-  vtkSmartPointer<vtkPolyData> PreparedFrom; ///< the surface before the last preparation
-  vtkPolyData* Prepared = nullptr;           ///< the session's surface it made (not owned)
+  /// What identifies the data for the last export's folder (its files and name).
+  QString dataKey() const;
+  /// The folder and file stem proposed for the data's exports and plans (defaultExportPath).
+  std::pair<QString, QString> dataFolderAndStem() const;
+  /// `path`'s folder is proposed next time for the same data.
+  void rememberFolder(const QString& path);
+
+  const bender::SegmentationSession* Segmentation = nullptr;
+  QString LastFolder;                  ///< where the last export went
+  QString LastFolderData;              ///< the data it was of (dataKey)
+  vtkPolyData* PreparedFrom = nullptr; ///< the history's surface before the last Prepare
+  vtkPolyData* Prepared = nullptr;     ///< the session's surface it made (not owned)
   vtkMTimeType PreparedTime = 0;
-  vtkSmartPointer<vtkPolyData> PreparedCenterlines; ///< those the last preparation clipped by
+  vtkSmartPointer<vtkPolyData> PreparedCenterlines; ///< those the last Prepare clipped by
+  std::vector<bender::CfdEnd> PreparedEnds;         ///< the ends it made
   BenderView* View = nullptr;
   VesselController* Vessels = nullptr;
   CfdEndsOverlay* Overlay = nullptr;

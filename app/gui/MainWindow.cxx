@@ -138,6 +138,7 @@ void MainWindow::buildPanels()
   this->Exports = new ExportFlow(
     this->Session, this->Worker, this->Actions, this->Export, this->Options.interactive, this);
   this->Exports->attachView(this->View, this->Vessels); // the CFD ends in the view (H2)
+  this->Exports->setSegmentation(&this->Segmentation);
   GestureController* gesture = this->Gesture;
   this->TrackersUi->attach(
     this->Trackers.get(), &this->Session, this->View, [gesture]() { return gesture->release(); });

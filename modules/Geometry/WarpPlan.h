@@ -3,6 +3,7 @@
 
 #include "Vec3.h"
 
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -73,14 +74,84 @@ struct WarpSpec
   std::map<std::string, std::string> extraFields;
 };
 
-/// A plan: warps applied in order (warp-file-format.md).
+/// One vessel end of a Prepare for CFD step: where it is cut (bender::ClipEndRequest).
+struct CfdStepEnd
+{
+  Vec3 position;          ///< near the vessel end (distance >= 0) or the cut (distance < 0)
+  double distance = -1.0; ///< along the centerline from the end; < 0: at the point nearest position
+};
+
+/// The name of the end nearest `position` (bender::CfdEndName).
+struct CfdStepName
+{
+  Vec3 position;
+  std::string name;   ///< a valid patch name, not "wall"
+  bool inlet = false; ///< this end is the inlet (also when the name is "inlet")
+};
+
+/// The flow-extension factor of the end nearest `position` (bender::CfdEndFactor).
+struct CfdStepFactor
+{
+  Vec3 position;
+  double factor = 0.0; ///< extension length / radius, [0, 100]
+};
+
+/// A Prepare for CFD step of a plan (bender::PrepareForCfd: the ends clipped perpendicular to
+/// the centerlines computed from the surface, named, extended and capped), applied after the
+/// first `afterWarps` warps. The same options on the same surface give the same surface.
+struct CfdStep
+{
+  std::size_t afterWarps = 0; ///< applied before warps[afterWarps], in [0, warps.size()]
+  bool clip = true;           ///< off: the surface's open ends as they are
+  bool cap = true;
+  std::vector<CfdStepEnd> ends; ///< ends with a chosen cut; the others at the default
+  std::vector<CfdStepName> names;
+  double inletExtension = 10.0; ///< flow-extension factors, [0, 100]
+  double outletExtension = 5.0;
+  std::vector<CfdStepFactor> extensionFactors; ///< per end, by position
+  /// Unknown fields of this step's JSON object, kept verbatim (name -> JSON text).
+  std::map<std::string, std::string> extraFields;
+};
+
+/// A plan: warps applied in order, with Prepare for CFD steps between them
+/// (warp-file-format.md; the steps: docs/ribbon-warp.md, "Plan files").
 struct WarpPlan
 {
   std::string units = "mm";
   std::vector<WarpSpec> warps;
+  /// In the order applied (afterWarps never decreasing).
+  std::vector<CfdStep> cfdSteps;
   /// Unknown top-level fields, kept verbatim (name -> JSON text).
   std::map<std::string, std::string> extraFields;
 };
+
+/// One step of a plan: a warp (warps[index]) or a Prepare for CFD step (cfdSteps[index]).
+struct PlanStepRef
+{
+  bool cfd = false;
+  std::size_t index = 0;
+};
+
+/// The steps of `plan` in the order they are applied: each CFD step before the warp its
+/// afterWarps names (after the last warp when afterWarps is warps.size() or more).
+inline std::vector<PlanStepRef> PlanOrder(const WarpPlan& plan)
+{
+  std::vector<PlanStepRef> order;
+  std::size_t next = 0;
+  for (std::size_t w = 0; w < plan.warps.size(); ++w)
+  {
+    for (; next < plan.cfdSteps.size() && plan.cfdSteps[next].afterWarps <= w; ++next)
+    {
+      order.push_back({ true, next });
+    }
+    order.push_back({ false, w });
+  }
+  for (; next < plan.cfdSteps.size(); ++next)
+  {
+    order.push_back({ true, next });
+  }
+  return order;
+}
 
 } // namespace bender
 

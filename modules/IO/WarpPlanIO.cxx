@@ -3,12 +3,13 @@
 #include "FileUtilities.h"
 #include "GeometryErrors.h"
 #include "InputValidation.h"
+#include "PatchLabels.h"
 #include "RibbonWarp.h"
 #include "StringUtil.h"
+#include "WarpPlanFormat.h"
 
 #include <nlohmann/json.hpp>
 
-#include <charconv>
 #include <climits>
 #include <cmath>
 #include <fstream>
@@ -21,11 +22,9 @@ namespace bender
 namespace
 {
 
-// Ordered: unknown fields are written back with their members in the order they were read.
-using json = nlohmann::ordered_json;
+using json = plan_format::json;
+using namespace plan_format;
 
-constexpr const char* FormatName = "bender-warps";
-constexpr int KnownVersion = 1;
 // Deeper nesting than any plan needs; refused before it can exhaust the stack anywhere.
 constexpr int MaxDepth = 64;
 // A plan of thousands of warps is a few MiB; anything near this is not a plan.
@@ -96,11 +95,12 @@ public:
     {
       this->Fail("version", "expected an integer, found " + Describe(version));
     }
-    if (!version.is_number_integer() || version.get<long long>() != KnownVersion)
+    const long long number = version.is_number_integer() ? version.get<long long>() : 0;
+    if (number != KnownVersion && number != CfdStepVersion)
     {
       this->Fail("version",
-        "unsupported version " + version.dump() + " (this reader knows version " +
-          std::to_string(KnownVersion) + ")");
+        "unsupported version " + version.dump() + " (this reader knows versions " +
+          std::to_string(KnownVersion) + " and " + std::to_string(CfdStepVersion) + ")");
     }
 
     WarpPlan plan;
@@ -112,19 +112,29 @@ public:
       }
       plan.units = units->get<std::string>();
     }
-    const json& warps = this->Required(document, "warps", "");
-    if (!warps.is_array())
-    {
-      this->Fail("warps", "expected an array, found " + Describe(warps));
-    }
+    const json& warps = this->Array(this->Required(document, "warps", ""), "warps");
     for (std::size_t i = 0; i < warps.size(); ++i)
     {
       plan.warps.push_back(this->ParseWarp(warps[i], "warps[" + std::to_string(i) + "]"));
     }
+    // Version 1 knows no CFD step: there the field is an unknown one, kept as it is.
+    const json* steps = number == CfdStepVersion ? Optional(document, CfdStepsKey) : nullptr;
+    if (steps)
+    {
+      this->Array(*steps, CfdStepsKey);
+      for (std::size_t i = 0; i < steps->size(); ++i)
+      {
+        const std::size_t earliest = plan.cfdSteps.empty() ? 0 : plan.cfdSteps.back().afterWarps;
+        plan.cfdSteps.push_back(this->ParseCfdStep((*steps)[i],
+          std::string(CfdStepsKey) + "[" + std::to_string(i) + "]",
+          plan.warps.size(),
+          earliest));
+      }
+    }
     static const std::set<std::string> known{ "format", "version", "units", "warps" };
     for (const auto& [key, value] : document.items())
     {
-      if (!known.count(key))
+      if (!known.count(key) && !(steps && key == CfdStepsKey))
       {
         plan.extraFields[key] = value.dump();
       }
@@ -163,6 +173,24 @@ private:
       this->Fail(path, "expected an object, found " + Describe(value));
     }
     return value;
+  }
+
+  const json& Array(const json& value, const std::string& path) const
+  {
+    if (!value.is_array())
+    {
+      this->Fail(path, "expected an array, found " + Describe(value));
+    }
+    return value;
+  }
+
+  bool Boolean(const json& value, const std::string& path) const
+  {
+    if (!value.is_boolean())
+    {
+      this->Fail(path, "expected true or false, found " + Describe(value));
+    }
+    return value.get<bool>();
   }
 
   double Number(const json& value, const std::string& path) const
@@ -312,12 +340,7 @@ private:
     }
     if (const json* reverse = Optional(object, "reverseScrews"))
     {
-      if (!reverse->is_boolean())
-      {
-        this->Fail(
-          Join(path, "reverseScrews"), "expected true or false, found " + Describe(*reverse));
-      }
-      warp.reverseScrews = reverse->get<bool>();
+      warp.reverseScrews = this->Boolean(*reverse, Join(path, "reverseScrews"));
     }
     if (const json* subdivision = Optional(object, "subdivision"))
     {
@@ -348,219 +371,143 @@ private:
     }
     return warp;
   }
-};
 
-// "[json.exception.parse_error.101] parse error at line 3, column 7: ..." without the tag, as
-// one printable line: nlohmann quotes the bytes it last read ("last read: '...'"), which come
-// from the file and may be anything (found by fuzz/fuzz_plan).
-std::string ParseErrorText(const std::string& what)
-{
-  const std::size_t tag = what.find("] ");
-  return io_detail::CleanMessage(tag == std::string::npos ? what : what.substr(tag + 2), 300);
-}
+  // A flow-extension factor, [0, 100].
+  double Factor(const json& value, const std::string& path) const
+  {
+    const double factor = this->Number(value, path);
+    if (!(factor >= 0.0 && factor <= 100.0))
+    {
+      this->Fail(path, "must be in [0, 100] (found " + value.dump() + ")");
+    }
+    return factor;
+  }
+
+  // The objects of the array `key` of `object` (none when absent), each read by `read`.
+  template<typename Read>
+  void Each(const json& object, const char* key, const std::string& path, Read read) const
+  {
+    if (const json* array = Optional(object, key))
+    {
+      const std::string arrayPath = Join(path, key);
+      this->Array(*array, arrayPath);
+      for (std::size_t i = 0; i < array->size(); ++i)
+      {
+        const std::string itemPath = arrayPath + "[" + std::to_string(i) + "]";
+        read(this->Object((*array)[i], itemPath), itemPath);
+      }
+    }
+  }
+
+  CfdStep ParseCfdStep(const json& value,
+    const std::string& path,
+    std::size_t warps,
+    std::size_t earliest) const
+  {
+    const json& object = this->Object(value, path);
+    CfdStep step;
+    const std::string afterPath = Join(path, "afterWarps");
+    const json& after = this->Required(object, "afterWarps", path);
+    step.afterWarps = static_cast<std::size_t>(this->Integer(after, afterPath, 0));
+    if (step.afterWarps > warps)
+    {
+      this->Fail(
+        afterPath, "the plan has " + std::to_string(warps) + " warps (found " + after.dump() + ")");
+    }
+    if (step.afterWarps < earliest)
+    {
+      this->Fail(afterPath,
+        "the steps must be in the order applied (found " + after.dump() + " after " +
+          std::to_string(earliest) + ")");
+    }
+    if (const json* clip = Optional(object, "clip"))
+    {
+      step.clip = this->Boolean(*clip, Join(path, "clip"));
+    }
+    if (const json* cap = Optional(object, "cap"))
+    {
+      step.cap = this->Boolean(*cap, Join(path, "cap"));
+    }
+    if (const json* inlet = Optional(object, "inletExtension"))
+    {
+      step.inletExtension = this->Factor(*inlet, Join(path, "inletExtension"));
+    }
+    if (const json* outlet = Optional(object, "outletExtension"))
+    {
+      step.outletExtension = this->Factor(*outlet, Join(path, "outletExtension"));
+    }
+    this->Each(object,
+      "ends",
+      path,
+      [this, &step](const json& end, const std::string& at)
+      {
+        CfdStepEnd entry;
+        entry.position = this->Vector(this->Required(end, "position", at), Join(at, "position"));
+        if (const json* distance = Optional(end, "distance"))
+        {
+          entry.distance = this->Number(*distance, Join(at, "distance"));
+          if (!(entry.distance >= 0.0))
+          {
+            this->Fail(Join(at, "distance"), "must be >= 0 (found " + distance->dump() + ")");
+          }
+        }
+        step.ends.push_back(entry);
+      });
+    this->Each(object,
+      "names",
+      path,
+      [this, &step](const json& name, const std::string& at)
+      {
+        CfdStepName entry;
+        entry.position = this->Vector(this->Required(name, "position", at), Join(at, "position"));
+        const json& text = this->Required(name, "name", at);
+        if (!text.is_string() || !IsValidPatchName(text.get<std::string>()) ||
+          text.get<std::string>() == "wall")
+        {
+          this->Fail(Join(at, "name"),
+            "expected a patch name (letters, digits and '_', not starting with a digit, not "
+            "\"wall\"), found " +
+              Describe(text));
+        }
+        entry.name = text.get<std::string>();
+        if (const json* inlet = Optional(name, "inlet"))
+        {
+          entry.inlet = this->Boolean(*inlet, Join(at, "inlet"));
+        }
+        step.names.push_back(entry);
+      });
+    this->Each(object,
+      "extensionFactors",
+      path,
+      [this, &step](const json& factor, const std::string& at)
+      {
+        CfdStepFactor entry;
+        entry.position = this->Vector(this->Required(factor, "position", at), Join(at, "position"));
+        entry.factor = this->Factor(this->Required(factor, "factor", at), Join(at, "factor"));
+        step.extensionFactors.push_back(entry);
+      });
+    static const std::set<std::string> known{ "afterWarps",
+      "clip",
+      "cap",
+      "inletExtension",
+      "outletExtension",
+      "ends",
+      "names",
+      "extensionFactors" };
+    for (const auto& [key, member] : object.items())
+    {
+      if (!known.count(key))
+      {
+        step.extraFields[key] = member.dump();
+      }
+    }
+    return step;
+  }
+};
 
 struct TooDeep
 {
 };
-
-// ---------------------------------------------------------------------------------------
-// Writing
-
-// Shortest text that reads back as the same double (locale-independent).
-std::string NumberText(double value)
-{
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  std::string text(buffer, result.ptr);
-  // "-0" would read back as the integer 0 and lose the sign.
-  if (text == "-0")
-  {
-    text = "-0.0";
-  }
-  return text;
-}
-
-// Builds the JSON object of a plan; every failure names the JSON path of the field.
-class PlanBuilder
-{
-public:
-  explicit PlanBuilder(std::string source)
-    : Source(std::move(source))
-  {
-  }
-
-  json Build(const WarpPlan& plan) const
-  {
-    json document;
-    document["format"] = FormatName;
-    document["version"] = KnownVersion;
-    document["units"] = plan.units;
-    document["warps"] = json::array();
-    for (std::size_t i = 0; i < plan.warps.size(); ++i)
-    {
-      document["warps"].push_back(this->Warp(plan.warps[i], "warps[" + std::to_string(i) + "]"));
-    }
-    this->AddExtra(document, plan.extraFields, "");
-    return document;
-  }
-
-private:
-  std::string Source;
-
-  [[noreturn]] void Fail(const std::string& path, const std::string& problem) const
-  {
-    throw WarpPlanError(this->Source + ": " + path + ": " + problem);
-  }
-
-  json Number(double value, const std::string& path) const
-  {
-    if (!std::isfinite(value))
-    {
-      this->Fail(path, "not a finite number (JSON cannot hold it)");
-    }
-    return value;
-  }
-
-  json Vector(const Vec3& v, const std::string& path) const
-  {
-    return json::array({ this->Number(v.x, path + "[0]"),
-      this->Number(v.y, path + "[1]"),
-      this->Number(v.z, path + "[2]") });
-  }
-
-  json End(const RibbonEnd& end, const std::string& path) const
-  {
-    json object;
-    object["position"] = this->Vector(end.position, path + ".position");
-    object["tangent"] = this->Vector(end.tangent, path + ".tangent");
-    object["normal"] = this->Vector(end.normal, path + ".normal");
-    return object;
-  }
-
-  json Ribbon(const RibbonSpec& ribbon, const std::string& path) const
-  {
-    json object;
-    object["start"] = this->End(ribbon.start, path + ".start");
-    object["end"] = this->End(ribbon.end, path + ".end");
-    object["extraTurns"] = ribbon.extraTurns;
-    return object;
-  }
-
-  json Warp(const WarpSpec& warp, const std::string& path) const
-  {
-    json object;
-    object["initial"] = this->Ribbon(warp.initial, path + ".initial");
-    object["final"] = this->Ribbon(warp.final, path + ".final");
-    object["radius"] = this->Number(warp.radius, path + ".radius");
-    json decay;
-    decay["shape"] = warp.decay.shape == DecayShape::Plateau ? "plateau" : "bell";
-    decay["plateau"] = this->Number(warp.decay.plateau, path + ".decay.plateau");
-    object["decay"] = decay;
-    object["reverseScrews"] = warp.reverseScrews;
-    if (warp.subdivision)
-    {
-      json subdivision;
-      subdivision["tolerance"] =
-        this->Number(warp.subdivision->tolerance, path + ".subdivision.tolerance");
-      subdivision["maxPasses"] = warp.subdivision->maxPasses;
-      object["subdivision"] = subdivision;
-    }
-    this->AddExtra(object, warp.extraFields, path + ".");
-    return object;
-  }
-
-  // Unknown fields kept as JSON text by the parser go back after the known ones.
-  void AddExtra(json& object,
-    const std::map<std::string, std::string>& extra,
-    const std::string& prefix) const
-  {
-    for (const auto& [key, text] : extra)
-    {
-      if (object.contains(key) || key == "subdivision")
-      {
-        this->Fail(prefix + key, "an extra field may not have the name of a known field");
-      }
-      try
-      {
-        object[key] = json::parse(text);
-      }
-      catch (const json::parse_error& e)
-      {
-        this->Fail(
-          prefix + key, "extra field is not valid JSON (" + ParseErrorText(e.what()) + ")");
-      }
-    }
-  }
-};
-
-// True for a value that is printed on one line: a scalar, or an array or object none of
-// whose members is an object (ribbon ends, decay, vectors).
-bool Flat(const json& value)
-{
-  if (!value.is_structured())
-  {
-    return true;
-  }
-  for (const json& member : value)
-  {
-    if (member.is_object() || (member.is_array() && !Flat(member)))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-// The plan file's layout: one member per line, short objects and vectors on one line,
-// numbers as the shortest text that reads back as the same double.
-void Print(const json& value, const std::string& indent, std::string& out)
-{
-  if (value.is_number_float())
-  {
-    out += NumberText(value.get<double>());
-    return;
-  }
-  if (!value.is_structured())
-  {
-    out += value.dump();
-    return;
-  }
-  const bool object = value.is_object();
-  if (value.empty())
-  {
-    out += object ? "{}" : "[]";
-    return;
-  }
-  const bool flat = Flat(value);
-  out += object ? (flat ? "{ " : "{\n") : (flat ? "[" : "[\n");
-  const std::string inner = indent + "  ";
-  bool first = true;
-  for (auto it = value.begin(); it != value.end(); ++it)
-  {
-    if (!first)
-    {
-      out += flat ? ", " : ",\n";
-    }
-    first = false;
-    if (!flat)
-    {
-      out += inner;
-    }
-    if (object)
-    {
-      out += json(it.key()).dump() + ": ";
-    }
-    Print(*it, inner, out);
-  }
-  if (flat)
-  {
-    out += object ? " }" : "]";
-  }
-  else
-  {
-    out += "\n" + indent + (object ? "}" : "]");
-  }
-}
 
 WarpPlan ParseAndValidate(const json& document, const std::string& source)
 {
@@ -638,35 +585,9 @@ WarpPlan ReadWarpPlan(const std::string& path)
   return ParseWarpPlan(text, name);
 }
 
-nlohmann::ordered_json WarpPlanToJson(const WarpPlan& plan, const std::string& sourceName)
-{
-  return PlanBuilder(sourceName.empty() ? "plan" : sourceName).Build(plan);
-}
-
 WarpPlan WarpPlanFromJson(const nlohmann::ordered_json& document, const std::string& sourceName)
 {
   return ParseAndValidate(document, sourceName.empty() ? "plan" : sourceName);
-}
-
-std::string SerializeWarpPlan(const WarpPlan& plan)
-{
-  std::string text;
-  Print(WarpPlanToJson(plan), "", text);
-  return text + "\n";
-}
-
-void WriteWarpPlan(const WarpPlan& plan, const std::string& path)
-{
-  const std::string name = DisplayName(path);
-  std::string text;
-  Print(WarpPlanToJson(plan, name), "", text);
-  text += "\n";
-  std::string problem;
-  const bool ok = AtomicWriteText(path, text, problem);
-  if (!ok)
-  {
-    throw WarpPlanError(name + ": " + problem);
-  }
 }
 
 } // namespace bender

@@ -32,10 +32,30 @@ vtkSmartPointer<vtkPolyData> WithDoublePoints(vtkPolyData* input)
   return copy;
 }
 
+std::string PlanName(const ApplyPlanOptions& options)
+{
+  return options.planName.empty() ? std::string("plan") : options.planName;
+}
+
 std::string Where(const ApplyPlanOptions& options, std::size_t index)
 {
-  return (options.planName.empty() ? std::string("plan") : options.planName) + ": warps[" +
-    std::to_string(index) + "]";
+  return PlanName(options) + ": warps[" + std::to_string(index) + "]";
+}
+
+PrepareForCfdResult PrepareStep(vtkPolyData* input,
+  const CfdStep& step,
+  const ApplyPlanOptions& options,
+  const std::string& where,
+  vtkPolyData* centerlines)
+{
+  if (!input)
+  {
+    throw InputError(where + ": no input surface");
+  }
+  PrepareForCfdOptions prepare = CfdStepOptions(step);
+  prepare.centerlines = centerlines;
+  prepare.inputName = where;
+  return PrepareForCfd(input, prepare, options.progress);
 }
 
 vtkSmartPointer<vtkPolyData> ApplyOne(vtkPolyData* input,
@@ -122,12 +142,32 @@ vtkSmartPointer<vtkPolyData> ApplyWarp(vtkPolyData* input,
   return output;
 }
 
+PrepareForCfdResult ApplyCfdStep(vtkPolyData* input,
+  const CfdStep& step,
+  const ApplyPlanOptions& options,
+  vtkPolyData* centerlines)
+{
+  options.progress.ThrowIfCancelled("Prepare for CFD");
+  const std::string where =
+    options.planName.empty() ? std::string("prepareForCfd") : options.planName;
+  return PrepareStep(input, step, options, where, centerlines);
+}
+
 ApplyPlanResult ApplyPlan(vtkPolyData* input, const WarpPlan& plan, const ApplyPlanOptions& options)
 {
   ApplyPlanResult result;
   vtkSmartPointer<vtkPolyData> current = input;
-  for (std::size_t i = 0; i < plan.warps.size(); ++i)
+  for (const PlanStepRef& ref : PlanOrder(plan))
   {
+    const std::size_t i = ref.index;
+    if (ref.cfd)
+    {
+      options.progress.ThrowIfCancelled("Prepare for CFD");
+      const std::string where = PlanName(options) + ": prepareForCfd[" + std::to_string(i) + "]";
+      result.prepared.push_back(PrepareStep(current, plan.cfdSteps[i], options, where, nullptr));
+      current = result.prepared.back().surface;
+      continue;
+    }
     const std::string stage =
       "warp " + std::to_string(i + 1) + " of " + std::to_string(plan.warps.size());
     options.progress.ThrowIfCancelled(stage);
@@ -138,7 +178,7 @@ ApplyPlanResult ApplyPlan(vtkPolyData* input, const WarpPlan& plan, const ApplyP
     result.info.push_back(info);
     options.progress.Report(stage, 1.0);
   }
-  if (result.steps.empty())
+  if (result.steps.empty() && result.prepared.empty())
   {
     result.output = vtkSmartPointer<vtkPolyData>::New();
     if (input)
@@ -148,7 +188,7 @@ ApplyPlanResult ApplyPlan(vtkPolyData* input, const WarpPlan& plan, const ApplyP
   }
   else
   {
-    result.output = result.steps.back();
+    result.output = current;
   }
   return result;
 }

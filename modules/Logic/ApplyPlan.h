@@ -1,6 +1,7 @@
 #ifndef bender_ApplyPlan_h
 #define bender_ApplyPlan_h
 
+#include "PrepareForCfd.h"
 #include "Progress.h"
 #include "RibbonWarp.h"
 #include "WarpBinding.h"
@@ -45,12 +46,15 @@ struct WarpStepInfo
   long long trianglesAfter = 0;  ///< polygons of the output
 };
 
-/// The surface after each warp of a plan.
+/// The surface after each warp and each Prepare for CFD step of a plan.
 struct ApplyPlanResult
 {
-  /// steps[i] is the surface after warps[0..i]; new objects, points always double.
+  /// steps[i] is the surface after warps[0..i] (and the CFD steps before warps[i + 1]); new
+  /// objects, points always double.
   std::vector<vtkSmartPointer<vtkPolyData>> steps;
   std::vector<WarpStepInfo> info;
+  /// prepared[j] is cfdSteps[j]'s result: the surface after it (Surface) and its ends.
+  std::vector<PrepareForCfdResult> prepared;
   /// The final surface (a deep copy of the input, with double points, for an empty plan).
   vtkSmartPointer<vtkPolyData> output;
 };
@@ -68,8 +72,19 @@ vtkSmartPointer<vtkPolyData> ApplyWarp(vtkPolyData* input,
   const ApplyPlanOptions& options = {},
   WarpStepInfo* info = nullptr);
 
-/// Applies every warp of `plan` in order (all or nothing: on error nothing is returned).
-/// Throws InputError naming the plan and the warp, Cancelled.
+/// THE rule for a Prepare for CFD step of a plan: PrepareForCfd with the step's options
+/// (CfdStepOptions) on the centerlines ComputeCenterlines gives for `input` with its default
+/// options; `centerlines`, when given, must be those (the window passes the ones it has, of
+/// the same surface). The input is not modified. Throws InputError naming the step (options'
+/// planName, "prepareForCfd" when empty: "prepareForCfd: <problem>"), Cancelled.
+PrepareForCfdResult ApplyCfdStep(vtkPolyData* input,
+  const CfdStep& step,
+  const ApplyPlanOptions& options = {},
+  vtkPolyData* centerlines = nullptr);
+
+/// Applies every step of `plan` in order (PlanOrder: the warps, and the CFD steps between
+/// them; all or nothing: on error nothing is returned). Throws InputError naming the plan and
+/// the step ("plan: warps[2]: ...", "plan: prepareForCfd[0]: ..."), Cancelled.
 ApplyPlanResult ApplyPlan(vtkPolyData* input,
   const WarpPlan& plan,
   const ApplyPlanOptions& options = {});

@@ -206,9 +206,7 @@ bool BenderSession::HasUnsavedChanges() const
 
 WarpPlan BenderSession::GetPlan() const
 {
-  WarpPlan plan;
-  plan.warps = this->History.CommittedWarps();
-  return plan;
+  return this->History.CommittedPlan();
 }
 
 bool BenderSession::SavePlan(const std::string& path)
@@ -223,8 +221,10 @@ bool BenderSession::SavePlan(const std::string& path)
     return false;
   }
   this->MarkSaved();
+  const WarpPlan plan = this->GetPlan();
   this->Report(MessageSeverity::Info,
-    "Saved the plan (" + CountOf(this->History.Position(), "warp") + ") to " + DisplayName(path));
+    "Saved the plan (" + CountOf(plan.warps.size(), "warp") +
+      (plan.cfdSteps.empty() ? std::string() : ", Prepare for CFD") + ") to " + DisplayName(path));
   return true;
 }
 
@@ -240,15 +240,10 @@ bool BenderSession::ReplayPlan(const WarpPlan& plan, const std::string& name)
 
 bool BenderSession::IsPlanApplied(const WarpPlan& plan) const
 {
-  const std::vector<WarpSpec> committed = this->History.CommittedWarps();
-  if (plan.warps.empty() || committed.size() < plan.warps.size())
-  {
-    return false;
-  }
-  WarpPlan last;
-  last.warps.assign(
-    committed.end() - static_cast<std::ptrdiff_t>(plan.warps.size()), committed.end());
-  return SerializeWarpPlan(last) == SerializeWarpPlan(plan);
+  const std::size_t steps = plan.warps.size() + plan.cfdSteps.size();
+  const std::size_t position = this->History.Position();
+  return steps > 0 && position >= steps &&
+    SerializeWarpPlan(this->History.CommittedPlan(position - steps)) == SerializeWarpPlan(plan);
 }
 
 bool BenderSession::ApplyWarp(const WarpSpec& warp)
@@ -292,7 +287,7 @@ bool BenderSession::Autosave()
       if (this->AutosaveSourcePath.empty())
       {
         const std::string sourceCopy = this->AutosavePath + ".source.vtp";
-        WriteMesh(this->History.Original(), sourceCopy);
+        WriteMesh(this->History.First(), sourceCopy);
         this->AutosaveSourcePath = AbsolutePath(sourceCopy);
       }
       snapshot.sourcePath = this->AutosaveSourcePath;

@@ -103,7 +103,9 @@ public:
   bool HasSurface() const { return !this->History.Empty(); }
   /// The committed surface (after the current history step); owned by the session.
   vtkPolyData* GetSurface() const { return this->History.Current(); }
-  /// The surface before any warp.
+  /// The surface the committed one is compared with (flips, the ghost, the vessels before and
+  /// after): the one before the warps, after the last Prepare for CFD step if any (a new start:
+  /// other points and cells).
   vtkPolyData* GetOriginalSurface() const { return this->History.Original(); }
   /// The part of the original surface that the surface shown may differ from (what a ghost of
   /// the original needs to draw: elsewhere the two coincide): the original's triangles with a
@@ -228,7 +230,21 @@ public:
   bool CanRedo() const { return this->State != GrabState::Grabbed && this->History.CanRedo(); }
   bool Undo();
   bool Redo();
+  /// Steps up to the current one (warps and Prepare for CFD steps).
   std::size_t GetHistoryPosition() const { return this->History.Position(); }
+  /// Commits a Prepare for CFD step as one undo step: `result` (deep-copied) is what
+  /// ApplyCfdStep made of GetSurface(), or, with `replacesCurrent`, of GetPreviousSurface()
+  /// when the committed surface is itself prepared (Prepare pressed again: the new step takes
+  /// the current one's place). The step is saved in the plan (GetPlan) and replayed by it.
+  bool CommitCfdStep(const CfdStep& step, vtkPolyData* result, bool replacesCurrent);
+  /// The Prepare for CFD step that made the committed surface; null when it is a warp's or
+  /// the first surface.
+  const CfdStep* GetCurrentCfdStep() const
+  {
+    return this->History.CfdStepOf(this->History.Position());
+  }
+  /// The surface before the current history step; null at the first.
+  vtkPolyData* GetPreviousSurface() const { return this->History.Previous(); }
   ///@}
 
   ///@{ Unsaved work
@@ -240,14 +256,15 @@ public:
   ///@}
 
   ///@{ Plan
-  /// The committed warps (up to the current history step).
+  /// The committed steps (up to the current history step): warps and Prepare for CFD steps.
   WarpPlan GetPlan() const;
   bool SavePlan(const std::string& path);
   /// Reads a plan and replays it onto the current surface (all warps or none).
   bool LoadPlan(const std::string& path);
-  /// Applies every warp of `plan` in order, each as one undo step; all or nothing.
+  /// Applies every step of `plan` in order (warps and Prepare for CFD steps), each as one undo
+  /// step; all or nothing.
   bool ReplayPlan(const WarpPlan& plan, const std::string& name);
-  /// True when the last committed warps are exactly `plan`'s (the plan was applied already:
+  /// True when the last committed steps are exactly `plan`'s (the plan was applied already:
   /// loading it again would bend the bent surface once more).
   bool IsPlanApplied(const WarpPlan& plan) const;
   /// Applies one warp (exact, with its subdivision if any) as one undo step.
@@ -265,10 +282,13 @@ public:
   std::shared_ptr<SessionJob> BeginLoadPlan(const std::string& path);
   std::shared_ptr<SessionJob> BeginRecover(const std::string& sessionPath);
   std::shared_ptr<SessionJob> BeginCheck();
-  /// Checks, then writes when the check is clean or `proceedOnProblems`.
+  /// Checks, then writes when the check is clean or `proceedOnProblems`. `askOnProblems`: the
+  /// caller asks the user whether to write anyway when the check finds problems, so Finish
+  /// says the problems were found and claims no result (the caller reports the answer's).
   std::shared_ptr<SessionJob> BeginExport(const std::string& path,
     const ExportSurfaceOptions& options,
-    bool proceedOnProblems);
+    bool proceedOnProblems,
+    bool askOnProblems = false);
   /// Commits a job that ran (or reports why not); returns whether it succeeded.
   bool Finish(SessionJob& job);
   /// Drops a job that ran instead of finishing it (the user declined its result, e.g. a mesh
@@ -333,6 +353,9 @@ private:
   bool FinishLoad(SessionJob& job);
   bool FinishRelease(SessionJob& job);
   bool FinishReplay(SessionJob& job);
+  /// Commits the steps a replay or recovery job computed, each as one undo step (with
+  /// `faultPoints`, FaultPoint("commit") after each); false when the plan has none.
+  bool CommitPlanSteps(const SessionJob& job, bool faultPoints);
   bool FinishRecover(SessionJob& job);
   bool FinishExport(SessionJob& job);
   bool SetLiveWarp(const WarpSpec& warp, std::string& problem);

@@ -444,18 +444,25 @@ bool BenderSession::Undo()
     this->Report(MessageSeverity::Error, "Undo: release or cancel the grab first");
     return false;
   }
-  const std::vector<WarpSpec> warps = this->History.CommittedWarps();
+  const WarpSpec* undone = this->History.WarpOf(this->History.Position());
+  const std::optional<RibbonSpec> grabbed =
+    undone ? std::optional<RibbonSpec>(undone->initial) : std::nullopt;
   if (!this->History.Undo())
   {
     this->Report(MessageSeverity::Info, "Nothing to undo");
     return false;
   }
   ++this->ChangeCount;
-  // The ribbon goes back to where the undone warp grabbed it.
-  this->SetRibbonInformation(warps.back().initial);
+  // The ribbon goes back to where the undone warp grabbed it (a Prepare for CFD moved none).
+  if (grabbed)
+  {
+    this->SetRibbonInformation(*grabbed);
+  }
   this->State = GrabState::Idle;
   this->ShowCommitted(nullptr);
-  this->Report(MessageSeverity::Info, "Undid warp " + std::to_string(this->History.Position() + 1));
+  this->Report(MessageSeverity::Info,
+    grabbed ? "Undid warp " + std::to_string(this->History.CommittedWarps().size() + 1)
+            : std::string("Undid Prepare for CFD"));
   this->Autosave();
   this->Changed();
   return true;
@@ -478,10 +485,47 @@ bool BenderSession::Redo()
     return false;
   }
   ++this->ChangeCount;
-  this->SetRibbonInformation(this->History.CommittedWarps().back().final);
+  const WarpSpec* redone = this->History.WarpOf(this->History.Position());
+  if (redone)
+  {
+    this->SetRibbonInformation(redone->final);
+  }
   this->State = GrabState::Idle;
   this->ShowCommitted(nullptr);
-  this->Report(MessageSeverity::Info, "Redid warp " + std::to_string(this->History.Position()));
+  this->Report(MessageSeverity::Info,
+    redone ? "Redid warp " + std::to_string(this->History.CommittedWarps().size())
+           : std::string("Redid Prepare for CFD"));
+  this->Autosave();
+  this->Changed();
+  return true;
+}
+
+bool BenderSession::CommitCfdStep(const CfdStep& step, vtkPolyData* result, bool replacesCurrent)
+{
+  if (this->RefuseWhenBusy("Prepare for CFD"))
+  {
+    return false;
+  }
+  if (this->State == GrabState::Grabbed)
+  {
+    this->Report(MessageSeverity::Error, "Prepare for CFD: release or cancel the grab first");
+    return false;
+  }
+  if (!this->HasSurface() || !result || result->GetNumberOfPolys() == 0 ||
+    (replacesCurrent && !this->GetCurrentCfdStep()))
+  {
+    this->Report(MessageSeverity::Error, "Prepare for CFD: nothing to commit");
+    return false;
+  }
+  if (replacesCurrent)
+  {
+    this->History.Undo(); // prepared again: the new step takes the old one's place
+  }
+  this->History.Commit(step, result);
+  ++this->ChangeCount;
+  this->State = GrabState::Idle;
+  this->Held.reset();
+  this->ShowCommitted(nullptr);
   this->Autosave();
   this->Changed();
   return true;

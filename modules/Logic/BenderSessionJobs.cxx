@@ -161,7 +161,8 @@ std::shared_ptr<SessionJob> BenderSession::BeginCheck()
 
 std::shared_ptr<SessionJob> BenderSession::BeginExport(const std::string& path,
   const ExportSurfaceOptions& options,
-  bool proceedOnProblems)
+  bool proceedOnProblems,
+  bool askOnProblems)
 {
   if (!this->HasSurface())
   {
@@ -185,6 +186,7 @@ std::shared_ptr<SessionJob> BenderSession::BeginExport(const std::string& path,
   job->Options.sourceName = this->SurfaceName;
   // Export writes only when the check is clean or the caller accepted its problems.
   job->ProceedOnProblems = proceedOnProblems;
+  job->AskOnProblems = askOnProblems;
   return job;
 }
 
@@ -331,23 +333,43 @@ bool BenderSession::FinishReplay(SessionJob& job)
     return false;
   }
   // All or nothing: every step was computed before any is committed.
-  for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)
-  {
-    this->History.Commit(job.Plan.warps[i], job.Steps.steps[i]);
-    FaultPoint("commit");
-  }
-  if (!job.Plan.warps.empty())
+  if (this->CommitPlanSteps(job, true))
   {
     ++this->ChangeCount;
-    this->SetRibbonInformation(job.Plan.warps.back().final);
   }
   this->State = GrabState::Idle;
   this->ShowCommitted(nullptr);
   this->Report(MessageSeverity::Info,
-    "Replayed " + CountOf(job.Plan.warps.size(), "warp") + " of " + job.Name);
+    "Replayed " + CountOf(job.Plan.warps.size(), "warp") +
+      (job.Plan.cfdSteps.empty() ? std::string() : " and Prepare for CFD") + " of " + job.Name);
   this->Autosave();
   this->Changed();
   return true;
+}
+
+bool BenderSession::CommitPlanSteps(const SessionJob& job, bool faultPoints)
+{
+  const std::vector<PlanStepRef> order = PlanOrder(job.Plan);
+  for (const PlanStepRef& ref : order)
+  {
+    if (ref.cfd)
+    {
+      this->History.Commit(job.Plan.cfdSteps[ref.index], job.Steps.prepared[ref.index].surface);
+    }
+    else
+    {
+      this->History.Commit(job.Plan.warps[ref.index], job.Steps.steps[ref.index]);
+    }
+    if (faultPoints)
+    {
+      FaultPoint("commit");
+    }
+  }
+  if (!job.Plan.warps.empty())
+  {
+    this->SetRibbonInformation(job.Plan.warps.back().final);
+  }
+  return !order.empty();
 }
 
 bool BenderSession::FinishRecover(SessionJob& job)
@@ -372,14 +394,9 @@ bool BenderSession::FinishRecover(SessionJob& job)
   bool recovered = this->SetSurface(job.Input, name, ownCopy ? std::string() : job.SourcePath);
   if (recovered)
   {
-    for (std::size_t i = 0; i < job.Plan.warps.size(); ++i)
+    if (this->CommitPlanSteps(job, false))
     {
-      this->History.Commit(job.Plan.warps[i], job.Steps.steps[i]);
-    }
-    if (!job.Plan.warps.empty())
-    {
-      ++this->ChangeCount; // recovered warps are in no saved plan
-      this->SetRibbonInformation(job.Plan.warps.back().final);
+      ++this->ChangeCount; // recovered steps are in no saved plan
     }
     this->ShowCommitted(nullptr);
   }
@@ -410,7 +427,9 @@ bool BenderSession::FinishExport(SessionJob& job)
   }
   if (job.Written.empty())
   {
-    this->Report(MessageSeverity::Warning, "Export not written: the check found problems");
+    this->Report(MessageSeverity::Warning,
+      job.AskOnProblems ? "Export: the check found problems; write anyway?"
+                        : "Export not written: the check found problems");
     return false;
   }
   std::string names;

@@ -85,6 +85,7 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
         }
         centerlines = cl.paths;
       }
+      result.centerlines = centerlines;
       progress.ThrowIfCancelled("centerlines");
       progress.Report("clip", 0.2);
       ClipOptions clip;
@@ -247,6 +248,9 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
     out.radius = ends[k].radius;
     out.area = ends[k].area;
     out.extensionLength = extended.ends[k].length;
+    out.extensionFactor = ends[k].factor >= 0
+      ? ends[k].factor
+      : (ends[k].inlet ? options.inletExtension : options.outletExtension);
     out.clipCentre = ends[k].centre;
     out.centerlineEnd = ends[k].centerlineEnd;
     out.clipDistance = ends[k].clipDistance;
@@ -308,6 +312,82 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
     result.patches.push_back({ end.id, end.name, end.type });
   }
   return result;
+}
+
+namespace
+{
+std::array<double, 3> Array(const Vec3& v)
+{
+  return { { v.x, v.y, v.z } };
+}
+
+Vec3 Point(const std::array<double, 3>& p)
+{
+  return { p[0], p[1], p[2] };
+}
+} // namespace
+
+PrepareForCfdOptions CfdStepOptions(const CfdStep& step)
+{
+  PrepareForCfdOptions options;
+  options.clip = step.clip;
+  options.cap = step.cap;
+  options.inletExtension = step.inletExtension;
+  options.outletExtension = step.outletExtension;
+  for (const CfdStepEnd& end : step.ends)
+  {
+    options.ends.push_back({ Array(end.position), end.distance });
+  }
+  for (const CfdStepName& name : step.names)
+  {
+    options.names.push_back({ Array(name.position), name.name, name.inlet });
+  }
+  for (const CfdStepFactor& factor : step.extensionFactors)
+  {
+    options.extensionFactors.push_back({ Array(factor.position), factor.factor });
+  }
+  return options;
+}
+
+CfdStep ResolvedCfdStep(const CfdStep& given, const PrepareForCfdResult& result)
+{
+  CfdStep step = given;
+  step.ends.clear();
+  step.names.clear();
+  step.extensionFactors.clear();
+  for (const CfdEnd& end : result.ends)
+  {
+    if (end.clipDistance >= 0)
+    {
+      step.ends.push_back({ Point(end.centerlineEnd), end.clipDistance });
+    }
+    step.names.push_back({ Point(end.clipCentre), end.name, end.type == PatchType::Inlet });
+    step.extensionFactors.push_back({ Point(end.clipCentre), end.extensionFactor });
+  }
+  return step;
+}
+
+CfdStep CfdStepOf(const PrepareForCfdOptions& options, std::size_t afterWarps)
+{
+  CfdStep step;
+  step.afterWarps = afterWarps;
+  step.clip = options.clip;
+  step.cap = options.cap;
+  step.inletExtension = options.inletExtension;
+  step.outletExtension = options.outletExtension;
+  for (const ClipEndRequest& end : options.ends)
+  {
+    step.ends.push_back({ Point(end.position), end.distance });
+  }
+  for (const CfdEndName& name : options.names)
+  {
+    step.names.push_back({ Point(name.position), name.name, name.inlet });
+  }
+  for (const CfdEndFactor& factor : options.extensionFactors)
+  {
+    step.extensionFactors.push_back({ Point(factor.position), factor.factor });
+  }
+  return step;
 }
 
 } // namespace bender

@@ -17,6 +17,7 @@
 #include "PatchLabels.h"
 #include "Progress.h"
 #include "VesselClip.h"
+#include "WarpPlan.h"
 
 #include <vtkSmartPointer.h>
 
@@ -69,6 +70,8 @@ struct CfdEnd
   double radius = 0.0;                         ///< equivalent radius sqrt(Area / pi)
   double area = 0.0;
   double extensionLength = 0.0;
+  /// The flow-extension factor it was made with (the options' for this end, else its role's).
+  double extensionFactor = 0.0;
   std::array<double, 3> clipCentre{ { 0, 0, 0 } }; ///< centre of the vessel's own rim
   /// With Clip: the vessel end on the centerline (CenterlineEndPath::position) and the arc
   /// length from it to the cut (ClipEndRequest{CenterlineEnd, ClipDistance} cuts there again).
@@ -86,6 +89,8 @@ struct PrepareForCfdResult
   std::vector<PatchLabel> patches;
   std::vector<CfdEnd> ends; ///< by id
   std::vector<std::string> warnings;
+  /// With clip: the centerlines the ends were clipped by (given, or computed); null without.
+  vtkSmartPointer<vtkPolyData> centerlines;
 };
 
 /// Throws bender::InputError, one line starting with options.inputName: an empty surface, no
@@ -96,6 +101,16 @@ struct PrepareForCfdResult
 PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
   const PrepareForCfdOptions& options = {},
   const ProgressReporter& progress = {});
+
+/// The options of a plan's Prepare for CFD step (WarpPlan.h; no centerlines: computed).
+PrepareForCfdOptions CfdStepOptions(const CfdStep& step);
+/// The plan step of `options` (clip, cap, the ends' cuts, names and extension factors; not the
+/// centerlines nor the input's name), applied after `afterWarps` warps.
+CfdStep CfdStepOf(const PrepareForCfdOptions& options, std::size_t afterWarps);
+/// `given` with what its result made written out: every end's cut (its centerline end and
+/// distance; with clip), name and role (at its rim's centre) and extension factor. Applied to
+/// the same surface it makes the same surface, and says so in the plan.
+CfdStep ResolvedCfdStep(const CfdStep& given, const PrepareForCfdResult& result);
 
 } // namespace bender
 

@@ -38,7 +38,7 @@ void SessionJob::Run(const ProgressReporter& progress)
         [[fallthrough]];
       case Kind::Release:
       case Kind::Replay:
-        if (!this->Plan.warps.empty())
+        if (!this->Plan.warps.empty() || !this->Plan.cfdSteps.empty())
         {
           ApplyPlanOptions options;
           options.planName = this->Name;

@@ -76,9 +76,10 @@ private:
   std::string StatedUnit;              // Load: the unit the mesh file states (ReadMesh)
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
-  bool MakeProxy = false;                 // Release: decimate the result for the level of detail
-  bool Guard = false;                     // Release: check the changed region before committing
-  bool GuardRule = false;                 // ... and hold on the space-inversion rule alone
+  bool AskOnProblems = false; // Export: the caller asks the user when the check finds problems
+  bool MakeProxy = false;     // Release: decimate the result for the level of detail
+  bool Guard = false;         // Release: check the changed region before committing
+  bool GuardRule = false;     // ... and hold on the space-inversion rule alone
   LumenGuardOptions Lumen{ false, 0.05 }; // ... and measure the lumen (LumenGuard.h)
   // The centerlines of Input for the lumen guard: given when known (computed once per grab),
   // else computed by the job and kept by the session for the next release of the grab.

@@ -7,28 +7,40 @@
 namespace bender
 {
 
-void WarpHistory::Reset(vtkPolyData* original)
+void WarpHistory::Reset(vtkPolyData* first)
 {
   this->Surfaces.clear();
-  this->Warps.clear();
+  this->Steps.clear();
   this->Index = 0;
-  if (original)
+  if (first)
   {
-    this->Surfaces.push_back(DeepCopyOf(original));
+    this->Surfaces.push_back(DeepCopyOf(first));
   }
 }
 
-void WarpHistory::Commit(const WarpSpec& warp, vtkPolyData* result)
+void WarpHistory::Add(Step step, vtkPolyData* result)
 {
   if (this->Surfaces.empty() || !result)
   {
     return;
   }
   this->Surfaces.resize(this->Index + 1);
-  this->Warps.resize(this->Index);
+  this->Steps.resize(this->Index);
   this->Surfaces.push_back(DeepCopyOf(result));
-  this->Warps.push_back(warp);
+  this->Steps.push_back(std::move(step));
   ++this->Index;
+}
+
+void WarpHistory::Commit(const WarpSpec& warp, vtkPolyData* result)
+{
+  this->Add(warp, result);
+}
+
+void WarpHistory::Commit(const CfdStep& step, vtkPolyData* result)
+{
+  CfdStep placed = step;
+  placed.afterWarps = this->CommittedWarps().size();
+  this->Add(placed, result);
 }
 
 bool WarpHistory::Undo()
@@ -58,12 +70,68 @@ vtkPolyData* WarpHistory::Current() const
 
 vtkPolyData* WarpHistory::Original() const
 {
+  for (std::size_t step = this->Index; step > 0; --step)
+  {
+    if (std::holds_alternative<CfdStep>(this->Steps[step - 1]))
+    {
+      return this->Surfaces[step].GetPointer();
+    }
+  }
+  return this->First();
+}
+
+vtkPolyData* WarpHistory::First() const
+{
   return this->Surfaces.empty() ? nullptr : this->Surfaces.front().GetPointer();
+}
+
+vtkPolyData* WarpHistory::Previous() const
+{
+  return this->Index == 0 ? nullptr : this->Surfaces[this->Index - 1].GetPointer();
+}
+
+const WarpSpec* WarpHistory::WarpOf(std::size_t step) const
+{
+  return step == 0 || step > this->Steps.size() ? nullptr
+                                                : std::get_if<WarpSpec>(&this->Steps[step - 1]);
+}
+
+const CfdStep* WarpHistory::CfdStepOf(std::size_t step) const
+{
+  return step == 0 || step > this->Steps.size() ? nullptr
+                                                : std::get_if<CfdStep>(&this->Steps[step - 1]);
 }
 
 std::vector<WarpSpec> WarpHistory::CommittedWarps() const
 {
-  return std::vector<WarpSpec>(this->Warps.begin(), this->Warps.begin() + this->Index);
+  std::vector<WarpSpec> warps;
+  for (std::size_t i = 0; i < this->Index; ++i)
+  {
+    if (const WarpSpec* warp = std::get_if<WarpSpec>(&this->Steps[i]))
+    {
+      warps.push_back(*warp);
+    }
+  }
+  return warps;
+}
+
+WarpPlan WarpHistory::CommittedPlan(std::size_t from) const
+{
+  WarpPlan plan;
+  for (std::size_t i = from; i < this->Index; ++i)
+  {
+    if (const WarpSpec* warp = std::get_if<WarpSpec>(&this->Steps[i]))
+    {
+      plan.warps.push_back(*warp);
+    }
+    else
+    {
+      CfdStep step = std::get<CfdStep>(this->Steps[i]);
+      step.afterWarps = plan.warps.size();
+      plan.cfdSteps.push_back(step);
+    }
+  }
+  return plan;
 }
 
 } // namespace bender

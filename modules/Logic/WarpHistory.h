@@ -6,6 +6,7 @@
 #include <vtkSmartPointer.h>
 
 #include <cstddef>
+#include <variant>
 #include <vector>
 
 class vtkPolyData;
@@ -13,22 +14,25 @@ class vtkPolyData;
 namespace bender
 {
 
-/// The undo history of a session: the surface before any warp and after each committed warp,
+/// The undo history of a session: the surface before any step and after each committed step,
 /// kept as deep copies, so that undo and redo restore the exact coordinates (and topology,
-/// after adaptive subdivision) rather than inverting a warp. The committed plan is the list of
-/// warps up to the current position.
+/// after adaptive subdivision or a Prepare for CFD) rather than inverting a step. A step is a
+/// warp or a Prepare for CFD step (WarpPlan.h); the committed plan is the list of steps up to
+/// the current position.
 ///
 /// Memory: one copy of the surface per step. Surfaces handed out are owned by the history and
 /// must not be modified.
 class WarpHistory
 {
 public:
-  /// Forgets everything; `original` (deep-copied) becomes step 0. nullptr clears.
-  void Reset(vtkPolyData* original);
+  /// Forgets everything; `first` (deep-copied) becomes step 0. nullptr clears.
+  void Reset(vtkPolyData* first);
   bool Empty() const { return this->Surfaces.empty(); }
 
   /// Adds a step after the current one, dropping the redo steps. `result` is deep-copied.
   void Commit(const WarpSpec& warp, vtkPolyData* result);
+  /// The same for a Prepare for CFD step (its afterWarps is set from the history).
+  void Commit(const CfdStep& step, vtkPolyData* result);
 
   bool CanUndo() const { return this->Index > 0; }
   bool CanRedo() const { return this->Index + 1 < this->Surfaces.size(); }
@@ -38,18 +42,35 @@ public:
 
   /// The surface at the current step; nullptr when empty.
   vtkPolyData* Current() const;
-  /// The surface before any warp; nullptr when empty.
+  /// The surface the current one is compared with (flips, the ghost, the vessels before and
+  /// after): after the last Prepare for CFD step up to the current step (which changed the
+  /// topology: a new start), else the first surface; nullptr when empty.
   vtkPolyData* Original() const;
-  /// Number of warps committed up to the current step, and in all (redo steps included).
+  /// The surface before any step (what the plan applies to); nullptr when empty.
+  vtkPolyData* First() const;
+  /// The surface before the current step; nullptr at step 0.
+  vtkPolyData* Previous() const;
+  /// Number of steps up to the current one, and in all (redo steps included).
   std::size_t Position() const { return this->Index; }
-  std::size_t Size() const { return this->Warps.size(); }
+  std::size_t Size() const { return this->Steps.size(); }
+  /// The warp of step `step` (1-based, as Position()); nullptr for a Prepare for CFD step or
+  /// no such step.
+  const WarpSpec* WarpOf(std::size_t step) const;
+  /// The Prepare for CFD step `step` (1-based); nullptr for a warp or no such step.
+  const CfdStep* CfdStepOf(std::size_t step) const;
 
   /// The warps up to the current step, in order.
   std::vector<WarpSpec> CommittedWarps() const;
+  /// The steps from step `from` (0: all) up to the current one as a plan (warps and CFD steps,
+  /// in order; the CFD steps' afterWarps count the warps from there).
+  WarpPlan CommittedPlan(std::size_t from = 0) const;
 
 private:
-  std::vector<vtkSmartPointer<vtkPolyData>> Surfaces; // Surfaces[i]: after i warps
-  std::vector<WarpSpec> Warps;                        // Warps[i]: from Surfaces[i] to [i + 1]
+  using Step = std::variant<WarpSpec, CfdStep>;
+  void Add(Step step, vtkPolyData* result);
+
+  std::vector<vtkSmartPointer<vtkPolyData>> Surfaces; // Surfaces[i]: after i steps
+  std::vector<Step> Steps;                            // Steps[i]: from Surfaces[i] to [i + 1]
   std::size_t Index = 0;
 };
 

@@ -39,3 +39,58 @@ TEST(WarpHistory, KeepsDeepCopiesAndTruncatesRedo)
   EXPECT_EQ(history.Size(), 1u);
   EXPECT_FALSE(history.Redo());
 }
+
+// A Prepare for CFD step is a step like a warp (issue 22): undone and redone with the exact
+// surfaces, in the committed plan at its place among the warps, and the surface the current one
+// is compared with (flips, ghost, vessels) is the one it made, not the unclipped one.
+TEST(WarpHistory, APrepareForCfdStepIsAStepOfThePlan)
+{
+  auto first = test::MakeTube(0, 10, 1, 5, 8);
+  auto bent = test::MakeTube(0, 10, 1.5, 5, 8);
+  auto prepared = test::MakeTube(0, 12, 1, 7, 8); // other points and cells
+  auto bentAgain = test::MakeTube(0, 12, 2, 7, 8);
+  WarpHistory history;
+  history.Reset(first);
+  WarpSpec warp;
+  warp.radius = 3;
+  history.Commit(warp, bent);
+  EXPECT_EQ(history.Original(), history.First());
+  CfdStep step;
+  step.afterWarps = 7; // set by the history: the warps before it
+  step.names.push_back({ { 1, 2, 3 }, "aorta", true });
+  history.Commit(step, prepared);
+  EXPECT_EQ(history.Position(), 2u);
+  EXPECT_EQ(history.Original(), history.Current()); // a new start for the comparisons
+  EXPECT_NE(history.First(), history.Original());
+  EXPECT_EQ(history.CfdStepOf(2)->names.front().name, "aorta");
+  EXPECT_EQ(history.WarpOf(2), nullptr);
+  ASSERT_NE(history.WarpOf(1), nullptr);
+  EXPECT_EQ(history.Previous()->GetNumberOfPoints(), bent->GetNumberOfPoints());
+  warp.radius = 5;
+  history.Commit(warp, bentAgain);
+  EXPECT_EQ(history.Original()->GetNumberOfPoints(), prepared->GetNumberOfPoints());
+
+  const WarpPlan plan = history.CommittedPlan();
+  ASSERT_EQ(plan.warps.size(), 2u);
+  ASSERT_EQ(plan.cfdSteps.size(), 1u);
+  EXPECT_EQ(plan.cfdSteps[0].afterWarps, 1u);
+  EXPECT_EQ(plan.warps[1].radius, 5.0);
+  EXPECT_EQ(history.CommittedWarps().size(), 2u);
+  // From step 1: the CFD step comes first there.
+  EXPECT_EQ(history.CommittedPlan(1).cfdSteps[0].afterWarps, 0u);
+  EXPECT_EQ(history.CommittedPlan(1).warps.size(), 1u);
+
+  // Undo twice: back before the step, to the bent surface with its exact points.
+  ASSERT_TRUE(history.Undo());
+  ASSERT_TRUE(history.Undo());
+  EXPECT_EQ(history.Current()->GetNumberOfPoints(), bent->GetNumberOfPoints());
+  double p[3], q[3];
+  history.Current()->GetPoint(3, p);
+  bent->GetPoint(3, q);
+  EXPECT_EQ(p[1], q[1]);
+  EXPECT_EQ(history.Original(), history.First());
+  EXPECT_TRUE(history.CommittedPlan().cfdSteps.empty());
+  ASSERT_TRUE(history.Redo());
+  EXPECT_EQ(history.Current()->GetNumberOfPoints(), prepared->GetNumberOfPoints());
+  EXPECT_EQ(history.CommittedPlan().cfdSteps.size(), 1u);
+}
