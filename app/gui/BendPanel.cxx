@@ -1,7 +1,7 @@
 #include "BendPanel.h"
 
 #include "MainActions.h"
-#include "StringUtil.h"
+#include "PlanSummary.h"
 
 #include <QAction>
 #include <QCheckBox>
@@ -204,8 +204,8 @@ void BendPanel::showState(const bender::BenderSession& session, bool placingRibb
       }
       break;
     case bender::GrabState::Released:
-      state = QString("Released: %1 committed")
-                .arg(QString::fromStdString(bender::CountOf(session.GetHistoryPosition(), "warp")));
+      state =
+        QString("Released: %1").arg(QString::fromStdString(bender::PlanSummary(session.GetPlan())));
       break;
   }
   this->State->setText(state);

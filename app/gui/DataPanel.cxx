@@ -2,6 +2,7 @@
 
 #include "BenderSession.h"
 #include "MainActions.h"
+#include "PlanSummary.h"
 #include "SegmentationSession.h"
 #include "StringUtil.h"
 
@@ -35,11 +36,11 @@ void DataPanel::showState(const bender::BenderSession& session,
   if (session.HasSurface())
   {
     vtkPolyData* surface = session.GetSurface();
-    text = QString("%1\n%2 points, %3 triangles (LPS mm)\n%4 committed")
+    text = QString("%1\n%2 points, %3 triangles (LPS mm)\n%4")
              .arg(QString::fromStdString(session.GetSurfaceName()))
              .arg(surface->GetNumberOfPoints())
              .arg(surface->GetNumberOfPolys())
-             .arg(QString::fromStdString(bender::CountOf(session.GetHistoryPosition(), "warp")));
+             .arg(QString::fromStdString(bender::PlanSummary(session.GetPlan())));
   }
   if (volumes.HasVolume())
   {

@@ -53,8 +53,8 @@ MainActions::MainActions(QWidget* window)
   this->Export = Make(window, "&Export surface...", QKeySequence("Ctrl+E"), "exportAction");
   this->Screenshot = Make(window, "Screens&hot...", QKeySequence("F12"), "screenshotAction");
   this->Quit = Make(window, "&Quit", QKeySequence::Quit, "quitAction");
-  this->Undo = Make(window, "&Undo warp", QKeySequence("Ctrl+Z"), "undoAction");
-  this->Redo = Make(window, "&Redo warp", QKeySequence("Ctrl+Shift+Z"), "redoAction");
+  this->Undo = Make(window, "&Undo", QKeySequence("Ctrl+Z"), "undoAction");
+  this->Redo = Make(window, "&Redo", QKeySequence("Ctrl+Shift+Z"), "redoAction");
   this->PlaceRibbon = Make(window, "&Place ribbon on surface", QKeySequence("P"), "placeAction");
   this->Grab = Make(window, "&Grab / release", QKeySequence("G"), "grabAction");
   this->CancelBend = Make(window, "&Cancel bend", QKeySequence("Esc"), "cancelBendAction");
@@ -106,8 +106,9 @@ MainActions::MainActions(QWidget* window)
   this->Export->setToolTip("Check, then export the surface for CFD (STL, VTP, PLY, OBJ)");
   this->Screenshot->setToolTip("Save the window as a PNG image");
   this->Quit->setToolTip("Close Bender");
-  this->Undo->setToolTip("Undo the last committed warp (exact coordinates restored)");
-  this->Redo->setToolTip("Redo the warp undone last");
+  this->Undo->setToolTip(
+    "Undo the last step, a committed warp or Prepare for CFD (exact coordinates restored)");
+  this->Redo->setToolTip("Redo the step undone last");
   this->CancelBend->setToolTip("Cancel the bend in progress; the committed shape stays");
   this->Segment->setToolTip(
     "Segment the loaded volume with the Segment panel's settings and make its surface");

@@ -315,18 +315,16 @@ nlohmann::ordered_json LumenCheckToJson(const LumenCheck& check)
   nlohmann::ordered_json branches = nlohmann::ordered_json::array();
   for (const BranchLumenChange& change : check.branches)
   {
-    nlohmann::ordered_json b;
-    b["branchId"] = change.branchId;
-    b["outlets"] = change.outlets;
-    b["beforeMinRadius"] = change.beforeMinRadius;
+    nlohmann::ordered_json b = { { "branchId", change.branchId },
+      { "outlets", change.outlets },
+      { "beforeMinRadius", change.beforeMinRadius } };
     if (change.branchId >= 0)
     {
       b["afterMinRadius"] = change.afterMinRadius;
       b["narrowing"] = change.narrowing;
       b["narrowest"] = change.narrowest;
     }
-    b["moved"] = change.moved;
-    b["tooNarrow"] = change.tooNarrow;
+    b.update({ { "moved", change.moved }, { "tooNarrow", change.tooNarrow } });
     branches.push_back(b);
   }
   json["branches"] = branches;

@@ -299,6 +299,10 @@ private slots:
     MainActions* actions = this->Window->actions();
     QVERIFY(SameSurface(session.GetSurface(), this->Prepared));
     QVERIFY(actions->Undo->isEnabled());
+    // The Data panel counts warps, not history steps: Prepare is named, not counted as a warp.
+    auto* info = this->Window->findChild<QLabel*>("dataInfo");
+    QTRY_VERIFY2(
+      info->text().contains("0 warps committed, prepared for CFD"), qPrintable(info->text()));
     const QString plan = this->Folder.filePath("prepared.bender.json");
     QVERIFY(this->savePlan(plan));
     QVERIFY2(this->Window->statusLabel()->text().contains("Prepare for CFD"),

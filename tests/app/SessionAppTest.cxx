@@ -150,7 +150,8 @@ public:
         auto* dialog = VisibleTopLevel<QFileDialog>();
         if (!dialog)
           return;
-        this->Timer.stop();
+        // The timer goes on while the answer lives: a dialog still listing its folder may
+        // refuse the first accept, and is answered again on the next tick.
         this->Chosen = true;
         dialog->selectFile(path);
         QMetaObject::invokeMethod(dialog, "accept"); // as the Open button does
@@ -215,6 +216,9 @@ private:
     bender::BenderSession& session = window->session();
     if (!session.SetSurface(bendertest::Tube(0, 60, 3), "patient A tube"))
       return nullptr;
+    // The lumen guard off: a ribbon ending mid-tube shears the tube beyond it (a waist the guard
+    // holds), and what is tested here is the session around a committed warp.
+    window->bendPanel()->setMaxNarrowing(0.0);
     bender::WarpParameters parameters = session.GetParameters();
     parameters.radius = 6;
     session.SetParameters(parameters);
@@ -283,24 +287,6 @@ private slots:
     QCOMPARE(ReadAll(autosave), autosaved);
     QVERIFY(window->actions()->Undo->isEnabled());
 
-    // A readable mesh is asked about once read: Cancel keeps everything.
-    {
-      OpenDialogAnswer choose(whole);
-      SaveChangesAnswer cancel(QMessageBox::Cancel);
-      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
-      QTRY_VERIFY(choose.chosen());
-      QVERIFY(window->waitUntilIdle(60000));
-      QCOMPARE(cancel.count(), 1);
-      QVERIFY2(cancel.text().contains("not saved"), qPrintable(cancel.text()));
-    }
-    QVERIFY2(window->statusLabel()->text().contains("not opened"),
-      qPrintable(window->statusLabel()->text()));
-    QCOMPARE(session.GetSurfaceName(), std::string("patient A tube"));
-    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
-    QVERIFY(session.HasUnsavedChanges());
-    QCOMPARE(ReadAll(autosave), autosaved);
-    QVERIFY(!window->isBusy());
-
     // Ctrl+Q asks (the warps are unsaved): Cancel keeps the window and the autosave.
     {
       SaveChangesAnswer cancel(QMessageBox::Cancel);
@@ -310,94 +296,8 @@ private slots:
     QVERIFY(window->isVisible());
     QVERIFY(QFileInfo::exists(autosave));
 
-    // Ctrl+O the readable mesh and Discard: the new surface replaces the work, nothing unsaved.
-    {
-      OpenDialogAnswer choose(whole);
-      SaveChangesAnswer discard(QMessageBox::Discard);
-      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
-      QTRY_VERIFY(choose.chosen());
-      QVERIFY(window->waitUntilIdle(60000));
-      QCOMPARE(discard.count(), 1);
-    }
-    QCOMPARE(session.GetSurfaceName(), std::string("whole.stl"));
-    QCOMPARE(session.GetHistoryPosition(), std::size_t(0));
-    QVERIFY(!session.HasUnsavedChanges());
-    QVERIFY(!window->ribbonWidget()->GetEnabled());
     window->files()->setInteractive(false);
     window->close();
-  }
-
-  void anotherPatientsVolumeClosesTheSurface()
-  {
-    QTemporaryDir folder;
-    const QString autosave = folder.filePath("autosave.bender-session.json");
-    auto window = this->bentTubeWindow(folder.path(), true);
-    QVERIFY(window);
-    bender::BenderSession& session = window->session();
-    QVERIFY(window->waitForCenterlines(120000));
-    QVERIFY(window->vessels()->vessels().HasCenterlines());
-    QVERIFY(window->benderView()->centerlinesShown());
-    auto* info = window->findChild<QLabel*>("dataInfo");
-    QVERIFY(info);
-    QVERIFY(info->text().contains("patient A tube"));
-
-    // Patient B's volume (another file).
-    bender::Volume volume;
-    volume.geometry.size = { { 24, 20, 16 } };
-    volume.geometry.spacing = { { 0.8, 0.8, 1.0 } };
-    volume.voxels.assign(volume.geometry.VoxelCount(), 0.0f);
-    for (std::size_t i = 0; i < volume.voxels.size(); ++i)
-      volume.voxels[i] = static_cast<float>(i % 97);
-    const QString nrrd = folder.filePath("patient-b.nrrd");
-    bender::WriteVolume(volume, nrrd.toStdString());
-
-    // Cancel: the volume is not opened, patient A's work stays as it was.
-    {
-      OpenDialogAnswer choose(nrrd);
-      SaveChangesAnswer cancel(QMessageBox::Cancel);
-      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
-      QTRY_VERIFY(choose.chosen());
-      QVERIFY(window->waitUntilIdle(60000));
-      QCOMPARE(cancel.count(), 1);
-    }
-    QVERIFY(!window->segmentation().HasVolume());
-    QVERIFY(session.HasSurface());
-    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
-    QVERIFY(session.HasUnsavedChanges());
-    QVERIFY(QFileInfo::exists(autosave));
-
-    // Discard: patient B's volume, and nothing of patient A left: no surface, warps, ribbon,
-    // centerlines, autosave; the Data panel says so.
-    {
-      OpenDialogAnswer choose(nrrd);
-      SaveChangesAnswer discard(QMessageBox::Discard);
-      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
-      QTRY_VERIFY(choose.chosen());
-      QVERIFY(window->waitUntilIdle(60000));
-      QCOMPARE(discard.count(), 1);
-    }
-    QVERIFY(window->segmentation().HasVolume());
-    QVERIFY(!session.HasSurface());
-    QCOMPARE(session.GetHistoryPosition(), std::size_t(0));
-    QVERIFY(!session.GetRibbon().has_value());
-    QVERIFY(!session.HasUnsavedChanges());
-    QVERIFY(!window->actions()->Undo->isEnabled());
-    QVERIFY(!window->ribbonWidget()->GetEnabled());
-    QVERIFY(window->waitForCenterlines(60000));
-    QVERIFY(!window->vessels()->vessels().HasCenterlines());
-    QVERIFY(!window->benderView()->centerlinesShown());
-    QVERIFY2(!info->text().contains("patient A"), qPrintable(info->text()));
-    QVERIFY2(info->text().contains("patient-b"), qPrintable(info->text()));
-    QVERIFY(!QFileInfo::exists(autosave));
-    QVERIFY(window->saveScreenshot(this->artefact("session-another-patient.png")));
-
-    // Nothing unsaved is left: Ctrl+Q closes without a question.
-    {
-      SaveChangesAnswer asked(QMessageBox::Cancel);
-      QVERIFY(TypeOnWindow(*window, Qt::Key_Q, Qt::ControlModifier));
-      QTRY_VERIFY(!window->isVisible());
-      QCOMPARE(asked.count(), 0);
-    }
   }
 
   void anExportInMetresOpensAtItsSize()
@@ -474,6 +374,7 @@ private slots:
     auto window = this->tubeWindow(folder.path());
     QVERIFY(window);
     bender::BenderSession& session = window->session();
+    window->bendPanel()->setMaxNarrowing(0.0); // as in bentTubeWindow: the count is tested here
     bender::WarpParameters parameters = session.GetParameters();
     parameters.radius = 6;
     window->bendPanel()->setParameters(parameters);
