@@ -112,8 +112,9 @@ TEST(MeshUnit, EveryFormatWrittenInMetresReadsBackInMillimetres)
   // VTK XML polydata: the field data, which then says millimetres.
   bender::WriteMesh(InMetres(mesh, true), dir / "v.vtp");
   ExpectMillimetres(dir / "v.vtp", mesh);
-  vtkStringArray* field = vtkStringArray::SafeDownCast(
-    bender::ReadMesh(dir / "v.vtp")->GetFieldData()->GetAbstractArray("Unit"));
+  const auto read = bender::ReadMesh(dir / "v.vtp"); // holds the array read below
+  vtkStringArray* field =
+    vtkStringArray::SafeDownCast(read->GetFieldData()->GetAbstractArray("Unit"));
   ASSERT_NE(field, nullptr);
   EXPECT_EQ(field->GetValue(0), "mm");
   // TetGen: the first comment line.
