@@ -103,13 +103,17 @@ void CheckMeshPatches(const std::string& caseDirectory)
   const auto meshPatches = ReadMeshPatches(caseDirectory);
   std::ifstream in(fs::path(caseDirectory) / kCfdCaseJson);
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.contains("patches"))
+  if (j.is_discarded() || !j.is_object() || !j.contains("patches") || !j["patches"].is_array())
   {
     throw InputError(caseDirectory + ": " + kCfdCaseJson + " is unreadable");
   }
   for (const auto& p : j["patches"])
   {
-    const std::string name = p.value("name", "");
+    if (!p.is_object() || !p.contains("name") || !p["name"].is_string())
+    {
+      throw InputError(caseDirectory + ": " + kCfdCaseJson + ": a patch without a name");
+    }
+    const std::string name = p["name"].get<std::string>();
     const auto it = std::find_if(
       meshPatches.begin(), meshPatches.end(), [&](const auto& m) { return m.first == name; });
     if (it == meshPatches.end() || it->second <= 0)

@@ -516,7 +516,10 @@ SessionSnapshot ReadSessionFile(const std::string& path)
     throw SessionFileError(
       Name(path) + ": not valid JSON (" + io_detail::CleanMessage(e.what(), 300) + ")");
   }
-  if (!root.is_object() || root.value("format", std::string()) != "bender-session")
+  // Every field is type-checked before it is read: nlohmann's value() throws on a wrong type.
+  const auto format = root.is_object() ? root.find("format") : root.end();
+  if (format == root.end() || !format->is_string() ||
+    format->get<std::string>() != "bender-session")
   {
     throw SessionFileError(Name(path) + ": format: not a bender-session file");
   }

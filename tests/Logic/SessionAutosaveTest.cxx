@@ -310,6 +310,9 @@ TEST(SessionAutosave, CorruptFilesAreRefusedNamingTheFileAndTheField)
   expectRefused(text.substr(0, text.size() / 2), "not valid JSON");
   expectRefused("", "not valid JSON");
   expectRefused("[1, 2]", "format");
+  // A format that is not a string (found by fuzz_session: nlohmann's value() threw type_error).
+  expectRefused(Replaced(text, "\"format\": \"bender-session\"", "\"format\": 7"), "format");
+  expectRefused(Replaced(text, "\"format\": \"bender-session\"", "\"format\": null"), "format");
   expectRefused(Replaced(text, "\"version\": 2", "\"version\": 3"), "version");
   expectRefused(Replaced(text, "\"version\": 2", "\"version\": \"2\""), "version");
   expectRefused(Replaced(text, "\"lower\": 187.25", "\"lower\": \"187.25\""),
