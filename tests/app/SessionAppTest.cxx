@@ -33,6 +33,7 @@
 #include <QFileInfo>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMessageBox>
 #include <QScreen>
 #include <QScrollBar>
@@ -135,7 +136,11 @@ private:
   QString Text;
 };
 
-// Picks `path` in the next File > Open dialog (Qt's own dialog, the widget).
+// Picks `path` in the next File > Open dialog (Qt's own dialog, the widget), as a user types it
+// in the file name box and presses Open. The name is typed into the box, not set with
+// QFileDialog::selectFile: selectFile leaves the box alone while it has the keyboard focus (Qt
+// keeps what the user is typing): once the dialog is active, Open would take the empty box for
+// its folder, open the folder and wait for a name that never comes.
 class OpenDialogAnswer
 {
 public:
@@ -148,21 +153,24 @@ public:
       [this, path]()
       {
         auto* dialog = VisibleTopLevel<QFileDialog>();
-        if (!dialog)
+        auto* name = dialog ? dialog->findChild<QLineEdit*>("fileNameEdit") : nullptr;
+        if (!name)
           return;
-        // The timer goes on while the answer lives: a dialog still listing its folder may
-        // refuse the first accept, and is answered again on the next tick.
-        this->Chosen = true;
-        dialog->selectFile(path);
+        name->setText(QFileInfo(path).absoluteFilePath());
+        // Answered once the dialog reads the name typed (on a later tick otherwise).
+        if (dialog->selectedFiles() != QStringList{ QFileInfo(path).absoluteFilePath() })
+          return;
+        ++this->Count;
         QMetaObject::invokeMethod(dialog, "accept"); // as the Open button does
       });
     this->Timer.start();
   }
-  bool chosen() const { return this->Chosen; }
+  /// The dialogs answered: one per Ctrl+O.
+  int count() const { return this->Count; }
 
 private:
   QTimer Timer;
-  bool Chosen = false;
+  int Count = 0;
 };
 
 // A key typed on the window, as the user does once it is the active window again (after a
@@ -274,7 +282,7 @@ private slots:
       OpenDialogAnswer choose(truncated);
       SaveChangesAnswer discard(QMessageBox::Discard);
       QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
-      QTRY_VERIFY(choose.chosen());
+      QTRY_COMPARE(choose.count(), 1);
       QVERIFY(window->waitUntilIdle(60000));
       // Read first: a file that cannot be read is not asked about.
       QCOMPARE(discard.count(), 0);
@@ -287,6 +295,24 @@ private slots:
     QCOMPARE(ReadAll(autosave), autosaved);
     QVERIFY(window->actions()->Undo->isEnabled());
 
+    // A readable mesh is asked about once read: Cancel keeps everything.
+    {
+      OpenDialogAnswer choose(whole);
+      SaveChangesAnswer cancel(QMessageBox::Cancel);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
+      QTRY_COMPARE(choose.count(), 1);
+      QVERIFY(window->waitUntilIdle(60000));
+      QCOMPARE(cancel.count(), 1);
+      QVERIFY2(cancel.text().contains("not saved"), qPrintable(cancel.text()));
+    }
+    QVERIFY2(window->statusLabel()->text().contains("not opened"),
+      qPrintable(window->statusLabel()->text()));
+    QCOMPARE(session.GetSurfaceName(), std::string("patient A tube"));
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
+    QVERIFY(session.HasUnsavedChanges());
+    QCOMPARE(ReadAll(autosave), autosaved);
+    QVERIFY(!window->isBusy());
+
     // Ctrl+Q asks (the warps are unsaved): Cancel keeps the window and the autosave.
     {
       SaveChangesAnswer cancel(QMessageBox::Cancel);
@@ -296,8 +322,94 @@ private slots:
     QVERIFY(window->isVisible());
     QVERIFY(QFileInfo::exists(autosave));
 
+    // Ctrl+O the readable mesh and Discard: the new surface replaces the work, nothing unsaved.
+    {
+      OpenDialogAnswer choose(whole);
+      SaveChangesAnswer discard(QMessageBox::Discard);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
+      QTRY_COMPARE(choose.count(), 1);
+      QVERIFY(window->waitUntilIdle(60000));
+      QCOMPARE(discard.count(), 1);
+    }
+    QCOMPARE(session.GetSurfaceName(), std::string("whole.stl"));
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(0));
+    QVERIFY(!session.HasUnsavedChanges());
+    QVERIFY(!window->ribbonWidget()->GetEnabled());
     window->files()->setInteractive(false);
     window->close();
+  }
+
+  void anotherPatientsVolumeClosesTheSurface()
+  {
+    QTemporaryDir folder;
+    const QString autosave = folder.filePath("autosave.bender-session.json");
+    auto window = this->bentTubeWindow(folder.path(), true);
+    QVERIFY(window);
+    bender::BenderSession& session = window->session();
+    QVERIFY(window->waitForCenterlines(120000));
+    QVERIFY(window->vessels()->vessels().HasCenterlines());
+    QVERIFY(window->benderView()->centerlinesShown());
+    auto* info = window->findChild<QLabel*>("dataInfo");
+    QVERIFY(info);
+    QVERIFY(info->text().contains("patient A tube"));
+
+    // Patient B's volume (another file).
+    bender::Volume volume;
+    volume.geometry.size = { { 24, 20, 16 } };
+    volume.geometry.spacing = { { 0.8, 0.8, 1.0 } };
+    volume.voxels.assign(volume.geometry.VoxelCount(), 0.0f);
+    for (std::size_t i = 0; i < volume.voxels.size(); ++i)
+      volume.voxels[i] = static_cast<float>(i % 97);
+    const QString nrrd = folder.filePath("patient-b.nrrd");
+    bender::WriteVolume(volume, nrrd.toStdString());
+
+    // Cancel: the volume is not opened, patient A's work stays as it was.
+    {
+      OpenDialogAnswer choose(nrrd);
+      SaveChangesAnswer cancel(QMessageBox::Cancel);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
+      QTRY_COMPARE(choose.count(), 1);
+      QVERIFY(window->waitUntilIdle(60000));
+      QCOMPARE(cancel.count(), 1);
+    }
+    QVERIFY(!window->segmentation().HasVolume());
+    QVERIFY(session.HasSurface());
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
+    QVERIFY(session.HasUnsavedChanges());
+    QVERIFY(QFileInfo::exists(autosave));
+
+    // Discard: patient B's volume, and nothing of patient A left: no surface, warps, ribbon,
+    // centerlines, autosave; the Data panel says so.
+    {
+      OpenDialogAnswer choose(nrrd);
+      SaveChangesAnswer discard(QMessageBox::Discard);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_O, Qt::ControlModifier));
+      QTRY_COMPARE(choose.count(), 1);
+      QVERIFY(window->waitUntilIdle(60000));
+      QCOMPARE(discard.count(), 1);
+    }
+    QVERIFY(window->segmentation().HasVolume());
+    QVERIFY(!session.HasSurface());
+    QCOMPARE(session.GetHistoryPosition(), std::size_t(0));
+    QVERIFY(!session.GetRibbon().has_value());
+    QVERIFY(!session.HasUnsavedChanges());
+    QVERIFY(!window->actions()->Undo->isEnabled());
+    QVERIFY(!window->ribbonWidget()->GetEnabled());
+    QVERIFY(window->waitForCenterlines(60000));
+    QVERIFY(!window->vessels()->vessels().HasCenterlines());
+    QVERIFY(!window->benderView()->centerlinesShown());
+    QVERIFY2(!info->text().contains("patient A"), qPrintable(info->text()));
+    QVERIFY2(info->text().contains("patient-b"), qPrintable(info->text()));
+    QVERIFY(!QFileInfo::exists(autosave));
+    QVERIFY(window->saveScreenshot(this->artefact("session-another-patient.png")));
+
+    // Nothing unsaved is left: Ctrl+Q closes without a question.
+    {
+      SaveChangesAnswer asked(QMessageBox::Cancel);
+      QVERIFY(TypeOnWindow(*window, Qt::Key_Q, Qt::ControlModifier));
+      QTRY_VERIFY(!window->isVisible());
+      QCOMPARE(asked.count(), 0);
+    }
   }
 
   void anExportInMetresOpensAtItsSize()
