@@ -48,6 +48,8 @@ nlohmann::ordered_json CaseJson(const CfdCaseResult& r, const CfdCaseOptions& op
   j["unit"] = "m";
   j["frame"] = "LPS";
   j["surface"] = "constant/triSurface/" + options.surfaceName + ".stl";
+  // The surface as labelled, LPS mm: MapCfdResults maps the results onto it.
+  j["labelledSurface"] = "constant/triSurface/" + options.surfaceName + ".vtp";
   j["inlet"] = r.inlet;
   if (options.flowRate > 0.0)
   {
@@ -304,6 +306,9 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     exportOptions.sourceName = options.sourceName;
     ExportSurface(labelled, exportOptions);
     result.written.push_back("constant/triSurface/" + stl);
+    const std::string vtp = options.surfaceName + ".vtp";
+    WriteMesh(labelled.surface, (temp / "constant" / "triSurface" / vtp).string());
+    result.written.push_back("constant/triSurface/" + vtp);
     const std::vector<std::pair<std::string, std::string>> files = {
       { "system/blockMeshDict", BlockMeshDict(origin, hb, result.backgroundCells) },
       { "system/surfaceFeatureExtractDict", SurfaceFeatureExtractDict(stl) },

@@ -10,12 +10,14 @@
 // outlets). The case is in metres (the STL is written by ExportSurface with unit "m"), SI
 // throughout; OpenFOAM's p is kinematic (p / rho), reported here in Pa with rho.
 
+#include "CfdFlowResults.h"
 #include "LabelledSurface.h"
 #include "PatchLabels.h"
 #include "Progress.h"
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -119,12 +121,15 @@ struct CfdPatchFlow
 struct CfdRunResult
 {
   int iterations = 0;                ///< last iteration written by the function objects
-  bool converged = false;            ///< stopped by the residual control before endTime
+  bool converged = false;            ///< simpleFoam met the residual control (its log says so)
   double inletFlowRate = 0.0;        ///< m^3/s, into the domain
   double massImbalance = 0.0;        ///< |sum of the flow through every patch| / inlet flow
   std::vector<CfdPatchFlow> patches; ///< inlet and outlets, in label order
   /// Initial residuals of the last iteration: {"Ux", 1e-4}, {"p", ...}.
   std::vector<std::pair<std::string, double>> residuals;
+  /// The results mapped onto the surface and written to CASE/results (MapCfdResults), after
+  /// a run of the solver by RunOpenFoamCase; empty from ReadCfdResults.
+  std::optional<CfdFlowResults> flow;
 };
 
 /// Options of RunOpenFoamCase.
@@ -146,10 +151,13 @@ struct CfdRunOptions
   ProgressReporter progress;
 };
 
-/// Runs the case's Allrun (serial or with mpirun, as written; its output also in log.Allrun)
-/// and reads the results (an empty result for Steps::Mesh). Throws EnvironmentError when
-/// OpenFOAM is not installed or Allrun cannot be started, Error naming the failed step and its
-/// log, Cancelled when options.progress was cancelled.
+/// Runs the case's Allrun (serial or with mpirun, as written; its output also in log.Allrun),
+/// reads the results and maps them onto the surface (MapCfdResults: CASE/results and `flow`;
+/// an empty result for Steps::Mesh). Throws EnvironmentError when OpenFOAM is not installed or
+/// Allrun cannot be started, Error naming the failed step and its log (a solver that failed or
+/// was killed), MapCfdResults' errors (a diverged solution, results that do not match the
+/// surface), Cancelled when options.progress was cancelled. CASE/results is replaced only by a
+/// complete new one.
 CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptions& options = {});
 
 /// The patches of the OpenFOAM mesh (constant/polyMesh/boundary) with their face counts, in

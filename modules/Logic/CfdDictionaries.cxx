@@ -256,7 +256,12 @@ std::string ControlDict(const std::vector<CfdPatch>& patches, int iterations)
   s << "    solverInfo\n    {\n        type            solverInfo;\n"
        "        libs            (\"libutilityFunctionObjects.so\");\n"
        "        writeControl    timeStep;\n        writeInterval   1;\n"
-       "        fields          (U p);\n        writeResidualFields no;\n    }\n}\n";
+       "        fields          (U p);\n        writeResidualFields no;\n    }\n"
+       "    // The wall shear stress (kinematic, m^2/s^2) on every wall patch, written with the\n"
+       "    // fields: MapCfdResults maps it onto the surface (x density: Pa).\n"
+       "    wallShearStress\n    {\n        type            wallShearStress;\n"
+       "        libs            (\"libfieldFunctionObjects.so\");\n"
+       "        writeControl    writeTime;\n        log             false;\n    }\n}\n";
   return s.str();
 }
 
@@ -394,8 +399,13 @@ std::string Allrun(int processors)
        "    if ! \"$@\" > \"$log\" 2>&1; then\n"
        "        echo \"bender Allrun: $1 failed, see $log:\" >&2\n"
        "        tail -n 5 \"$log\" >&2\n        exit 1\n    fi\n}\n\n"
+       "# The times of an earlier run (every numeric folder but 0): a re-run starts clean.\n"
+       "clean_times()\n{\n    for d in *; do\n        case \"$d\" in\n"
+       "            0 | *[!0-9.e+-]*) ;;\n            [0-9]*) rm -rf \"$d\" ;;\n"
+       "        esac\n    done\n}\n\n"
        "if [ \"$what\" = all ] || [ \"$what\" = mesh ]; then\n"
        "    rm -rf constant/polyMesh constant/extendedFeatureEdgeMesh postProcessing processor*\n"
+       "    clean_times\n"
        "    step blockMesh blockMesh\n"
        "    step surfaceFeatureExtract surfaceFeatureExtract\n"
        "    step snappyHexMesh snappyHexMesh -overwrite\n"
@@ -404,7 +414,7 @@ std::string Allrun(int processors)
        "        echo \"bender Allrun: checkMesh found problems, see log.checkMesh\" >&2\n"
        "        exit 1\n    fi\nfi\n\n"
        "if [ \"$what\" = all ] || [ \"$what\" = solve ]; then\n"
-       "    rm -rf postProcessing processor*\n"
+       "    rm -rf postProcessing processor*\n    clean_times\n"
        "    if [ \"$processors\" -gt 1 ]; then\n"
        "        # Open MPI refuses root unless told (containers run as root).\n"
        "        if [ \"$(id -u)\" = 0 ]; then\n"

@@ -133,12 +133,10 @@ CfdRunResult ReadCfdResults(const std::string& caseDirectory)
   }
   CfdRunResult run;
   double density = 1060.0;
-  int limit = 0;
   std::vector<CfdPatchFlow> flows;
   try
   {
     density = j.at("density").get<double>();
-    limit = j.at("iterations").get<int>();
     for (const auto& p : j.at("patches"))
     {
       CfdPatchFlow f;
@@ -192,9 +190,10 @@ CfdRunResult ReadCfdResults(const std::string& caseDirectory)
         ParseNumber(last[c], (dir / "postProcessing/solverInfo").string()));
     }
   }
-  const std::string log = ReadTextFile(dir / "log.simpleFoam");
+  // Converged only when simpleFoam met the residual control; an iteration count below the
+  // limit alone (a run killed or cut short) is not convergence.
   run.converged =
-    log.find("solution converged in") != std::string::npos || (limit > 0 && run.iterations < limit);
+    ReadTextFile(dir / "log.simpleFoam").find("SIMPLE solution converged in") != std::string::npos;
   return run;
 }
 
@@ -293,6 +292,10 @@ std::string CfdToJson(const CfdCaseResult& written, const CfdRunResult* run)
       { "massImbalance", run->massImbalance },
       { "patches", flows },
       { "residuals", residuals } };
+    if (run->flow)
+    {
+      j["flow"] = nlohmann::ordered_json::parse(CfdFlowResultsToJson(*run->flow));
+    }
   }
   return j.dump(2);
 }
@@ -326,13 +329,13 @@ std::string FormatCfdRun(const CfdRunResult& run)
 {
   std::ostringstream s;
   s.imbue(std::locale::classic());
-  s << "simpleFoam: " << run.iterations << " iterations, "
-    << (run.converged ? "converged" : "not converged (iteration limit)") << "; initial residuals";
+  s << "simpleFoam: " << (run.converged ? "converged in " : "stopped at ") << run.iterations
+    << " iterations" << (run.converged ? "; initial residuals" : ", residuals");
   for (const auto& [field, value] : run.residuals)
   {
     s << " " << field << " " << CfdShort(value, 2);
   }
-  s << "\n";
+  s << (run.converged ? "\n" : " (not converged: the residual control was not met)\n");
   for (const auto& f : run.patches)
   {
     if (f.type == PatchType::Inlet)
@@ -351,7 +354,7 @@ std::string FormatCfdRun(const CfdRunResult& run)
     }
   }
   s << "  mass imbalance " << CfdShort(100.0 * run.massImbalance, 2) << " % of the inlet flow\n";
-  return s.str();
+  return s.str() + (run.flow ? FormatCfdWallShearStress(*run.flow) : std::string());
 }
 
 } // namespace bender

@@ -161,7 +161,9 @@ CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptio
   {
     return CfdRunResult{};
   }
-  return ReadCfdResults(caseDirectory);
+  CfdRunResult run = ReadCfdResults(caseDirectory);
+  run.flow = MapCfdResults(caseDirectory);
+  return run;
 }
 
 } // namespace bender

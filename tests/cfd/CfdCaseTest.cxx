@@ -416,10 +416,20 @@ TEST(CfdCase, ReadsTheFlowSplitPressureDropAndResiduals)
     "\tp_final         \tp_iters         \tp_converged     \n"
     "2\tsmoothSolver\t1e-3\t1e-5\t2\t2e-3\t1e-5\t2\t3e-3\t1e-5\t2\tfalse\tGAMG\t4e-2\t1e-"
     "4\t4\ttrue\n");
+  // Stopped before the 1000 of controlDict without meeting the residual control (killed,
+  // cut short): not converged, and said so.
   std::ofstream(dir + "/log.simpleFoam") << "Time = 2\n\nEnd\n";
+  const bender::CfdRunResult stopped = bender::ReadCfdResults(dir);
+  EXPECT_FALSE(stopped.converged);
+  const std::string stoppedText = bender::FormatCfdRun(stopped);
+  EXPECT_NE(
+    stoppedText.find("simpleFoam: stopped at 2 iterations, residuals Ux 0.001"), std::string::npos)
+    << stoppedText;
+  std::ofstream(dir + "/log.simpleFoam")
+    << "Time = 2\n\nSIMPLE solution converged in 2 iterations\n\nEnd\n";
   const bender::CfdRunResult run = bender::ReadCfdResults(dir);
   EXPECT_EQ(run.iterations, 2);
-  EXPECT_TRUE(run.converged); // stopped before the 1000 of controlDict
+  EXPECT_TRUE(run.converged);
   EXPECT_DOUBLE_EQ(run.inletFlowRate, 1e-5);
   EXPECT_NEAR(run.massImbalance, 1e-3, 1e-12);
   ASSERT_EQ(run.patches.size(), 3u);

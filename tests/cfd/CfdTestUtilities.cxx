@@ -8,10 +8,13 @@
 #include "WarpPlanIO.h"
 #include "vtkBenderCapFilter.h"
 
+#include <vtkCellArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
+#include <vtkPoints.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -48,6 +51,72 @@ vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent)
   }
   vtkSmartPointer<vtkPolyData> capped = vtkSmartPointer<vtkPolyData>::New();
   capped->DeepCopy(cap->GetOutput());
+  return capped;
+}
+
+vtkSmartPointer<vtkPolyData> CappedTube(double length, double radius, int rings, int sides)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  const double pi = 3.14159265358979323846;
+  for (int r = 0; r < rings; ++r)
+  {
+    for (int k = 0; k < sides; ++k)
+    {
+      const double a = 2.0 * pi * k / sides;
+      points->InsertNextPoint(length * r / (rings - 1), radius * std::cos(a), radius * std::sin(a));
+    }
+  }
+  vtkNew<vtkCellArray> triangles;
+  for (int r = 0; r + 1 < rings; ++r)
+  {
+    for (int k = 0; k < sides; ++k)
+    {
+      const vtkIdType a = r * sides + k;
+      const vtkIdType b = r * sides + (k + 1) % sides;
+      // Outward normals.
+      const vtkIdType t1[3] = { a, b, b + sides };
+      const vtkIdType t2[3] = { a, b + sides, a + sides };
+      triangles->InsertNextCell(3, t1);
+      triangles->InsertNextCell(3, t2);
+    }
+  }
+  vtkNew<vtkPolyData> tube;
+  tube->SetPoints(points);
+  tube->SetPolys(triangles);
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(tube);
+  cap->Update();
+  if (cap->GetNumberOfCaps() != 2)
+  {
+    throw std::runtime_error("the tube should have 2 caps, got " +
+      std::to_string(cap->GetNumberOfCaps()) + " " + cap->GetLastError());
+  }
+  vtkSmartPointer<vtkPolyData> capped = vtkSmartPointer<vtkPolyData>::New();
+  capped->DeepCopy(cap->GetOutput());
+  // The cap filter names the ends by its own order: the end at x = 0 is the inlet.
+  std::vector<PatchLabel> labels = ReadPatchLabels(capped);
+  const std::vector<int> ids = CellPatchIds(capped);
+  for (auto& label : labels)
+  {
+    if (label.type == PatchType::Wall)
+    {
+      continue;
+    }
+    for (std::size_t c = 0; c < ids.size(); ++c)
+    {
+      if (ids[c] == label.id)
+      {
+        double x[3];
+        capped->GetPoint(capped->GetCell(static_cast<vtkIdType>(c))->GetPointId(0), x);
+        const bool inlet = x[0] < 0.5 * length;
+        label.name = inlet ? "inlet" : "outlet_1";
+        label.type = inlet ? PatchType::Inlet : PatchType::Outlet;
+        break;
+      }
+    }
+  }
+  WritePatchLabels(capped, ids, labels);
   return capped;
 }
 

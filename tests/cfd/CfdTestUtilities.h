@@ -26,6 +26,11 @@ vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent);
 /// caps), as the demo job does. Computed once per process and bend. LPS mm.
 vtkSmartPointer<vtkPolyData> PreparedDemoVessel(bool bent);
 
+/// A straight tube along +x from x = 0 to `length` of radius `radius` (mm), `rings` rings of
+/// `sides` points, capped by vtkBenderCapFilter: closed, the end at x = 0 labelled inlet, the
+/// other outlet_1 (PatchLabels.h). LPS mm.
+vtkSmartPointer<vtkPolyData> CappedTube(double length, double radius, int rings, int sides);
+
 /// A new empty folder under the system's temporary folder, removed by the destructor.
 class TemporaryFolder
 {
