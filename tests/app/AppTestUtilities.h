@@ -6,6 +6,9 @@
 #include "MainWindow.h"
 #include "Vec3.h"
 
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLineEdit>
 #include <QPoint>
 #include <QString>
 #include <QTabWidget>
@@ -82,6 +85,23 @@ inline bool ShowTestWindow(MainWindow& window, bool active)
   }
   window.activateWindow();
   return QTest::qWaitForWindowActive(&window);
+}
+
+/// Types `path` (made absolute) into the file name box of a file dialog (Qt's own, the widget),
+/// as a user does before pressing Open or Save; true once the dialog reads it. Not
+/// QFileDialog::selectFile: that leaves the box alone while it has the keyboard focus (Qt keeps
+/// what the user is typing), and once the dialog is active, Open or Save then takes the empty
+/// box for its folder, opens the folder and waits for a name that never comes.
+inline bool TypeFileName(QFileDialog& dialog, const QString& path)
+{
+  auto* name = dialog.findChild<QLineEdit*>("fileNameEdit");
+  if (!name)
+  {
+    return false;
+  }
+  const QString absolute = QFileInfo(path).absoluteFilePath();
+  name->setText(absolute);
+  return dialog.selectedFiles() == QStringList{ absolute };
 }
 
 /// Brings `panel` to the front of the window's panel dock (as a click on its tab would). False

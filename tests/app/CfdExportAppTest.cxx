@@ -185,7 +185,7 @@ private:
     AnswerWhenOpen<QFileDialog>(
       [path](QFileDialog* dialog)
       {
-        dialog->selectFile(path);
+        bendertest::TypeFileName(*dialog, path);
         static_cast<QDialog*>(dialog)->accept(); // QFileDialog::accept, as Save does
       });
     this->Window->activateWindow();

@@ -33,7 +33,6 @@
 #include <QFileInfo>
 #include <QHeaderView>
 #include <QLabel>
-#include <QLineEdit>
 #include <QMessageBox>
 #include <QScreen>
 #include <QScrollBar>
@@ -136,11 +135,8 @@ private:
   QString Text;
 };
 
-// Picks `path` in the next File > Open dialog (Qt's own dialog, the widget), as a user types it
-// in the file name box and presses Open. The name is typed into the box, not set with
-// QFileDialog::selectFile: selectFile leaves the box alone while it has the keyboard focus (Qt
-// keeps what the user is typing): once the dialog is active, Open would take the empty box for
-// its folder, open the folder and wait for a name that never comes.
+// Picks `path` in the next File > Open dialog (Qt's own dialog, the widget): types it in the
+// file name box and presses Open once the dialog reads it (bendertest::TypeFileName).
 class OpenDialogAnswer
 {
 public:
@@ -153,12 +149,8 @@ public:
       [this, path]()
       {
         auto* dialog = VisibleTopLevel<QFileDialog>();
-        auto* name = dialog ? dialog->findChild<QLineEdit*>("fileNameEdit") : nullptr;
-        if (!name)
-          return;
-        name->setText(QFileInfo(path).absoluteFilePath());
         // Answered once the dialog reads the name typed (on a later tick otherwise).
-        if (dialog->selectedFiles() != QStringList{ QFileInfo(path).absoluteFilePath() })
+        if (!dialog || !bendertest::TypeFileName(*dialog, path))
           return;
         ++this->Count;
         QMetaObject::invokeMethod(dialog, "accept"); // as the Open button does
