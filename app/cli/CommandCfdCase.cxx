@@ -148,8 +148,13 @@ void bender::AddCfdCaseCommand(CLI::App& cli)
     ->capture_default_str();
   cfd->add_flag("--run",
     a->run,
-    "run the case (OpenFOAM must be installed) and report the flow split between the outlets, "
-    "the pressure drop from the inlet to each outlet (Pa, rho 1060 kg/m^3), the mass "
-    "imbalance, residuals");
-  cfd->add_flag("--json", a->json, "print one JSON object instead of text");
+    "run the case (OpenFOAM must be installed), map the results onto the surface "
+    "(CASE/results: surface.vtp with Pressure and WallShearStress in Pa, volume.vtu with U, "
+    "flow.json) and report the flow split between the outlets, the pressure drop from the "
+    "inlet to each outlet (Pa, rho 1060 kg/m^3), the mass imbalance, the wall shear stress "
+    "(mean, 99th percentile, max; wall area below 0.4 Pa and above 15 Pa), the residuals "
+    "(converged only when the residual control was met)");
+  cfd->add_flag("--json",
+    a->json,
+    "print one JSON object instead of text (with --run, flow.json's content as \"flow\")");
 }

@@ -18,7 +18,9 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -286,11 +288,15 @@ TEST_F(CfdFlowRun, MissingOpenFoamKeepsThePreviousResults)
 
 TEST_F(CfdFlowRun, ASolverKilledMidRunKeepsThePreviousResultsAndARerunIsClean)
 {
-  // simpleFoam killed (SIGKILL) two seconds into the run, through a wrapper first on PATH.
+  // simpleFoam killed (SIGKILL) once it has iterated, through a wrapper first on PATH (its
+  // output is log.simpleFoam). A solver that finished between two looks still exits as
+  // killed, so the test does not depend on the machine's speed.
   bender::test::TemporaryFolder bin("cfd-killed-solver");
   const std::string real = bender::FindExecutable("simpleFoam");
   std::ofstream(bin.Path() + "/simpleFoam")
-    << "#!/bin/sh\n\"" << real << "\" \"$@\" &\nsleep 2\nkill -9 $!\nwait $!\n";
+    << "#!/bin/sh\n\"" << real << "\" \"$@\" &\npid=$!\n"
+    << "while kill -0 $pid 2>/dev/null && ! grep -q '^Time = 3$' log.simpleFoam; do\n"
+    << "    sleep 0.05\ndone\nkill -9 $pid 2>/dev/null\nwait $pid\nexit 137\n";
   fs::permissions(bin.Path() + "/simpleFoam", fs::perms::owner_all);
   const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
   setenv("PATH", (bin.Path() + ":" + path).c_str(), 1);
@@ -312,6 +318,36 @@ TEST_F(CfdFlowRun, ASolverKilledMidRunKeepsThePreviousResultsAndARerunIsClean)
     entries += e.path().filename().string().find("results") != std::string::npos ? 1 : 0;
   }
   EXPECT_EQ(entries, 1);
+}
+
+TEST_F(CfdFlowRun, CommandLineCarriesTheFlowResults)
+{
+  bender::test::TemporaryFolder folder("cfd-flow-cli");
+  const std::string surface = folder.Path() + "/tube.vtp";
+  bender::WriteMesh(bender::test::CappedTube(kLengthMm, kRadiusMm, 81, 32), surface);
+  const std::string cli = std::string(BENDER_CLI_PATH) + " cfd-case " + surface + " -o " +
+    folder.Path() + "/case --velocity 0.05 --iterations 400 --run";
+  // OpenFOAM missing: one line, exit status 1, no results.
+  int status = 0;
+  const std::string missing =
+    bender::test::RunIn(folder.Path(), "PATH=/nonexistent " + cli + " --json", status);
+  EXPECT_EQ(status, 1) << missing;
+  EXPECT_NE(missing.find("OpenFOAM is not installed"), std::string::npos) << missing;
+  EXPECT_EQ(std::count(missing.begin(), missing.end(), '\n'), 1) << missing;
+  EXPECT_FALSE(fs::exists(folder.Path() + "/case/results"));
+  // --json: the whole of flow.json as "flow".
+  const std::string json =
+    bender::test::RunIn(folder.Path(), cli + " --force --json 2>/dev/null", status);
+  ASSERT_EQ(status, 0) << json;
+  const nlohmann::json j = nlohmann::json::parse(json);
+  const nlohmann::json written =
+    nlohmann::json::parse(ReadText(folder.Path() + "/case/results/flow.json"));
+  EXPECT_EQ(j.at("flow"), written);
+  EXPECT_EQ(j.at("flow").at("format"), "bender-flow-results");
+  EXPECT_TRUE(j.at("run").at("converged").get<bool>());
+  EXPECT_NEAR(j.at("flow").at("wallShearStress").at("mean_Pa").get<double>(),
+    First.flow->wallShearStress.meanPa,
+    1e-6);
 }
 
 } // namespace
