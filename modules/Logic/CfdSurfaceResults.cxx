@@ -212,33 +212,35 @@ MeshPatch MakeMeshPatch(vtkPolyData* patch)
   return m;
 }
 
-/// The point data `name` of `patch` interpolated at the point of it closest to x (mm);
-/// zeros when the patch has no such array.
-void Sample(const MeshPatch& patch, const char* name, const double x[3], double* out, int n)
+/// The pressure (kinematic) and wall shear stress (kinematic, zeros where the patch has none)
+/// of `patch` interpolated at its point closest to x (mm). `cell` is scratch space.
+void Sample(const MeshPatch& patch,
+  const double x[3],
+  vtkGenericCell* cell,
+  double& p,
+  double tau[3])
 {
-  std::fill(out, out + n, 0.0);
-  vtkDataArray* array = patch.faces->GetPointData()->GetArray(name);
-  if (!array || array->GetNumberOfComponents() != n)
-  {
-    return;
-  }
-  double closest[3], dist2 = 0.0, pcoords[3], weights[3];
+  p = 0.0;
+  std::fill(tau, tau + 3, 0.0);
+  double closest[3], dist2 = 0.0, pcoords[3], weights[3], unused = 0.0;
   vtkIdType cellId = -1;
   int subId = 0;
-  vtkNew<vtkGenericCell> cell;
   patch.locator->FindClosestPoint(x, closest, cell, cellId, subId, dist2);
   if (cellId < 0)
   {
     return;
   }
-  double unused = 0.0;
   cell->EvaluatePosition(closest, nullptr, subId, pcoords, unused, weights);
+  vtkPointData* data = patch.faces->GetPointData();
+  vtkDataArray* pressure = data->GetArray("p");
+  vtkDataArray* wss = data->GetArray("wallShearStress");
   for (vtkIdType k = 0; k < cell->GetNumberOfPoints() && k < 3; ++k)
   {
     const vtkIdType id = cell->GetPointId(k);
-    for (int c = 0; c < n; ++c)
+    p += pressure ? weights[k] * pressure->GetTuple1(id) : 0.0;
+    for (int c = 0; wss && wss->GetNumberOfComponents() == 3 && c < 3; ++c)
     {
-      out[c] += weights[k] * array->GetComponent(id, c);
+      tau[c] += weights[k] * wss->GetComponent(id, c);
     }
   }
 }
@@ -469,6 +471,7 @@ CfdFlowResults MapCfdResults(const std::string& caseDirectory)
   pressure->SetNumberOfTuples(n);
   wss->SetNumberOfTuples(n);
   magnitude->SetNumberOfTuples(n);
+  vtkNew<vtkGenericCell> scratch;
   for (vtkIdType i = 0; i < n; ++i)
   {
     double x[3], p = 0.0, tau[3] = { 0.0, 0.0, 0.0 };
@@ -476,8 +479,7 @@ CfdFlowResults MapCfdResults(const std::string& caseDirectory)
     const auto it = byLabel.find(pointPatch[static_cast<std::size_t>(i)]);
     if (it != byLabel.end())
     {
-      Sample(it->second, "p", x, &p, 1);
-      Sample(it->second, "wallShearStress", x, tau, 3);
+      Sample(it->second, x, scratch, p, tau);
     }
     for (double& t : tau)
     {
