@@ -3,14 +3,19 @@
 #include "TrackingErrors.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <condition_variable>
 #include <cstring>
 #include <fcntl.h>
+#include <mutex>
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <system_error>
+#include <thread>
 #include <unistd.h>
 
 namespace bender
@@ -44,6 +49,110 @@ void ParseHostPort(const std::string& text, const std::string& what, std::string
   }
 }
 
+namespace
+{
+// Name lookups that outlived their wait run on, unwaited for: beyond this many at once, a name
+// server that does not answer is said so without starting another.
+constexpr int MaxUnansweredLookups = 4;
+std::atomic<int> UnansweredLookups{ 0 };
+
+// One lookup, shared by its thread and the caller that waits for it (or gave up on it).
+struct PendingLookup
+{
+  std::mutex Mutex;
+  std::condition_variable Done;
+  bool Finished = false;
+  bool Abandoned = false;
+  int Status = EAI_AGAIN;
+  addrinfo* Found = nullptr;
+};
+} // namespace
+
+void FreeAddresses::operator()(addrinfo* addresses) const
+{
+  ::freeaddrinfo(addresses);
+}
+
+AddressList ResolveHost(const std::string& host,
+  int port,
+  std::chrono::milliseconds timeout,
+  const HostLookup& lookup)
+{
+  const std::string prefix = "igtl " + host + ":" + std::to_string(port) + ": ";
+  const std::string service = std::to_string(port);
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  // A numeric address asks no name server.
+  addrinfo numeric = hints;
+  numeric.ai_flags = AI_NUMERICHOST;
+  addrinfo* found = nullptr;
+  if (::getaddrinfo(host.c_str(), service.c_str(), &numeric, &found) == 0 && found)
+  {
+    return AddressList(found);
+  }
+  if (UnansweredLookups.load() >= MaxUnansweredLookups)
+  {
+    throw DeviceNotFoundError(prefix +
+      "cannot resolve host: " + std::to_string(MaxUnansweredLookups) +
+      " earlier lookups are still unanswered (is the name server reachable?)");
+  }
+  auto pending = std::make_shared<PendingLookup>();
+  const HostLookup resolve = lookup ? lookup : HostLookup(::getaddrinfo);
+  ++UnansweredLookups;
+  try
+  {
+    std::thread(
+      [pending, resolve, host, service, hints]()
+      {
+        addrinfo* result = nullptr;
+        int status = EAI_FAIL;
+        try
+        {
+          status = resolve(host.c_str(), service.c_str(), &hints, &result);
+        }
+        catch (...)
+        {
+          result = nullptr;
+        }
+        std::lock_guard<std::mutex> lock(pending->Mutex);
+        --UnansweredLookups;
+        if (pending->Abandoned)
+        {
+          if (result)
+          {
+            ::freeaddrinfo(result);
+          }
+          return;
+        }
+        pending->Status = status;
+        pending->Found = result;
+        pending->Finished = true;
+        pending->Done.notify_all();
+      })
+      .detach();
+  }
+  catch (const std::system_error& e)
+  {
+    --UnansweredLookups;
+    throw DeviceNotFoundError(prefix + "cannot start the host lookup (" + e.what() + ")");
+  }
+  std::unique_lock<std::mutex> lock(pending->Mutex);
+  if (!pending->Done.wait_for(lock, timeout, [&pending] { return pending->Finished; }))
+  {
+    pending->Abandoned = true;
+    throw DeviceNotFoundError(prefix + "the host name was not resolved within " +
+      std::to_string(timeout.count()) + " ms (is the name server reachable?)");
+  }
+  AddressList addresses(pending->Found);
+  if (pending->Status != 0 || !addresses)
+  {
+    throw TrackingConfigurationError(
+      prefix + "cannot resolve host (" + ::gai_strerror(pending->Status) + ")");
+  }
+  return addresses;
+}
+
 IgtlConnection::~IgtlConnection()
 {
   this->Close();
@@ -71,17 +180,9 @@ void IgtlConnection::Connect(const std::string& host, int port, std::chrono::mil
   this->Close();
   this->PeerName = host + ":" + std::to_string(port);
   const std::string prefix = "igtl " + this->PeerName + ": ";
-  addrinfo hints{};
-  hints.ai_family = AF_UNSPEC;
-  hints.ai_socktype = SOCK_STREAM;
-  addrinfo* found = nullptr;
-  const int rc = ::getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found);
-  if (rc != 0 || !found)
-  {
-    throw TrackingConfigurationError(prefix + "cannot resolve host (" + ::gai_strerror(rc) + ")");
-  }
+  const AddressList found = ResolveHost(host, port, timeout);
   std::string lastProblem = "no address";
-  for (addrinfo* a = found; a; a = a->ai_next)
+  for (addrinfo* a = found.get(); a; a = a->ai_next)
   {
     const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
     if (fd < 0)
@@ -127,14 +228,12 @@ void IgtlConnection::Connect(const std::string& host, int port, std::chrono::mil
       const int one = 1;
       ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
       this->Fd = fd;
-      ::freeaddrinfo(found);
       return;
     }
     ::close(fd);
     lastProblem = error == ETIMEDOUT ? "no answer within " + std::to_string(timeout.count()) + " ms"
                                      : std::strerror(error);
   }
-  ::freeaddrinfo(found);
   throw DeviceNotFoundError(prefix + lastProblem + " (is the OpenIGTLink server running?)");
 }
 

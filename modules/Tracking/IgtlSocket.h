@@ -4,7 +4,11 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
+
+struct addrinfo;
 
 namespace bender
 {
@@ -12,6 +16,25 @@ namespace bender
 /// "HOST:PORT" (HOST a name, an IPv4 address or [IPv6]); throws TrackingConfigurationError
 /// naming `what` and the text when it does not parse or the port is outside 1..65535.
 void ParseHostPort(const std::string& text, const std::string& what, std::string& host, int& port);
+
+/// A host name lookup with getaddrinfo's arguments and result (the default is getaddrinfo
+/// itself; tests give one that never answers). Its results are freed with freeaddrinfo.
+using HostLookup = std::function<int(const char*, const char*, const addrinfo*, addrinfo**)>;
+struct FreeAddresses
+{
+  void operator()(addrinfo* addresses) const;
+};
+using AddressList = std::unique_ptr<addrinfo, FreeAddresses>;
+
+/// The TCP addresses of HOST:PORT, never waiting longer than `timeout`: a numeric address
+/// (IPv4, IPv6) is read at once; a name is looked up on a thread of its own, given up at the
+/// timeout (the lookup finishes, unwaited for, on its thread; at most a few are left so).
+/// Throws DeviceNotFoundError when no answer came in time, TrackingConfigurationError when
+/// the name does not resolve.
+AddressList ResolveHost(const std::string& host,
+  int port,
+  std::chrono::milliseconds timeout,
+  const HostLookup& lookup = {});
 
 /// A TCP client connection for OpenIGTLink (POSIX sockets, every wait bounded by a poll
 /// timeout so that a reader thread can be stopped). Not copyable; closes on destruction.
@@ -23,8 +46,9 @@ public:
   IgtlConnection(const IgtlConnection&) = delete;
   IgtlConnection& operator=(const IgtlConnection&) = delete;
 
-  /// Connects within `timeout`. Throws DeviceNotFoundError when the peer refuses or does
-  /// not answer ("igtl HOST:PORT: connection refused (is the server running?)"), and
+  /// Resolves the host (ResolveHost) and connects, each within `timeout`. Throws
+  /// DeviceNotFoundError when the peer refuses or does not answer ("igtl HOST:PORT:
+  /// connection refused (is the server running?)") or the name server does not answer, and
   /// TrackingConfigurationError when the host name does not resolve.
   void Connect(const std::string& host, int port, std::chrono::milliseconds timeout);
   bool IsOpen() const { return this->Fd >= 0; }

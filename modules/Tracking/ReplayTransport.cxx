@@ -138,6 +138,12 @@ void ReplayTransport::LoadSidecar(const std::string& sidecar)
       throw RecordingError("replay " + sidecar + " line " + std::to_string(number) +
         ": longer than " + std::to_string(MaxSidecarLine) + " bytes");
     }
+    // The recorder ends every line: a last line without its newline was cut while being
+    // written, and its chunk is replayed as unlisted bytes below.
+    if (in.eof())
+    {
+      break;
+    }
     if (line.empty() || line[0] == '#')
     {
       continue;
@@ -173,10 +179,13 @@ void ReplayTransport::LoadSidecar(const std::string& sidecar)
     expected = std::size_t(offset + size);
     previous = time;
   }
-  if (expected != this->Bytes.size())
+  // A recording cut short between a chunk's bytes and its line (StreamRecorder writes the
+  // bytes first), or during either: the bytes after the last listed chunk were received, and
+  // are replayed as one last chunk at the last listed time (nothing later is known).
+  if (expected < this->Bytes.size())
   {
-    throw RecordingError("replay " + sidecar + ": covers " + std::to_string(expected) + " of " +
-      std::to_string(this->Bytes.size()) + " bytes of the recording");
+    this->Unlisted = this->Bytes.size() - expected;
+    this->Chunks.push_back({ expected, this->Unlisted, this->Chunks.empty() ? 0.0 : previous });
   }
   this->Timestamped = true;
 }

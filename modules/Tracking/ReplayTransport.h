@@ -30,7 +30,9 @@ public:
   };
 
   /// Loads FILE (and FILE.timestamps when present). Throws RecordingError naming the file
-  /// (missing, unreadable, empty) or the sidecar line that is wrong.
+  /// (missing, unreadable, empty) or the sidecar line that is wrong. A recording cut short
+  /// at any byte (StreamRecorder's promise) replays: a sidecar line cut before its newline
+  /// is not read, and the bytes no line lists are replayed as one last chunk.
   explicit ReplayTransport(const std::string& path);
   ReplayTransport(const std::string& path, const Options& options);
 
@@ -43,6 +45,9 @@ public:
   std::optional<double> RecordedTime() const override { return this->LastTime; }
 
   bool HasTimestamps() const { return this->Timestamped; }
+  /// Bytes at the end of FILE that its sidecar does not list (a recording cut short between
+  /// a chunk and its timestamp line): replayed as one last chunk at the last listed time.
+  std::size_t UnlistedBytes() const { return this->Unlisted; }
   /// The recording being replayed (its sidecar is StreamRecorder::SidecarPath of it).
   const std::string& FilePath() const { return this->Path; }
   std::size_t Size() const { return this->Bytes.size(); }
@@ -62,6 +67,7 @@ private:
   std::vector<ChunkInfo> Chunks;
   std::size_t Chunk = 0;
   std::size_t ChunkDone = 0;
+  std::size_t Unlisted = 0;
   double LastTime = 0.0;
   bool Timestamped = false;
   bool Closed = false;

@@ -12,8 +12,9 @@ namespace bender
 /// Writes a recording: FILE holds the raw bytes exactly as received, FILE.timestamps one
 /// line per received chunk, "OFFSET SIZE SECONDS" (byte offset in FILE, chunk length,
 /// receive time in seconds since the recording started), after a header line starting
-/// with '#'. See docs/tracking.md. Both files are flushed after every chunk, so a recording
-/// cut short by a crash is still valid up to its last chunk.
+/// with '#'. See docs/tracking.md. Both files are flushed after every chunk, the bytes before
+/// their line, so a recording cut short by a crash (at any byte of either file) replays with
+/// ReplayTransport: every listed chunk at its time, then the unlisted bytes at the last time.
 class StreamRecorder
 {
 public:

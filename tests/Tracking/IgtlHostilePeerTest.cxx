@@ -14,13 +14,18 @@
 
 #include <gtest/gtest.h>
 
+#include <netdb.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 
 namespace
 {
@@ -336,6 +341,131 @@ TEST(IgtlNeverHang, ConnectToAPeerThatNeverCompletesTheHandshakeTimesOut)
   }
   EXPECT_TRUE(timedOut) << "the kernel completed " << fillers.size() << " handshakes";
   ::close(listener);
+}
+
+// A name server that does not answer: each lookup blocks until released (or 10 s, so that
+// not even a resolver that waits for it can hang the test), counting its calls.
+struct SilentNameServer
+{
+  struct State
+  {
+    std::mutex Mutex;
+    std::condition_variable Released;
+    bool Open = false;
+    int Calls = 0;
+    int Returned = 0;
+  };
+  std::shared_ptr<State> S = std::make_shared<State>();
+
+  bender::HostLookup Lookup() const
+  {
+    return [s = this->S](const char*, const char*, const addrinfo*, addrinfo**)
+    {
+      std::unique_lock<std::mutex> lock(s->Mutex);
+      ++s->Calls;
+      s->Released.wait_for(lock, std::chrono::seconds(10), [&s] { return s->Open; });
+      ++s->Returned;
+      s->Released.notify_all();
+      return EAI_AGAIN;
+    };
+  }
+  int Calls() const
+  {
+    std::lock_guard<std::mutex> lock(this->S->Mutex);
+    return this->S->Calls;
+  }
+  // Lets every lookup return and waits (bounded) until the `calls` made have.
+  bool ReleaseAndJoin(int calls) const
+  {
+    std::unique_lock<std::mutex> lock(this->S->Mutex);
+    this->S->Open = true;
+    this->S->Released.notify_all();
+    return this->S->Released.wait_for(
+      lock, std::chrono::seconds(10), [this, calls] { return this->S->Returned >= calls; });
+  }
+};
+
+TEST(IgtlNeverHang, AHostNameTheNameServerNeverAnswersIsGivenUpAtTheTimeout)
+{
+  const SilentNameServer dns;
+  const std::chrono::milliseconds timeout(200);
+  const auto start = Clock::now();
+  try
+  {
+    bender::ResolveHost("tracker.hangs.example", 18944, timeout, dns.Lookup());
+    ADD_FAILURE() << "resolved a name that the name server never answered";
+  }
+  catch (const bender::DeviceNotFoundError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("tracker.hangs.example:18944"), std::string::npos) << message;
+    EXPECT_NE(message.find("not resolved within 200 ms"), std::string::npos) << message;
+  }
+  const auto took = Clock::now() - start;
+  EXPECT_GE(took, timeout - std::chrono::milliseconds(2));
+  EXPECT_LT(took, timeout + std::chrono::seconds(2));
+  EXPECT_TRUE(dns.ReleaseAndJoin(1));
+  EXPECT_EQ(dns.Calls(), 1);
+}
+
+TEST(IgtlNeverHang, ANumericAddressAsksNoNameServerANameTheSystemOne)
+{
+  const SilentNameServer dns;
+  for (const char* host : { "127.0.0.1", "::1" })
+  {
+    const auto start = Clock::now();
+    const bender::AddressList found =
+      bender::ResolveHost(host, 18944, std::chrono::milliseconds(5000), dns.Lookup());
+    ASSERT_TRUE(found) << host;
+    EXPECT_LT(Clock::now() - start, std::chrono::seconds(1)) << host;
+  }
+  EXPECT_EQ(dns.Calls(), 0);
+  EXPECT_TRUE(dns.ReleaseAndJoin(0));
+  // A name goes through the system's lookup (getaddrinfo, on its thread).
+  EXPECT_TRUE(bender::ResolveHost("localhost", 18944, std::chrono::milliseconds(5000)));
+}
+
+TEST(IgtlNeverHang, LookupsLeftUnansweredAreBoundedAndNamesResolveAgainAfterwards)
+{
+  const SilentNameServer dns;
+  int given = 0;
+  // Each lookup given up on runs on; a few at most, then the next is refused at once.
+  for (int i = 0; i < 12; ++i)
+  {
+    const auto start = Clock::now();
+    EXPECT_THROW(bender::ResolveHost(
+                   "tracker.hangs.example", 18944, std::chrono::milliseconds(30), dns.Lookup()),
+      bender::DeviceNotFoundError);
+    EXPECT_LT(Clock::now() - start, std::chrono::seconds(2));
+    given = dns.Calls();
+  }
+  EXPECT_GE(given, 1);
+  EXPECT_LT(given, 12);
+  ASSERT_TRUE(dns.ReleaseAndJoin(given));
+  // Answered lookups again: a name that resolves (the loopback address, as a name server
+  // answers) and one that does not.
+  const bender::HostLookup loopback =
+    [](const char*, const char* service, const addrinfo* hints, addrinfo** found)
+  { return ::getaddrinfo("127.0.0.1", service, hints, found); };
+  bender::AddressList found;
+  for (int tries = 0; tries < 100 && !found; ++tries)
+  {
+    try
+    {
+      found =
+        bender::ResolveHost("tracker.example", 18944, std::chrono::milliseconds(2000), loopback);
+    }
+    catch (const bender::DeviceNotFoundError&)
+    {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20)); // the last threads ending
+    }
+  }
+  ASSERT_TRUE(found);
+  const bender::HostLookup unknown = [](const char*, const char*, const addrinfo*, addrinfo**)
+  { return EAI_NONAME; };
+  EXPECT_THROW(
+    bender::ResolveHost("no.such.host.example", 18944, std::chrono::milliseconds(2000), unknown),
+    bender::TrackingConfigurationError);
 }
 
 TEST(IgtlNeverHang, APeerThatAcceptsAndNeverAnswersBlocksNothing)

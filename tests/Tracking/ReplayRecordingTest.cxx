@@ -1,5 +1,6 @@
 // Recording and replay: the committed fixture, record -> replay round trips, the sidecar.
 #include "FastrakDevice.h"
+#include "FastrakParser.h"
 #include "RecordingTransport.h"
 #include "ReplayTransport.h"
 #include "SimulationScript.h"
@@ -290,11 +291,107 @@ TEST(Replay, BadRecordingsAreReportedWithTheirName)
   expectError(file, "line 3");
   WriteText(file + ".timestamps", "0 50 0.2\n50 50 0.1\n");
   expectError(file, "backwards");
-  WriteText(file + ".timestamps", "0 50 0.1\n");
-  expectError(file, "covers 50 of 100");
   WriteText(file + ".timestamps", "0 fifty 0.1\n");
   expectError(file, "OFFSET SIZE SECONDS");
   expectError(dir.File(""), "not a regular file");
+}
+
+// What a replay of `file` gives: its bytes, and the recorded time of each byte.
+struct Replayed
+{
+  std::string bytes;
+  std::vector<double> times;
+  std::size_t unlisted = 0;
+};
+
+Replayed ReplayWhole(const std::string& file)
+{
+  ReplayTransport replay(file);
+  EXPECT_TRUE(replay.HasTimestamps()) << file;
+  Replayed out;
+  out.unlisted = replay.UnlistedBytes();
+  std::uint8_t buffer[4096];
+  while (!replay.AtEnd())
+  {
+    const std::size_t n = replay.Read(buffer, sizeof buffer, std::chrono::milliseconds(10));
+    out.bytes.append(reinterpret_cast<const char*>(buffer), n);
+    out.times.insert(out.times.end(), n, *replay.RecordedTime());
+  }
+  return out;
+}
+
+std::size_t DecodedRecords(const std::string& bytes)
+{
+  FastrakParser parser;
+  return parser.Feed(std::vector<std::uint8_t>(bytes.begin(), bytes.end())).size();
+}
+
+// Issue 25: StreamRecorder writes a chunk's bytes, then its line: a crash leaves the file cut
+// at any byte of the chunk being written, its line unwritten or cut at any byte of its own.
+// Every such recording replays: the listed chunks at their times, the rest at the last time.
+TEST(Replay, ARecordingCutAtAnyByteOfItsLastChunkReplaysWhatItHolds)
+{
+  ScratchDir dir;
+  const std::string whole = dir.File("whole.fastrak");
+  GenerateFixture(whole);
+  const std::string data = ReadText(whole);
+  std::vector<std::string> lines;
+  {
+    std::istringstream sidecar(ReadText(whole + ".timestamps"));
+    for (std::string line; std::getline(sidecar, line);)
+    {
+      lines.push_back(line + "\n");
+    }
+  }
+  ASSERT_GE(lines.size(), 3u); // the header and at least two chunks
+  const std::string last = lines.back();
+  std::size_t lastOffset = 0, lastSize = 0;
+  std::istringstream(last) >> lastOffset >> lastSize;
+  ASSERT_EQ(lastOffset + lastSize, data.size());
+  std::string listedBefore;
+  for (std::size_t i = 0; i + 1 < lines.size(); ++i)
+  {
+    listedBefore += lines[i];
+  }
+  const Replayed reference = ReplayWhole(whole);
+  ASSERT_EQ(reference.bytes, data);
+  EXPECT_EQ(reference.unlisted, 0u);
+  const double timeBefore = reference.times[lastOffset - 1];
+
+  const std::string cut = dir.File("cut.fastrak");
+  const auto expectPrefix = [&](std::size_t size, std::size_t unlisted, const std::string& what)
+  {
+    const Replayed replayed = ReplayWhole(cut);
+    EXPECT_TRUE(replayed.bytes == data.substr(0, size)) << what;
+    EXPECT_EQ(replayed.unlisted, unlisted) << what;
+    ASSERT_EQ(replayed.times.size(), size) << what;
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      // Listed bytes at their recorded time; unlisted ones at the last listed time.
+      const double expected = i < size - unlisted ? reference.times[i] : timeBefore;
+      ASSERT_EQ(replayed.times[i], expected) << what << ", byte " << i;
+    }
+    EXPECT_EQ(DecodedRecords(replayed.bytes), size / FastrakParser::BinaryRecordSize) << what;
+  };
+  // Killed while the last chunk's bytes were written, or before its line.
+  for (std::size_t size = lastOffset; size <= data.size(); ++size)
+  {
+    WriteText(cut, data.substr(0, size));
+    WriteText(cut + ".timestamps", listedBefore);
+    expectPrefix(size, size - lastOffset, "file cut at byte " + std::to_string(size));
+  }
+  // Killed while the last line was written: a line without its newline is not read.
+  for (std::size_t length = 0; length < last.size(); ++length)
+  {
+    WriteText(cut, data);
+    WriteText(cut + ".timestamps", listedBefore + last.substr(0, length));
+    expectPrefix(data.size(), lastSize, "last line cut at byte " + std::to_string(length));
+  }
+  WriteText(cut + ".timestamps", listedBefore + last);
+  expectPrefix(data.size(), 0, "whole");
+  // A line listing bytes the file does not hold is not what the recorder writes: refused.
+  WriteText(cut, data.substr(0, data.size() - 1));
+  EXPECT_THROW(ReplayTransport{ cut }, RecordingError);
 }
 
 // Issue 13: a forged SIZE made offset + size wrap around 64 bits and pass the range check

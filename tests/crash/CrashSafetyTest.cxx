@@ -9,6 +9,7 @@
 #include "BenderSession.h"
 #include "HostileMeshes.h"
 #include "ProcessRunner.h"
+#include "ReplayTransport.h"
 #include "SessionAutosave.h"
 #include "WarpPlanIO.h"
 
@@ -17,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -268,6 +270,17 @@ TEST_F(CrashSafety, RecordingKeepsEveryListedChunk)
   EXPECT_EQ(listed, appended);
   // The chunk being written when the process died is on disk whole, unlisted.
   EXPECT_EQ(data.size(), offset + 100 + listed);
+  // And the recording replays as it is: every byte, the unlisted chunk last.
+  bender::ReplayTransport replay(file);
+  EXPECT_EQ(replay.UnlistedBytes(), 100 + listed);
+  std::string replayed;
+  std::uint8_t buffer[256];
+  while (!replay.AtEnd())
+  {
+    const std::size_t n = replay.Read(buffer, sizeof buffer, std::chrono::milliseconds(0));
+    replayed.append(reinterpret_cast<const char*>(buffer), n);
+  }
+  EXPECT_TRUE(replayed == data);
 }
 
 // ---------------------------------------------------------------------------------------
