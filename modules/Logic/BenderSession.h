@@ -107,6 +107,8 @@ public:
   /// after): the one before the warps, after the last Prepare for CFD step if any (a new start:
   /// other points and cells).
   vtkPolyData* GetOriginalSurface() const { return this->History.Original(); }
+  /// The surface before any step of the plan (what GetPlan() applies to).
+  vtkPolyData* GetFirstSurface() const { return this->History.First(); }
   /// The part of the original surface that the surface shown may differ from (what a ghost of
   /// the original needs to draw: elsewhere the two coincide): the original's triangles with a
   /// point that the committed surface moved, or that the current grab binds (a drag can move

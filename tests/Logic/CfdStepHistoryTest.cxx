@@ -27,15 +27,6 @@ bool SameSurface(vtkPolyData* a, vtkPolyData* b)
     a->GetNumberOfPoints() == b->GetNumberOfPoints() && test::MaxDifference(a, b) == 0.0;
 }
 
-WarpSpec Swing(double from, double to, double degrees, double radius)
-{
-  WarpSpec warp;
-  warp.initial = test::StraightRibbon(from, to);
-  warp.final = test::Bent(warp.initial, degrees);
-  warp.radius = radius;
-  return warp;
-}
-
 /// The open tube's ends as they are (no clip: no centerlines needed), named and extended.
 CfdStep TubeStep()
 {
@@ -54,7 +45,7 @@ TEST(CfdStepHistory, PrepareIsAnUndoStepSavedAndReplayed)
   const vtkSmartPointer<vtkPolyData> tube = test::MakeTube(-20, 20, 5, 41, 32);
   BenderSession session;
   ASSERT_TRUE(session.SetSurface(tube, "tube"));
-  ASSERT_TRUE(session.ApplyWarp(Swing(-15, 0, 15, 8)));
+  ASSERT_TRUE(session.ApplyWarp(test::Swing(-15, 0, 15, 8)));
   const vtkSmartPointer<vtkPolyData> bent = DeepCopyOf(session.GetSurface());
 
   const CfdStep step = TubeStep();
@@ -70,7 +61,7 @@ TEST(CfdStepHistory, PrepareIsAnUndoStepSavedAndReplayed)
   EXPECT_EQ(check.flippedTriangles, 0);
 
   // A warp of the prepared surface, after the step.
-  ASSERT_TRUE(session.ApplyWarp(Swing(0, 15, 10, 8)));
+  ASSERT_TRUE(session.ApplyWarp(test::Swing(0, 15, 10, 8)));
   const WarpPlan plan = session.GetPlan();
   ASSERT_EQ(plan.warps.size(), 2u);
   ASSERT_EQ(plan.cfdSteps.size(), 1u);

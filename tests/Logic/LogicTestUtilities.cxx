@@ -1,5 +1,8 @@
 #include "LogicTestUtilities.h"
 
+#include "ApplyPlan.h"
+#include "BenderSession.h"
+#include "PolyDataCopy.h"
 #include "Ribbon.h"
 
 #include <vtkCellArray.h>
@@ -69,6 +72,37 @@ RibbonSpec Bent(const RibbonSpec& straight, double degrees)
   bent.end.position = straight.start.position + Rotate({ 0, 0, 1 }, a, arm);
   bent.end.tangent = Rotate({ 0, 0, 1 }, a, straight.end.tangent);
   return bent;
+}
+
+WarpSpec Swing(double from, double to, double degrees, double radius)
+{
+  WarpSpec warp;
+  warp.initial = StraightRibbon(from, to);
+  warp.final = Bent(warp.initial, degrees);
+  warp.radius = radius;
+  return warp;
+}
+
+FlowStudyInput PreparedThenBentTube(double degrees)
+{
+  const vtkSmartPointer<vtkPolyData> tube = MakeTube(-20, 20, 5, 41, 32);
+  BenderSession session;
+  CfdStep step;
+  step.clip = false;
+  step.inletExtension = 2.0;
+  step.outletExtension = 1.0;
+  FlowStudyInput input;
+  if (!session.SetSurface(tube, "tube") ||
+    !session.CommitCfdStep(step, ApplyCfdStep(tube, step).surface, false) ||
+    !session.ApplyWarp(Swing(0, 15, degrees, 8)))
+  {
+    return input; // no shapes: the test fails on them
+  }
+  input.first = tube;
+  input.plan = session.GetPlan();
+  input.current = DeepCopyOf(session.GetSurface());
+  input.name = "tube";
+  return input;
 }
 
 double MaxDifference(vtkPolyData* a, vtkPolyData* b)

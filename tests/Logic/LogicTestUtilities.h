@@ -1,6 +1,7 @@
 #ifndef bender_LogicTestUtilities_h
 #define bender_LogicTestUtilities_h
 
+#include "FlowStudy.h"
 #include "WarpPlan.h"
 
 #include <vtkSmartPointer.h>
@@ -27,6 +28,14 @@ RibbonSpec StraightRibbon(double a, double b);
 
 /// The ribbon with its end swung by `degrees` about +z around the start, tangent following.
 RibbonSpec Bent(const RibbonSpec& straight, double degrees);
+
+/// The warp of StraightRibbon(from, to) swung by `degrees` (Bent), with radius R.
+WarpSpec Swing(double from, double to, double degrees, double radius);
+
+/// MakeTube(-20, 20, 5, 41, 32) (LPS mm) prepared for CFD as it is (no clip: its open ends
+/// capped, inlet and outlet, short extensions), then bent by Swing(0, 15, degrees, 8), as a
+/// session holds it: the flow study's input (name "tube").
+FlowStudyInput PreparedThenBentTube(double degrees);
 
 /// Largest coordinate difference between two surfaces of the same points; infinity when the
 /// point counts differ.

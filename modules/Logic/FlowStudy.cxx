@@ -1,0 +1,224 @@
+#include "FlowStudy.h"
+
+#include "ApplyPlan.h"
+#include "BenderErrors.h"
+#include "CfdPatches.h"
+#include "FlowCaseCache.h"
+#include "FlowStreamlines.h"
+#include "MeshIO.h"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace bender
+{
+
+namespace
+{
+/// The names of the ends (inlet and outlets) of a patch table, sorted.
+std::vector<std::string> EndNames(const std::vector<PatchLabel>& patches)
+{
+  std::vector<std::string> names;
+  for (const PatchLabel& p : patches)
+  {
+    if (IsEndPatch(p.type))
+    {
+      names.push_back(p.name);
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string Joined(const std::vector<std::string>& names)
+{
+  std::string text;
+  for (const std::string& n : names)
+  {
+    text += (text.empty() ? "" : ", ") + n;
+  }
+  return text.empty() ? "none" : text;
+}
+
+/// The surface's patch table, refused when it has fewer than two ends.
+LabelledSurface Labelled(vtkPolyData* surface, const std::string& what)
+{
+  LabelledSurface labelled;
+  if (surface && HasPatchLabels(surface))
+  {
+    labelled = ReadLabelledSurface(surface);
+  }
+  if (EndNames(labelled.patches).size() < 2)
+  {
+    throw InputError(what + " is not prepared for CFD (no labelled inlet and outlets): press " +
+      "Prepare for CFD (Export panel) first");
+  }
+  return labelled;
+}
+
+/// The plan's Prepare for CFD steps without its warps, all before the first (none) warp.
+WarpPlan PrepareStepsOnly(const WarpPlan& plan)
+{
+  WarpPlan steps;
+  steps.units = plan.units;
+  steps.cfdSteps = plan.cfdSteps;
+  for (CfdStep& step : steps.cfdSteps)
+  {
+    step.afterWarps = 0;
+  }
+  return steps;
+}
+
+/// Reports every iteration of a case's solverInfo (a case found solved: its plot at once).
+void ReplayIterations(const std::string& caseDirectory,
+  const std::function<void(const CfdIteration&)>& onIteration)
+{
+  if (!onIteration)
+  {
+    return;
+  }
+  std::vector<CfdIteration> rows;
+  CfdResidualMonitor monitor(
+    caseDirectory, [&rows](const CfdIteration& it) { rows.push_back(it); });
+  monitor.Stop();
+  for (const CfdIteration& row : rows)
+  {
+    onIteration(row);
+  }
+}
+/// The streamlines of a read result; a case they cannot be traced in keeps its results.
+void AddStreamlines(FlowShapeResult& result, int seeds)
+{
+  if (seeds <= 0)
+  {
+    return;
+  }
+  try
+  {
+    result.streamlines = FlowStreamlines(result.caseDirectory, result.surface, seeds);
+  }
+  catch (const InputError& e)
+  {
+    result.streamlineProblem = e.what();
+  }
+}
+} // namespace
+
+const char* FlowShapeName(FlowShape shape)
+{
+  return shape == FlowShape::Original ? "original" : "current shape";
+}
+
+LabelledSurface FlowReadySurface(const FlowStudyInput& input,
+  FlowShape shape,
+  const ProgressReporter& progress)
+{
+  const LabelledSurface current = Labelled(input.current, input.name + ": the current shape");
+  if (shape == FlowShape::Current)
+  {
+    return current;
+  }
+  LabelledSurface original;
+  if (input.plan.cfdSteps.empty())
+  {
+    original = Labelled(input.first, input.name + ": the original");
+  }
+  else
+  {
+    ApplyPlanOptions apply;
+    apply.planName = input.name;
+    apply.progress = progress;
+    const ApplyPlanResult made = ApplyPlan(input.first, PrepareStepsOnly(input.plan), apply);
+    const PrepareForCfdResult& last = made.prepared.back();
+    original = LabelledSurface{ last.surface, last.patches };
+  }
+  const std::vector<std::string> want = EndNames(current.patches);
+  const std::vector<std::string> got = EndNames(original.patches);
+  if (want != got)
+  {
+    throw InputError(input.name + ": the original's ends (" + Joined(got) +
+      ") are not the current shape's (" + Joined(want) +
+      "): the bend moved an end the Prepare for CFD step names; prepare for CFD before bending");
+  }
+  return original;
+}
+
+FlowShapeResult ReadFlowShape(const std::string& caseDirectory, FlowShape shape)
+{
+  FlowShapeResult result;
+  result.shape = shape;
+  result.caseDirectory = caseDirectory;
+  result.key = fs::path(caseDirectory).filename().string();
+  result.results = ReadCfdFlowResults(caseDirectory);
+  result.surface =
+    ReadMesh((fs::path(caseDirectory) / kCfdResultsFolder / kCfdSurfaceResults).string());
+  return result;
+}
+
+FlowShapeResult RunFlowShape(const FlowStudyInput& input,
+  FlowShape shape,
+  const FlowStudyOptions& options)
+{
+  const ProgressReporter& progress = options.progress;
+  progress.Report("prepare", 0.0);
+  const LabelledSurface ready = FlowReadySurface(input, shape, progress);
+  progress.ThrowIfCancelled("case");
+  progress.Report("case", 0.0);
+  CfdCaseOptions caseOptions = options.caseOptions;
+  if (caseOptions.sourceName.empty())
+  {
+    caseOptions.sourceName = input.name + " (" + FlowShapeName(shape) + ")";
+  }
+  const CachedFlowCase stored = StoreFlowCase(ready, caseOptions, options.cacheDirectory);
+  if (stored.solved)
+  {
+    ReplayIterations(stored.caseDirectory, options.onIteration);
+    FlowShapeResult result = ReadFlowShape(stored.caseDirectory, shape);
+    result.cached = true;
+    AddStreamlines(result, options.streamlineSeeds);
+    return result;
+  }
+  CfdRunOptions run;
+  run.progress = progress;
+  run.onLine = [&options, &progress](const std::string& line)
+  {
+    const std::string tag = "bender Allrun: ";
+    if (line.compare(0, tag.size(), tag) == 0)
+    {
+      // "bender Allrun: snappyHexMesh -overwrite": the program names the stage.
+      const std::string step = line.substr(tag.size(), line.find(' ', tag.size()) - tag.size());
+      const bool solve = step == "simpleFoam" || step == "mpirun";
+      const bool parallel = step == "decomposePar" || step == "reconstructPar";
+      progress.Report(solve ? "solve" : (parallel ? step : "mesh: " + step), 0.0);
+    }
+    if (options.onLine)
+    {
+      options.onLine(line);
+    }
+  };
+  const double limit = std::max(1, caseOptions.iterations);
+  {
+    CfdResidualMonitor monitor(stored.caseDirectory,
+      [&options, &progress, limit](const CfdIteration& it)
+      {
+        progress.Report("solve", std::min(1.0, it.iteration / limit));
+        if (options.onIteration)
+        {
+          options.onIteration(it);
+        }
+      });
+    RunOpenFoamCase(stored.caseDirectory, run);
+    monitor.Stop();
+  }
+  // RunOpenFoamCase mapped the results (CASE/results) once the solver was done.
+  progress.ThrowIfCancelled("results");
+  progress.Report("results", 0.0);
+  FlowShapeResult result = ReadFlowShape(stored.caseDirectory, shape);
+  AddStreamlines(result, options.streamlineSeeds);
+  progress.Report("results", 1.0);
+  return result;
+}
+
+} // namespace bender

@@ -1,0 +1,100 @@
+// The flow study really run (issue 23, label cfd): a small tube prepared for CFD and bent, its
+// original and current shape solved by OpenFOAM on a coarse mesh with few iterations. The
+// solver's iterations arrive while it runs; the same inputs again are found in the cache (no
+// second solve: the case folder is untouched); a changed plan is a new case.
+
+#include "CfdTestUtilities.h"
+#include "FlowStudy.h"
+#include "LogicTestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <mutex>
+
+using namespace bender;
+namespace fs = std::filesystem;
+
+namespace
+{
+fs::file_time_type Stamp(const std::string& caseDirectory)
+{
+  return fs::last_write_time(fs::path(caseDirectory) / "log.simpleFoam");
+}
+} // namespace
+
+TEST(FlowStudyCfd, AShapeIsSolvedOnceAndAChangedPlanIsANewCase)
+{
+  BENDER_REQUIRE_PROGRAM("simpleFoam");
+  BENDER_REQUIRE_PROGRAM("snappyHexMesh");
+  const std::string cache = test::TemporaryFolder("flow_study_cfd");
+  FlowStudyOptions options;
+  options.cacheDirectory = cache;
+  options.caseOptions.cellSize = 1.6e-3; // coarse: a few thousand cells
+  options.caseOptions.iterations = 25;
+  std::mutex mutex;
+  std::vector<int> iterations;
+  options.onIteration = [&](const CfdIteration& it)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    iterations.push_back(it.iteration);
+  };
+  std::vector<std::string> stages;
+  options.progress.onProgress = [&](const std::string& stage, double)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (stages.empty() || stages.back() != stage)
+    {
+      stages.push_back(stage);
+    }
+  };
+
+  const FlowStudyInput input = test::PreparedThenBentTube(15);
+  const FlowShapeResult current = RunFlowShape(input, FlowShape::Current, options);
+  EXPECT_FALSE(current.cached);
+  ASSERT_TRUE(current.surface);
+  EXPECT_NE(current.surface->GetPointData()->GetArray(kPressureArrayName), nullptr);
+  EXPECT_NE(current.surface->GetPointData()->GetArray(kWallShearStressMagnitudeArrayName), nullptr);
+  EXPECT_GT(current.results.run.iterations, 0);
+  // Streamlines from the inlet, inside the vessel's box.
+  ASSERT_TRUE(current.streamlines) << current.streamlineProblem;
+  EXPECT_GT(current.streamlines->GetNumberOfLines(), 0);
+  double box[6], lines[6];
+  current.surface->GetBounds(box);
+  current.streamlines->GetBounds(lines);
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_GE(lines[2 * k], box[2 * k] - 0.5);
+    EXPECT_LE(lines[2 * k + 1], box[2 * k + 1] + 0.5);
+  }
+  // The solver's iterations, each once, in order, as many as it ran.
+  ASSERT_FALSE(iterations.empty());
+  EXPECT_EQ(static_cast<int>(iterations.size()), current.results.run.iterations);
+  for (std::size_t i = 1; i < iterations.size(); ++i)
+  {
+    EXPECT_GT(iterations[i], iterations[i - 1]);
+  }
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "solve"), stages.end());
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "mesh: snappyHexMesh"), stages.end());
+
+  // The same inputs: found in the cache, the folder untouched, the same numbers, the same plot.
+  const auto stamp = Stamp(current.caseDirectory);
+  iterations.clear();
+  const FlowShapeResult again = RunFlowShape(input, FlowShape::Current, options);
+  EXPECT_TRUE(again.cached);
+  EXPECT_EQ(again.caseDirectory, current.caseDirectory);
+  EXPECT_EQ(Stamp(again.caseDirectory), stamp);
+  EXPECT_EQ(CfdFlowResultsToJson(again.results), CfdFlowResultsToJson(current.results));
+  EXPECT_EQ(static_cast<int>(iterations.size()), current.results.run.iterations);
+
+  // A changed plan (the bend swung further): a new case, solved.
+  const FlowShapeResult changed =
+    RunFlowShape(test::PreparedThenBentTube(25), FlowShape::Current, options);
+  EXPECT_FALSE(changed.cached);
+  EXPECT_NE(changed.key, current.key);
+  EXPECT_EQ(Stamp(current.caseDirectory), stamp);
+}
