@@ -20,6 +20,8 @@
 //   recording       StreamRecorder::Append: a chunk's bytes flushed, its timestamp line not yet
 //   cfd-case        WriteOpenFoamCase: one more file of the new case written in its
 //                   temporary folder (the case is not in place yet)
+//   cfd-results     MapCfdResults: surface.vtp and volume.vtu written in the temporary
+//                   folder of the new CASE/results, flow.json not yet, nothing in place
 
 namespace bender
 {

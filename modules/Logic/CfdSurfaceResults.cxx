@@ -6,6 +6,7 @@
 #include "CfdCase.h"
 #include "CfdCaseFile.h"
 #include "CfdDictionaries.h"
+#include "FaultInjection.h"
 #include "MeshIO.h"
 #include "VtkMessageGuard.h"
 
@@ -300,6 +301,7 @@ void WriteResultsFolder(const fs::path& dir,
     {
       throw Error((target / kCfdVolumeResults).string() + ": cannot be written");
     }
+    FaultPoint("cfd-results");
     std::string problem;
     if (!AtomicWriteText((temp / kCfdFlowJson).string(), CfdFlowResultsToJson(results), problem))
     {

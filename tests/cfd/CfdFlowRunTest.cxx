@@ -92,6 +92,17 @@ bender::CfdCaseResult CfdFlowRun::Written;
 bender::CfdRunResult CfdFlowRun::First;
 std::string CfdFlowRun::RunError;
 
+/// The entries of the case folder whose name holds "results" (results and its temporaries).
+int ResultsEntries(const std::string& caseDirectory)
+{
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(caseDirectory))
+  {
+    entries += e.path().filename().string().find("results") != std::string::npos ? 1 : 0;
+  }
+  return entries;
+}
+
 /// Everything in CASE/results, and the entries beside it (no temporary folder left).
 std::string ResultsState(const std::string& caseDirectory)
 {
@@ -312,12 +323,7 @@ TEST_F(CfdFlowRun, ASolverKilledMidRunKeepsThePreviousResultsAndARerunIsClean)
   ASSERT_TRUE(again.flow.has_value());
   EXPECT_EQ(again.flow->run.iterations, First.flow->run.iterations);
   EXPECT_NEAR(again.flow->wallShearStress.meanPa, First.flow->wallShearStress.meanPa, 1e-6);
-  int entries = 0;
-  for (const auto& e : fs::directory_iterator(Case()))
-  {
-    entries += e.path().filename().string().find("results") != std::string::npos ? 1 : 0;
-  }
-  EXPECT_EQ(entries, 1);
+  EXPECT_EQ(ResultsEntries(Case()), 1);
 }
 
 TEST_F(CfdFlowRun, CommandLineCarriesTheFlowResults)
@@ -335,6 +341,16 @@ TEST_F(CfdFlowRun, CommandLineCarriesTheFlowResults)
   EXPECT_NE(missing.find("OpenFOAM is not installed"), std::string::npos) << missing;
   EXPECT_EQ(std::count(missing.begin(), missing.end(), '\n'), 1) << missing;
   EXPECT_FALSE(fs::exists(folder.Path() + "/case/results"));
+  // Killed while writing the results (BENDER_FAULT_AT, FaultInjection.h): no results folder,
+  // only the temporary one beside it, which the next mapping clears.
+  const std::string killed =
+    bender::test::RunIn(folder.Path(), "BENDER_FAULT_AT=cfd-results " + cli + " --json", status);
+  EXPECT_EQ(status, 128 + 9) << killed; // the shell reports the SIGKILL
+  EXPECT_FALSE(fs::exists(folder.Path() + "/case/results"));
+  EXPECT_EQ(ResultsEntries(folder.Path() + "/case"), 1) << "the temporary results folder";
+  EXPECT_NO_THROW(bender::MapCfdResults(folder.Path() + "/case"));
+  EXPECT_EQ(ResultsEntries(folder.Path() + "/case"), 1);
+  EXPECT_TRUE(fs::exists(folder.Path() + "/case/results/flow.json"));
   // --json: the whole of flow.json as "flow".
   const std::string json =
     bender::test::RunIn(folder.Path(), cli + " --force --json 2>/dev/null", status);
