@@ -5,6 +5,7 @@
 #include "CliParsing.h"
 
 #include "BenderErrors.h"
+#include "CfdBoundaryConditions.h"
 #include "CfdCase.h"
 #include "MeshIO.h"
 
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -20,10 +22,12 @@ const char* const Details =
   "Writes a complete steady laminar OpenFOAM case (v1912 or later) of a closed vessel surface "
   "whose ends are labelled (bender-cli clip, or export --cap to .vtp): the surface in metres as "
   "one named solid per patch, blockMesh's background box, surfaceFeatureExtract, snappyHexMesh "
-  "with each patch a named region and a point inside the lumen, simpleFoam with the inlet's "
-  "velocity or flow rate normal to it, outlets at zero pressure, no-slip walls, function "
-  "objects for the flow and mean pressure of every end, decomposeParDict and an Allrun. The "
-  "folder is written whole or not at all.\n"
+  "with each patch a named region, a point inside the lumen and prism layers on the wall, "
+  "simpleFoam with the inlet's flow rate (the same flow for compared shapes) as a developed "
+  "Poiseuille profile on the inlet's shape (or a plug), the outlets at zero pressure, a "
+  "prescribed split, Murray's law or resistances, no-slip walls, function objects for the flow "
+  "and mean pressure of every end, decomposeParDict and an Allrun. The folder is written whole "
+  "or not at all.\n"
   "\n"
   "SURFACE: .vtp/.vtk with the labels CellEntityIds + PatchNames/PatchTypes (or the legacy "
   "PatchId of export --cap), in millimetres (Bender's unit).\n"
@@ -37,12 +41,27 @@ struct CfdCaseArguments
 {
   std::string input;
   bender::CfdCaseOptions options;
+  std::string inletProfile = "poiseuille", outlets;
+  std::vector<std::string> split, resistance;
   bool run = false, json = false;
 };
 
 int RunCfdCase(CfdCaseArguments a)
 {
   bender::CfdCaseOptions& options = a.options;
+  options.inletProfile =
+    a.inletProfile == "plug" ? bender::CfdInletProfile::Plug : bender::CfdInletProfile::Poiseuille;
+  const std::string outlets = !a.outlets.empty() ? a.outlets
+                                                 : (!a.split.empty()           ? "split"
+                                                       : !a.resistance.empty() ? "resistance"
+                                                                               : "");
+  options.outlets = outlets == "split" ? bender::CfdOutletCondition::Split
+    : outlets == "murray"              ? bender::CfdOutletCondition::Murray
+    : outlets == "resistance"          ? bender::CfdOutletCondition::Resistance
+                                       : bender::CfdOutletCondition::ZeroPressure;
+  options.outletValues = !a.split.empty()
+    ? bender::ParseCfdOutletValues("--split", a.split)
+    : bender::ParseCfdOutletValues("--resistance", a.resistance);
   if (a.run)
   {
     // Before writing anything: a clear error when OpenFOAM is missing.
@@ -106,17 +125,50 @@ void bender::AddCfdCaseCommand(CLI::App& cli)
   cfd->add_flag("--force", options.force, "replace a non-empty CASE_DIR");
   cfd->add_option("--inlet", options.inlet, "the inlet patch (default: the end labelled inlet)")
     ->type_name("NAME");
-  CLI::Option* flowRate = cfd
-                            ->add_option("--flow-rate",
-                              options.flowRate,
-                              "inlet volumetric flow rate, m^3/s (flowRateInletVelocity)")
-                            ->type_name("Q")
-                            ->check(NumberAbove(0));
-  cfd->add_option("--velocity", options.velocity, "uniform inlet velocity normal to the inlet, m/s")
+  CLI::Option* flowRate =
+    cfd
+      ->add_option("--flow-rate",
+        options.flowRate,
+        "inlet volumetric flow rate, m^3/s (1e-5 = 600 ml/min): the same flow whatever the "
+        "inlet's area")
+      ->type_name("Q")
+      ->check(NumberAbove(0))
+      ->capture_default_str();
+  cfd
+    ->add_option("--velocity",
+      options.velocity,
+      "the inlet's mean velocity instead, m/s (the flow is V x the inlet's area)")
     ->type_name("V")
     ->check(NumberAbove(0))
-    ->capture_default_str()
     ->excludes(flowRate);
+  OneOf(cfd->add_option("--inlet-profile",
+          a->inletProfile,
+          "developed (Poiseuille on the inlet's shape, timeVaryingMappedFixedValue) or plug"),
+    { "poiseuille", "plug" })
+    ->capture_default_str();
+  OneOf(cfd->add_option("--outlets",
+          a->outlets,
+          "zero-pressure (default: p = 0 at each), split (--split), murray (Q ~ r^3 from the "
+          "outlets' radii) or resistance (--resistance, p = R Q)"),
+    { "zero-pressure", "split", "murray", "resistance" });
+  CLI::Option* split = cfd
+                         ->add_option("--split",
+                           a->split,
+                           "each outlet's share of the inlet's flow, percent, summing to 100 "
+                           "(outlet_1=60,outlet_2=40)")
+                         ->type_name("NAME=PERCENT")
+                         ->delimiter(',');
+  cfd
+    ->add_option("--resistance",
+      a->resistance,
+      "each outlet's resistance R, Pa s/m^3: p = R Q (a steady Windkessel)")
+    ->type_name("NAME=R")
+    ->delimiter(',')
+    ->excludes(split);
+  cfd->add_option("--layers", options.layers, "prism layers on the wall (0: none)")
+    ->type_name("N")
+    ->check(IntegerIn(0, 10))
+    ->capture_default_str();
   cfd
     ->add_option("--cell-size",
       options.cellSize,

@@ -4,8 +4,10 @@
 #include "AtomicFileRecovery.h"
 #include "BenderErrors.h"
 #include "BenderMeshCheck.h"
+#include "CfdBoundaryConditions.h"
 #include "CfdCaseFile.h"
 #include "CfdDictionaries.h"
+#include "CfdMeshing.h"
 #include "CfdPatches.h"
 #include "ExportSurface.h"
 #include "FaultInjection.h"
@@ -14,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -51,17 +54,39 @@ nlohmann::ordered_json CaseJson(const CfdCaseResult& r, const CfdCaseOptions& op
   // The surface as labelled, LPS mm: MapCfdResults maps the results onto it.
   j["labelledSurface"] = "constant/triSurface/" + options.surfaceName + ".vtp";
   j["inlet"] = r.inlet;
-  if (options.flowRate > 0.0)
+  if (options.velocity > 0.0)
   {
-    j["flowRate"] = options.flowRate;
+    j["velocity"] = options.velocity;
   }
   else
   {
-    j["velocity"] = options.velocity;
+    j["flowRate"] = options.flowRate;
   }
   j["inletFlowRate"] = r.inletFlowRate;
   j["inletVelocity"] = r.inletVelocity;
   j["reynolds"] = r.reynolds;
+  j["inletProfile"] = CfdInletProfileName(r.inletProfile);
+  j["inletPeakToMean"] = r.inletPeakToMean;
+  j["outletCondition"] = CfdOutletConditionName(r.outletCondition);
+  nlohmann::ordered_json outlets = nlohmann::ordered_json::array();
+  for (const CfdOutletSetting& o : r.outlets)
+  {
+    nlohmann::ordered_json outlet = { { "name", o.name },
+      { "pressureReference", o.pressureReference } };
+    if (r.outletCondition == CfdOutletCondition::Split ||
+      r.outletCondition == CfdOutletCondition::Murray)
+    {
+      outlet["percentOfInlet"] = o.percent;
+      outlet["flowRate_m3_per_s"] = o.flowRate;
+    }
+    if (r.outletCondition == CfdOutletCondition::Resistance)
+    {
+      outlet["resistance_Pa_s_per_m3"] = o.resistance;
+    }
+    outlets.push_back(outlet);
+  }
+  j["outlets"] = outlets;
+  j["layers"] = r.layers;
   j["viscosity"] = options.viscosity;
   j["density"] = options.density;
   j["iterations"] = options.iterations;
@@ -72,6 +97,31 @@ nlohmann::ordered_json CaseJson(const CfdCaseResult& r, const CfdCaseOptions& op
   j["insidePoint"] = r.insidePoint;
   j["patches"] = CfdPatchesJson(r.patches);
   return j;
+}
+
+/// Refuses a vessel whose size no vessel has, naming the likely unit mistake: the largest end
+/// narrower than 50 um (a surface in metres read as millimetres: 1000 x too small) or wider
+/// than 300 mm, or the vessel longer than 3 m (micrometres: 1000 x too large).
+void CheckScale(vtkPolyData* surface, double largestEnd, const std::string& name)
+{
+  double bounds[6];
+  surface->GetBounds(bounds);
+  const double extent =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const std::string measured = ": its widest end is " + CfdShort(1e3 * largestEnd) +
+    " mm across and it spans " + CfdShort(extent) + " mm";
+  if (largestEnd < 50e-6)
+  {
+    throw InputError(name + measured +
+      ": the vessel looks 1000x too small; was it written in metres? (Bender reads "
+      "millimetres: scale it by 1000)");
+  }
+  if (largestEnd > 0.3 || extent > 3000.0)
+  {
+    throw InputError(name + measured +
+      ": the vessel looks 1000x too large; was it written in micrometres? (Bender reads "
+      "millimetres: scale it by 0.001)");
+  }
 }
 
 void CheckOption(bool ok, const std::string& what)
@@ -89,11 +139,14 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
 {
   const std::string name = SurfaceName(options);
   CheckOption(!options.caseDirectory.empty(), "give the case folder");
-  CheckOption(std::isfinite(options.flowRate) && options.flowRate >= 0.0 && options.flowRate < 1.0,
-    "--flow-rate " + CfdNumber(options.flowRate) + ": give a flow rate in m^3/s, > 0 and < 1");
-  CheckOption(options.flowRate > 0.0 ||
-      (std::isfinite(options.velocity) && options.velocity > 0.0 && options.velocity < 100.0),
+  CheckOption(
+    std::isfinite(options.velocity) && options.velocity >= 0.0 && options.velocity < 100.0,
     "--velocity " + CfdNumber(options.velocity) + ": give a velocity in m/s, > 0 and < 100");
+  CheckOption(options.velocity > 0.0 ||
+      (std::isfinite(options.flowRate) && options.flowRate > 0.0 && options.flowRate < 1.0),
+    "--flow-rate " + CfdNumber(options.flowRate) + ": give a flow rate in m^3/s, > 0 and < 1");
+  CheckOption(options.layers >= 0 && options.layers <= 10,
+    "--layers " + std::to_string(options.layers) + ": give 0 to 10");
   CheckOption(std::isfinite(options.cellSize) && options.cellSize >= 0.0 && options.cellSize < 1.0,
     "--cell-size " + CfdNumber(options.cellSize) + ": give a cell size in m, > 0 and < 1");
   CheckOption(
@@ -232,14 +285,16 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
   }
 
   // Sizes (metres).
-  double smallest = 0.0;
+  double smallest = 0.0, largest = 0.0;
   for (const std::size_t i : ends)
   {
     if (smallest == 0.0 || patches[i].diameter < smallest)
     {
       smallest = patches[i].diameter;
     }
+    largest = std::max(largest, patches[i].diameter);
   }
+  CheckScale(surface, largest, name);
   CfdCaseResult result;
   result.caseDirectory = options.caseDirectory;
   result.inlet = patches[inlet].name;
@@ -275,9 +330,30 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
   result.insidePoint = InsidePoint(measured, result.cellSize, name);
   result.patches = patches;
   const CfdPatch& in = patches[inlet];
-  result.inletFlowRate = options.flowRate > 0.0 ? options.flowRate : options.velocity * in.area;
+  result.inletFlowRate = options.velocity > 0.0 ? options.velocity * in.area : options.flowRate;
   result.inletVelocity = in.area > 0.0 ? result.inletFlowRate / in.area : 0.0;
   result.reynolds = result.inletVelocity * in.diameter / options.viscosity;
+  result.outletCondition = options.outlets;
+  result.outlets = CfdOutletSettings(patches, options, result.inletFlowRate);
+  result.layers = options.layers;
+  result.inletProfile = options.inletProfile;
+  CfdInletProfileData profile;
+  if (options.inletProfile == CfdInletProfile::Poiseuille)
+  {
+    int inletId = 0;
+    for (const PatchLabel& l : labelled.patches)
+    {
+      inletId = l.name == in.name ? l.id : inletId;
+    }
+    profile = PoiseuilleInletProfile(labelled.surface,
+      CellPatchIds(labelled.surface),
+      inletId,
+      in.normal,
+      result.inletFlowRate,
+      result.cellSize,
+      name);
+    result.inletPeakToMean = profile.peakToMean;
+  }
 
   // Everything into a temporary sibling, put in place in one step when complete
   // (AtomicFileRecovery.h): a crash leaves the previous case or none, never half of one.
@@ -309,11 +385,12 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     const std::string vtp = options.surfaceName + ".vtp";
     WriteMesh(labelled.surface, (temp / "constant" / "triSurface" / vtp).string());
     result.written.push_back("constant/triSurface/" + vtp);
-    const std::vector<std::pair<std::string, std::string>> files = {
+    std::vector<std::pair<std::string, std::string>> files = {
       { "system/blockMeshDict", BlockMeshDict(origin, hb, result.backgroundCells) },
       { "system/surfaceFeatureExtractDict", SurfaceFeatureExtractDict(stl) },
       { "system/snappyHexMeshDict",
-        SnappyHexMeshDict(options.surfaceName, patches, result.insidePoint, result.cellSize) },
+        SnappyHexMeshDict(
+          options.surfaceName, patches, result.insidePoint, result.cellSize, options.layers) },
       { "system/controlDict", ControlDict(patches, options.iterations) },
       { "system/fvSchemes", FvSchemes() },
       { "system/fvSolution", FvSolution() },
@@ -323,11 +400,25 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
           { bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] }) },
       { "constant/transportProperties", TransportProperties(options.viscosity) },
       { "constant/turbulenceProperties", TurbulenceProperties() },
-      { "0/U", VelocityField(patches, options) },
-      { "0/p", PressureField(patches) },
+      { "0/U", VelocityField(result, options) },
+      { "0/p", PressureField(result) },
       { "Allrun", Allrun(options.processors) },
-      { kCfdCaseJson, CaseJson(result, options).dump(2) + "\n" },
     };
+    if (options.inletProfile == CfdInletProfile::Poiseuille)
+    {
+      const std::string data = "constant/boundaryData/" + in.name + "/";
+      files.emplace_back(data + "points", BoundaryDataPoints(profile));
+      files.emplace_back(data + "0/U", BoundaryDataVelocity(profile));
+    }
+    for (const CfdOutletSetting& o : result.outlets)
+    {
+      if (o.resistance > 0.0)
+      {
+        files.emplace_back("constant/resistance/" + o.name,
+          ResistanceCurve(o, options.density, result.inletFlowRate));
+      }
+    }
+    files.emplace_back(kCfdCaseJson, CaseJson(result, options).dump(2) + "\n");
     for (const auto& [path, text] : files)
     {
       WriteText(temp / path, text);

@@ -26,6 +26,32 @@ class vtkPolyData;
 namespace bender
 {
 
+/// The inlet's velocity profile: developed (Poiseuille on the inlet's shape) or uniform.
+enum class CfdInletProfile
+{
+  Poiseuille,
+  Plug
+};
+
+/// What holds the outlets: p = 0 at each (the split then follows from the geometry alone), a
+/// prescribed split of the inlet's flow (given per outlet, or Murray's law Q ~ r^3 from the
+/// outlets' equivalent radii), or a resistance each (steady Windkessel p = R Q).
+enum class CfdOutletCondition
+{
+  ZeroPressure,
+  Split,
+  Murray,
+  Resistance
+};
+
+/// One outlet's given value: a percentage of the inlet's flow (Split) or a resistance in
+/// Pa s/m^3 (Resistance).
+struct CfdOutletValue
+{
+  std::string name;
+  double value = 0.0;
+};
+
 /// Options of WriteOpenFoamCase. Lengths in metres, SI units.
 struct CfdCaseOptions
 {
@@ -37,10 +63,20 @@ struct CfdCaseOptions
   std::string sourceName;
   /// The inlet patch; empty: the one patch of type inlet.
   std::string inlet;
-  /// Volumetric flow rate at the inlet, m^3/s (flowRateInletVelocity); 0: use velocity.
-  double flowRate = 0.0;
-  /// Uniform velocity normal to the inlet, m/s (surfaceNormalFixedValue), when flowRate is 0.
-  double velocity = 0.2;
+  /// Volumetric flow rate at the inlet, m^3/s (1e-5 = 600 ml/min): the same flow whatever
+  /// the inlet's area, so that compared shapes carry the same flow.
+  double flowRate = 1e-5;
+  /// > 0: the inlet's mean velocity instead, m/s (the flow is velocity x the inlet's area).
+  double velocity = 0.0;
+  /// The inlet's profile: Poiseuille (timeVaryingMappedFixedValue, constant/boundaryData) or
+  /// plug (flowRateInletVelocity, or surfaceNormalFixedValue with a velocity).
+  CfdInletProfile inletProfile = CfdInletProfile::Poiseuille;
+  /// The outlets' condition; outletValues gives each outlet's share (Split, percent) or
+  /// resistance (Resistance, Pa s/m^3), every outlet once.
+  CfdOutletCondition outlets = CfdOutletCondition::ZeroPressure;
+  std::vector<CfdOutletValue> outletValues;
+  /// Prism layers on the wall (snappyHexMesh addLayers); 0: none.
+  int layers = 3;
   /// Cell size at the wall, m (the background mesh is twice as coarse, refined once at the
   /// surface); 0: the smallest end's equivalent diameter / 8.
   double cellSize = 0.0;
@@ -72,6 +108,16 @@ struct CfdPatch
   double diameter = 0.0;          ///< equivalent diameter 2 sqrt(area / pi), m
 };
 
+/// How one outlet is held (CfdOutletSettings, CfdBoundaryConditions.h).
+struct CfdOutletSetting
+{
+  std::string name;
+  double percent = 0.0;          ///< Split, Murray: the prescribed share of the inlet's flow
+  double flowRate = 0.0;         ///< Split, Murray: that share, m^3/s
+  double resistance = 0.0;       ///< Resistance: R, Pa s/m^3 (p = R Q)
+  bool pressureReference = true; ///< held at p = 0 (ZeroPressure; the largest share of a split)
+};
+
 /// What WriteOpenFoamCase wrote.
 struct CfdCaseResult
 {
@@ -85,7 +131,12 @@ struct CfdCaseResult
   double inletFlowRate = 0.0;           ///< m^3/s (velocity x inlet area with a velocity)
   double inletVelocity = 0.0;           ///< mean inlet velocity, m/s
   double reynolds = 0.0;                ///< mean inlet velocity x inlet diameter / nu
-  std::vector<std::string> written;     ///< files, relative to the case folder
+  CfdInletProfile inletProfile = CfdInletProfile::Poiseuille;
+  double inletPeakToMean = 1.0; ///< u_max / u_mean of the inlet's profile as written
+  CfdOutletCondition outletCondition = CfdOutletCondition::ZeroPressure;
+  std::vector<CfdOutletSetting> outlets; ///< in patch order
+  int layers = 0;                        ///< prism layers asked for on the wall
+  std::vector<std::string> written;      ///< files, relative to the case folder
 };
 
 /// Writes the case: constant/triSurface/<name>.stl (multi-solid ASCII in metres, one solid per
@@ -117,6 +168,28 @@ struct CfdPatchFlow
   double pressureDrop = 0.0;   ///< inlet pressure - this pressure, Pa
 };
 
+/// The prism layers snappyHexMesh added on one patch (its final layer report).
+struct CfdPatchLayers
+{
+  std::string name;
+  long long faces = 0;           ///< faces of the patch
+  double layers = 0.0;           ///< layers per face, on average
+  double coveragePercent = 0.0;  ///< layers / the layers asked for x 100
+  double thicknessPercent = 0.0; ///< overall thickness / the thickness asked for x 100
+};
+
+/// What the meshers reported (log.snappyHexMesh, log.checkMesh).
+struct CfdMeshReport
+{
+  long long cells = 0;                ///< checkMesh's cell count
+  int layersRequested = 0;            ///< prism layers asked for on the wall (bender-case.json)
+  std::vector<CfdPatchLayers> layers; ///< the patches that were given layers
+  long long facesExtruded = 0;        ///< faces that got layers, of
+  long long facesToExtrude = 0;       ///< the faces of the patches asked to get them
+  bool meshOk = false;                ///< checkMesh said "Mesh OK."
+  std::string failedChecks;           ///< checkMesh's failed checks ("***" lines), "; "-joined
+};
+
 /// What a run gave (read from postProcessing).
 struct CfdRunResult
 {
@@ -130,6 +203,8 @@ struct CfdRunResult
   /// The results mapped onto the surface and written to CASE/results (MapCfdResults), after
   /// a run of the solver by RunOpenFoamCase; empty from ReadCfdResults.
   std::optional<CfdFlowResults> flow;
+  /// The mesh's report (ReadCfdMeshReport, CfdMeshing.h) when RunOpenFoamCase meshed it.
+  CfdMeshReport mesh;
 };
 
 /// Options of RunOpenFoamCase.

@@ -1,9 +1,10 @@
 #ifndef bender_CfdDictionaries_h
 #define bender_CfdDictionaries_h
 
-// The text of every file of an OpenFOAM case written by WriteOpenFoamCase (CfdCase.h): the
-// system/ dictionaries, the constant/ properties, the 0/ fields and the Allrun. SI units,
-// numbers in the classic locale.
+// The text of the files of an OpenFOAM case written by WriteOpenFoamCase (CfdCase.h): the
+// solver's system/ dictionaries, the constant/ properties and the Allrun (the mesh's
+// dictionaries are in CfdMeshing.h, the boundary conditions in CfdBoundaryConditions.h). SI
+// units, numbers in the classic locale.
 
 #include "CfdCase.h"
 
@@ -19,18 +20,13 @@ std::string CfdNumber(double v);
 /// v with `digits` significant digits, classic locale (messages and reports).
 std::string CfdShort(double v, int digits = 3);
 
-/// The background box from `origin` (m), cubes of h, n cells per axis.
-std::string BlockMeshDict(const std::array<double, 3>& origin,
-  double h,
-  const std::array<int, 3>& n);
-/// The feature edges of constant/triSurface/`stl` (the rims of the ends).
-std::string SurfaceFeatureExtractDict(const std::string& stl);
-/// snappyHexMesh on surface `surfaceName` (one region per patch), refined once at the wall
-/// to cellSize (m), the mesh kept on the side of `inside` (m).
-std::string SnappyHexMeshDict(const std::string& surfaceName,
-  const std::vector<CfdPatch>& patches,
-  const std::array<double, 3>& inside,
-  double cellSize);
+/// v as an OpenFOAM vector "(x y z)", CfdNumber's digits.
+std::string CfdVector(const std::array<double, 3>& v);
+/// The FoamFile header of a dictionary or field of class `cls` in `location` ("" for none).
+std::string CfdFoamHeader(const std::string& cls,
+  const std::string& location,
+  const std::string& object);
+
 /// simpleFoam for `iterations`, with the flow and pressure of every end and the residuals
 /// written by function objects.
 std::string ControlDict(const std::vector<CfdPatch>& patches, int iterations);
@@ -43,10 +39,6 @@ std::string DecomposeParDict(int processors,
 /// Newtonian, kinematic viscosity nu (m^2/s).
 std::string TransportProperties(double nu);
 std::string TurbulenceProperties();
-/// 0/U: no slip on the wall, the inlet's flow rate or velocity, inletOutlet at the outlets.
-std::string VelocityField(const std::vector<CfdPatch>& patches, const CfdCaseOptions& options);
-/// 0/p: 0 at the outlets, zero gradient elsewhere.
-std::string PressureField(const std::vector<CfdPatch>& patches);
 /// The Allrun script (mesh, solve; mpirun when processors > 1).
 std::string Allrun(int processors);
 

@@ -1,8 +1,10 @@
 #include "CfdCase.h"
 
 #include "BenderErrors.h"
+#include "CfdBoundaryConditions.h"
 #include "CfdCaseFile.h"
 #include "CfdDictionaries.h"
+#include "CfdMeshing.h"
 #include "CfdPatches.h"
 
 #include <nlohmann/json.hpp>
@@ -291,7 +293,8 @@ std::string CfdToJson(const CfdCaseResult& written, const CfdRunResult* run)
       { "inletFlowRate", run->inletFlowRate },
       { "massImbalance", run->massImbalance },
       { "patches", flows },
-      { "residuals", residuals } };
+      { "residuals", residuals },
+      { "mesh", CfdMeshReportJson(run->mesh) } };
     if (run->flow)
     {
       j["flow"] = nlohmann::ordered_json::parse(CfdFlowResultsToJson(*run->flow));
@@ -321,6 +324,7 @@ std::string FormatCfdCase(const CfdCaseResult& r)
   s << "  mesh: cells of " << CfdShort(r.cellSize * 1e3) << " mm at the wall, background "
     << r.backgroundCells[0] << " x " << r.backgroundCells[1] << " x " << r.backgroundCells[2]
     << " cells of " << CfdShort(r.backgroundCellSize * 1e3) << " mm\n";
+  s << FormatCfdBoundaryConditions(r);
   s << "  run it: " << r.caseDirectory << "/Allrun\n";
   return s.str();
 }
@@ -354,6 +358,10 @@ std::string FormatCfdRun(const CfdRunResult& run)
     }
   }
   s << "  mass imbalance " << CfdShort(100.0 * run.massImbalance, 2) << " % of the inlet flow\n";
+  if (run.mesh.cells > 0)
+  {
+    s << FormatCfdMeshReport(run.mesh);
+  }
   return s.str() + (run.flow ? FormatCfdWallShearStress(*run.flow) : std::string());
 }
 

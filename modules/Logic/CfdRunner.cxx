@@ -2,6 +2,7 @@
 
 #include "BenderErrors.h"
 #include "CfdCaseFile.h"
+#include "CfdMeshing.h"
 
 #include "ProcessRunner.h"
 
@@ -159,9 +160,15 @@ CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptio
   }
   if (options.steps == CfdRunOptions::Steps::Mesh)
   {
-    return CfdRunResult{};
+    CfdRunResult meshed;
+    meshed.mesh = ReadCfdMeshReport(caseDirectory);
+    return meshed;
   }
   CfdRunResult run = ReadCfdResults(caseDirectory);
+  if (options.steps == Steps::All)
+  {
+    run.mesh = ReadCfdMeshReport(caseDirectory);
+  }
   run.flow = MapCfdResults(caseDirectory);
   return run;
 }

@@ -76,6 +76,7 @@ TEST(CfdCase, WritesACompleteCaseInMetres)
   bender::CfdCaseOptions options;
   options.caseDirectory = folder.Path() + "/case";
   options.flowRate = 4e-6;
+  options.inletProfile = bender::CfdInletProfile::Plug;
   options.processors = 4;
   options.iterations = 321;
   options.viscosity = 4e-6;
@@ -231,6 +232,7 @@ TEST(CfdCase, VelocityInletAndNamedInlet)
   bender::CfdCaseOptions options;
   options.caseDirectory = folder.Path() + "/case";
   options.velocity = 0.3;
+  options.inletProfile = bender::CfdInletProfile::Plug;
   options.inlet = "outlet_2";
   const bender::CfdCaseResult r = bender::WriteOpenFoamCase(Aneurysm(), options);
   EXPECT_EQ(r.inlet, "outlet_2");
@@ -344,6 +346,7 @@ TEST(CfdCase, NeverLeavesAHalfWrittenCaseAndReplacesOnlyWithForce)
   bender::test::TemporaryFolder folder("cfd-case");
   bender::CfdCaseOptions options;
   options.caseDirectory = folder.Path() + "/case";
+  options.inletProfile = bender::CfdInletProfile::Plug;
   // An empty folder is used.
   fs::create_directory(options.caseDirectory);
   bender::WriteOpenFoamCase(Aneurysm(), options);
