@@ -246,6 +246,11 @@ CfdRunResult ReadCfdResults(const std::string& caseDirectory);
 /// The result as one JSON object (case, patches, run).
 std::string CfdToJson(const CfdCaseResult& written, const CfdRunResult* run);
 
+/// "converged in N iterations; initial residuals Ux 1e-05 ..." when simpleFoam met the residual
+/// control, else "stopped at N iterations, residuals ... (not converged: the residual control
+/// was not met)".
+std::string CfdRunStatus(const CfdRunResult& run);
+
 /// The result as lines of text for bender-cli.
 std::string FormatCfdCase(const CfdCaseResult& written);
 std::string FormatCfdRun(const CfdRunResult& run);

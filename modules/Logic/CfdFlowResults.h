@@ -55,7 +55,8 @@ struct CfdRunSummary
   bool converged = false;
   /// Initial residuals of the last iteration: {"Ux", 1e-4}, {"p", ...}.
   std::vector<std::pair<std::string, double>> residuals;
-  /// "converged in N iterations" or "stopped at N iterations, residuals Ux 2e-3 ...".
+  /// CfdRunStatus: "converged in N iterations; initial residuals ..." or "stopped at N
+  /// iterations, residuals Ux 2e-3 ... (not converged: ...)".
   std::string status;
 };
 

@@ -329,17 +329,23 @@ std::string FormatCfdCase(const CfdCaseResult& r)
   return s.str();
 }
 
+std::string CfdRunStatus(const CfdRunResult& run)
+{
+  std::string status = (run.converged ? "converged in " : "stopped at ") +
+    std::to_string(run.iterations) + " iterations" +
+    (run.converged ? "; initial residuals" : ", residuals");
+  for (const auto& [field, value] : run.residuals)
+  {
+    status += " " + field + " " + CfdShort(value, 2);
+  }
+  return status + (run.converged ? "" : " (not converged: the residual control was not met)");
+}
+
 std::string FormatCfdRun(const CfdRunResult& run)
 {
   std::ostringstream s;
   s.imbue(std::locale::classic());
-  s << "simpleFoam: " << (run.converged ? "converged in " : "stopped at ") << run.iterations
-    << " iterations" << (run.converged ? "; initial residuals" : ", residuals");
-  for (const auto& [field, value] : run.residuals)
-  {
-    s << " " << field << " " << CfdShort(value, 2);
-  }
-  s << (run.converged ? "\n" : " (not converged: the residual control was not met)\n");
+  s << "simpleFoam: " << CfdRunStatus(run) << "\n";
   for (const auto& f : run.patches)
   {
     if (f.type == PatchType::Inlet)

@@ -319,27 +319,14 @@ void WriteResultsFolder(const fs::path& dir,
   }
 }
 
-CfdRunSummary Summarise(const CfdRunResult& run, const fs::path& dir, int limit)
+CfdRunSummary Summarise(const CfdRunResult& run, int limit)
 {
   CfdRunSummary s;
   s.iterations = run.iterations;
   s.iterationLimit = limit;
   s.residuals = run.residuals;
-  s.converged =
-    ReadTextFile(dir / "log.simpleFoam").find("SIMPLE solution converged in") != std::string::npos;
-  if (s.converged)
-  {
-    s.status = "converged in " + std::to_string(s.iterations) + " iterations";
-  }
-  else
-  {
-    s.status = "stopped at " + std::to_string(s.iterations) + " iterations, residuals";
-    for (const auto& [field, value] : s.residuals)
-    {
-      s.status += " " + field + " " + CfdShort(value, 2);
-    }
-    s.status += " (not converged)";
-  }
+  s.converged = run.converged;
+  s.status = CfdRunStatus(run);
   return s;
 }
 
@@ -525,7 +512,7 @@ CfdFlowResults MapCfdResults(const std::string& caseDirectory)
   CfdFlowResults results;
   results.caseDirectory = caseDirectory;
   results.time = time;
-  results.run = Summarise(run, dir, record.iterationLimit);
+  results.run = Summarise(run, record.iterationLimit);
   results.settings = record.settings;
   results.meshCells = CheckMeshCells(dir);
   if (results.meshCells == 0)
