@@ -29,6 +29,9 @@ void AddCommands(CLI::App& cli)
   AddMeasureCommand(cli);
   AddClipCommand(cli);
   AddCfdCaseCommand(cli);
+#ifdef BENDER_WITH_REPORT
+  AddCompareCommand(cli);
+#endif
   AddFormatsCommand(cli);
   AddTrackerCommand(cli, std::cout, std::cerr);
   AddIgtlSendCommand(cli);

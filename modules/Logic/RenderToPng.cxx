@@ -6,6 +6,7 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
@@ -22,16 +23,20 @@
 namespace bender
 {
 
+namespace
+{
+const std::pair<const char*, RenderView> ViewNames[] = { { "iso", RenderView::Iso },
+  { "front", RenderView::Front },
+  { "back", RenderView::Back },
+  { "left", RenderView::Left },
+  { "right", RenderView::Right },
+  { "top", RenderView::Top },
+  { "bottom", RenderView::Bottom } };
+} // namespace
+
 bool ParseRenderView(const std::string& name, RenderView& view)
 {
-  const std::pair<const char*, RenderView> names[] = { { "iso", RenderView::Iso },
-    { "front", RenderView::Front },
-    { "back", RenderView::Back },
-    { "left", RenderView::Left },
-    { "right", RenderView::Right },
-    { "top", RenderView::Top },
-    { "bottom", RenderView::Bottom } };
-  for (const auto& entry : names)
+  for (const auto& entry : ViewNames)
   {
     if (name == entry.first)
     {
@@ -40,6 +45,18 @@ bool ParseRenderView(const std::string& name, RenderView& view)
     }
   }
   return false;
+}
+
+std::string RenderViewName(RenderView view)
+{
+  for (const auto& entry : ViewNames)
+  {
+    if (view == entry.second)
+    {
+      return entry.first;
+    }
+  }
+  return "iso";
 }
 
 namespace
@@ -62,6 +79,62 @@ vtkSmartPointer<vtkActor> RibbonActor(const RenderRibbon& r)
   return actor;
 }
 } // namespace
+
+void AimCamera(vtkCamera* camera, RenderView view)
+{
+  camera->SetFocalPoint(0, 0, 0);
+  double position[3] = { 1, -1, 0.8 }, up[3] = { 0, 0, 1 };
+  switch (view)
+  {
+    case RenderView::Iso:
+      break;
+    case RenderView::Front:
+      position[0] = 0, position[1] = -1, position[2] = 0;
+      break;
+    case RenderView::Back:
+      position[0] = 0, position[1] = 1, position[2] = 0;
+      break;
+    case RenderView::Left:
+      position[0] = 1, position[1] = 0, position[2] = 0;
+      break;
+    case RenderView::Right:
+      position[0] = -1, position[1] = 0, position[2] = 0;
+      break;
+    case RenderView::Top:
+    case RenderView::Bottom:
+      position[0] = 0, position[1] = 0, position[2] = view == RenderView::Top ? 1 : -1;
+      up[0] = 0, up[1] = -1, up[2] = 0;
+      break;
+  }
+  camera->SetPosition(position);
+  camera->SetViewUp(up);
+}
+
+void WritePng(vtkImageData* image, const std::string& path)
+{
+  std::string writeProblem;
+  const bool written = AtomicWrite(
+    path,
+    [image](const std::string& tempPath, std::string& why)
+    {
+      vtkNew<vtkPNGWriter> writer;
+      writer->SetFileName(tempPath.c_str());
+      writer->SetInputData(image);
+      writer->Write();
+      if (writer->GetErrorCode() != 0)
+      {
+        why = "cannot write the image";
+        return false;
+      }
+      return true;
+    },
+    writeProblem);
+  if (!written)
+  {
+    throw InputError(
+      path + ": " + (writeProblem.empty() ? "cannot write the image" : writeProblem));
+  }
+}
 
 void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options)
 {
@@ -132,33 +205,7 @@ void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options)
     renderer->AddActor(RibbonActor(ribbon));
   }
 
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetFocalPoint(0, 0, 0);
-  double position[3] = { 1, -1, 0.8 }, up[3] = { 0, 0, 1 };
-  switch (options.view)
-  {
-    case RenderView::Iso:
-      break;
-    case RenderView::Front:
-      position[0] = 0, position[1] = -1, position[2] = 0;
-      break;
-    case RenderView::Back:
-      position[0] = 0, position[1] = 1, position[2] = 0;
-      break;
-    case RenderView::Left:
-      position[0] = 1, position[1] = 0, position[2] = 0;
-      break;
-    case RenderView::Right:
-      position[0] = -1, position[1] = 0, position[2] = 0;
-      break;
-    case RenderView::Top:
-    case RenderView::Bottom:
-      position[0] = 0, position[1] = 0, position[2] = options.view == RenderView::Top ? 1 : -1;
-      up[0] = 0, up[1] = -1, up[2] = 0;
-      break;
-  }
-  camera->SetPosition(position);
-  camera->SetViewUp(up);
+  AimCamera(renderer->GetActiveCamera(), options.view);
   renderer->ResetCamera();
 
   vtkNew<vtkRenderWindow> window;
@@ -172,28 +219,7 @@ void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options)
   grab->ReadFrontBufferOff();
   grab->Update();
 
-  std::string writeProblem;
-  const bool written = AtomicWrite(
-    path,
-    [&grab](const std::string& tempPath, std::string& why)
-    {
-      vtkNew<vtkPNGWriter> writer;
-      writer->SetFileName(tempPath.c_str());
-      writer->SetInputConnection(grab->GetOutputPort());
-      writer->Write();
-      if (writer->GetErrorCode() != 0)
-      {
-        why = "cannot write the image";
-        return false;
-      }
-      return true;
-    },
-    writeProblem);
-  if (!written)
-  {
-    throw InputError(
-      path + ": " + (writeProblem.empty() ? "cannot write the image" : writeProblem));
-  }
+  WritePng(grab->GetOutput(), path);
 }
 
 } // namespace bender

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+class vtkCamera;
+class vtkImageData;
 class vtkPolyData;
 
 namespace bender
@@ -27,6 +29,16 @@ enum class RenderView
 
 /// "iso", "front", ... -> the view; false for an unknown name.
 bool ParseRenderView(const std::string& name, RenderView& view);
+/// The view's name ("iso", "front", ...), as ParseRenderView reads it.
+std::string RenderViewName(RenderView view);
+
+/// Points `camera` from the direction of `view` at the origin with its view-up (superior, or
+/// anterior for Top and Bottom); the caller then frames it (vtkRenderer::ResetCamera).
+void AimCamera(vtkCamera* camera, RenderView view);
+
+/// Writes `image` as a PNG at `path` through the atomic write. Throws InputError naming the
+/// path when it cannot be written (nothing is left behind).
+void WritePng(vtkImageData* image, const std::string& path);
 
 /// A ribbon drawn as a strip over the surface.
 struct RenderRibbon
