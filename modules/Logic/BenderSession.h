@@ -245,8 +245,12 @@ public:
   {
     return this->History.CfdStepOf(this->History.Position());
   }
-  /// The surface before the current history step; null at the first.
+  /// The surface before the current history step; null at the first (or let go, see below).
   vtkPolyData* GetPreviousSurface() const { return this->History.Previous(); }
+  /// The bytes the history's surfaces take, and their limit: past it the oldest steps'
+  /// surfaces are let go and cannot be undone (WarpHistory); the plan keeps every step.
+  std::size_t GetHistoryBytes() const { return this->History.MemoryBytes(); }
+  void SetHistoryMemoryLimit(std::size_t bytes) { this->History.SetMemoryLimit(bytes); }
   ///@}
 
   ///@{ Unsaved work

@@ -3,6 +3,7 @@
 #include "GeometryErrors.h"
 #include "Ribbon.h"
 #include "RibbonWarp.h"
+#include "StringUtil.h"
 #include <vtkCellArray.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -449,7 +450,12 @@ bool BenderSession::Undo()
     undone ? std::optional<RibbonSpec>(undone->initial) : std::nullopt;
   if (!this->History.Undo())
   {
-    this->Report(MessageSeverity::Info, "Nothing to undo");
+    this->Report(MessageSeverity::Info,
+      this->History.Position() == 0 ? std::string("Nothing to undo")
+                                    : "Nothing more to undo: the surfaces of the " +
+          CountOf(this->History.Position(), "older step") +
+          " were let go to keep the history within " +
+          std::to_string(this->History.MemoryLimit() >> 20) + " MiB (the plan keeps them)");
     return false;
   }
   ++this->ChangeCount;

@@ -29,6 +29,57 @@ void WarpHistory::Add(Step step, vtkPolyData* result)
   this->Surfaces.push_back(DeepCopyOf(result));
   this->Steps.push_back(std::move(step));
   ++this->Index;
+  this->KeepWithinLimit();
+}
+
+bool WarpHistory::Pinned(std::size_t i) const
+{
+  const auto isCfdStep = [this](std::size_t step)
+  { return step < this->Steps.size() && std::holds_alternative<CfdStep>(this->Steps[step]); };
+  // Surfaces[i] comes before step i and after step i - 1.
+  return i == 0 || i + 1 >= this->Index || isCfdStep(i) || (i > 0 && isCfdStep(i - 1));
+}
+
+std::size_t WarpHistory::MemoryBytes() const
+{
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < this->Surfaces.size(); ++i)
+  {
+    if (this->Surfaces[i])
+    {
+      bytes += std::size_t(this->Surfaces[i]->GetActualMemorySize()) * 1024;
+    }
+  }
+  return bytes;
+}
+
+void WarpHistory::SetMemoryLimit(std::size_t bytes)
+{
+  this->Limit = bytes;
+  this->KeepWithinLimit();
+}
+
+void WarpHistory::KeepWithinLimit()
+{
+  std::size_t bytes = this->MemoryBytes();
+  for (std::size_t i = 0; i < this->Surfaces.size() && bytes > this->Limit; ++i)
+  {
+    if (this->Surfaces[i] && !this->Pinned(i))
+    {
+      bytes -= std::size_t(this->Surfaces[i]->GetActualMemorySize()) * 1024;
+      this->Surfaces[i] = nullptr;
+    }
+  }
+}
+
+std::size_t WarpHistory::UndoableSteps() const
+{
+  std::size_t steps = 0;
+  while (steps < this->Index && this->Surfaces[this->Index - steps - 1])
+  {
+    ++steps;
+  }
+  return steps;
 }
 
 void WarpHistory::Commit(const WarpSpec& warp, vtkPolyData* result)

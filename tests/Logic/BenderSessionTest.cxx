@@ -144,6 +144,26 @@ TEST_F(BenderSessionTest, UndoAndRedoRestoreExactCoordinates)
   EXPECT_EQ(this->Session.GetPlan().warps.size(), 2u);
 }
 
+// Issue 25: past the history's memory limit the oldest steps cannot be undone; the session
+// says why, and the plan keeps every warp.
+TEST_F(BenderSessionTest, UndoPastTheHistoryLimitSaysWhyAndThePlanKeepsEveryWarp)
+{
+  this->Session.SetHistoryMemoryLimit(0);
+  this->Session.SetCommitGuard(false); // the history is tested here, not the bends
+  for (const double degrees : { 20.0, -20.0, 20.0, -20.0 })
+  {
+    this->Bend(degrees);
+  }
+  ASSERT_TRUE(this->Session.Undo());
+  EXPECT_FALSE(this->Session.CanUndo());
+  EXPECT_FALSE(this->Session.Undo());
+  const std::string said = this->Session.GetMessages().back().text;
+  EXPECT_NE(said.find("let go"), std::string::npos) << said;
+  EXPECT_NE(said.find("3 older steps"), std::string::npos) << said;
+  ASSERT_TRUE(this->Session.Redo());
+  EXPECT_EQ(this->Session.GetPlan().warps.size(), 4u);
+}
+
 TEST_F(BenderSessionTest, UndoIsRefusedWhileGrabbed)
 {
   this->Bend(30);

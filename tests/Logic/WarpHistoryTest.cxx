@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace bender;
 
 TEST(WarpHistory, KeepsDeepCopiesAndTruncatesRedo)
@@ -93,4 +95,86 @@ TEST(WarpHistory, APrepareForCfdStepIsAStepOfThePlan)
   ASSERT_TRUE(history.Redo());
   EXPECT_EQ(history.Current()->GetNumberOfPoints(), prepared->GetNumberOfPoints());
   EXPECT_EQ(history.CommittedPlan().cfdSteps.size(), 1u);
+}
+
+// Issue 25: a long session's history stays within its memory limit (the oldest steps' surfaces
+// let go, undo stopping at the oldest kept), while the plan keeps every step and the surfaces
+// the window compares with (the first, and those around a Prepare for CFD step) stay.
+TEST(WarpHistory, MemoryStaysWithinTheLimitOverHundredsOfSteps)
+{
+  auto first = test::MakeTube(0, 10, 1, 21, 16);
+  WarpHistory history;
+  history.Reset(first);
+  const std::size_t one = history.MemoryBytes();
+  ASSERT_GT(one, 0u);
+  const std::size_t limit = 8 * one;
+  history.SetMemoryLimit(limit);
+  // At most the limit, plus what is never let go: the first surface, the current one, the one
+  // before it, and the two around the Prepare for CFD step.
+  const std::size_t bound = limit + 5 * one;
+  CfdStep step;
+  step.names.push_back({ { 1, 2, 3 }, "aorta", true });
+  std::size_t atCap = 0;
+  for (int i = 1; i <= 300; ++i)
+  {
+    auto result = test::MakeTube(0, 10, 1 + 0.001 * i, 21, 16);
+    WarpSpec warp;
+    warp.radius = i;
+    if (i == 40)
+    {
+      history.Commit(step, result);
+    }
+    else
+    {
+      history.Commit(warp, result);
+    }
+    // Undo and redo on the way, as a user does.
+    if (i % 7 == 0)
+    {
+      ASSERT_TRUE(history.Undo());
+      ASSERT_TRUE(history.Redo());
+    }
+    ASSERT_LE(history.MemoryBytes(), bound) << "step " << i;
+    if (i == 100)
+    {
+      atCap = history.MemoryBytes();
+    }
+  }
+  // Past the limit it does not grow.
+  EXPECT_LE(history.MemoryBytes(), atCap);
+  EXPECT_EQ(history.Position(), 300u);
+  const WarpPlan plan = history.CommittedPlan();
+  EXPECT_EQ(plan.warps.size(), 299u);
+  ASSERT_EQ(plan.cfdSteps.size(), 1u);
+  EXPECT_EQ(plan.cfdSteps[0].afterWarps, 39u);
+  ASSERT_NE(history.First(), nullptr);
+  EXPECT_EQ(history.First()->GetNumberOfPoints(), first->GetNumberOfPoints());
+  ASSERT_NE(history.Original(), nullptr);
+
+  // Undo goes back as far as surfaces are kept, each restored exactly, then stops.
+  const std::size_t undoable = history.UndoableSteps();
+  EXPECT_GE(undoable, 2u);
+  EXPECT_LT(undoable, 300u);
+  for (std::size_t k = 0; k < undoable; ++k)
+  {
+    ASSERT_TRUE(history.Undo()) << k;
+    double p[3];
+    history.Current()->GetPoint(1, p);
+    const double radius = 1 + 0.001 * double(history.Position());
+    EXPECT_NEAR(std::hypot(p[1], p[2]), radius, 1e-12);
+  }
+  EXPECT_FALSE(history.CanUndo());
+  EXPECT_FALSE(history.Undo());
+  EXPECT_EQ(history.Position(), 300u - undoable);
+  while (history.Redo())
+  {
+  }
+  EXPECT_EQ(history.Position(), 300u);
+
+  // With no room at all, all that may go goes: one step can still be undone.
+  history.SetMemoryLimit(0);
+  EXPECT_LE(history.MemoryBytes(), 5 * one);
+  EXPECT_EQ(history.UndoableSteps(), 1u);
+  EXPECT_NE(history.Original(), nullptr);
+  EXPECT_EQ(history.CommittedPlan().warps.size(), 299u);
 }
