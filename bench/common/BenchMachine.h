@@ -165,6 +165,33 @@ inline std::string Format(const Spread& s, int decimals = 1)
   return text;
 }
 
+/// The value below which a fraction `p` (0..1) of `values` lie (the nearest rank); 0 for none.
+inline double Percentile(std::vector<double> values, double p)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  const std::size_t i =
+    std::min(values.size() - 1, std::size_t(p * double(values.size() - 1) + 0.5));
+  return values[i];
+}
+
+/// The process's resident set size (VmRSS of /proc/self/status) in MiB; 0 when unknown.
+inline double ResidentMiB()
+{
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+  {
+    if (line.rfind("VmRSS:", 0) == 0)
+    {
+      return std::strtod(line.c_str() + 6, nullptr) / 1024.0;
+    }
+  }
+  return 0.0;
+}
+
 /// Wall-clock milliseconds of `repeats` calls of `run`, one sample per call.
 inline std::vector<double> TimeRunsMs(int repeats, const std::function<void()>& run)
 {

@@ -34,35 +34,12 @@
 namespace
 {
 using Clock = std::chrono::steady_clock;
-
-double ResidentMiB()
-{
-  std::ifstream in("/proc/self/status");
-  for (std::string line; std::getline(in, line);)
-  {
-    if (line.rfind("VmRSS:", 0) == 0)
-    {
-      return std::strtod(line.c_str() + 6, nullptr) / 1024.0;
-    }
-  }
-  return 0.0;
-}
+using bender_bench::Percentile;
+using bender_bench::ResidentMiB;
 
 double Ms(Clock::time_point since)
 {
   return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
-}
-
-double Percentile(std::vector<double> values, double p)
-{
-  if (values.empty())
-  {
-    return 0.0;
-  }
-  std::sort(values.begin(), values.end());
-  const std::size_t i =
-    std::min(values.size() - 1, std::size_t(p * double(values.size() - 1) + 0.5));
-  return values[i];
 }
 
 std::string Figures(const std::vector<double>& ms)

@@ -56,20 +56,9 @@
 namespace
 {
 using Clock = std::chrono::steady_clock;
+using bender_bench::Percentile;
+using bender_bench::ResidentMiB;
 using Bytes = std::vector<std::uint8_t>;
-
-double ResidentMiB()
-{
-  std::ifstream in("/proc/self/status");
-  for (std::string line; std::getline(in, line);)
-  {
-    if (line.rfind("VmRSS:", 0) == 0)
-    {
-      return std::strtod(line.c_str() + 6, nullptr) / 1024.0;
-    }
-  }
-  return 0.0;
-}
 
 // The first three fields of /proc/loadavg: other work on the machine shows in the latency.
 std::string LoadAverage()
@@ -406,18 +395,6 @@ void IgtlSoak(double minutes, double speed)
     "decoder: " + std::to_string(igtl.decoder.crcErrors) + " CRC errors, " +
       std::to_string(igtl.decoder.garbageBytes) + " garbage bytes, at most " +
       std::to_string(igtl.decoder.peakBuffered) + " bytes held");
-}
-
-double Percentile(std::vector<double> values, double p)
-{
-  if (values.empty())
-  {
-    return 0.0;
-  }
-  std::sort(values.begin(), values.end());
-  const std::size_t i =
-    std::min(values.size() - 1, std::size_t(p * double(values.size() - 1) + 0.5));
-  return values[i];
 }
 
 void Latency(int samples)
