@@ -494,6 +494,14 @@ std::string FormatCfdBoundaryConditions(const CfdCaseResult& r)
       }
       break;
   }
+  s << "\n  wall cells across each end (its equivalent diameter / the cell size):";
+  for (const CfdPatch& p : r.patches)
+  {
+    if (IsEndPatch(p.type) && r.cellSize > 0.0)
+    {
+      s << " " << p.name << " " << CfdShort(p.diameter / r.cellSize, 2);
+    }
+  }
   s << "\n  prism layers: ";
   if (r.layers > 0)
   {

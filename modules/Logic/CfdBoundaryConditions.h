@@ -82,8 +82,8 @@ std::string PressureField(const CfdCaseResult& written);
 /// flow and held beyond.
 std::string ResistanceCurve(const CfdOutletSetting& outlet, double density, double inletFlowRate);
 
-/// The inlet's and the outlets' conditions and the layers asked for, as lines of the case's
-/// report.
+/// The inlet's and the outlets' conditions, the wall cells across each end and the layers
+/// asked for, as lines of the case's report.
 std::string FormatCfdBoundaryConditions(const CfdCaseResult& written);
 
 } // namespace bender

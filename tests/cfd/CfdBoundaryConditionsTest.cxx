@@ -315,7 +315,11 @@ TEST(CfdOutlets, MurraysSplitFollowsTheCubeOfTheRadiiAndSumsToTheInletsFlow)
     << p;
   EXPECT_NE(p.find(held.name + "\n    {\n        type            zeroGradient;"), std::string::npos)
     << p;
-  EXPECT_NE(bender::FormatCfdBoundaryConditions(r).find("Murray's law"), std::string::npos);
+  const std::string report = bender::FormatCfdBoundaryConditions(r);
+  EXPECT_NE(report.find("Murray's law"), std::string::npos) << report;
+  // The default cell size puts 8 cells across the smallest end.
+  EXPECT_NE(report.find("wall cells across each end"), std::string::npos) << report;
+  EXPECT_NE(report.find(" " + held.name + " 8\n"), std::string::npos) << report;
 }
 
 TEST(CfdOutlets, APrescribedSplitAndResistancesAndTheirRefusals)
