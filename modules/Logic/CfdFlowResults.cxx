@@ -297,6 +297,7 @@ std::string FormatCfdFlowResults(const CfdFlowResults& r)
     }
   }
   s << "  mass imbalance " << CfdShort(r.massImbalancePercent, 2) << " % of the inlet flow\n";
+  s << "  mesh: " << r.meshCells << " cells\n";
   return s.str() + FormatCfdWallShearStress(r);
 }
 
@@ -310,9 +311,8 @@ std::string FormatCfdWallShearStress(const CfdFlowResults& r)
   s << "  wall area " << CfdShort(w.wallAreaMm2) << " mm^2: " << CfdShort(w.lowAreaMm2)
     << " mm^2 below " << CfdShort(kLowWallShearStressPa) << " Pa, " << CfdShort(w.highAreaMm2)
     << " mm^2 above " << CfdShort(kHighWallShearStressPa) << " Pa\n";
-  s << "  mesh: " << r.meshCells << " cells; results in " << r.caseDirectory << "/"
-    << kCfdResultsFolder << " (" << kCfdSurfaceResults << ", " << kCfdVolumeResults << ", "
-    << kCfdFlowJson << ")\n";
+  s << "  results on the surface in " << r.caseDirectory << "/" << kCfdResultsFolder << " ("
+    << kCfdSurfaceResults << ", " << kCfdVolumeResults << ", " << kCfdFlowJson << ")\n";
   return s.str();
 }
 

@@ -129,8 +129,8 @@ std::string CfdFlowResultsToJson(const CfdFlowResults& results);
 
 /// The figures as lines of text for bender-cli (the run's status, each end, the WSS).
 std::string FormatCfdFlowResults(const CfdFlowResults& results);
-/// The WSS statistics, the mesh and where the results are, as lines of text (the part of
-/// FormatCfdFlowResults that FormatCfdRun adds to the flow split).
+/// The WSS statistics and where the results are, as lines of text (the part of
+/// FormatCfdFlowResults that FormatCfdRun adds to the flow split and the mesh).
 std::string FormatCfdWallShearStress(const CfdFlowResults& results);
 
 /// The WSS statistics of a labelled surface in mm carrying point data
