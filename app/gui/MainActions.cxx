@@ -51,6 +51,8 @@ MainActions::MainActions(QWidget* window)
   this->SavePlan = Make(window, "&Save plan...", QKeySequence::Save, "savePlanAction");
   this->Check = Make(window, "&Check the surface", QKeySequence(), "checkAction");
   this->Export = Make(window, "&Export surface...", QKeySequence("Ctrl+E"), "exportAction");
+  this->RunFlow = Make(
+    window, "Run &flow for the original and the current shape", QKeySequence(), "runFlowAction");
   this->Screenshot = Make(window, "Screens&hot...", QKeySequence("F12"), "screenshotAction");
   this->Quit = Make(window, "&Quit", QKeySequence::Quit, "quitAction");
   this->Undo = Make(window, "&Undo", QKeySequence("Ctrl+Z"), "undoAction");
@@ -104,6 +106,8 @@ MainActions::MainActions(QWidget* window)
   this->Check->setToolTip("Check the surface: watertight, manifold, orientation, degenerate "
                           "and self-intersecting triangles, flips against the original");
   this->Export->setToolTip("Check, then export the surface for CFD (STL, VTP, PLY, OBJ)");
+  this->RunFlow->setToolTip("Solve the flow (OpenFOAM) of the original vessel and of the current "
+                            "shape, prepared for CFD alike, and compare them (Flow panel)");
   this->Screenshot->setToolTip("Save the window as a PNG image");
   this->Quit->setToolTip("Close Bender");
   this->Undo->setToolTip(
@@ -136,6 +140,7 @@ void MainActions::addMenus(QMenuBar* bar)
   file->addAction(this->SavePlan);
   file->addAction(this->Check);
   file->addAction(this->Export);
+  file->addAction(this->RunFlow);
   file->addAction(this->Screenshot);
   file->addSeparator();
   file->addAction(this->Quit);

@@ -39,6 +39,7 @@ public:
   QAction* SavePlan;
   QAction* Check;
   QAction* Export;
+  QAction* RunFlow; ///< the Flow panel's run of the original and the current shape
   QAction* Screenshot;
   QAction* Quit;
   QAction* Undo;

@@ -8,6 +8,7 @@
 #include "ExportFlow.h"
 #include "ExportPanel.h"
 #include "FileOpener.h"
+#include "FlowPanel.h"
 #include "GestureController.h"
 #include "MainActions.h"
 #include "MeasurementsPanel.h"
@@ -109,6 +110,9 @@ void MainWindow::buildPanels()
   this->addPanel(this->TrackersUi, "Trackers");
   this->addPanel(this->Export, "Export");
   this->addPanel(this->Measurements, "Measure");
+  this->Flow = new FlowPanel(this->Session, this->Worker, this->Actions, this);
+  this->Flow->setViewRenderer(this->View->renderer());
+  this->addPanel(this->Flow, "Flow");
   auto* dock = new QDockWidget("Panels", this);
   dock->setObjectName("panelsDock");
   dock->setWidget(this->Panels);
@@ -208,6 +212,7 @@ void MainWindow::refresh()
   // A new committed surface (load, segmentation, release, undo): its centerlines.
   this->Vessels->update();
   this->TrackersUi->sessionChanged(); // "Send to Slicer"
+  this->Flow->sessionChanged();
   // The original shape as a ghost once the surface differs from it; the camera reframed when
   // the surface is another scene (a new mesh of another size or place).
   const bool bent = this->Session.GetHistoryPosition() > 0 ||

@@ -17,6 +17,7 @@ class BenderView;
 class DataPanel;
 class ExportFlow;
 class ExportPanel;
+class FlowPanel;
 class FileOpener;
 class GestureController;
 class MeasurementsPanel;
@@ -97,6 +98,7 @@ public:
   BendPanel* bendPanel() { return this->Bend; }
   TrackersPanel* trackersPanel() { return this->TrackersUi; }
   SegmentPanel* segmentPanel() { return this->Segment; }
+  FlowPanel* flowPanel() { return this->Flow; }
   SliceViews* sliceViews() { return this->Slices; }
   BenderView* benderView() { return this->View; }
   QLabel* statusLabel() { return this->StatusText; }
@@ -179,6 +181,7 @@ private:
   TrackersPanel* TrackersUi = nullptr;
   ExportPanel* Export = nullptr;
   MeasurementsPanel* Measurements = nullptr;
+  FlowPanel* Flow = nullptr;
   QLabel* StatusText = nullptr;
 
   WorkRunner* Worker = nullptr;

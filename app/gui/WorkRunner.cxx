@@ -35,14 +35,7 @@ WorkRunner::WorkRunner(QStatusBar* bar, QLabel* status, Reporter report, QObject
   this->Cancel->setObjectName("cancelWork");
   this->Cancel->hide();
   bar->addPermanentWidget(this->Cancel);
-  connect(this->Cancel,
-    &QPushButton::clicked,
-    this,
-    [this]()
-    {
-      this->CancelFlag = true;
-      this->Status->setText("Cancelling...");
-    });
+  connect(this->Cancel, &QPushButton::clicked, this, &WorkRunner::cancel);
   connect(&this->Watcher, &QFutureWatcher<Finisher>::finished, this, &WorkRunner::finish);
   connect(&this->BackgroundWatcher,
     &QFutureWatcher<Finisher>::finished,
@@ -77,6 +70,15 @@ bool WorkRunner::waitUntilIdle(int milliseconds, const std::function<bool()>& bu
     QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
   }
   return true;
+}
+
+void WorkRunner::cancel()
+{
+  if (this->Pending)
+  {
+    this->CancelFlag = true;
+    this->Status->setText("Cancelling...");
+  }
 }
 
 void WorkRunner::cancelAndWait()

@@ -47,6 +47,8 @@ public:
   /// For tests and scripts: waits (processing events) until no job runs and `busy` (when
   /// given) is false; false on timeout. The window itself never waits.
   bool waitUntilIdle(int milliseconds, const std::function<bool()>& busy = {});
+  /// Asks the running job to stop, as the Cancel button does (a panel's own Cancel).
+  void cancel();
   /// Asks the running job to stop and waits for the worker (closing the window).
   void cancelAndWait();
   /// Called on the worker at the start of every job (tests).

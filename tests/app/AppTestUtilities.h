@@ -6,9 +6,11 @@
 #include "MainWindow.h"
 #include "Vec3.h"
 
+#include <QApplication>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLineEdit>
+#include <QMouseEvent>
 #include <QPoint>
 #include <QString>
 #include <QTabWidget>
@@ -134,6 +136,22 @@ inline void Look(MainWindow& window,
   camera->SetViewAngle(30);
   window.renderer()->ResetCameraClippingRange();
   window.render();
+}
+
+/// A real drag with the left button in `view` (a 3D view), from `from` to `to` in eight moves.
+inline void Drag(QWidget* view, const QPoint& from, const QPoint& to)
+{
+  QTest::mouseMove(view, from);
+  QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, from);
+  for (int step = 1; step <= 8; ++step)
+  {
+    const QPoint at = from + (to - from) * step / 8;
+    QMouseEvent move(QEvent::MouseMove, at, Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(view, &move);
+    QCoreApplication::processEvents();
+  }
+  QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, to);
+  QCoreApplication::processEvents();
 }
 
 /// The 3D view's widget (Qt) coordinates of a model point.

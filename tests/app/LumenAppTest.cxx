@@ -144,18 +144,7 @@ private:
   /// A real drag with the left button, in eight moves.
   void drag(const QPoint& from, const QPoint& to)
   {
-    QWidget* view = this->Window->view();
-    QTest::mouseMove(view, from);
-    QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, from);
-    for (int step = 1; step <= 8; ++step)
-    {
-      const QPoint at = from + (to - from) * step / 8;
-      QMouseEvent move(QEvent::MouseMove, at, Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
-      QApplication::sendEvent(view, &move);
-      QCoreApplication::processEvents();
-    }
-    QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, to);
-    QCoreApplication::processEvents();
+    bendertest::Drag(this->Window->view(), from, to);
   }
 
   void key(Qt::Key k)

@@ -1,0 +1,115 @@
+#ifndef FlowPanel_h
+#define FlowPanel_h
+
+#include "CfdComparison.h"
+#include "FlowStudy.h"
+
+#include <QString>
+#include <QWidget>
+
+#include <memory>
+
+namespace bender
+{
+class BenderSession;
+}
+class FlowComparisonTable;
+class FlowResidualPlot;
+class FlowViews;
+class MainActions;
+class QDoubleSpinBox;
+class QLabel;
+class QPushButton;
+class QSpinBox;
+class QToolButton;
+class WorkRunner;
+class vtkRenderer;
+
+/// The Flow panel (issue 23, "original vs candidate, side by side"): "Run flow for the original
+/// and the current shape" runs bender::RunFlowShape for the original, then for the current
+/// shape, as two jobs on the window's worker (progress in the status bar from the Allrun's
+/// steps and the solver's iterations, Cancel there or here; the window keeps drawing), with the
+/// residuals plotted live. The cases go to the flow cache (FlowCaseCache.h): a shape solved
+/// before is not solved again. When both are in, the comparison window shows the two shapes
+/// in linked views (FlowViews) and the table of bender::CompareCfdResults
+/// (FlowComparisonTable), the same table bender-cli compare prints for the two case folders.
+/// The panel keeps only what it shows: the last results and the input of the run under way.
+class FlowPanel : public QWidget
+{
+  Q_OBJECT
+public:
+  FlowPanel(bender::BenderSession& session,
+    WorkRunner* worker,
+    MainActions* actions,
+    QWidget* parent = nullptr);
+  ~FlowPanel() override;
+
+  /// Starts the two jobs; false (with the reason in the panel) when there is no surface, a
+  /// bend is held, the worker is busy or a run is under way.
+  bool runFlow();
+  /// Asks the job under way to stop (as the status bar's Cancel).
+  void cancel();
+  bool isRunning() const { return this->Running; }
+  /// Enables Run for a session that can run (a surface, no grab, not running).
+  void sessionChanged();
+
+  /// The renderer whose camera the comparison's views take their viewpoint from (the main 3D
+  /// view's).
+  void setViewRenderer(vtkRenderer* renderer) { this->ViewRenderer = renderer; }
+  /// Where the cases are kept; default: the user's cache folder, "flow" in it.
+  void setCacheFolder(const QString& folder);
+  QString cacheFolder() const { return this->CacheFolder; }
+  /// The case settings from the panel's fields (iterations, cell size in mm; the rest
+  /// CfdCaseOptions' defaults).
+  bender::CfdCaseOptions caseOptions() const;
+
+  /// 0 the original, 1 the current shape: the last run's results (null until in).
+  const bender::FlowShapeResult* result(int which) const;
+  const bender::CfdComparison* comparison() const;
+  FlowResidualPlot* plot() const { return this->Plot; }
+  FlowViews* views() const { return this->Views; }
+  FlowComparisonTable* table() const { return this->Table; }
+  /// The window of the two views and the table (shown when both results are in).
+  QWidget* comparisonWindow() const { return this->Comparison; }
+  QLabel* statusLabel() const { return this->Status; }
+  QSpinBox* iterationsBox() const { return this->Iterations; }
+  QDoubleSpinBox* cellSizeBox() const { return this->CellSize; }
+  QToolButton* runButton() const { return this->Run; }
+  QPushButton* cancelButton() const { return this->CancelButton; }
+
+signals:
+  /// Both shapes' results are shown (ok), or the run stopped (failed or cancelled).
+  void flowFinished(bool ok);
+
+private:
+  void startShape(int which);
+  void shapeDone(int which, const std::shared_ptr<bender::FlowShapeResult>& result);
+  void stop(const QString& why);
+  void showComparison();
+  void setStatus(const QString& text);
+
+  bender::BenderSession& Session;
+  WorkRunner* Worker;
+  MainActions* Actions;
+  QString CacheFolder;
+  vtkRenderer* ViewRenderer = nullptr; ///< not owned
+  bool Running = false;
+  std::shared_ptr<const bender::FlowStudyInput> Input; ///< of the run under way
+  std::shared_ptr<bender::FlowShapeResult> Results[2];
+  std::unique_ptr<bender::CfdComparison> Compared;
+
+  QSpinBox* Iterations = nullptr;
+  QDoubleSpinBox* CellSize = nullptr;
+  QToolButton* Run = nullptr;
+  QPushButton* CancelButton = nullptr;
+  QPushButton* ShowComparison = nullptr;
+  QLabel* Status = nullptr;
+  FlowResidualPlot* Plot = nullptr;
+  QLabel* Summary = nullptr;
+  QWidget* Comparison = nullptr;
+  FlowViews* Views = nullptr;
+  FlowComparisonTable* Table = nullptr;
+  QLabel* Cases = nullptr;
+};
+
+#endif
