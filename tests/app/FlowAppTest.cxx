@@ -31,8 +31,12 @@
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFileInfo>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QLabel>
 #include <QMouseEvent>
+#include <QProcess>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -49,6 +53,7 @@
 #include <vtkPolyDataMapper.h>
 #include <vtkRenderer.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -258,6 +263,34 @@ private slots:
       wss = wss || row.kind == bender::CfdRowKind::Stress;
     }
     QVERIFY(pressureDrop && split && wss);
+
+    // bender-cli compare of the two case folders: the same rows, the same numbers, the same
+    // highlights as the panel's table.
+    QProcess cli;
+    cli.start(BENDER_CLI_PATH,
+      { "compare", this->CaseA, this->CaseB, "-o", this->Folder.filePath("report.pdf"), "--json" });
+    QVERIFY(cli.waitForFinished(300000));
+    QCOMPARE(cli.exitCode(), 0);
+    const QJsonArray rows =
+      QJsonDocument::fromJson(cli.readAllStandardOutput()).object().value("rows").toArray();
+    const bender::CfdComparison* shown = this->panel()->comparison();
+    QVERIFY(shown);
+    QCOMPARE(rows.size(), static_cast<int>(shown->rows.size()));
+    for (int i = 0; i < rows.size(); ++i)
+    {
+      const QJsonObject row = rows[i].toObject();
+      const bender::CfdComparisonRow& mine = shown->rows[static_cast<std::size_t>(i)];
+      QCOMPARE(row.value("key").toString(), QString::fromStdString(mine.key));
+      QCOMPARE(row.value("highlighted").toBool(), mine.highlighted);
+      const auto same = [](const QJsonValue& value, const std::optional<double>& number)
+      {
+        return value.isNull() ? !number
+                              : number &&
+            std::abs(value.toDouble() - *number) <= 1e-9 * std::max(1.0, std::abs(*number));
+      };
+      QVERIFY2(same(row.value("a"), mine.a), qPrintable(row.value("key").toString()));
+      QVERIFY2(same(row.value("b"), mine.b), qPrintable(row.value("key").toString()));
+    }
   }
 
   void theViewsShareTheScaleAndMoveTogether()
