@@ -32,6 +32,7 @@ void AddCfdCaseCommand(CLI::App& cli);
 void AddCompareCommand(CLI::App& cli);
 void AddFormatsCommand(CLI::App& cli);
 void AddIgtlSendCommand(CLI::App& cli);
+void AddSweepCommand(CLI::App& cli);
 // AddTrackerCommand: TrackerCommand.h (it also takes the USB back end of the tests).
 } // namespace bender
 

@@ -35,6 +35,7 @@ void AddCommands(CLI::App& cli)
   AddFormatsCommand(cli);
   AddTrackerCommand(cli, std::cout, std::cerr);
   AddIgtlSendCommand(cli);
+  AddSweepCommand(cli);
 }
 
 void PrintDataDirectory()

@@ -3,6 +3,7 @@
 #include "CliCommand.h"
 #include "CliParsing.h"
 #include "RibbonEndMapping.h"
+#include "SignalGuard.h"
 #include "TrackerDeviceRegistry.h"
 #include "TrackerStream.h"
 #include "TrackingErrors.h"
@@ -10,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <functional>
 #include <ostream>
@@ -20,36 +20,6 @@ namespace bender
 
 namespace
 {
-volatile std::sig_atomic_t Interrupted = 0;
-
-extern "C" void OnSignal(int)
-{
-  Interrupted = 1;
-}
-
-// Installs the handlers for the duration of the command and restores the previous ones.
-class SignalGuard
-{
-public:
-  SignalGuard()
-  {
-    Interrupted = 0;
-    this->OldInt = std::signal(SIGINT, OnSignal);
-    this->OldTerm = std::signal(SIGTERM, OnSignal);
-  }
-  ~SignalGuard()
-  {
-    std::signal(SIGINT, this->OldInt);
-    std::signal(SIGTERM, this->OldTerm);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-
-private:
-  void (*OldInt)(int) = SIG_DFL;
-  void (*OldTerm)(int) = SIG_DFL;
-};
-
 // Rounded to the printed precision (4 decimals in mm, 6 for time and quaternions); "+ 0.0"
 // turns -0 into 0, so that JSON consumers never see "-0.0".
 double Rounded(double value, double scale)
@@ -247,7 +217,7 @@ int RunTracker(TrackerArguments a, std::ostream& out, std::ostream& err)
     return 2;
   }
 
-  SignalGuard signals;
+  bender::SignalGuard signals;
   int status = 0;
   try
   {
@@ -271,7 +241,7 @@ int RunTracker(TrackerArguments a, std::ostream& out, std::ostream& err)
       err << line;
     };
     const TrackerStream::Result result =
-      stream->Run(limits, sink, []() { return Interrupted != 0; });
+      stream->Run(limits, sink, [&signals]() { return signals.Interrupted(); });
     if (result.interrupted)
     {
       err << "bender-cli tracker: interrupted\n";

@@ -213,6 +213,11 @@ void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options)
   window->SetSize(options.width, options.height);
   window->SetMultiSamples(0);
   window->AddRenderer(renderer);
+  WriteRenderWindowPng(window, path);
+}
+
+void WriteRenderWindowPng(vtkRenderWindow* window, const std::string& path)
+{
   window->Render();
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);

@@ -11,6 +11,7 @@
 class vtkCamera;
 class vtkImageData;
 class vtkPolyData;
+class vtkRenderWindow;
 
 namespace bender
 {
@@ -72,6 +73,10 @@ struct RenderToPngOptions
 /// HeadlessDisplay). Throws EnvironmentError (one line: DISPLAY is not set), InputError (no
 /// surface, bad size, the PNG cannot be written). Nothing is left behind on failure.
 void RenderToPng(vtkPolyData* surface, const RenderToPngOptions& options);
+
+/// Renders `window` (off screen, on the display DISPLAY names) and writes its image as a PNG
+/// at `path`, atomically. Throws InputError naming the path when it cannot be written.
+void WriteRenderWindowPng(vtkRenderWindow* window, const std::string& path);
 
 } // namespace bender
 

@@ -1,0 +1,34 @@
+#ifndef bender_SweepRowResults_h
+#define bender_SweepRowResults_h
+
+// A sweep row filled from its solved case, and the summary files written from the rows
+// (Sweep.h).
+
+#include "Sweep.h"
+
+#include <string>
+#include <vector>
+
+namespace bender
+{
+
+/// Fills `row` from the solved case in `caseDirectory`: the flow split and pressure drops
+/// (ReadCfdResults), iterations and convergence, the mesh's cells (log.checkMesh) and the wall
+/// shear stress statistics where the case has them. Throws InputError naming a missing or
+/// unreadable result file.
+void ReadSweepRowResults(const std::string& caseDirectory, SweepRow& row);
+
+/// The wall-clock seconds OpenFOAM's programs report in the case's logs (mesh and solve), 0
+/// when none is readable.
+double SweepCaseSeconds(const std::string& caseDirectory);
+
+/// Writes SWEEP_DIR/summary.csv, summary.json and (where a display is) summary.png; sets the
+/// paths (and plotProblem) in `result`. Throws InputError when a summary cannot be written.
+void WriteSweepSummary(const std::vector<SweepRow>& rows,
+  const std::string& parameter,
+  const std::string& folder,
+  SweepResult& result);
+
+} // namespace bender
+
+#endif
