@@ -342,10 +342,23 @@ SweepResult RunSweep(const SweepOptions& options)
       row.log = outcome.log;
       if (outcome.state == SweepJobOutcome::State::Solved)
       {
-        ReadSweepRowResults(jobs[k].caseDirectory, row);
-        row.state = "solved";
-        row.reason.clear();
-        ++result.solved;
+        try
+        {
+          ReadSweepRowResults(jobs[k].caseDirectory, row);
+          row.state = "solved";
+          row.reason.clear();
+          ++result.solved;
+        }
+        catch (const Cancelled&)
+        {
+          throw;
+        }
+        catch (const Error& e)
+        {
+          // Results that cannot be mapped (a diverged field): this candidate failed.
+          row.state = "failed";
+          row.reason = e.what();
+        }
       }
       else
       {

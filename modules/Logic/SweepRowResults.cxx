@@ -3,7 +3,7 @@
 #include "SweepRowResults.h"
 
 #include "BenderErrors.h"
-#include "CfdCase.h"
+#include "CfdFlowResults.h"
 
 #include <filesystem>
 #include <fstream>
@@ -42,26 +42,35 @@ double LastNumberAfter(const std::string& text, const std::string& key)
 
 void ReadSweepRowResults(const std::string& caseDirectory, SweepRow& row)
 {
-  const CfdRunResult run = ReadCfdResults(caseDirectory);
-  row.iterations = run.iterations;
-  row.converged = run.converged;
+  // The local engine's RunOpenFoamCase mapped the results already; a Slurm task ran the Allrun
+  // alone: map them here, on the submitting machine.
+  std::error_code ec;
+  const bool mapped = fs::exists(fs::path(caseDirectory) / kCfdResultsFolder / kCfdFlowJson, ec);
+  const CfdFlowResults flow =
+    mapped ? ReadCfdFlowResults(caseDirectory) : MapCfdResults(caseDirectory);
+  row.iterations = flow.run.iterations;
+  row.converged = flow.run.converged;
+  row.meshCells = flow.meshCells;
   row.outlets.clear();
-  double flow = 0.0, weighted = 0.0;
-  for (const CfdPatchFlow& patch : run.patches)
+  double total = 0.0, weighted = 0.0;
+  for (const CfdEndFlow& end : flow.ends)
   {
-    if (patch.type != PatchType::Outlet)
+    if (end.role != PatchType::Outlet)
     {
       continue;
     }
-    row.outlets.push_back(
-      { patch.name, patch.percentOfInlet, patch.pressureDrop, patch.flowRate * 6.0e7 });
-    flow += patch.flowRate;
-    weighted += patch.flowRate * patch.pressureDrop;
+    row.outlets.push_back({ end.name, end.splitPercent, end.pressureDropPa, end.flowRateMlPerMin });
+    total += end.flowRateMlPerMin;
+    weighted += end.flowRateMlPerMin * end.pressureDropPa;
   }
-  row.pressureDrop = flow > 0.0 ? weighted / flow : 0.0;
-  row.meshCells = static_cast<long long>(
-    LastNumberAfter(ReadLog(fs::path(caseDirectory) / "log.checkMesh"), "    cells:"));
-  row.wallShearStress = false;
+  row.pressureDrop = total > 0.0 ? weighted / total : 0.0;
+  const CfdWallShearStats& wss = flow.wallShearStress;
+  row.wallShearStress = wss.wallAreaMm2 > 0.0;
+  row.wssMean = wss.meanPa;
+  row.wssMax = wss.maxPa;
+  row.wssP99 = wss.percentile99Pa;
+  row.lowWssArea = wss.lowAreaMm2;
+  row.highWssArea = wss.highAreaMm2;
 }
 
 double SweepCaseSeconds(const std::string& caseDirectory)

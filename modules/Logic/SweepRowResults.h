@@ -12,10 +12,10 @@
 namespace bender
 {
 
-/// Fills `row` from the solved case in `caseDirectory`: the flow split and pressure drops
-/// (ReadCfdResults), iterations and convergence, the mesh's cells (log.checkMesh) and the wall
-/// shear stress statistics where the case has them. Throws InputError naming a missing or
-/// unreadable result file.
+/// Fills `row` from the solved case in `caseDirectory` (CfdFlowResults.h: CASE/results/flow.json,
+/// mapped here by MapCfdResults when the run did not map it, as a Slurm task does not): each
+/// outlet's split and pressure drop, iterations and convergence, mesh cells, the wall shear
+/// stress statistics. Throws InputError / Error as MapCfdResults and ReadCfdFlowResults do.
 void ReadSweepRowResults(const std::string& caseDirectory, SweepRow& row);
 
 /// The wall-clock seconds OpenFOAM's programs report in the case's logs (mesh and solve), 0
