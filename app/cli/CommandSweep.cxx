@@ -196,15 +196,21 @@ void bender::AddSweepCommand(CLI::App& cli)
       "cell size at the wall, m, for every candidate (default: the original's)")
     ->type_name("H")
     ->check(NumberIn(0, 1));
+  CLI::Option* flowRate =
+    sweep->add_option("--flow-rate", cfd.flowRate, "inlet flow rate, m^3/s, of every candidate")
+      ->type_name("Q")
+      ->check(NumberAbove(0, 1))
+      ->capture_default_str();
   sweep
-    ->add_option("--flow-rate",
-      cfd.flowRate,
-      "inlet flow rate, m^3/s, for every candidate (default: the original's at --velocity)")
-    ->type_name("Q")
-    ->check(NumberIn(0, 1));
-  sweep->add_option("--velocity", cfd.velocity, "mean inlet velocity of the original, m/s")
+    ->add_option("--velocity",
+      cfd.velocity,
+      "the original's mean inlet velocity, m/s, instead (its flow is that of every candidate)")
     ->type_name("V")
     ->check(NumberAbove(0))
+    ->excludes(flowRate);
+  sweep->add_option("--layers", cfd.layers, "prism layers on the wall of each case (0: none)")
+    ->type_name("N")
+    ->check(IntegerIn(0, 20))
     ->capture_default_str();
   sweep->add_option("--iterations", cfd.iterations, "simpleFoam iteration limit of each case")
     ->type_name("N")

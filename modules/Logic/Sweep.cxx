@@ -2,6 +2,7 @@
 
 #include "AtomicFile.h"
 #include "BenderErrors.h"
+#include "CfdBoundaryConditions.h"
 #include "StringUtil.h"
 #include "SweepRowResults.h"
 #include "WarpPlanIO.h"
@@ -37,9 +38,18 @@ std::string ReadBytes(const std::string& path, const std::string& what)
 
 nlohmann::ordered_json CaseSettings(const CfdCaseOptions& o)
 {
+  nlohmann::ordered_json outlets = nlohmann::ordered_json::array();
+  for (const CfdOutletValue& v : o.outletValues)
+  {
+    outlets.push_back({ { "name", v.name }, { "value", v.value } });
+  }
   return { { "inlet", o.inlet },
     { "flowRate", o.flowRate },
     { "velocity", o.velocity },
+    { "inletProfile", CfdInletProfileName(o.inletProfile) },
+    { "outlets", CfdOutletConditionName(o.outlets) },
+    { "outletValues", outlets },
+    { "layers", o.layers },
     { "cellSize", o.cellSize },
     { "viscosity", o.viscosity },
     { "density", o.density },

@@ -155,6 +155,7 @@ SweepBase PrepareSweepBase(const SweepBaseOptions& options, const ProgressReport
   fs::remove_all(options.scratchFolder, ec);
   base.caseOptions.cellSize = written.cellSize;
   base.caseOptions.flowRate = written.inletFlowRate;
+  base.caseOptions.velocity = 0.0;
   base.caseOptions.inlet = written.inlet;
   base.caseOptions.sourceName = base.surfaceName;
   return base;
