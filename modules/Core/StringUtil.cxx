@@ -1,5 +1,7 @@
 #include "StringUtil.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -75,9 +77,20 @@ std::string DisplayName(const std::string& path)
 
 std::string FormatPoint(const std::array<double, 3>& p)
 {
+  // A coordinate a millionth of the point's size is zero (no "1.041e-17" in a message).
+  const double size = std::max({ std::abs(p[0]), std::abs(p[1]), std::abs(p[2]) });
+  auto shown = [size](double v) { return std::abs(v) <= 1e-6 * size ? 0.0 : v; };
   std::ostringstream s;
   s.precision(4);
-  s << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+  s << "(" << shown(p[0]) << ", " << shown(p[1]) << ", " << shown(p[2]) << ")";
+  return s.str();
+}
+
+std::string FormatNumber(double value, int digits)
+{
+  std::ostringstream s;
+  s.precision(digits);
+  s << value;
   return s.str();
 }
 

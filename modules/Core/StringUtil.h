@@ -34,8 +34,12 @@ std::string LowerDoubleExtension(const std::string& path);
 /// has none. Used to prefix one-line messages.
 std::string DisplayName(const std::string& path);
 
-/// How messages name a point: "(x, y, z)" with 4 significant digits.
+/// How messages name a point: "(x, y, z)" with 4 significant digits; a coordinate within a
+/// millionth of the largest one's magnitude of 0 is written 0.
 std::string FormatPoint(const std::array<double, 3>& p);
+
+/// How messages name a number: `digits` significant digits ("26", "1.2", "0.0125").
+std::string FormatNumber(double value, int digits = 3);
 
 /// "1 warp", "2 warps", "0 warps": a count with its noun (regular English plural, "s" added).
 std::string CountOf(std::size_t count, std::string_view noun);

@@ -206,7 +206,7 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     throw InputError(name + ": the triangles are not consistently oriented (" +
       std::to_string(report.inconsistentEdges) + " edges)");
   }
-  const LabelledSurface labelled =
+  LabelledSurface labelled =
     known ? LabelledSurface{ surface, *known } : ReadLabelledSurface(surface);
   // The patches and the point inside the lumen, measured once (LPS millimetres); its one-line
   // problems (non-finite coordinates, a bad cell array) get the surface's name.
@@ -220,16 +220,7 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     throw InputError(name + ": " + e.what());
   }
   std::vector<CfdPatch> patches = CfdPatchesOf(measured, name);
-  std::string names;
-  std::vector<std::size_t> ends;
-  for (std::size_t i = 0; i < patches.size(); ++i)
-  {
-    if (IsEndPatch(patches[i].type))
-    {
-      ends.push_back(i);
-      names += (names.empty() ? "" : ", ") + patches[i].name;
-    }
-  }
+  const std::vector<std::size_t> ends = EndPatches(patches);
   if (ends.size() < 2)
   {
     throw InputError(name +
@@ -237,52 +228,8 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
       std::to_string(ends.size()) +
       " labelled end(s) (cap or clip its ends: bender-cli clip, export --cap)");
   }
-  std::size_t inlet = patches.size();
-  if (!options.inlet.empty())
-  {
-    for (std::size_t i = 0; i < patches.size(); ++i)
-    {
-      if (patches[i].name == options.inlet)
-      {
-        inlet = i;
-      }
-    }
-    if (inlet == patches.size())
-    {
-      throw InputError(
-        "--inlet " + options.inlet + ": " + name + " has no such end (ends: " + names + ")");
-    }
-    if (!IsEndPatch(patches[inlet].type))
-    {
-      throw InputError(
-        "--inlet " + options.inlet + ": is the wall, not an end (ends: " + names + ")");
-    }
-  }
-  else
-  {
-    std::string inlets;
-    for (const std::size_t i : ends)
-    {
-      if (patches[i].type == PatchType::Inlet)
-      {
-        inlets += (inlets.empty() ? "" : ", ") + patches[i].name;
-        if (inlet != patches.size())
-        {
-          throw InputError(name + ": several inlets (" + inlets + "...): choose one with --inlet");
-        }
-        inlet = i;
-      }
-    }
-    if (inlet == patches.size())
-    {
-      throw InputError(
-        name + ": no end is labelled inlet: name it with --inlet (ends: " + names + ")");
-    }
-  }
-  for (const std::size_t i : ends)
-  {
-    patches[i].type = i == inlet ? PatchType::Inlet : PatchType::Outlet;
-  }
+  // The inlet, and names that say the roles in the case, its STL and bender-case.json.
+  const std::size_t inlet = ChooseInlet(patches, labelled, options.inlet, name);
 
   // Sizes (metres).
   double smallest = 0.0, largest = 0.0;

@@ -2,6 +2,10 @@
 
 #include "BenderErrors.h"
 
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
 #include <cmath>
 
 namespace bender
@@ -10,11 +14,46 @@ namespace bender
 namespace
 {
 constexpr double kPi = 3.14159265358979323846;
+
+/// outlet_N, the name an outlet gets from the clip.
+bool IsOutletName(const std::string& name)
+{
+  const std::string prefix = "outlet_";
+  return name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
+    name.find_first_not_of("0123456789", prefix.size()) == std::string::npos;
+}
+
+/// Applies `rename` to every name of both tables.
+template<typename F>
+void Rename(std::vector<CfdPatch>& patches, std::vector<PatchLabel>& labels, const F& rename)
+{
+  for (CfdPatch& p : patches)
+  {
+    p.name = rename(p.name);
+  }
+  for (PatchLabel& l : labels)
+  {
+    l.name = rename(l.name);
+  }
+}
 } // namespace
 
 bool IsEndPatch(PatchType type)
 {
   return type != PatchType::Wall;
+}
+
+std::vector<std::size_t> EndPatches(const std::vector<CfdPatch>& patches)
+{
+  std::vector<std::size_t> ends;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+  {
+    if (IsEndPatch(patches[i].type))
+    {
+      ends.push_back(i);
+    }
+  }
+  return ends;
 }
 
 std::vector<CfdPatch> CfdPatchesOf(const PatchSidecar& measured, const std::string& name)
@@ -52,6 +91,106 @@ std::vector<CfdPatch> CfdPatchesOf(const PatchSidecar& measured, const std::stri
     patches.push_back(p);
   }
   return patches;
+}
+
+std::size_t ChooseInlet(std::vector<CfdPatch>& patches,
+  LabelledSurface& labelled,
+  const std::string& inlet,
+  const std::string& name)
+{
+  const std::vector<std::size_t> ends = EndPatches(patches);
+  std::string names;
+  for (const std::size_t i : ends)
+  {
+    names += (names.empty() ? "" : ", ") + patches[i].name;
+  }
+  std::size_t chosen = patches.size();
+  if (!inlet.empty())
+  {
+    for (std::size_t i = 0; i < patches.size(); ++i)
+    {
+      if (patches[i].name == inlet)
+      {
+        chosen = i;
+      }
+    }
+    if (chosen == patches.size())
+    {
+      throw InputError("--inlet " + inlet + ": " + name + " has no such end (ends: " + names + ")");
+    }
+    if (!IsEndPatch(patches[chosen].type))
+    {
+      throw InputError("--inlet " + inlet + ": is the wall, not an end (ends: " + names + ")");
+    }
+  }
+  else
+  {
+    std::string inlets;
+    for (const std::size_t i : ends)
+    {
+      if (patches[i].type == PatchType::Inlet)
+      {
+        inlets += (inlets.empty() ? "" : ", ") + patches[i].name;
+        if (chosen != patches.size())
+        {
+          throw InputError(name + ": several inlets (" + inlets + "...): choose one with --inlet");
+        }
+        chosen = i;
+      }
+    }
+    if (chosen == patches.size())
+    {
+      throw InputError(
+        name + ": no end is labelled inlet: name it with --inlet (ends: " + names + ")");
+    }
+  }
+  for (const std::size_t i : ends)
+  {
+    patches[i].type = i == chosen ? PatchType::Inlet : PatchType::Outlet;
+  }
+  std::vector<PatchLabel> labels = labelled.patches;
+  for (PatchLabel& l : labels)
+  {
+    if (IsEndPatch(l.type))
+    {
+      l.type = l.name == patches[chosen].name ? PatchType::Inlet : PatchType::Outlet;
+    }
+  }
+  // Names that say the roles: "inlet" goes to the chosen end, its outlet_N to the old inlet.
+  const std::string old = patches[chosen].name;
+  if (old != "inlet")
+  {
+    const bool outlet = IsOutletName(old);
+    std::string free = old;
+    for (int k = 1; !outlet; ++k)
+    {
+      free = "outlet_" + std::to_string(k);
+      if (std::none_of(
+            patches.begin(), patches.end(), [&free](const CfdPatch& p) { return p.name == free; }))
+      {
+        break;
+      }
+    }
+    Rename(patches,
+      labels,
+      [&](const std::string& n)
+      { return n == "inlet" ? free : (outlet && n == old ? "inlet" : n); });
+  }
+  if (std::equal(labels.begin(),
+        labels.end(),
+        labelled.patches.begin(),
+        labelled.patches.end(),
+        [](const PatchLabel& a, const PatchLabel& b)
+        { return a.id == b.id && a.name == b.name && a.type == b.type; }))
+  {
+    return chosen;
+  }
+  vtkNew<vtkPolyData> renamed;
+  renamed->ShallowCopy(labelled.surface);
+  WritePatchLabels(renamed, CellPatchIds(labelled.surface), labels);
+  labelled.surface = renamed;
+  labelled.patches = labels;
+  return chosen;
 }
 
 std::array<double, 3> InsidePoint(const PatchSidecar& measured,

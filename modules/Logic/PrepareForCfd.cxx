@@ -3,6 +3,7 @@
 #include "BenderErrors.h"
 #include "FlowExtensions.h"
 #include "MeshTopology.h"
+#include "StringUtil.h"
 #include "VesselCenterlines.h"
 #include "vtkBenderCapFilter.h"
 
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 
@@ -34,6 +36,122 @@ struct End
   std::array<double, 3> centerlineEnd{ { 0, 0, 0 } };
   double clipDistance = -1.0;
 };
+
+/// "x,y,z" as --end takes it.
+std::string CliPoint(const std::array<double, 3>& p)
+{
+  std::string text = FormatPoint(p);
+  text.erase(std::remove_if(
+               text.begin(), text.end(), [](char c) { return c == '(' || c == ')' || c == ' '; }),
+    text.end());
+  return text;
+}
+
+/// Whether `position` is on a vessel of `centerlines`: within kClipPointReach inscribed radii
+/// of one of its points.
+bool OnCenterlines(vtkPolyData* centerlines, const std::array<double, 3>& position)
+{
+  const double reach2 = kClipPointReach * kClipPointReach;
+  for (const CenterlineEndPath& path : FindCenterlineEndPaths(centerlines))
+  {
+    for (std::size_t i = 0; i < path.points.size(); ++i)
+    {
+      if (Distance2(path.points[i], position) <= reach2 * path.radii[i] * path.radii[i])
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+/// The centerlines of `surface` through every vessel end, the ends of `requests` the automatic
+/// endpoints miss included: those are seeds of a second computation (with the ends found),
+/// and a request without a distance that only seeded its end is dropped from `requests` (the
+/// end is cut at its default distance). Throws InputError (one line) when there is no
+/// centerline, or when a vessel end is not reached by one (it would be left closed).
+vtkSmartPointer<vtkPolyData> CenterlinesThroughEnds(vtkPolyData* surface,
+  std::vector<ClipEndRequest>& requests,
+  std::vector<std::string>& warnings)
+{
+  CenterlineResult cl = ComputeCenterlines(surface);
+  if (!cl.ok)
+  {
+    throw InputError("no centerline to clip the ends by: " + cl.message);
+  }
+  std::vector<std::size_t> seeds;
+  for (std::size_t k = 0; k < requests.size(); ++k)
+  {
+    if (!OnCenterlines(cl.paths, requests[k].position))
+    {
+      seeds.push_back(k);
+    }
+  }
+  if (!seeds.empty())
+  {
+    CenterlineOptions seeded;
+    for (const bool inlet : { true, false })
+    {
+      for (const CenterlineEndpoint& e : cl.endpoints)
+      {
+        if (e.inlet == inlet && e.reached)
+        {
+          seeded.seeds.push_back(e.position);
+        }
+      }
+    }
+    for (const std::size_t k : seeds)
+    {
+      seeded.seeds.push_back(requests[k].position);
+    }
+    // Used when a vessel now reaches every seed; else the points are on no vessel (the clip
+    // says so).
+    CenterlineResult through = ComputeCenterlines(surface, seeded);
+    bool reached = through.ok;
+    for (const std::size_t k : seeds)
+    {
+      reached = reached && OnCenterlines(through.paths, requests[k].position);
+    }
+    if (reached)
+    {
+      cl = std::move(through);
+      // A seed's end lies a little inside its point (the inscribed sphere it snapped to): a
+      // distance counts from the point, so that the cut does not move when the step is
+      // replayed from the end it made.
+      const std::vector<CenterlineEndPath> paths = FindCenterlineEndPaths(cl.paths);
+      for (auto k = seeds.rbegin(); k != seeds.rend(); ++k)
+      {
+        ClipEndRequest& request = requests[*k];
+        if (request.distance < 0)
+        {
+          requests.erase(requests.begin() + static_cast<std::ptrdiff_t>(*k));
+          continue;
+        }
+        double inside = std::numeric_limits<double>::infinity();
+        for (const CenterlineEndPath& path : paths)
+        {
+          inside = std::min(inside, std::sqrt(Distance2(path.position, request.position)));
+        }
+        request.distance = std::max(0.0, request.distance - inside);
+      }
+    }
+  }
+  for (const CenterlineEndpoint& e : cl.endpoints)
+  {
+    if (!e.reached)
+    {
+      throw InputError("the vessel end at " + FormatPoint(e.position) + " (" +
+        FormatNumber(2.0 * e.radius) +
+        " mm wide) would not be clipped: no centerline reaches it through the lumen (remesh the "
+        "surface finer there, or cut its ends yourself and use --no-clip)");
+    }
+  }
+  for (const std::string& w : cl.warnings)
+  {
+    warnings.push_back("centerlines: " + w);
+  }
+  return cl.paths;
+}
 
 template<typename T>
 std::size_t Nearest(const std::vector<End>& ends, const T& position)
@@ -75,23 +193,31 @@ PrepareForCfdResult PrepareForCfd(vtkPolyData* surface,
     if (options.clip)
     {
       vtkSmartPointer<vtkPolyData> centerlines = options.centerlines;
+      ClipOptions clip;
+      clip.ends = options.ends;
       if (!centerlines)
       {
         progress.Report("centerlines", 0.0);
-        const CenterlineResult cl = ComputeCenterlines(surface);
-        if (!cl.ok)
-        {
-          throw InputError("no centerline to clip the ends by: " + cl.message);
-        }
-        centerlines = cl.paths;
+        centerlines = CenterlinesThroughEnds(surface, clip.ends, result.warnings);
       }
       result.centerlines = centerlines;
       progress.ThrowIfCancelled("centerlines");
       progress.Report("clip", 0.2);
-      ClipOptions clip;
-      clip.ends = options.ends;
       ClipResult clipped = ClipVesselEnds(surface, centerlines, clip);
-      result.warnings = clipped.warnings;
+      if (!clipped.unclipped.empty())
+      {
+        const UnclippedEnd& missed = clipped.unclipped.front();
+        const std::string at = FormatPoint(missed.centre);
+        const std::string remedy = options.centerlines
+          ? "give centerlines through it (or none: they are computed)"
+          : "clip it with --end " + CliPoint(missed.centre);
+        throw InputError("the open end at " + at + " (" + FormatNumber(2.0 * missed.radius) +
+          " mm wide) would not be clipped: no centerline reaches it (" +
+          CountOf(clipped.unclipped.size(), "such end") + "); " + remedy +
+          ", or keep the ends as they are with --no-clip");
+      }
+      result.warnings.insert(
+        result.warnings.end(), clipped.warnings.begin(), clipped.warnings.end());
       open = clipped.surface;
       for (const ClippedEnd& c : clipped.ends)
       {

@@ -129,7 +129,11 @@ bool AddVoronoiTips(const Graph& graph,
       }
     }
     const double length = sp.cost[tip] - junctionRadius;
-    if (maxRadius >= 0.25 * junctionRadius && length >= k * maxRadius)
+    // A thinner branch is a vessel when it reaches beyond the junction's sphere by more than
+    // that sphere's radius: a spike of the diagram towards the wall ends at the wall.
+    const bool thick = maxRadius >= 0.25 * junctionRadius;
+    const bool protruding = maxRadius > 0.0 && length >= junctionRadius;
+    if ((thick || protruding) && length >= k * maxRadius)
     {
       tipPaths.push_back(std::vector<int>(branch.rbegin(), branch.rend()));
     }

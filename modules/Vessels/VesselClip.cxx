@@ -74,6 +74,32 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
     {
       throw InputError("a clip position is not finite");
     }
+    // The centerline point nearest q on the ends [first, last)'s profiles (first halves).
+    struct OnCenterline
+    {
+      std::size_t group = 0;
+      const Profile* along = nullptr;
+      double s = 0.0, distance = std::numeric_limits<double>::infinity(), radius = 0.0;
+    };
+    auto nearestOn = [&groups, &q](std::size_t first, std::size_t last)
+    {
+      OnCenterline n;
+      for (std::size_t g = first; g < last; ++g)
+      {
+        for (const Profile& p : groups[g].profiles)
+        {
+          for (std::size_t i = 0; i < p.x.size() && p.s[i] <= 0.5 * p.Length(); ++i)
+          {
+            const double d = Distance(p.x[i], q);
+            if (d < n.distance)
+            {
+              n = { g, &p, p.s[i], d, p.r[i] };
+            }
+          }
+        }
+      }
+      return n;
+    };
     std::size_t best = 0;
     double bestS = 0.0;
     const Profile* along = nullptr;
@@ -86,6 +112,15 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
           best = g;
         }
       }
+      // The point must be on that end's vessel, not on another the centerlines miss.
+      const OnCenterline on = nearestOn(best, best + 1);
+      if (on.distance > kClipPointReach * on.radius)
+      {
+        throw InputError("the clip position " + FormatPoint(q) + " is " +
+          FormatNumber(on.distance - on.radius) + " mm from the vessel of the nearest end " +
+          FormatPoint(groups[best].position) + " (inscribed radius " + FormatNumber(on.radius) +
+          "): not on a vessel whose end the centerlines found");
+      }
       along = &groups[best].longest;
       bestS = request.distance;
       if (bestS > 0.5 * along->Length())
@@ -97,32 +132,15 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
     }
     else
     {
-      // The nearest centerline point over every end's profiles, within half a profile.
-      double bestD = std::numeric_limits<double>::infinity();
-      for (std::size_t g = 0; g < groups.size(); ++g)
-      {
-        for (const Profile& p : groups[g].profiles)
-        {
-          for (std::size_t i = 0; i < p.x.size() && p.s[i] <= 0.5 * p.Length(); ++i)
-          {
-            const double d = Distance(p.x[i], q);
-            if (d < bestD)
-            {
-              bestD = d;
-              best = g;
-              bestS = p.s[i];
-              along = &p;
-            }
-          }
-        }
-      }
-      double r = 0;
-      along->At(bestS, &r);
-      if (bestD > 3.0 * r)
+      const OnCenterline on = nearestOn(0, groups.size());
+      best = on.group;
+      bestS = on.s;
+      along = on.along;
+      if (on.distance > 3.0 * on.radius)
       {
         throw InputError("the clip position " + FormatPoint(q) +
-          " is not on a vessel: the nearest centerline point is " + std::to_string(bestD) +
-          " away (radius " + std::to_string(r) + ")");
+          " is not on a vessel: the nearest centerline point is " + std::to_string(on.distance) +
+          " away (radius " + std::to_string(on.radius) + ")");
       }
     }
     if (plans[best].user)
@@ -197,6 +215,43 @@ ClipResult ClipVesselEnds(vtkPolyData* surface,
     for (int e = 0; e < 3; ++e)
     {
       end.centre[e] = total != 0.0 ? centroid[e] / total : mesh.x[end.rim[0]][e];
+    }
+  }
+  // The open loops that are no rim: ends of the input that no centerline end reached.
+  {
+    std::vector<std::int64_t> flat;
+    for (const Tri& t : mesh.t)
+    {
+      flat.insert(flat.end(), t.begin(), t.end());
+    }
+    std::vector<char> onRim(mesh.x.size(), 0);
+    for (const ClippedEnd& end : result.ends)
+    {
+      for (long long v : end.rim)
+      {
+        onRim[static_cast<std::size_t>(v)] = 1;
+      }
+    }
+    for (const BoundaryChain& chain : BoundaryLoops(flat, static_cast<std::int64_t>(mesh.x.size())))
+    {
+      if (chain.vertices.empty() || onRim[static_cast<std::size_t>(chain.vertices.front())])
+      {
+        continue;
+      }
+      UnclippedEnd open;
+      const double share = 1.0 / static_cast<double>(chain.vertices.size());
+      for (std::int64_t v : chain.vertices)
+      {
+        for (int e = 0; e < 3; ++e)
+        {
+          open.centre[e] += share * mesh.x[v][e];
+        }
+      }
+      for (std::int64_t v : chain.vertices)
+      {
+        open.radius += share * Distance(mesh.x[v], open.centre);
+      }
+      result.unclipped.push_back(open);
     }
   }
   vtkNew<vtkPoints> points;

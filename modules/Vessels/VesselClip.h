@@ -47,10 +47,15 @@ namespace bender
 
 using ClipPoint = std::array<double, 3>;
 
+/// A point within this many inscribed radii of a vessel's centerline is on that vessel (a
+/// ClipEndRequest with a distance must be on the vessel of its end).
+constexpr double kClipPointReach = 2.0;
+
 /// A user's choice for one end.
 struct ClipEndRequest
 {
-  /// With Distance >= 0: a point near the vessel end to clip (the nearest end is taken).
+  /// With Distance >= 0: a point on the vessel near its end (the nearest end is taken; the
+  /// point must be within kClipPointReach inscribed radii of that end's centerline).
   /// With Distance < 0: a point near the centerline where to cut; the cut is at the nearest
   /// centerline point, and the side towards the nearer vessel end (along the centerline) is
   /// removed.
@@ -80,12 +85,23 @@ struct ClippedEnd
   std::vector<long long> rim;
 };
 
+/// An open end of the input surface that no centerline end reached: the clip left it as it
+/// was (an open loop of ClipResult::surface that is no rim).
+struct UnclippedEnd
+{
+  ClipPoint centre{ { 0, 0, 0 } }; ///< mean of the loop's points
+  double radius = 0.0;             ///< mean distance of the loop's points to Centre
+};
+
 struct ClipResult
 {
   /// The surface with every end open (triangles only, unused points removed; point and cell
   /// data are not kept).
   vtkSmartPointer<vtkPolyData> surface;
   std::vector<ClippedEnd> ends; ///< in the order of the centerline's ends
+  /// Open ends of the input that were not clipped (no centerline reaches them); a CFD model
+  /// made of this surface would miss them (PrepareForCfd refuses it).
+  std::vector<UnclippedEnd> unclipped;
   std::vector<std::string> warnings;
 };
 
@@ -132,8 +148,10 @@ double NearestDistanceOnPath(const CenterlineEndPath& path, const ClipPoint& poi
 
 /// Clips every vessel end of `surface` (a triangle surface; polygons are triangulated). Throws
 /// InputError (one line) for an empty or non-finite surface, centerlines without ends, a
-/// requested position or distance whose plane cuts no vessel cleanly, and when the default
-/// cut of an end fails.
+/// requested position that is not on a vessel (with a distance: not within kClipPointReach
+/// inscribed radii of the centerline of the end nearest to it; without: not within 3 of any
+/// centerline), a requested
+/// distance whose plane cuts no vessel cleanly, and when the default cut of an end fails.
 ClipResult ClipVesselEnds(vtkPolyData* surface,
   vtkPolyData* centerlines,
   const ClipOptions& options = {});

@@ -125,6 +125,21 @@ const CenterlineResult& Y35Centerlines()
   return cl;
 }
 
+/// A tube of radius 3 along z (open at z = +-20) with a side branch 1.2 mm wide along +x, open
+/// at x = 20; computed once.
+vtkPolyData* ThinBranch()
+{
+  // Radii off the grid's nodes: no iso-surface vertex lands twice on one node.
+  static const vtkSmartPointer<vtkPolyData> surface = []
+  {
+    const std::vector<Segment> tubes = { { { { 0, 0, -40 } }, { { 0, 0, 40 } }, 3.013 },
+      { { { 0, 0, 0 } }, { { 40, 0, 0 } }, 0.6013 } };
+    const double bounds[6] = { -5, 20, -4.2, 4.2, -20, 20 };
+    return ImplicitTubes(tubes, bounds, 0.2);
+  }();
+  return surface;
+}
+
 class VesselClipTest : public ::testing::Test
 {
 protected:
@@ -403,4 +418,80 @@ TEST_F(VesselClipTest, BadRequestsAreOneLineErrors)
   {
     EXPECT_NE(std::string(e.what()).find("MaximumInscribedSphereRadius"), std::string::npos);
   }
+}
+
+TEST_F(VesselClipTest, ThinBranchOfAClosedVesselIsClipped)
+{
+  // Its inscribed radius (0.6) is a fifth of the trunk's: once taken for a spike of the Voronoi
+  // diagram, the branch was left closed and the clipped vessel had two ends, not three.
+  vtkNew<vtkBenderCapFilter> cap;
+  cap->SetInputData(ThinBranch());
+  cap->Update();
+  vtkPolyData* closed = cap->GetOutput();
+  ASSERT_TRUE(CheckMesh(closed).closed);
+  const CenterlineResult cl = ComputeCenterlines(closed);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  const ClipResult r = ClipVesselEnds(closed, cl.paths);
+  ExpectCleanOpenResult(r, 3, closed);
+  EXPECT_TRUE(r.unclipped.empty());
+  int thin = 0;
+  for (const ClippedEnd& end : r.ends)
+  {
+    if (end.radius < 1.0)
+    {
+      ++thin;
+      EXPECT_NEAR(end.radius, 0.6, 0.1);
+      EXPECT_GT(end.normal[0], std::cos(5.0 * M_PI / 180.0));
+      EXPECT_GT(end.centre[0], 10.0);
+    }
+  }
+  EXPECT_EQ(thin, 1);
+}
+
+TEST_F(VesselClipTest, EndsTheCenterlinesMissAreReportedAndNeverReCutElsewhere)
+{
+  // Centerlines of the trunk only: the branch's open end is left as it was and reported.
+  CenterlineOptions trunk;
+  trunk.seeds = { { { 0, 0, -20 } }, { { 0, 0, 20 } } };
+  const CenterlineResult cl = ComputeCenterlines(ThinBranch(), trunk);
+  ASSERT_TRUE(cl.ok) << cl.message;
+  const ClipResult r = ClipVesselEnds(ThinBranch(), cl.paths);
+  ASSERT_EQ(r.ends.size(), 2u);
+  ASSERT_EQ(r.unclipped.size(), 1u);
+  EXPECT_NEAR(r.unclipped[0].centre[0], 20.0, 0.01);
+  EXPECT_NEAR(r.unclipped[0].radius, 0.6, 0.1);
+  EXPECT_EQ(CheckMesh(r.surface).boundaryLoops.size(), 3u);
+  // A cut asked at the branch's tip: the nearest end is the trunk's, 28 mm away, whose wall
+  // is 16.5 mm from the point. Refused, not a cut of the trunk.
+  ClipOptions atTip;
+  atTip.ends.push_back({ { { 19.5, 0, 0 } }, 3.0 });
+  try
+  {
+    ClipVesselEnds(ThinBranch(), cl.paths, atTip);
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const InputError& e)
+  {
+    const std::string what = e.what();
+    const std::size_t at = what.find(" mm from the vessel of the nearest end");
+    ASSERT_NE(at, std::string::npos) << what;
+    // 19.5 mm from its centerline, 16.5 from its wall.
+    EXPECT_NEAR(std::stod(what.substr(what.rfind(" is ", at) + 4)), 16.5, 0.3) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+  }
+  // On the trunk, near its end: cut there.
+  ClipOptions onTrunk;
+  onTrunk.ends.push_back({ { { 1.0, 0, 18 } }, 4.0 });
+  const ClipResult cut = ClipVesselEnds(ThinBranch(), cl.paths, onTrunk);
+  int user = 0;
+  for (const ClippedEnd& end : cut.ends)
+  {
+    if (end.userChosen)
+    {
+      ++user;
+      EXPECT_NEAR(end.distance, 4.0, 1e-9);
+      EXPECT_GT(end.centerlineEnd[2], 0.0);
+    }
+  }
+  EXPECT_EQ(user, 1);
 }

@@ -234,27 +234,64 @@ TEST(CfdCase, VelocityInletAndNamedInlet)
   options.velocity = 0.3;
   options.inletProfile = bender::CfdInletProfile::Plug;
   options.inlet = "outlet_2";
+  // The surface's ends: inlet, outlet_1, outlet_2 (label order, as the case's patches).
+  const std::vector<bender::PatchLabel> labels = bender::ReadPatchLabels(Aneurysm());
+  std::size_t chosen = labels.size(), former = labels.size();
+  for (std::size_t k = 0; k < labels.size(); ++k)
+  {
+    chosen = labels[k].name == "outlet_2" ? k : chosen;
+    former = labels[k].name == "inlet" ? k : former;
+  }
+  ASSERT_LT(chosen, labels.size());
+  ASSERT_LT(former, labels.size());
   const bender::CfdCaseResult r = bender::WriteOpenFoamCase(Aneurysm(), options);
-  EXPECT_EQ(r.inlet, "outlet_2");
+  // The chosen end is the inlet and is called so; the former inlet is an outlet and takes the
+  // chosen end's outlet name (names and roles agree, issue 23).
+  EXPECT_EQ(r.inlet, "inlet");
+  ASSERT_EQ(r.patches.size(), labels.size());
+  EXPECT_EQ(r.patches[chosen].name, "inlet");
+  EXPECT_EQ(r.patches[chosen].type, bender::PatchType::Inlet);
+  EXPECT_EQ(r.patches[former].name, "outlet_2");
+  EXPECT_EQ(r.patches[former].type, bender::PatchType::Outlet);
   int inlets = 0;
   for (const auto& p : r.patches)
   {
     if (p.type == bender::PatchType::Inlet)
     {
       ++inlets;
-      EXPECT_EQ(p.name, "outlet_2");
       EXPECT_NEAR(r.inletFlowRate, 0.3 * p.area, 1e-15);
     }
   }
   EXPECT_EQ(inlets, 1);
+  // The same names and roles in bender-case.json, the STL's solids and the labelled VTP.
+  const std::string json = ReadText(options.caseDirectory + "/bender-case.json");
+  EXPECT_NE(json.find("\"inlet\": \"inlet\""), std::string::npos) << json;
+  const std::string stl = ReadText(options.caseDirectory + "/constant/triSurface/vessel.stl");
+  EXPECT_EQ(Count(stl, "endsolid inlet\n"), 1u);
+  EXPECT_EQ(Count(stl, "endsolid outlet_2\n"), 1u);
+  const auto vtp = bender::ReadMesh(options.caseDirectory + "/constant/triSurface/vessel.vtp");
+  const std::vector<bender::PatchLabel> written = bender::ReadPatchLabels(vtp);
+  ASSERT_EQ(written.size(), r.patches.size());
+  for (std::size_t k = 0; k < written.size(); ++k)
+  {
+    EXPECT_EQ(written[k].id, labels[k].id);
+    EXPECT_EQ(written[k].name, r.patches[k].name);
+    EXPECT_EQ(written[k].type, r.patches[k].type);
+  }
+  // The input surface keeps its own labels.
+  EXPECT_EQ(bender::ReadPatchLabels(Aneurysm())[former].name, "inlet");
+  // The inlet's velocity on the patch called inlet; the former inlet is an outlet at p = 0.
+  auto block = [](const std::string& text, const std::string& patch)
+  {
+    const std::size_t at = text.find("\n    " + patch + "\n    {");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find("\n    }", at) - at);
+  };
   const std::string u = ReadText(options.caseDirectory + "/0/U");
-  EXPECT_NE(
-    u.find("surfaceNormalFixedValue;\n        refValue        uniform -0.3;"), std::string::npos)
-    << u;
-  // The former inlet is now an outlet at p = 0.
-  EXPECT_NE(ReadText(options.caseDirectory + "/0/p")
-              .find("inlet\n    {\n        type            fixedValue;"),
-    std::string::npos);
+  EXPECT_NE(block(u, "inlet").find("surfaceNormalFixedValue"), std::string::npos) << u;
+  EXPECT_NE(block(u, "inlet").find("uniform -0.3;"), std::string::npos) << u;
+  const std::string p = ReadText(options.caseDirectory + "/0/p");
+  EXPECT_NE(block(p, "outlet_2").find("fixedValue"), std::string::npos) << p;
+  EXPECT_EQ(block(p, "inlet").find("fixedValue"), std::string::npos) << p;
 }
 
 TEST(CfdCase, RefusesSurfacesThatCannotMakeAFlowCase)

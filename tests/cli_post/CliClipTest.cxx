@@ -1,12 +1,15 @@
 // bender-cli clip (in-process): the gmsh aneurysm clipped, extended, capped and labelled into
 // a VTP; user names and clip distances; one-line errors with a non-zero exit and no output for
-// bad input; the input is never overwritten.
+// bad input (an end no centerline reaches, a --end off its vessel: nothing written); the input
+// is never overwritten.
 
 #include "InProcessCli.h"
 
 #include "BenderMeshCheck.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
+#include "VesselCenterlines.h"
+#include "VesselTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -132,4 +135,44 @@ TEST(CliClip, BadInputIsOneLineAndNonZero)
   run = bendertest::RunInProcess({ "clip", "--help" });
   EXPECT_EQ(run.status, 0);
   EXPECT_NE(run.out.find("usage: bender-cli clip"), std::string::npos);
+}
+
+TEST(CliClip, AnEndItCannotClipIsRefusedAndNothingIsWritten)
+{
+  // A tube with a branch 1.2 mm wide open at x = 20, and centerlines of the tube only.
+  const std::vector<bender::test::Segment> tubes = { { { { 0, 0, -40 } }, { { 0, 0, 40 } }, 3.013 },
+    { { { 0, 0, 0 } }, { { 40, 0, 0 } }, 0.6013 } };
+  const double bounds[6] = { -5, 20, -4.2, 4.2, -20, 20 };
+  const std::string surface = Temp("branched.vtp"), centerlines = Temp("trunk.vtp");
+  const std::string out = Temp("branched-cfd.vtp");
+  bender::WriteMesh(bender::test::ImplicitTubes(tubes, bounds, 0.2), surface);
+  bender::CenterlineOptions trunk;
+  trunk.seeds = { { { 0, 0, -20 } }, { { 0, 0, 20 } } };
+  bender::WriteMesh(
+    bender::ComputeCenterlines(bender::ReadMesh(surface), trunk).paths, centerlines);
+  std::filesystem::remove(out);
+  bendertest::CliRun run =
+    bendertest::RunInProcess({ "clip", surface, "-o", out, "--centerlines", centerlines });
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(Lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("(20, 0, 0) (1.2 mm wide) would not be clipped"), std::string::npos)
+    << run.err;
+  EXPECT_NE(run.err.find("centerlines through it"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // At the branch's tip with DIST: the nearest end is the tube's, whose vessel is far.
+  run = bendertest::RunInProcess(
+    { "clip", surface, "-o", out, "--centerlines", centerlines, "--end", "19.5,0,0:2" });
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(Lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("mm from the vessel of the nearest end"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // As told: the centerlines computed, through every end.
+  run = bendertest::RunInProcess({ "clip", surface, "-o", out });
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("3 ends"), std::string::npos) << run.out;
+  EXPECT_EQ(bender::ReadPatchLabels(bender::ReadMesh(out)).size(), 4u);
+  for (const std::string& f : { surface, centerlines, out })
+  {
+    std::filesystem::remove(f);
+  }
 }
