@@ -124,7 +124,9 @@ int RunSweepCommand(SweepArguments a)
         "%s: failed: %s (log: %s)\n", row.id.c_str(), row.reason.c_str(), row.log.c_str());
     }
   }
-  std::printf("sweep: %zu solved (%zu now, %zu kept), %zu rejected, %zu failed\n",
+  std::printf("sweep: %zu prepared now; %zu solved (%zu now, %zu kept), %zu rejected, %zu "
+              "failed\n",
+    result.prepared,
     solved,
     result.solved,
     result.kept,
