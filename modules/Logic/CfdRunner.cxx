@@ -3,6 +3,7 @@
 #include "BenderErrors.h"
 #include "CfdCaseFile.h"
 #include "CfdMeshing.h"
+#include "StringUtil.h"
 
 #include "ProcessRunner.h"
 
@@ -119,8 +120,21 @@ void CheckMeshPatches(const std::string& caseDirectory)
       meshPatches.begin(), meshPatches.end(), [&](const auto& m) { return m.first == name; });
     if (it == meshPatches.end() || it->second <= 0)
     {
-      throw Error(caseDirectory + ": snappyHexMesh left patch " + name +
-        " without faces (give a smaller --cell-size)");
+      // Where the missing end is and how wide (bender-case.json: metres), when written.
+      std::string where;
+      const nlohmann::json& centre = p.contains("centre") ? p["centre"] : nlohmann::json();
+      if (centre.is_array() && centre.size() == 3 && centre[0].is_number() &&
+        centre[1].is_number() && centre[2].is_number() && p.contains("diameter") &&
+        p["diameter"].is_number())
+      {
+        where = " at " +
+          FormatPoint({ { 1e3 * centre[0].get<double>(),
+            1e3 * centre[1].get<double>(),
+            1e3 * centre[2].get<double>() } }) +
+          " mm (" + FormatNumber(1e3 * p["diameter"].get<double>()) + " mm wide)";
+      }
+      throw Error(caseDirectory + ": snappyHexMesh left patch " + name + where +
+        " without faces: the case would miss that end (give a smaller --cell-size)");
     }
   }
 }
