@@ -1,5 +1,6 @@
 #include "vtkBenderRibbonRepresentation.h"
 
+#include "vtkBenderRegionOutline.h"
 #include "vtkBenderRibbonSource.h"
 
 #include <vtkActor.h>
@@ -11,7 +12,6 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
-#include <vtkPolyDataSilhouette.h>
 #include <vtkPropCollection.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
@@ -106,17 +106,16 @@ vtkBenderRibbonRepresentation::vtkBenderRibbonRepresentation()
   this->RegionActor->GetProperty()->BackfaceCullingOn();
   this->RegionActor->PickableOff();
 
-  // The region's outline as seen from the camera, plus the tube's end rings.
+  // The region's outline as seen from the camera: the boundary of the discs of radius R
+  // around the wire's projection (vtkBenderRegionOutline), never crossing itself.
   this->CageSource = vtkSmartPointer<vtkBenderRibbonSource>::New();
   this->CageSource->SetResolution(48);
   this->CageSource->SetTubeSides(32);
   this->CageSource->SetWidth(0.0);
-  this->Silhouette = vtkSmartPointer<vtkPolyDataSilhouette>::New();
-  this->Silhouette->SetInputConnection(this->CageSource->GetOutputPort(2));
-  this->Silhouette->SetDirectionToCameraOrigin();
-  this->Silhouette->BorderEdgesOff();
+  this->Outline = vtkSmartPointer<vtkBenderRegionOutline>::New();
+  this->Outline->SetInputConnection(this->CageSource->GetOutputPort(1));
   this->CageMapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  this->CageMapper->SetInputConnection(this->Silhouette->GetOutputPort());
+  this->CageMapper->SetInputConnection(this->Outline->GetOutputPort());
   this->CageActor = vtkSmartPointer<vtkActor>::New();
   this->CageActor->SetMapper(this->CageMapper);
   this->CageActor->GetProperty()->SetLineWidth(2.0);
@@ -443,6 +442,7 @@ void vtkBenderRibbonRepresentation::BuildRepresentation()
   this->Source->SetRadius(this->RegionVisibility && this->RegionOpacity > 0.0 ? this->Radius : 0.0);
   this->CageSource->SetRibbon(this->Ribbon);
   this->CageSource->SetRadius(this->RegionVisibility ? this->Radius : 0.0);
+  this->Outline->SetRadius(this->RegionVisibility ? this->Radius : 0.0);
   // The end handles a little larger than the others: they are the ones to grab first.
   const double r = this->HandleRadius;
   this->Sphere->SetRadius(1.25 * r);
@@ -584,6 +584,12 @@ void vtkBenderRibbonRepresentation::Highlight(int highlight)
   this->BuildRepresentation();
 }
 
+vtkPolyData* vtkBenderRibbonRepresentation::GetRegionOutline()
+{
+  this->Outline->Update();
+  return this->Outline->GetOutput();
+}
+
 double* vtkBenderRibbonRepresentation::GetBounds()
 {
   this->BuildRepresentation();
@@ -637,7 +643,7 @@ int vtkBenderRibbonRepresentation::RenderOpaqueGeometry(vtkViewport* viewport)
     if (this->Radius > 0.0 && this->RegionVisibility && renderer &&
       renderer->IsActiveCameraCreated())
     {
-      this->Silhouette->SetCamera(renderer->GetActiveCamera());
+      this->Outline->SetCamera(renderer->GetActiveCamera());
       count += this->CageActor->RenderOpaqueGeometry(viewport);
     }
   }

@@ -48,7 +48,7 @@ class vtkActor;
 class vtkBenderRibbonSource;
 class vtkPolyData;
 class vtkPolyDataMapper;
-class vtkPolyDataSilhouette;
+class vtkBenderRegionOutline;
 class vtkProperty;
 class vtkConeSource;
 class vtkCubeSource;
@@ -120,6 +120,8 @@ public:
   ///@}
 
   /** Whether the current ribbon is valid, and why not. */
+  /** The region's outline as last drawn (closed polylines, see vtkBenderRegionOutline). */
+  vtkPolyData* GetRegionOutline();
   bool GetValid() const { return this->Valid; }
   const std::string& GetLastError() const { return this->LastError; }
 
@@ -201,7 +203,7 @@ private:
   vtkSmartPointer<vtkPolyDataMapper> RegionMapper;
   vtkSmartPointer<vtkActor> RegionActor;
   vtkSmartPointer<vtkBenderRibbonSource> CageSource; // copy of the ribbon for the outline
-  vtkSmartPointer<vtkPolyDataSilhouette> Silhouette;
+  vtkSmartPointer<vtkBenderRegionOutline> Outline;   // the region as the camera sees it
   vtkSmartPointer<vtkPolyDataMapper> CageMapper;
   vtkSmartPointer<vtkActor> CageActor;
   vtkSmartPointer<vtkPolyData> Lines; // handle arms, or the red line of an invalid ribbon

@@ -4,6 +4,9 @@
 #include "vtkBenderRibbonSource.h"
 #include "vtkBenderRibbonWidget.h"
 
+#include "OutlineCrossings.h"
+#include "Vec3.h"
+
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
@@ -16,10 +19,12 @@
 #include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataSilhouette.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
+#include <vtkStripper.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <gtest/gtest.h>
@@ -27,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 using Rep = vtkBenderRibbonRepresentation;
 
@@ -394,4 +400,67 @@ TEST(RibbonWidget, HoverShowsWhatTheHandleDoes)
   recorder->Play();
   recorder->Off();
   EXPECT_STREQ(scene.representation->GetHoverText(), "");
+}
+
+// Issue 22: the region's outline while dragging is one simple closed curve, however tightly the
+// ribbon is bent and wherever the camera looks from. The silhouette of the region's tube, drawn
+// before, is a tangle of loops there (the swept tube folds where the wire bends tighter than R).
+TEST(RibbonRepresentation, TheRegionOutlineIsASimpleClosedCurveAfterADrag)
+{
+  Scene scene;
+  scene.representation->SetRadius(8);
+  const bender::RibbonSpec straight = scene.representation->GetRibbon();
+  int tubeCrossings = 0;
+  for (const double angle : { 0.0, 60.0, 120.0, 160.0 })
+  {
+    // The end frame swung about +z by `angle` around the start, as dragging the end handle
+    // round does.
+    const double a = angle * 3.14159265358979 / 180.0;
+    const bender::Vec3 axis{ 0, 0, 1 };
+    bender::RibbonSpec ribbon = straight;
+    ribbon.end.position = straight.start.position +
+      bender::Rotate(axis, a, straight.end.position - straight.start.position);
+    ribbon.end.tangent = bender::Rotate(axis, a, straight.end.tangent);
+    ribbon.end.normal = bender::Rotate(axis, a, straight.end.normal);
+    scene.representation->SetRibbon(ribbon);
+    ASSERT_TRUE(scene.representation->GetValid()) << scene.representation->GetLastError();
+    for (const std::array<double, 3>& eye :
+      { std::array<double, 3>{ 0, 0, 60 }, { 40, 10, 40 }, { 0, 60, 5 } })
+    {
+      scene.renderer->GetActiveCamera()->SetPosition(eye.data());
+      scene.renderer->ResetCameraClippingRange();
+      scene.window->Render();
+      const auto loops =
+        bendertest::DisplayLoops(scene.representation->GetRegionOutline(), scene.renderer);
+      EXPECT_TRUE(bendertest::IsSimpleClosedCurve(loops))
+        << angle << " degrees, seen from " << eye[0] << " " << eye[1] << " " << eye[2] << ": "
+        << loops.size() << " loops, " << bendertest::Crossings(loops) << " crossings";
+
+      // The tube's silhouette for the same view: the case is one that tangles it.
+      vtkNew<vtkBenderRibbonSource> tube;
+      tube->SetRibbon(ribbon);
+      tube->SetResolution(48);
+      tube->SetTubeSides(32);
+      tube->SetRadius(8);
+      vtkNew<vtkPolyDataSilhouette> silhouette;
+      silhouette->SetInputConnection(tube->GetOutputPort(2));
+      silhouette->SetDirectionToCameraOrigin();
+      silhouette->BorderEdgesOff();
+      silhouette->SetCamera(scene.renderer->GetActiveCamera());
+      vtkNew<vtkStripper> strips;
+      strips->SetInputConnection(silhouette->GetOutputPort());
+      strips->Update();
+      tubeCrossings +=
+        bendertest::Crossings(bendertest::DisplayLoops(strips->GetOutput(), scene.renderer));
+    }
+  }
+  EXPECT_GT(tubeCrossings, 0);
+  vtkNew<vtkWindowToImageFilter> image;
+  image->SetInput(scene.window);
+  image->ReadFrontBufferOff();
+  image->Update();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(BENDER_ARTIFACT_DIR "/ribbon-region-outline.png");
+  writer->SetInputConnection(image->GetOutputPort());
+  writer->Write();
 }

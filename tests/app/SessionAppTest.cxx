@@ -4,8 +4,10 @@
 // mesh is asked about only once it has been read; another patient's volume closes the surface
 // with its warps, ribbon and centerlines (asking first); an export in metres opens again at its
 // size in millimetres, in every format that states its unit; the Bend panel says a ribbon is
-// placed, counts say "1 warp", F1's table fits without sideways scrolling.
+// placed, counts say "1 warp", F1's table fits without sideways scrolling, the region's outline
+// stays one simple closed curve while the ribbon is dragged.
 #include "AppTestUtilities.h"
+#include "OutlineCrossings.h"
 
 #include "BendPanel.h"
 #include "BenderSession.h"
@@ -19,6 +21,7 @@
 #include "SegmentationSession.h"
 #include "VesselController.h"
 #include "VolumeIO.h"
+#include "vtkBenderRibbonRepresentation.h"
 #include "vtkBenderRibbonWidget.h"
 
 #include <QAbstractButton>
@@ -34,6 +37,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QMessageBox>
+#include <QMouseEvent>
 #include <QScreen>
 #include <QScrollBar>
 #include <QSettings>
@@ -497,6 +501,57 @@ private slots:
       qPrintable(window->statusLabel()->text()));
     for (const auto& message : session.GetMessages())
       QVERIFY2(message.text.find("1 warps") == std::string::npos, message.text.c_str());
+    window->close();
+  }
+
+  void theRegionOutlineStaysOneSimpleCurveWhileDragging()
+  {
+    // G, then the end handle dragged round the ribbon's start with the mouse: the region's
+    // outline (R = 10 mm around a 20 mm ribbon) is one closed curve that never crosses itself.
+    QTemporaryDir folder;
+    auto window = this->tubeWindow(folder.path());
+    QVERIFY(window);
+    bender::BenderSession& session = window->session();
+    bender::WarpParameters parameters = session.GetParameters();
+    parameters.radius = 10;
+    window->bendPanel()->setParameters(parameters);
+    window->gesture()->applyParameters();
+    bendertest::Look(*window, { 30, 0, 0 }, { 0, 0, 1 }, 50);
+    QVERIFY(window->grab());
+    vtkBenderRibbonRepresentation* rep = window->ribbonWidget()->GetRibbonRepresentation();
+    QCOMPARE(rep->GetRadius(), 10.0);
+    const bender::Vec3 start = TubeRibbon().start.position;
+    const bender::Vec3 end = TubeRibbon().end.position;
+    QWidget* view = window->view();
+    QPoint at = bendertest::Project(*window, end);
+    QTest::mouseMove(view, at);
+    QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, at);
+    int checked = 0;
+    for (int step = 1; step <= 9; ++step)
+    {
+      const double a = 10.0 * step * 3.14159265358979323846 / 180.0;
+      at = bendertest::Project(*window, start + bender::Rotate({ 0, 0, 1 }, a, end - start));
+      QMouseEvent move(QEvent::MouseMove, at, Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+      QApplication::sendEvent(view, &move);
+      QCoreApplication::processEvents();
+      window->render();
+      if (!rep->GetValid())
+        continue;
+      const auto loops = bendertest::DisplayLoops(rep->GetRegionOutline(), window->renderer());
+      QVERIFY2(bendertest::IsSimpleClosedCurve(loops),
+        qPrintable(QString("%1 degrees: %2 loops, %3 crossings")
+                     .arg(10 * step)
+                     .arg(loops.size())
+                     .arg(bendertest::Crossings(loops))));
+      ++checked;
+      if (step == 6)
+        QVERIFY(window->saveScreenshot(this->artefact("session-region-outline.png")));
+    }
+    QVERIFY2(checked >= 6, qPrintable(QString::number(checked)));
+    // The drag moved the ribbon's end.
+    QVERIFY(bender::Distance(rep->GetRibbon().end.position, end) > 5.0);
+    QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, at);
+    session.CancelGrab("the outline was what was tested");
     window->close();
   }
 
