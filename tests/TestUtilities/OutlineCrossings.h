@@ -75,10 +75,8 @@ inline int Crossings(const std::vector<ScreenLoop>& loops)
   {
     for (std::size_t j = i + 1; j < segments.size(); ++j)
     {
-      crossings += SegmentsCross(segments[i].first,
-                     segments[i].second,
-                     segments[j].first,
-                     segments[j].second)
+      crossings +=
+        SegmentsCross(segments[i].first, segments[i].second, segments[j].first, segments[j].second)
         ? 1
         : 0;
     }
