@@ -180,7 +180,8 @@ FlowPicture Render(vtkRenderWindow* window,
 
   FlowPicture picture;
   picture.name = quantity.key + "-" + RenderViewName(view);
-  picture.title = quantity.title + ", " + RenderViewName(view) + " view; " + quantity.scale;
+  picture.title = quantity.title + ", " + RenderViewName(view) + " view";
+  picture.caption = "Colour scale: " + quantity.scale + ".";
   picture.image = vtkSmartPointer<vtkImageData>::New();
   picture.image->DeepCopy(grab->GetOutput());
   return picture;

@@ -49,8 +49,9 @@ struct FlowPictureOptions
 /// One picture: one quantity from one viewpoint, A on the left, B on the right.
 struct FlowPicture
 {
-  std::string name;  ///< "pressure-iso": the PNG's base name
-  std::string title; ///< "Pressure (Pa), iso view; one scale for both, ..."
+  std::string name;    ///< "pressure-iso": the PNG's base name
+  std::string title;   ///< "Pressure (Pa), iso view"
+  std::string caption; ///< how the colour scale is chosen
   vtkSmartPointer<vtkImageData> image;
 };
 

@@ -268,7 +268,7 @@ FlowReportResult WriteFlowReport(const CfdCaseComparison& comparison,
         {
           layout.NewPage();
         }
-        layout.Picture(ToQImage(pictures[i].image), Q(pictures[i].title));
+        layout.Picture(ToQImage(pictures[i].image), Q(pictures[i].title), Q(pictures[i].caption));
       }
       result.pages = layout.Pages();
       if (!painter.end())

@@ -121,7 +121,10 @@ void ReportLayout::Table(const std::vector<ReportRow>& rows, const std::vector<d
   this->Y += this->Pixels(6);
 }
 
-void ReportLayout::Picture(const QImage& image, const QString& caption, double heightFraction)
+void ReportLayout::Picture(const QImage& image,
+  const QString& title,
+  const QString& caption,
+  double heightFraction)
 {
   if (image.isNull())
   {
@@ -132,7 +135,8 @@ void ReportLayout::Picture(const QImage& image, const QString& caption, double h
     std::min(static_cast<double>(this->Writer.width()) / image.width(), maxHeight / image.height());
   const QSize size(
     static_cast<int>(image.width() * scale), static_cast<int>(image.height() * scale));
-  this->Heading(caption, 10.5, size.height());
+  this->Heading(title, 10.5, size.height() + this->Pixels(12));
+  this->Paragraph(caption, 8, QColor(90, 90, 90));
   this->Painter.drawImage(QRect(QPoint(0, this->Y), size), image);
   this->Y += size.height() + this->Pixels(8);
 }

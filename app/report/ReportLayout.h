@@ -39,8 +39,11 @@ public:
   /// after the first are right-aligned. Rows split across pages with the header repeated.
   void Table(const std::vector<ReportRow>& rows, const std::vector<double>& widths);
   /// A picture scaled to the page width (or `heightFraction` of the page height, whichever is
-  /// smaller), with a caption above.
-  void Picture(const QImage& image, const QString& caption, double heightFraction = 0.42);
+  /// smaller), with its title and a caption above.
+  void Picture(const QImage& image,
+    const QString& title,
+    const QString& caption,
+    double heightFraction = 0.42);
   /// Space below the last block, in points.
   void Skip(double points);
   /// Starts a new page.
