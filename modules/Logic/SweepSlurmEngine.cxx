@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -174,13 +175,25 @@ Submission Submit(const fs::path& work,
   return submission;
 }
 
-// The tasks of the job squeue still lists (pending or running), by index, with their state.
-std::map<std::size_t, std::string> Queued(const std::string& jobId)
+// The tasks of the job squeue still lists (pending or running), by index, with their state;
+// nothing when squeue could not answer (the controller busy or restarting: ask again), with
+// its last line in `problem`. A job squeue no longer knows has ended.
+std::optional<std::map<std::size_t, std::string>> Queued(const std::string& jobId,
+  std::string& problem)
 {
   bool failed = false;
   const std::vector<std::string> lines =
     Client({ "squeue", "-h", "-r", "-j", jobId, "-o", "%i %T" }, true, &failed);
   std::map<std::size_t, std::string> queued;
+  if (failed)
+  {
+    problem = lines.empty() ? std::string("squeue failed") : lines.back();
+    if (problem.find("Invalid job id") == std::string::npos)
+    {
+      return std::nullopt;
+    }
+    return queued;
+  }
   for (const std::string& line : lines)
   {
     const auto under = line.find('_');
@@ -270,6 +283,13 @@ SweepJobOutcome Ended(const fs::path& work,
   return outcome;
 }
 
+// Waits one polling interval.
+void Pause(const SweepEngineOptions& options)
+{
+  std::this_thread::sleep_for(
+    std::chrono::milliseconds(static_cast<long>(std::max(0.05, options.pollSeconds) * 1000.0)));
+}
+
 // Follows one submission until none of its tasks is queued; the outcome of each.
 std::map<std::size_t, SweepJobOutcome> Follow(const fs::path& work,
   const Submission& submission,
@@ -294,7 +314,20 @@ std::map<std::size_t, SweepJobOutcome> Follow(const fs::path& work,
       }
       return outcomes;
     }
-    const std::map<std::size_t, std::string> queued = Queued(submission.jobId);
+    std::string problem;
+    const auto answer = Queued(submission.jobId, problem);
+    if (!answer)
+    {
+      const std::string line = "slurm: squeue did not answer (" + problem + "), asking again";
+      if (options.onLine && line != lastLine)
+      {
+        options.onLine(line);
+        lastLine = line;
+      }
+      Pause(options);
+      continue;
+    }
+    const std::map<std::size_t, std::string>& queued = *answer;
     std::size_t running = 0;
     for (std::size_t index : submission.indices)
     {
@@ -327,8 +360,7 @@ std::map<std::size_t, SweepJobOutcome> Follow(const fs::path& work,
     {
       return outcomes;
     }
-    std::this_thread::sleep_for(
-      std::chrono::milliseconds(static_cast<long>(std::max(0.05, options.pollSeconds) * 1000.0)));
+    Pause(options);
   }
 }
 } // namespace
