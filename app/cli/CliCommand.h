@@ -28,6 +28,7 @@ void AddCenterlineCommand(CLI::App& cli);
 void AddMeasureCommand(CLI::App& cli);
 void AddClipCommand(CLI::App& cli);
 void AddCfdCaseCommand(CLI::App& cli);
+void AddCfdVerifyCommand(CLI::App& cli);
 /// bender-cli compare: built with the Qt application (its report is app/report, QPdfWriter).
 void AddCompareCommand(CLI::App& cli);
 void AddFormatsCommand(CLI::App& cli);

@@ -29,6 +29,7 @@ void AddCommands(CLI::App& cli)
   AddMeasureCommand(cli);
   AddClipCommand(cli);
   AddCfdCaseCommand(cli);
+  AddCfdVerifyCommand(cli);
 #ifdef BENDER_WITH_REPORT
   AddCompareCommand(cli);
 #endif

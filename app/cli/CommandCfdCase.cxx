@@ -7,6 +7,7 @@
 #include "BenderErrors.h"
 #include "CfdBoundaryConditions.h"
 #include "CfdCase.h"
+#include "CfdConvergenceStudy.h"
 #include "MeshIO.h"
 
 #include <vtkPolyData.h>
@@ -43,7 +44,8 @@ struct CfdCaseArguments
   bender::CfdCaseOptions options;
   std::string inletProfile = "poiseuille", outlets;
   std::vector<std::string> split, resistance;
-  bool run = false, json = false;
+  bool run = false, json = false, convergence = false;
+  double ratio = 1.3;
 };
 
 int RunCfdCase(CfdCaseArguments a)
@@ -62,7 +64,7 @@ int RunCfdCase(CfdCaseArguments a)
   options.outletValues = !a.split.empty()
     ? bender::ParseCfdOutletValues("--split", a.split)
     : bender::ParseCfdOutletValues("--resistance", a.resistance);
-  if (a.run)
+  if (a.run || a.convergence)
   {
     // Before writing anything: a clear error when OpenFOAM is missing.
     if (const std::string problem = bender::FindOpenFoamProblem(options.processors);
@@ -73,6 +75,25 @@ int RunCfdCase(CfdCaseArguments a)
   }
   const vtkSmartPointer<vtkPolyData> surface = bender::ReadMesh(a.input);
   options.sourceName = a.input;
+  if (a.convergence)
+  {
+    bender::CfdConvergenceOptions study;
+    study.caseOptions = options;
+    study.ratio = a.ratio;
+    if (!a.json)
+    {
+      study.onLine = [](const std::string& line)
+      {
+        std::printf("%s\n", line.c_str());
+        std::fflush(stdout);
+      };
+    }
+    const bender::CfdConvergenceResult result = bender::RunCfdConvergence(surface, study);
+    std::printf("%s",
+      (a.json ? bender::CfdConvergenceToJson(result) + "\n" : bender::FormatCfdConvergence(result))
+        .c_str());
+    return 0;
+  }
   const bender::CfdCaseResult written = bender::WriteOpenFoamCase(surface, options);
   if (!a.json)
   {
@@ -206,6 +227,15 @@ void bender::AddCfdCaseCommand(CLI::App& cli)
     "inlet to each outlet (Pa, rho 1060 kg/m^3), the mass imbalance, the wall shear stress "
     "(mean, 99th percentile, max; wall area below 0.4 Pa and above 15 Pa), the residuals "
     "(converged only when the residual control was met)");
+  cfd->add_flag("--convergence",
+    a->convergence,
+    "run three meshes, cell sizes H, H/r, H/r^2, in CASE_DIR/mesh-1..3 and report for the "
+    "pressure drop, flow split and mean WSS the three values, the Richardson-extrapolated value, "
+    "the apparent order and the GCI (safety factor 1.25)");
+  cfd->add_option("--refinement-ratio", a->ratio, "r of --convergence (at least 1.3)")
+    ->type_name("R")
+    ->check(NumberIn(1.3, 4))
+    ->capture_default_str();
   cfd->add_flag("--json",
     a->json,
     "print one JSON object instead of text (with --run, flow.json's content as \"flow\")");
