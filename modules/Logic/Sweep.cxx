@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -344,12 +345,21 @@ SweepResult RunSweep(const SweepOptions& options)
     engine.workFolder = (dir / "slurm").string();
     engine.onLine = options.onLine;
     engine.progress = options.progress;
-    const std::vector<SweepJobOutcome> outcomes = RunSweepJobs(jobs, engine);
-    for (std::size_t k = 0; k < jobs.size(); ++k)
+    // Each case is recorded as soon as it is solved (a sweep killed outright keeps what was
+    // done), and every case once more when the engine returns.
+    std::mutex recording;
+    std::vector<bool> recorded(jobs.size(), false);
+    auto record = [&](std::size_t k, const SweepJobOutcome& outcome)
     {
+      std::lock_guard<std::mutex> lock(recording);
+      if (recorded[k])
+      {
+        return;
+      }
       SweepRow& row = rows[toSolve[k]];
-      const SweepJobOutcome& outcome = outcomes[k];
       row.log = outcome.log;
+      row.state = "failed";
+      row.reason = outcome.message;
       if (outcome.state == SweepJobOutcome::State::Solved)
       {
         try
@@ -357,29 +367,38 @@ SweepResult RunSweep(const SweepOptions& options)
           ReadSweepRowResults(jobs[k].caseDirectory, row);
           row.state = "solved";
           row.reason.clear();
+          row.solveSeconds = SweepCaseSeconds(jobs[k].caseDirectory);
           ++result.solved;
-        }
-        catch (const Cancelled&)
-        {
-          throw;
         }
         catch (const Error& e)
         {
           // Results that cannot be mapped (a diverged field): this candidate failed.
-          row.state = "failed";
           row.reason = e.what();
         }
       }
-      else
+      else if (outcome.state == SweepJobOutcome::State::Cancelled)
       {
-        // A cancelled case stays prepared (solved next time); a failed one is prepared again.
-        row.state = outcome.state == SweepJobOutcome::State::Cancelled ? "ready" : "failed";
-        row.reason = outcome.message;
+        // A cancelled case stays prepared: it is solved next time.
+        row.state = "ready";
       }
-      row.solveSeconds = outcome.state == SweepJobOutcome::State::Solved
-        ? SweepCaseSeconds(jobs[k].caseDirectory)
-        : 0.0;
+      recorded[k] = true;
       SaveRow(dir / row.id, row);
+    };
+    engine.onSolved = [&record](std::size_t k, const SweepJobOutcome& outcome)
+    {
+      try
+      {
+        record(k, outcome);
+      }
+      catch (const Error&)
+      {
+        // Recorded again (or its error thrown) once the engine returns.
+      }
+    };
+    const std::vector<SweepJobOutcome> outcomes = RunSweepJobs(jobs, engine);
+    for (std::size_t k = 0; k < jobs.size(); ++k)
+    {
+      record(k, outcomes[k]);
     }
     options.progress.ThrowIfCancelled("solve");
   }

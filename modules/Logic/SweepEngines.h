@@ -61,6 +61,9 @@ struct SweepEngineOptions
   std::string workFolder;
   /// Lines for the user ("slurm: job 42 submitted, 7 tasks").
   std::function<void(const std::string&)> onLine;
+  /// Called as soon as job `index` is solved (from the engine's thread; Slurm: once its task
+  /// ended well), so that the caller records it before the others end.
+  std::function<void(std::size_t index, const SweepJobOutcome& outcome)> onSolved;
   /// "solve" with the fraction of cases ended; its cancel flag stops the runs (local: the
   /// Allruns; Slurm: scancel of the job).
   ProgressReporter progress;

@@ -67,6 +67,10 @@ std::vector<SweepJobOutcome> RunLocalJobs(const std::vector<SweepJob>& jobs,
         outcome.state = SweepJobOutcome::State::Failed;
         outcome.message = e.what();
       }
+      if (outcome.state == SweepJobOutcome::State::Solved && options.onSolved)
+      {
+        options.onSolved(i, outcome);
+      }
       std::lock_guard<std::mutex> lock(report);
       ++ended;
       say(jobs[i].id + ": " +

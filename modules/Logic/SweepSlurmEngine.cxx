@@ -338,6 +338,10 @@ std::map<std::size_t, SweepJobOutcome> Follow(const fs::path& work,
       if (done && !outcomes.count(index))
       {
         outcomes[index] = Ended(work, submission.jobId, index, jobs[index]);
+        if (outcomes[index].state == SweepJobOutcome::State::Solved && options.onSolved)
+        {
+          options.onSolved(index, outcomes[index]);
+        }
         ++ended;
         if (options.onLine)
         {
