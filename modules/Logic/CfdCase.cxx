@@ -12,7 +12,15 @@
 #include "ExportSurface.h"
 #include "FaultInjection.h"
 
+#include <vtkAbstractArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +35,52 @@ namespace bender
 {
 namespace
 {
+/// A copy of `array`'s values and name without its vtkInformation (the ranges VTK caches
+/// there once asked): the XML writer closes an array with information differently, so the same
+/// surface would write different bytes depending on what was asked of it before.
+vtkSmartPointer<vtkAbstractArray> WithoutInformation(vtkAbstractArray* array)
+{
+  vtkSmartPointer<vtkAbstractArray> fresh =
+    vtkSmartPointer<vtkAbstractArray>::Take(array->NewInstance());
+  fresh->SetName(array->GetName());
+  fresh->SetNumberOfComponents(array->GetNumberOfComponents());
+  fresh->InsertTuples(0, array->GetNumberOfTuples(), 0, array);
+  return fresh;
+}
+
+/// The labelled surface as written into the case: the same bytes for the same surface (the
+/// flow cache keys cases by their files), the caller's surface untouched.
+vtkSmartPointer<vtkPolyData> AsWritten(vtkPolyData* surface)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->ShallowCopy(surface);
+  vtkNew<vtkFieldData> fieldData;
+  copy->SetFieldData(fieldData);
+  for (int i = 0; i < surface->GetFieldData()->GetNumberOfArrays(); ++i)
+  {
+    fieldData->AddArray(WithoutInformation(surface->GetFieldData()->GetAbstractArray(i)));
+  }
+  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(copy->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(copy->GetCellData()) })
+  {
+    for (int i = 0; i < data->GetNumberOfArrays(); ++i)
+    {
+      // AddArray replaces the array of the same name in place (an unnamed one is kept).
+      if (data->GetAbstractArray(i)->GetName())
+      {
+        data->AddArray(WithoutInformation(data->GetAbstractArray(i)));
+      }
+    }
+  }
+  if (surface->GetPoints())
+  {
+    vtkNew<vtkPoints> points;
+    points->SetData(
+      vtkDataArray::SafeDownCast(WithoutInformation(surface->GetPoints()->GetData())));
+    copy->SetPoints(points);
+  }
+  return copy;
+}
 
 std::string SurfaceName(const CfdCaseOptions& options)
 {
@@ -330,7 +384,7 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     ExportSurface(labelled, exportOptions);
     result.written.push_back("constant/triSurface/" + stl);
     const std::string vtp = options.surfaceName + ".vtp";
-    WriteMesh(labelled.surface, (temp / "constant" / "triSurface" / vtp).string());
+    WriteMesh(AsWritten(labelled.surface), (temp / "constant" / "triSurface" / vtp).string());
     result.written.push_back("constant/triSurface/" + vtp);
     std::vector<std::pair<std::string, std::string>> files = {
       { "system/blockMeshDict", BlockMeshDict(origin, hb, result.backgroundCells) },

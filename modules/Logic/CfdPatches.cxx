@@ -185,8 +185,10 @@ std::size_t ChooseInlet(std::vector<CfdPatch>& patches,
   {
     return chosen;
   }
+  // A deep copy: a shallow one shares the field data (PatchNames), and the caller's surface
+  // must keep its names.
   vtkNew<vtkPolyData> renamed;
-  renamed->ShallowCopy(labelled.surface);
+  renamed->DeepCopy(labelled.surface);
   WritePatchLabels(renamed, CellPatchIds(labelled.surface), labels);
   labelled.surface = renamed;
   labelled.patches = labels;
