@@ -28,7 +28,11 @@ TEST(StringUtil, ExtensionsAndNames)
 TEST(StringUtil, PointsInMessages)
 {
   EXPECT_EQ(bender::FormatPoint({ { 1.0, -2.5, 0.0 } }), "(1, -2.5, 0)");
-  EXPECT_EQ(bender::FormatPoint({ { 12.34567, 1e-7, 123456.0 } }), "(12.35, 1e-07, 1.235e+05)");
+  EXPECT_EQ(bender::FormatPoint({ { 12.34567, 1e-3, 123.0 } }), "(12.35, 0.001, 123)");
+  // Within a millionth of the largest coordinate: rounding noise, written 0.
+  EXPECT_EQ(bender::FormatPoint({ { 12.34567, 1e-7, 123456.0 } }), "(12.35, 0, 1.235e+05)");
+  EXPECT_EQ(bender::FormatPoint({ { 1.041e-17, -3.0, 2.0 } }), "(0, -3, 2)");
+  EXPECT_EQ(bender::FormatPoint({ { 1e-9, 0.0, 0.0 } }), "(1e-09, 0, 0)");
 }
 
 TEST(StringUtil, CountsWithTheirNoun)

@@ -392,14 +392,18 @@ private slots:
     QCOMPARE(finished.first().first().toBool(), false);
     QVERIFY(!this->panel()->isRunning());
     QVERIFY(this->panel()->runButton()->isEnabled());
-    // No case of the cache but the two solved ones has results.
-    int withResults = 0;
+    // The case being solved when Cancel came has no results; the cases solved before it do: the
+    // two of the earlier tests and, on a fast machine, the changed original solved before the
+    // cancel reached the candidate.
+    int withResults = 0, cases = 0;
     for (const QFileInfo& entry :
       QDir(this->Folder.filePath("flow-cache")).entryInfoList(QDir::Dirs | QDir::NoDotAndDotDot))
     {
+      ++cases;
       withResults += bender::HasFlowResults(entry.absoluteFilePath().toStdString()) ? 1 : 0;
     }
-    QCOMPARE(withResults, 2);
+    QCOMPARE(cases - withResults, 1);
+    QVERIFY2(withResults == 2 || withResults == 3, qPrintable(QString::number(withResults)));
   }
 };
 
