@@ -14,6 +14,7 @@
 //        is checked: WarpHistoryTest checks the memory bound)
 
 #include "BenderSession.h"
+#include "SwungRibbon.h"
 #include "WarpHistory.h"
 #include "WarpPlanIO.h"
 
@@ -54,19 +55,6 @@ std::string Figures(const std::vector<double>& ms)
   return text;
 }
 
-// The ribbon with its end swung by `degrees` about the start's normal, around the start.
-bender::RibbonSpec Swung(const bender::RibbonSpec& ribbon, double degrees)
-{
-  const double a = degrees * 3.14159265358979323846 / 180.0;
-  const bender::Vec3 axis = bender::Normalized(ribbon.start.normal);
-  bender::RibbonSpec swung = ribbon;
-  swung.end.position =
-    ribbon.start.position + bender::Rotate(axis, a, ribbon.end.position - ribbon.start.position);
-  swung.end.tangent = bender::Rotate(axis, a, ribbon.end.tangent);
-  swung.end.normal = bender::Rotate(axis, a, ribbon.end.normal);
-  return swung;
-}
-
 double MiB(std::size_t bytes)
 {
   return double(bytes) / (1024.0 * 1024.0);
@@ -101,7 +89,7 @@ bool Prepare(bender::BenderSession& session, std::size_t limit)
 double Warp(bender::BenderSession& session, double degrees, int& held)
 {
   const bender::RibbonSpec ribbon = *session.GetRibbon();
-  if (!session.Grab(ribbon) || !session.MoveFinal(Swung(ribbon, degrees)))
+  if (!session.Grab(ribbon) || !session.MoveFinal(bendertest::Swung(ribbon, degrees)))
   {
     session.CancelGrab("benchmark: the move was refused");
     return -1.0;

@@ -7,6 +7,7 @@
 // volume, the segmentation parameters, the surface with its name, the warps and the ribbon
 // (and, the volume file gone, the rest with one message); a DICOM series opened by its folder.
 #include "AppTestUtilities.h"
+#include "SwungRibbon.h"
 
 #include "BendPanel.h"
 #include "BenderMeshCheck.h"
@@ -88,19 +89,6 @@ double MaxDifference(vtkPolyData* a, vtkPolyData* b)
       worst = std::max(worst, std::abs(p[k] - q[k]));
   }
   return worst;
-}
-
-// The end of `ribbon` swung by `degrees` about the ribbon's normal around its start.
-bender::RibbonSpec Swung(const bender::RibbonSpec& ribbon, double degrees)
-{
-  const double a = degrees * 3.14159265358979323846 / 180.0;
-  const bender::Vec3 axis = bender::Normalized(ribbon.start.normal);
-  bender::RibbonSpec swung = ribbon;
-  swung.end.position =
-    ribbon.start.position + bender::Rotate(axis, a, ribbon.end.position - ribbon.start.position);
-  swung.end.tangent = bender::Rotate(axis, a, ribbon.end.tangent);
-  swung.end.normal = bender::Rotate(axis, a, ribbon.end.normal);
-  return swung;
 }
 
 } // namespace
@@ -252,7 +240,7 @@ private slots:
                                                : QString("r_min: none (straight wire)");
     };
     QVERIFY(this->Window->grab());
-    this->Window->setRibbon(Swung(this->Placed, 30));
+    this->Window->setRibbon(bendertest::Swung(this->Placed, 30));
     QTRY_VERIFY(std::isfinite(session.GetMinimumRadius()) && session.GetMinimumRadius() < 1e6);
     QTRY_VERIFY2(label->text().contains(expected()), qPrintable(label->text()));
     if (session.GetSpaceInversionRisk())
@@ -261,10 +249,10 @@ private slots:
     }
     // Swung further while grabbed, the wire's r_min changes: the status bar's warning, given
     // once in the grab, follows it (it kept the first value before).
-    this->Window->setRibbon(Swung(this->Placed, 60));
+    this->Window->setRibbon(bendertest::Swung(this->Placed, 60));
     QTRY_VERIFY(session.GetSpaceInversionRisk());
     const double firstMinimum = session.GetMinimumRadius();
-    this->Window->setRibbon(Swung(this->Placed, 80));
+    this->Window->setRibbon(bendertest::Swung(this->Placed, 80));
     QTRY_VERIFY(session.GetSpaceInversionRisk());
     QVERIFY(std::abs(session.GetMinimumRadius() - firstMinimum) > 0.01);
     const QString warning = QString::fromStdString(session.GetSpaceInversionWarning());
@@ -380,7 +368,7 @@ private slots:
     GestureController* gesture = this->Window->gesture();
     QVERIFY(this->Window->grab());
     // The branch's end swung by 170 degrees: it folds onto itself.
-    this->Window->setRibbon(Swung(this->Placed, 170));
+    this->Window->setRibbon(bendertest::Swung(this->Placed, 170));
     QVERIFY(this->Window->release());
     QVERIFY(this->Window->waitUntilIdle(60000));
     QVERIFY(session.IsCommitHeld());
@@ -416,7 +404,7 @@ private slots:
 
     // Again, and keep it this time: committed as computed, with a warning.
     QVERIFY(this->Window->grab());
-    this->Window->setRibbon(Swung(this->Placed, 170));
+    this->Window->setRibbon(bendertest::Swung(this->Placed, 170));
     QVERIFY(this->Window->release());
     QVERIFY(this->Window->waitUntilIdle(60000));
     QTRY_VERIFY(dialog->isVisible());
@@ -507,7 +495,7 @@ private slots:
     parameters.radius = 6;
     QVERIFY(session.SetParameters(parameters));
     QVERIFY(session.Grab(ribbon));
-    QVERIFY(session.MoveFinal(Swung(ribbon, 30)));
+    QVERIFY(session.MoveFinal(bendertest::Swung(ribbon, 30)));
     QVERIFY(session.Release());
     QVERIFY(QFileInfo::exists(autosave));
     // Interactive: Quit asks; Cancel keeps the window open.

@@ -8,6 +8,7 @@
 // stays one simple closed curve while the ribbon is dragged.
 #include "AppTestUtilities.h"
 #include "OutlineCrossings.h"
+#include "SwungRibbon.h"
 
 #include "BendPanel.h"
 #include "BenderSession.h"
@@ -180,19 +181,6 @@ bool TypeOnWindow(MainWindow& window, Qt::Key key, Qt::KeyboardModifiers modifie
   return true;
 }
 
-// The end of `ribbon` swung by `degrees` about its normal around its start.
-bender::RibbonSpec Swung(const bender::RibbonSpec& ribbon, double degrees)
-{
-  const double a = degrees * 3.14159265358979323846 / 180.0;
-  const bender::Vec3 axis = bender::Normalized(ribbon.start.normal);
-  bender::RibbonSpec swung = ribbon;
-  swung.end.position =
-    ribbon.start.position + bender::Rotate(axis, a, ribbon.end.position - ribbon.start.position);
-  swung.end.tangent = bender::Rotate(axis, a, ribbon.end.tangent);
-  swung.end.normal = bender::Rotate(axis, a, ribbon.end.normal);
-  return swung;
-}
-
 // A tube along x, 60 mm long, its ribbon placed along the middle third.
 bender::RibbonSpec TubeRibbon()
 {
@@ -230,7 +218,7 @@ private:
     window->gesture()->showRibbon(TubeRibbon(), 3.0);
     if (!window->grab())
       return nullptr;
-    window->setRibbon(Swung(TubeRibbon(), 25));
+    window->setRibbon(bendertest::Swung(TubeRibbon(), 25));
     if (!window->release() || !window->waitUntilIdle(60000) || session.GetHistoryPosition() != 1)
       return nullptr;
     window->files()->setInteractive(interactive);
@@ -488,7 +476,7 @@ private slots:
     window->bendPanel()->setParameters(parameters);
     window->gesture()->applyParameters();
     QVERIFY(window->grab());
-    window->setRibbon(Swung(TubeRibbon(), 20));
+    window->setRibbon(bendertest::Swung(TubeRibbon(), 20));
     QVERIFY(window->release());
     QVERIFY(window->waitUntilIdle(60000));
     QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
