@@ -3,6 +3,7 @@
 
 // Pieces shared by the window test suites (AppTests, IgtlAppTests, VesselAppTests).
 
+#include "ExportFlow.h"
 #include "MainWindow.h"
 #include "Vec3.h"
 
@@ -104,6 +105,29 @@ inline bool TypeFileName(QFileDialog& dialog, const QString& path)
   const QString absolute = QFileInfo(path).absoluteFilePath();
   name->setText(absolute);
   return dialog.selectedFiles() == QStringList{ absolute };
+}
+
+/// Ctrl+E on the window; the export dialog once it is open (it opens window-modal, without
+/// blocking: waited for up to 5 s). Null when the window cannot be activated or no dialog came.
+inline ExportDialog* OpenExportDialog(MainWindow& window)
+{
+  window.activateWindow();
+  QApplication::setActiveWindow(&window);
+  if (!QTest::qWaitForWindowActive(&window))
+  {
+    return nullptr;
+  }
+  QTest::keyClick(&window, Qt::Key_E, Qt::ControlModifier);
+  ExportDialog* dialog = nullptr;
+  for (int waited = 0; waited < 5000 && !dialog; waited += 20)
+  {
+    dialog = window.findChild<ExportDialog*>("exportDialog");
+    if (!dialog)
+    {
+      QTest::qWait(20);
+    }
+  }
+  return dialog;
 }
 
 /// Brings `panel` to the front of the window's panel dock (as a click on its tab would). False

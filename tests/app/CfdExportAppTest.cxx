@@ -136,26 +136,7 @@ private:
   }
 
   // Ctrl+E on the window; the dialog once it is open (window-modal, not blocking).
-  ExportDialog* openDialog()
-  {
-    this->Window->activateWindow();
-    QApplication::setActiveWindow(this->Window.get());
-    if (!QTest::qWaitForWindowActive(this->Window.get()))
-    {
-      return nullptr;
-    }
-    QTest::keyClick(this->Window.get(), Qt::Key_E, Qt::ControlModifier);
-    ExportDialog* dialog = nullptr;
-    for (int waited = 0; waited < 5000 && !dialog; waited += 20)
-    {
-      dialog = this->Window->findChild<ExportDialog*>("exportDialog");
-      if (!dialog)
-      {
-        QTest::qWait(20);
-      }
-    }
-    return dialog;
-  }
+  ExportDialog* openDialog() { return bendertest::OpenExportDialog(*this->Window); }
 
   // Types `path` into the dialog's file field (all of it replaced).
   static void typePath(ExportDialog* dialog, const QString& path)

@@ -140,27 +140,7 @@ private:
   }
 
   // Opens the dialog with the window's Ctrl+E shortcut.
-  ExportDialog* openDialog()
-  {
-    this->Window->activateWindow();
-    QApplication::setActiveWindow(this->Window.get());
-    if (!QTest::qWaitForWindowActive(this->Window.get()))
-    {
-      return nullptr;
-    }
-    QTest::keyClick(this->Window.get(), Qt::Key_E, Qt::ControlModifier);
-    // The dialog opens window-modal, without blocking: wait for it to appear.
-    ExportDialog* dialog = nullptr;
-    for (int waited = 0; waited < 5000 && !dialog; waited += 20)
-    {
-      dialog = this->Window->findChild<ExportDialog*>("exportDialog");
-      if (!dialog)
-      {
-        QTest::qWait(20);
-      }
-    }
-    return dialog;
-  }
+  ExportDialog* openDialog() { return bendertest::OpenExportDialog(*this->Window); }
 
   static QString readAll(const QString& path)
   {
