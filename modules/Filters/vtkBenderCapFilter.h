@@ -91,7 +91,7 @@ public:
     std::array<double, 3> centre{ { 0, 0, 0 } }; ///< area centroid, on the cap's plane
     std::array<double, 3> normal{ { 0, 0, 1 } }; ///< unit, outwards (as the triangles face)
     double area = 0.0;
-    double radius = 0.0;           ///< equivalent radius sqrt(Area / pi)
+    double radius = 0.0;           ///< equivalent radius sqrt(area / pi)
     int rimPoints = 0;             ///< vertices of the rim
     double maxRimDistance = 0.0;   ///< largest distance of an input rim vertex to the plane
     double minInteriorAngle = 0.0; ///< degrees, over triangles with no rim vertex (0 if none)

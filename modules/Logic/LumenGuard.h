@@ -4,7 +4,7 @@
 // The lumen guard: what a bend did to the lumen along the centerline. The centerlines of the
 // surface before and after the bend (ComputeCenterlines, the after's seeded with the before's
 // endpoints carried along by MatchedSeeds, so that the branches pair by the outlets they lead
-// to) give each branch's minimal inscribed radius (MeasureBranches' MinRadius); a branch the
+// to) give each branch's minimal inscribed radius (MeasureBranches' minRadius); a branch the
 // bend moved (any surface point the bend moved lies nearer to it than to any other branch:
 // the region the warp moved, up to the next bifurcation or open end) is judged, and one that
 // lost more than a fraction of its minimal radius is a problem: a false stenosis. Used by the

@@ -3,15 +3,15 @@
 
 // "Prepare for CFD" (issue 11): a vessel surface made ready for a CFD mesher in one call:
 //  1. the ends clipped perpendicular to the centerline (VesselClip.h; the centerlines are
-//     computed when not given), or, with Clip off, the open ends already there;
+//     computed when not given), or, with clip off, the open ends already there;
 //  2. names and roles: the largest end is the inlet, the others outlets (outlet_1, outlet_2,
 //     ... by decreasing area); names by position (the end whose centre is nearest gets it; an
-//     entry marked Inlet, or named "inlet", makes its end the inlet);
+//     entry marked inlet, or named "inlet", makes its end the inlet);
 //  3. flow extensions along each end's outward normal (FlowExtensions.h; default 10 radii at
 //     the inlet, 5 at the outlets, per end by position; 0 for none);
 //  4. flat quality caps labelled through PatchLabels.h (vtkBenderCapFilter): CellEntityIds and
 //     ModelFaceID 1 on the wall (extensions included), 2.. on the caps, PatchNames/PatchTypes.
-//     Cap off: the surface stays open and is labelled all wall.
+//     With cap off, the surface stays open and is labelled all wall.
 // Units are the surface's (mm for Bender's surfaces); nothing is written to disk.
 
 #include "PatchLabels.h"
@@ -34,7 +34,7 @@ struct CfdEndName
 {
   std::array<double, 3> position{ { 0, 0, 0 } };
   std::string name;   ///< a valid patch name (IsValidPatchName), not "wall"
-  bool inlet = false; ///< this end is the inlet (also when Name is "inlet")
+  bool inlet = false; ///< this end is the inlet (also when name is "inlet")
 };
 
 struct CfdEndFactor
@@ -67,15 +67,15 @@ struct CfdEnd
   PatchType type = PatchType::Outlet;
   std::array<double, 3> centre{ { 0, 0, 0 } }; ///< of the cap (the far end of its extension)
   std::array<double, 3> normal{ { 0, 0, 1 } }; ///< unit, outwards
-  double radius = 0.0;                         ///< equivalent radius sqrt(Area / pi)
+  double radius = 0.0;                         ///< equivalent radius sqrt(area / pi)
   double area = 0.0;
   double extensionLength = 0.0;
   /// The flow-extension factor it was made with (the options' for this end, else its role's).
   double extensionFactor = 0.0;
   std::array<double, 3> clipCentre{ { 0, 0, 0 } }; ///< centre of the vessel's own rim
-  /// With Clip: the vessel end on the centerline (CenterlineEndPath::position) and the arc
-  /// length from it to the cut (ClipEndRequest{CenterlineEnd, ClipDistance} cuts there again).
-  /// Without Clip: ClipDistance is -1.
+  /// With clip: the vessel end on the centerline (CenterlineEndPath::position) and the arc
+  /// length from it to the cut (ClipEndRequest{centerlineEnd, clipDistance} cuts there again).
+  /// Without clip: clipDistance is -1.
   std::array<double, 3> centerlineEnd{ { 0, 0, 0 } };
   double clipDistance = -1.0;
 };
@@ -94,7 +94,7 @@ struct PrepareForCfdResult
 };
 
 /// Throws bender::InputError, one line starting with options.inputName: an empty surface, no
-/// centerline, a clip plane that cuts no vessel, fewer than two ends, Cap without Clip on a
+/// centerline, a clip plane that cuts no vessel, fewer than two ends, cap without clip on a
 /// surface with no open end, bad names or factors. `progress`: the stages ("centerlines",
 /// "clip", "flow extensions", "caps") are reported and the cancel flag is polled between them
 /// (bender::Cancelled; nothing returned, `surface` untouched either way).

@@ -33,7 +33,7 @@ class BenderSession;
 /// radius beyond each end, so that the end tangents are those of the vessel, not of one sample),
 /// by MeasureStretch: the same rule as the plan's table (the end-window rule of
 /// VesselMeasures.h). The radius at a sample is its distance to the nearest of the wall points
-/// held with it (carried by the live warp), so MinRadius is the narrowest the bend makes it.
+/// held with it (carried by the live warp), so minRadius is the narrowest the bend makes it.
 struct HeldBranchMeasures : BranchMeasures
 {
   bool valid = false;

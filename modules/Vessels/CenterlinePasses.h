@@ -88,7 +88,7 @@ bool BuildWall(vtkPolyData* surface,
 
 /// The Delaunay's points: the wall's points, then points on flat caps over every loop (so that
 /// no empty sphere bulges out of an open end), each with its outward normal. Sets each loop's
-/// CentreSampleId.
+/// centreSampleId.
 void DelaunaySamples(Wall& wall, std::vector<Point3>& samples, std::vector<Point3>& normals);
 
 // ---- 2-3. the Delaunay and the internal Voronoi graph (CenterlineVoronoi.cxx) ----------------
@@ -111,7 +111,7 @@ struct Graph
   std::vector<double> radii;
   std::vector<int> offsets; // CSR
   std::vector<int> neighbours;
-  std::vector<double> lengths; // of the edges, as Neighbours
+  std::vector<double> lengths; // of the edges, as neighbours
 
   int Size() const { return static_cast<int>(this->centres.size()); }
 };

@@ -378,10 +378,10 @@ bool DelaunayTetrahedra(std::vector<std::array<double, 3>>& points,
   std::vector<int> cavity, stack;
   struct BoundaryFace
   {
-    int v[4];    // the cavity tetrahedron's vertices, the new point at Face
+    int v[4];    // the cavity tetrahedron's vertices, the new point at face
     int face;    // which slot holds the new point
     int outside; // the tetrahedron beyond the face, -1 on the hull
-    int back;    // the face of Outside that looks back
+    int back;    // the face of outside that looks back
   };
   std::vector<BoundaryFace> boundary;
   // The new tetrahedra are linked across the cavity boundary's edges through a small hash

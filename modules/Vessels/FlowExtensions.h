@@ -41,27 +41,27 @@ struct FlowExtensionEnd
   ExtensionPoint centre{ { 0, 0, 0 } }; ///< of the rim
   ExtensionPoint normal{ { 0, 0, 1 } }; ///< outwards, unit
   double radius = 0.0;                  ///< equivalent radius of the rim
-  /// Extension length / Radius, >= 0 (0: no extension). < 0: the default (inlet or outlet).
+  /// Extension length / radius, >= 0 (0: no extension). < 0: the default (inlet or outlet).
   double factor = -1.0;
   bool inlet = false;
 };
 
 struct FlowExtensionOptions
 {
-  double inletFactor = 10.0; ///< default Factor of the inlet, [0, 100]
-  double outletFactor = 5.0; ///< default Factor of the outlets, [0, 100]
+  double inletFactor = 10.0; ///< default factor of the inlet, [0, 100]
+  double outletFactor = 5.0; ///< default factor of the outlets, [0, 100]
 };
 
 /// One extended end.
 struct ExtendedEnd
 {
-  std::vector<long long> farRim;           ///< the far ring's point ids, same direction as Rim
-  ExtensionPoint farCentre{ { 0, 0, 0 } }; ///< Centre + Length x Normal
+  std::vector<long long> farRim;           ///< the far ring's point ids, same direction as rim
+  ExtensionPoint farCentre{ { 0, 0, 0 } }; ///< centre + length x normal
   ExtensionPoint normal{ { 0, 0, 1 } };
   double radius = 0.0;
   double length = 0.0;          ///< the extension's length (may be less than requested)
-  double requestedLength = 0.0; ///< Factor x Radius as asked
-  double factor = 0.0;          ///< Length / Radius
+  double requestedLength = 0.0; ///< factor x radius as asked
+  double factor = 0.0;          ///< length / radius
 };
 
 struct FlowExtensionResult

@@ -102,7 +102,7 @@ struct CenterlineStageTimes
 
 struct CenterlineResult
 {
-  /// True when at least one centerline was computed. False: Message says why (one line).
+  /// True when at least one centerline was computed. False: message says why (one line).
   bool ok = false;
   std::string message;
   /// Non-fatal remarks (an unreachable outlet, a loop taken for a hole...).

@@ -54,13 +54,13 @@ constexpr double kClipPointReach = 2.0;
 /// A user's choice for one end.
 struct ClipEndRequest
 {
-  /// With Distance >= 0: a point on the vessel near its end (the nearest end is taken; the
+  /// With distance >= 0: a point on the vessel near its end (the nearest end is taken; the
   /// point must be within kClipPointReach inscribed radii of that end's centerline).
-  /// With Distance < 0: a point near the centerline where to cut; the cut is at the nearest
+  /// With distance < 0: a point near the centerline where to cut; the cut is at the nearest
   /// centerline point, and the side towards the nearer vessel end (along the centerline) is
   /// removed.
   ClipPoint position{ { 0, 0, 0 } };
-  /// mm from the vessel end along the centerline; < 0: see Position.
+  /// mm from the vessel end along the centerline; < 0: see position.
   double distance = -1.0;
 };
 
@@ -90,7 +90,7 @@ struct ClippedEnd
 struct UnclippedEnd
 {
   ClipPoint centre{ { 0, 0, 0 } }; ///< mean of the loop's points
-  double radius = 0.0;             ///< mean distance of the loop's points to Centre
+  double radius = 0.0;             ///< mean distance of the loop's points to centre
 };
 
 struct ClipResult
@@ -121,8 +121,8 @@ struct CenterlineEndPath
   ClipPoint position{ { 0, 0, 0 } }; ///< the vessel end (as FindCenterlineEnds)
   double radius = 0.0;               ///< inscribed radius at the end
   std::vector<ClipPoint> points;     ///< from the end inwards, no repeated point
-  std::vector<double> arcLengths;    ///< of Points, from 0
-  std::vector<double> radii;         ///< inscribed radius at Points
+  std::vector<double> arcLengths;    ///< of points, from 0
+  std::vector<double> radii;         ///< inscribed radius at points
   double defaultDistance = 0.0;      ///< the default cut ("where the radius has settled")
   double maximumDistance = 0.0;      ///< the farthest cut a request may ask: half the path
 };

@@ -27,7 +27,7 @@ struct BranchMeasures
   std::set<int> outlets; ///< outlets reached through this branch (its identity)
   double length = 0;     ///< arc length
   double chord = 0;      ///< distance between the branch's end points
-  double tortuosity = 1; ///< Length / Chord (1 for a straight branch)
+  double tortuosity = 1; ///< length / chord (1 for a straight branch)
   double maxCurvature = 0;
   double meanCurvature = 0; ///< arc-length weighted
   double bendAngle = 0;     ///< degrees between the start and end tangents
@@ -78,7 +78,7 @@ std::array<Point3, 2> EndDirections(const std::vector<Point3>& points,
 /// The measures of one centerline stretch: `points` from its start to its end (at least two),
 /// `radii` the inscribed radius at each (mm), `curvature` at each (1/mm; empty: from local
 /// cubic fits over the mean radius). Length, chord, tortuosity, radii, curvature, end tangents
-/// and bend angle (the end-window rule above); ids are left at -1, Outlets empty. Too few
+/// and bend angle (the end-window rule above); ids are left at -1, outlets empty. Too few
 /// points or radii of another count give the default (zero) measures.
 BranchMeasures MeasureStretch(const std::vector<Point3>& points,
   const std::vector<double>& radii,
