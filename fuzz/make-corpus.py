@@ -65,6 +65,23 @@ regression("fuzz_mesh_vtk", "polygons-non-numeric.vtk", head3 + "POLYGONS 1 4\n3
 regression("fuzz_mesh_vtk", "offsets-out-of-range.vtk", head51 + "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 30\nCONNECTIVITY vtktypeint64\n0 1 2\n")
 regression("fuzz_mesh_vtk", "offsets-decreasing.vtk", head51 + "POLYGONS 3 3\nOFFSETS vtktypeint64\n0 3 1\nCONNECTIVITY vtktypeint64\n0 1 2\n")
 regression("fuzz_mesh_vtk", "bad-version-line.vtk", "# vtk DataFile Version x\nt\nBINARY\nDATASET POLYDATA\nPOINTS 3 float\n" + "\0" * 36 + "\n")
+# Labelled surfaces as Bender writes them: PatchNames/PatchTypes string arrays in the field
+# data, in ASCII one line per value ("%XX" escapes), in binary a length before each value (one
+# byte 11xxxxxx for short ones), and CellEntityIds per cell.
+names, roles = ["wall", "inlet", "outlet_1"], ["wall", "inlet", "outlet"]
+ascii_strings = lambda name, values: "%s 1 %d string\n%s\n" % (name, len(values), "\n".join(values))
+binary_strings = lambda name, values: ("%s 1 %d string\n" % (name, len(values))).encode() + b"".join(bytes([0xC0 | len(v)]) + v.encode() for v in values) + b"\n"
+legacy_labelled = legacy51.replace("DATASET POLYDATA\n", "DATASET POLYDATA\nFIELD FieldData 2\n" + ascii_strings("PatchNames", ["wall", "inlet", "outlet%5F1"]) + ascii_strings("PatchTypes", roles)).replace("Region 1 4 int\n1 1 2 2", "CellEntityIds 1 4 int\n1 1 2 3")
+legacy_labelled_bin = (legacybin.replace(b"DATASET POLYDATA\n", b"DATASET POLYDATA\nFIELD FieldData 2\n" + binary_strings("PatchNames", names) + binary_strings("PatchTypes", roles)) +
+                       b"CELL_DATA 4\nFIELD FieldData 1\nCellEntityIds 1 4 int\n" + be("4i", 1, 1, 2, 3) + b"\n")
+for h in ("fuzz_mesh_vtk", "fuzz_check_legacy_vtk"):
+    seed(h, "labelled-5.1.vtk", legacy_labelled)
+    seed(h, "labelled-5.1-binary.vtk", legacy_labelled_bin)
+# vtkDataReader decodes "%XX" reading two bytes past a lone '%', and allocates whatever length
+# a binary string announces.
+regression("fuzz_mesh_vtk", "string-lone-percent.vtk", head51 + "FIELD FieldData 1\n" + ascii_strings("PatchNames", ["%"]))
+regression("fuzz_mesh_vtk", "string-length-past-end.vtk", head51.replace("ASCII", "BINARY").replace("POINTS 3 float\n0 0 0 1 0 0 0 1 0\n", "POINTS 0 float\n\n").encode() +
+           b"FIELD FieldData 1\nPatchNames 1 1 string\n" + be("Q", 1 << 40) + b"wall\n")
 
 # --- VTK XML PolyData: ASCII, and appended zlib-compressed data with UInt64 headers as the
 # project writes it.

@@ -35,7 +35,9 @@ std::string QuoteBytes(std::string_view bytes, std::size_t maxLength = 40);
 /// every section is walked with the counts it announces: lines of at most 255 bytes, numeric
 /// ASCII values, binary blocks present, cell sizes that add up, 5.1 offsets that start at 0,
 /// never decrease and end at the connectivity size, point ids in range, attribute arrays of
-/// the announced length, only keywords vtkPolyDataReader knows.
+/// the announced length, only keywords vtkPolyDataReader knows; string arrays (FIELD arrays of
+/// type "string", as Bender's patch names are written) with every value bounded and, in ASCII,
+/// well-formed "%XX" escapes.
 bool CheckLegacyVtk(std::string_view data, std::string& problem);
 
 /// ASCII STL as vtkSTLReader reads it: one or more "solid ... endsolid" blocks of
