@@ -59,12 +59,12 @@ std::atomic<int> UnansweredLookups{ 0 };
 // One lookup, shared by its thread and the caller that waits for it (or gave up on it).
 struct PendingLookup
 {
-  std::mutex Mutex;
-  std::condition_variable Done;
-  bool Finished = false;
-  bool Abandoned = false;
-  int Status = EAI_AGAIN;
-  addrinfo* Found = nullptr;
+  std::mutex mutex;
+  std::condition_variable done;
+  bool finished = false;
+  bool abandoned = false;
+  int status = EAI_AGAIN;
+  addrinfo* found = nullptr;
 };
 } // namespace
 
@@ -115,9 +115,9 @@ AddressList ResolveHost(const std::string& host,
         {
           result = nullptr;
         }
-        std::lock_guard<std::mutex> lock(pending->Mutex);
+        std::lock_guard<std::mutex> lock(pending->mutex);
         --UnansweredLookups;
-        if (pending->Abandoned)
+        if (pending->abandoned)
         {
           if (result)
           {
@@ -125,10 +125,10 @@ AddressList ResolveHost(const std::string& host,
           }
           return;
         }
-        pending->Status = status;
-        pending->Found = result;
-        pending->Finished = true;
-        pending->Done.notify_all();
+        pending->status = status;
+        pending->found = result;
+        pending->finished = true;
+        pending->done.notify_all();
       })
       .detach();
   }
@@ -137,18 +137,18 @@ AddressList ResolveHost(const std::string& host,
     --UnansweredLookups;
     throw DeviceNotFoundError(prefix + "cannot start the host lookup (" + e.what() + ")");
   }
-  std::unique_lock<std::mutex> lock(pending->Mutex);
-  if (!pending->Done.wait_for(lock, timeout, [&pending] { return pending->Finished; }))
+  std::unique_lock<std::mutex> lock(pending->mutex);
+  if (!pending->done.wait_for(lock, timeout, [&pending] { return pending->finished; }))
   {
-    pending->Abandoned = true;
+    pending->abandoned = true;
     throw DeviceNotFoundError(prefix + "the host name was not resolved within " +
       std::to_string(timeout.count()) + " ms (is the name server reachable?)");
   }
-  AddressList addresses(pending->Found);
-  if (pending->Status != 0 || !addresses)
+  AddressList addresses(pending->found);
+  if (pending->status != 0 || !addresses)
   {
     throw TrackingConfigurationError(
-      prefix + "cannot resolve host (" + ::gai_strerror(pending->Status) + ")");
+      prefix + "cannot resolve host (" + ::gai_strerror(pending->status) + ")");
   }
   return addresses;
 }

@@ -349,11 +349,11 @@ struct SilentNameServer
 {
   struct State
   {
-    std::mutex Mutex;
-    std::condition_variable Released;
-    bool Open = false;
-    int Calls = 0;
-    int Returned = 0;
+    std::mutex mutex;
+    std::condition_variable released;
+    bool open = false;
+    int calls = 0;
+    int returned = 0;
   };
   std::shared_ptr<State> S = std::make_shared<State>();
 
@@ -361,27 +361,27 @@ struct SilentNameServer
   {
     return [s = this->S](const char*, const char*, const addrinfo*, addrinfo**)
     {
-      std::unique_lock<std::mutex> lock(s->Mutex);
-      ++s->Calls;
-      s->Released.wait_for(lock, std::chrono::seconds(10), [&s] { return s->Open; });
-      ++s->Returned;
-      s->Released.notify_all();
+      std::unique_lock<std::mutex> lock(s->mutex);
+      ++s->calls;
+      s->released.wait_for(lock, std::chrono::seconds(10), [&s] { return s->open; });
+      ++s->returned;
+      s->released.notify_all();
       return EAI_AGAIN;
     };
   }
   int Calls() const
   {
-    std::lock_guard<std::mutex> lock(this->S->Mutex);
-    return this->S->Calls;
+    std::lock_guard<std::mutex> lock(this->S->mutex);
+    return this->S->calls;
   }
   // Lets every lookup return and waits (bounded) until the `calls` made have.
   bool ReleaseAndJoin(int calls) const
   {
-    std::unique_lock<std::mutex> lock(this->S->Mutex);
-    this->S->Open = true;
-    this->S->Released.notify_all();
-    return this->S->Released.wait_for(
-      lock, std::chrono::seconds(10), [this, calls] { return this->S->Returned >= calls; });
+    std::unique_lock<std::mutex> lock(this->S->mutex);
+    this->S->open = true;
+    this->S->released.notify_all();
+    return this->S->released.wait_for(
+      lock, std::chrono::seconds(10), [this, calls] { return this->S->returned >= calls; });
   }
 };
 
