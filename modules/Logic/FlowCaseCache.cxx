@@ -3,65 +3,36 @@
 #include "AtomicFileRecovery.h"
 #include "BenderErrors.h"
 #include "CfdFlowResults.h"
+#include "ContentHash.h"
 #include "PolyDataCopy.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 namespace fs = std::filesystem;
 
 namespace bender
 {
 
-namespace
-{
-constexpr std::uint64_t FnvOffset = 1469598103934665603ull;
-constexpr std::uint64_t FnvPrime = 1099511628211ull;
-
-void Mix(std::uint64_t& hash, const char* data, std::size_t size)
-{
-  for (std::size_t i = 0; i < size; ++i)
-  {
-    hash ^= static_cast<unsigned char>(data[i]);
-    hash *= FnvPrime;
-  }
-}
-} // namespace
-
 std::string FlowCaseKey(const CfdCaseResult& written)
 {
   std::vector<std::string> files = written.written;
   std::sort(files.begin(), files.end());
   files.erase(std::unique(files.begin(), files.end()), files.end());
-  std::uint64_t hash = FnvOffset;
+  ContentHash hash;
   const std::string version = "bender-flow-case 1";
-  Mix(hash, version.c_str(), version.size() + 1);
-  std::vector<char> buffer(1 << 16);
+  hash.Add(version.c_str(), version.size() + 1);
   for (const std::string& name : files)
   {
-    Mix(hash, name.c_str(), name.size() + 1);
+    hash.Add(name.c_str(), name.size() + 1);
     const fs::path path = fs::path(written.caseDirectory) / name;
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    if (!hash.AddFile(path.string()))
     {
       throw InputError(path.string() + ": cannot be read for the flow cache's key");
     }
-    while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0)
-    {
-      Mix(hash, buffer.data(), static_cast<std::size_t>(in.gcount()));
-    }
-    Mix(hash, "", 1);
+    hash.Add("", 1);
   }
-  static const char* digits = "0123456789abcdef";
-  std::string key(16, '0');
-  for (int i = 15; i >= 0; --i, hash >>= 4)
-  {
-    key[static_cast<std::size_t>(i)] = digits[hash & 0xf];
-  }
-  return key;
+  return hash.Finish();
 }
 
 bool HasFlowResults(const std::string& caseDirectory)

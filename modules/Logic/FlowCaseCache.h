@@ -18,7 +18,7 @@ namespace bender
 /// A case of the cache, written and ready to run, or already run.
 struct CachedFlowCase
 {
-  std::string key;           ///< 16 hexadecimal digits
+  std::string key;           ///< FlowCaseKey: 32 hexadecimal digits
   std::string caseDirectory; ///< CACHE/<key>
   CfdCaseResult written;     ///< what WriteOpenFoamCase wrote (caseDirectory as above)
   /// Its results are there (results/flow.json and results/surface.vtp, from an earlier run):
@@ -26,8 +26,9 @@ struct CachedFlowCase
   bool solved = false;
 };
 
-/// The content key of a written case: FNV-1a (64 bits) over the relative path and the bytes of
-/// each file of `written.written`, in name order. Throws InputError naming a file it cannot read.
+/// The content key of a written case: the content hash (ContentHash.h) of the relative path
+/// and the bytes of each file of `written.written`, in name order. Throws InputError naming a
+/// file it cannot read.
 std::string FlowCaseKey(const CfdCaseResult& written);
 
 /// Whether `caseDirectory` holds the results of a finished run (results/flow.json readable by

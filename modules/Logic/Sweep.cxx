@@ -3,12 +3,12 @@
 #include "AtomicFile.h"
 #include "BenderErrors.h"
 #include "CfdBoundaryConditions.h"
+#include "ContentHash.h"
 #include "StringUtil.h"
 #include "SweepRowResults.h"
 #include "WarpPlanIO.h"
 
 #include <nlohmann/json.hpp>
-#include <vtksys/MD5.h>
 
 #include <filesystem>
 #include <fstream>
@@ -214,24 +214,10 @@ std::string SweepCandidateHash(const std::string& surfaceBytes,
   }
   const std::string text = std::string(HashVersion) + "\n" + WarpPlanToJson(warps).dump() + "\n" +
     StepJson(step) + "\n" + CaseSettings(caseOptions).dump() + "\n";
-  vtksysMD5* md5 = vtksysMD5_New();
-  vtksysMD5_Initialize(md5);
-  auto append = [md5](const std::string& bytes)
-  {
-    constexpr std::size_t Chunk = 1 << 24;
-    for (std::size_t at = 0; at < bytes.size(); at += Chunk)
-    {
-      const std::size_t n = std::min(Chunk, bytes.size() - at);
-      vtksysMD5_Append(
-        md5, reinterpret_cast<const unsigned char*>(bytes.data() + at), static_cast<int>(n));
-    }
-  };
-  append(surfaceBytes);
-  append(text);
-  char hex[33] = {};
-  vtksysMD5_FinalizeHex(md5, hex);
-  vtksysMD5_Delete(md5);
-  return std::string(hex, 32);
+  ContentHash hash;
+  hash.Add(surfaceBytes);
+  hash.Add(text);
+  return hash.Finish();
 }
 
 SweepResult RunSweep(const SweepOptions& options)

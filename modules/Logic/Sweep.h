@@ -106,7 +106,7 @@ struct SweepResult
 /// (OpenFOAM or Slurm missing), Cancelled (after writing the summary).
 SweepResult RunSweep(const SweepOptions& options);
 
-/// The content hash (hex MD5) of a candidate's inputs.
+/// The content hash (ContentHash.h) of a candidate's inputs.
 std::string SweepCandidateHash(const std::string& surfaceBytes,
   const SweepCandidate& candidate,
   const CfdStep& step,

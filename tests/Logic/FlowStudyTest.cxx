@@ -169,7 +169,7 @@ TEST(FlowStudy, TheCacheFindsASolvedCaseAndKeysAChangedPlanOrOptionApart)
 
   const CachedFlowCase first = StoreFlowCase(current, options, cache);
   EXPECT_FALSE(first.solved);
-  EXPECT_EQ(first.key.size(), 16u);
+  EXPECT_EQ(first.key.size(), 32u);
   EXPECT_EQ(first.caseDirectory, (fs::path(cache) / first.key).string());
   EXPECT_TRUE(fs::exists(fs::path(first.caseDirectory) / "Allrun"));
   EXPECT_EQ(FlowCaseKey(first.written), first.key); // the key is the stored files' content
