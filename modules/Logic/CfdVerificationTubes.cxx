@@ -15,16 +15,29 @@ namespace bender
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
+
+// Point k (modulo sides) of ring r.
+vtkIdType Ring(int sides, std::size_t r, int k)
+{
+  return static_cast<vtkIdType>(
+    r * static_cast<std::size_t>(sides) + static_cast<std::size_t>(k % sides));
 }
+} // namespace
 
 std::vector<TubeStation> StraightCentreline(double length, double spacing)
 {
-  const int pieces = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+  return StraightCentreline(
+    0.0, length, std::max(1, static_cast<int>(std::ceil(length / spacing))));
+}
+
+std::vector<TubeStation> StraightCentreline(double from, double to, int pieces)
+{
+  pieces = std::max(1, pieces);
   std::vector<TubeStation> stations;
   for (int i = 0; i <= pieces; ++i)
   {
-    const double x = length * i / pieces;
-    stations.push_back({ { x, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, x });
+    const double x = from + (to - from) * i / pieces;
+    stations.push_back({ { x, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, x - from });
   }
   return stations;
 }
@@ -45,7 +58,7 @@ std::vector<TubeStation> ArcCentreline(double bendRadius, double angle, double s
   return stations;
 }
 
-vtkSmartPointer<vtkPolyData> SweepClosedTube(const std::vector<TubeStation>& stations,
+vtkSmartPointer<vtkPolyData> SweepOpenTube(const std::vector<TubeStation>& stations,
   double radius,
   int sides)
 {
@@ -67,46 +80,52 @@ vtkSmartPointer<vtkPolyData> SweepClosedTube(const std::vector<TubeStation>& sta
       points->InsertNextPoint(p.x, p.y, p.z);
     }
   }
-  const vtkIdType inletCentre = points->InsertNextPoint(
-    stations.front().centre.x, stations.front().centre.y, stations.front().centre.z);
-  const vtkIdType outletCentre = points->InsertNextPoint(
-    stations.back().centre.x, stations.back().centre.y, stations.back().centre.z);
-
   // Rings ordered counter-clockwise about the tangent: (a, b, d) and (a, d, c) face outwards.
   auto triangles = vtkSmartPointer<vtkCellArray>::New();
-  std::vector<int> ids;
-  const auto ring = [sides](std::size_t r, int k)
-  { return static_cast<vtkIdType>(r * sides + (k % sides)); };
   for (std::size_t r = 0; r + 1 < stations.size(); ++r)
   {
     for (int k = 0; k < sides; ++k)
     {
-      const vtkIdType a = ring(r, k), b = ring(r, k + 1), c = ring(r + 1, k),
-                      d = ring(r + 1, k + 1);
+      const vtkIdType a = Ring(sides, r, k), b = Ring(sides, r, k + 1), c = Ring(sides, r + 1, k),
+                      d = Ring(sides, r + 1, k + 1);
       const vtkIdType t1[3] = { a, b, d };
       const vtkIdType t2[3] = { a, d, c };
       triangles->InsertNextCell(3, t1);
       triangles->InsertNextCell(3, t2);
-      ids.insert(ids.end(), 2, kWallEntityId);
     }
   }
+  auto tube = vtkSmartPointer<vtkPolyData>::New();
+  tube->SetPoints(points);
+  tube->SetPolys(triangles);
+  return tube;
+}
+
+vtkSmartPointer<vtkPolyData> SweepClosedTube(const std::vector<TubeStation>& stations,
+  double radius,
+  int sides)
+{
+  vtkSmartPointer<vtkPolyData> tube = SweepOpenTube(stations, radius, sides);
+  vtkPoints* points = tube->GetPoints();
+  vtkCellArray* triangles = tube->GetPolys();
+  std::vector<int> ids(static_cast<std::size_t>(triangles->GetNumberOfCells()), kWallEntityId);
+  const vtkIdType inletCentre = points->InsertNextPoint(
+    stations.front().centre.x, stations.front().centre.y, stations.front().centre.z);
+  const vtkIdType outletCentre = points->InsertNextPoint(
+    stations.back().centre.x, stations.back().centre.y, stations.back().centre.z);
   // Flat caps as fans: the inlet faces against the first tangent, the outlet along the last.
   const std::size_t last = stations.size() - 1;
   for (int k = 0; k < sides; ++k)
   {
-    const vtkIdType in[3] = { inletCentre, ring(0, k + 1), ring(0, k) };
+    const vtkIdType in[3] = { inletCentre, Ring(sides, 0, k + 1), Ring(sides, 0, k) };
     triangles->InsertNextCell(3, in);
     ids.push_back(kWallEntityId + 1);
   }
   for (int k = 0; k < sides; ++k)
   {
-    const vtkIdType out[3] = { outletCentre, ring(last, k), ring(last, k + 1) };
+    const vtkIdType out[3] = { outletCentre, Ring(sides, last, k), Ring(sides, last, k + 1) };
     triangles->InsertNextCell(3, out);
     ids.push_back(kWallEntityId + 2);
   }
-  auto tube = vtkSmartPointer<vtkPolyData>::New();
-  tube->SetPoints(points);
-  tube->SetPolys(triangles);
   WritePatchLabels(tube,
     ids,
     { { kWallEntityId, "wall", PatchType::Wall },

@@ -1,6 +1,7 @@
 #include "CfdTestUtilities.h"
 
 #include "ApplyPlan.h"
+#include "CfdVerificationTubes.h"
 #include "DemoPipeline.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
@@ -8,10 +9,8 @@
 #include "WarpPlanIO.h"
 #include "vtkBenderCapFilter.h"
 
-#include <vtkCellArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
-#include <vtkPoints.h>
 
 #include <array>
 #include <cmath>
@@ -56,34 +55,9 @@ vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent)
 
 vtkSmartPointer<vtkPolyData> CappedTube(double length, double radius, int rings, int sides)
 {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  const double pi = 3.14159265358979323846;
-  for (int r = 0; r < rings; ++r)
-  {
-    for (int k = 0; k < sides; ++k)
-    {
-      const double a = 2.0 * pi * k / sides;
-      points->InsertNextPoint(length * r / (rings - 1), radius * std::cos(a), radius * std::sin(a));
-    }
-  }
-  vtkNew<vtkCellArray> triangles;
-  for (int r = 0; r + 1 < rings; ++r)
-  {
-    for (int k = 0; k < sides; ++k)
-    {
-      const vtkIdType a = r * sides + k;
-      const vtkIdType b = r * sides + (k + 1) % sides;
-      // Outward normals.
-      const vtkIdType t1[3] = { a, b, b + sides };
-      const vtkIdType t2[3] = { a, b + sides, a + sides };
-      triangles->InsertNextCell(3, t1);
-      triangles->InsertNextCell(3, t2);
-    }
-  }
-  vtkNew<vtkPolyData> tube;
-  tube->SetPoints(points);
-  tube->SetPolys(triangles);
+  // The wall of the one tube generator, capped as a vessel is (vtkBenderCapFilter).
+  const vtkSmartPointer<vtkPolyData> tube =
+    SweepOpenTube(StraightCentreline(0.0, length, rings - 1), radius, sides);
   vtkNew<vtkBenderCapFilter> cap;
   cap->SetInputData(tube);
   cap->Update();

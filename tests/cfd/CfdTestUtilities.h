@@ -27,7 +27,8 @@ vtkSmartPointer<vtkPolyData> CappedAneurysm(bool bent);
 vtkSmartPointer<vtkPolyData> PreparedDemoVessel(bool bent);
 
 /// A straight tube along +x from x = 0 to `length` of radius `radius` (mm), `rings` rings of
-/// `sides` points, capped by vtkBenderCapFilter: closed, the end at x = 0 labelled inlet, the
+/// `sides` points (the one tube generator's wall: SweepOpenTube, CfdVerificationTubes.h), capped
+/// by vtkBenderCapFilter: closed, the end at x = 0 labelled inlet, the
 /// other outlet_1 (PatchLabels.h). LPS mm.
 vtkSmartPointer<vtkPolyData> CappedTube(double length, double radius, int rings, int sides);
 

@@ -12,6 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkFieldData.h>
+
 #include <cmath>
 
 namespace
@@ -64,6 +68,71 @@ TEST(CfdVerificationTubes, ACurvedTubeIsATorusSection)
   // Pappus: section x centreline length, within the polygons' and chords' error.
   const double pappus = Pi * radius * radius * bend * angle;
   EXPECT_NEAR(ClosedLabelledTubeVolume(tube) / pappus, 1.0, 5e-3);
+}
+
+TEST(CfdVerificationTubes, AStraightCentrelineSpansItsEndsInEqualPieces)
+{
+  const auto stations = bender::StraightCentreline(-30.0, 40.0, 70);
+  ASSERT_EQ(stations.size(), 71u);
+  EXPECT_EQ(stations.front().centre.x, -30.0);
+  EXPECT_EQ(stations.back().centre.x, 40.0);
+  for (std::size_t i = 1; i < stations.size(); ++i)
+  {
+    EXPECT_NEAR(stations[i].centre.x - stations[i - 1].centre.x, 1.0, 1e-12);
+    EXPECT_NEAR(stations[i].abscissa, stations[i].centre.x + 30.0, 1e-12);
+  }
+  // By length and spacing: the same stations as by ends and pieces from 0.
+  const auto bySpacing = bender::StraightCentreline(24.0, 0.5);
+  const auto byPieces = bender::StraightCentreline(0.0, 24.0, 48);
+  ASSERT_EQ(bySpacing.size(), byPieces.size());
+  for (std::size_t i = 0; i < bySpacing.size(); ++i)
+  {
+    EXPECT_EQ(bySpacing[i].centre.x, byPieces[i].centre.x);
+  }
+}
+
+TEST(CfdVerificationTubes, AnOpenTubeIsTheClosedOnesWallWithTwoOpenEnds)
+{
+  const int sides = 24;
+  const double radius = 3.0;
+  const auto stations = bender::StraightCentreline(-30.0, 40.0, 70);
+  const auto open = bender::SweepOpenTube(stations, radius, sides);
+  const auto closed = bender::SweepClosedTube(stations, radius, sides);
+  ASSERT_EQ(open->GetNumberOfPolys(), 2 * sides * 70);
+  EXPECT_EQ(closed->GetNumberOfPolys(), open->GetNumberOfPolys() + 2 * sides);
+  // No labels: no cell data and no patch table.
+  EXPECT_EQ(open->GetCellData()->GetNumberOfArrays(), 0);
+  EXPECT_EQ(open->GetFieldData()->GetNumberOfArrays(), 0);
+  for (vtkIdType c = 0; c < open->GetNumberOfPolys(); ++c)
+  {
+    vtkIdType n = 0, m = 0;
+    const vtkIdType *a = nullptr, *b = nullptr;
+    open->GetPolys()->GetCellAtId(c, n, a);
+    closed->GetPolys()->GetCellAtId(c, m, b);
+    ASSERT_EQ(n, m);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      double p[3], q[3];
+      open->GetPoint(a[k], p);
+      closed->GetPoint(b[k], q);
+      EXPECT_EQ(p[0], q[0]);
+      EXPECT_EQ(p[1], q[1]);
+      EXPECT_EQ(p[2], q[2]);
+    }
+  }
+  const bender::MeshCheckReport report = bender::CheckMesh(open, nullptr, {});
+  EXPECT_FALSE(report.closed);
+  EXPECT_EQ(report.inconsistentEdges, 0);
+  ASSERT_EQ(report.boundaryLoops.size(), 2u);
+  EXPECT_EQ(report.boundaryLoops[0], sides);
+  EXPECT_EQ(report.boundaryLoops[1], sides);
+  for (vtkIdType i = 0; i < open->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    open->GetPoint(i, p);
+    EXPECT_NEAR(std::hypot(p[1], p[2]), radius, 1e-12);
+  }
+  EXPECT_THROW(bender::SweepOpenTube(stations, radius, 4), bender::InputError);
 }
 
 TEST(CfdVerificationTubes, TheCaseTakesATubeLikeAVessel)

@@ -1,12 +1,14 @@
-// What-if sweeps solved by OpenFOAM (issue 24, label cfd): the test tube bent by 0, 45
-// and 90 degrees (bend90's fraction 0, 0.5, 1) on a coarse mesh. The sweep is interrupted once
-// its first candidate is solved (as Ctrl+C does), run again (only what was missing runs), and
-// once more (nothing runs); the pressure drop grows with the bend.
+// What-if sweeps solved by OpenFOAM (issue 24, label cfd): the test tube (SweepTestTube.h) bent
+// by 0, 45 and 90 degrees (bend90's fraction 0, 0.5, 1) on a coarse mesh. The sweep is
+// interrupted once its first candidate is solved (as Ctrl+C does), run again (only what was
+// missing runs), and once more (nothing runs); the pressure drop grows with the bend.
 
 #include "CfdTestUtilities.h"
 
 #include "BenderErrors.h"
+#include "MeshIO.h"
 #include "Sweep.h"
+#include "SweepTestTube.h"
 
 #include <gtest/gtest.h>
 
@@ -26,10 +28,11 @@ namespace
 {
 const std::string Data = std::string(BENDER_SOURCE_DIR) + "/tests/data/sweep";
 
-SweepOptions TubeSweep(const std::string& folder)
+// The sweep of the test tube (SweepTestTube.h) written at `surface`.
+SweepOptions TubeSweep(const std::string& surface, const std::string& folder)
 {
   SweepOptions options;
-  options.surface = Data + "/tube.off";
+  options.surface = surface;
   options.plans = { Data + "/bend90.bender.json" };
   options.vary = ParseSweepVary("fraction=0:1:3");
   options.output = folder;
@@ -78,9 +81,11 @@ protected:
     }
     Folder = std::make_unique<test::TemporaryFolder>("bender_sweep_cfd");
     const std::string dir = Folder->Path() + "/sweep";
+    const std::string tube = Folder->Path() + "/tube.off";
+    WriteMesh(bendertest::SweepTestTube(), tube);
     // Interrupted as soon as the first candidate is solved.
     std::atomic<bool> stop{ false };
-    SweepOptions first = TubeSweep(dir);
+    SweepOptions first = TubeSweep(tube, dir);
     first.progress.cancel = &stop;
     first.onLine = [&stop](const std::string& line)
     {
@@ -99,8 +104,8 @@ protected:
       Interrupted = true;
     }
     Partial = std::make_unique<std::string>(test::ReadText(dir + "/summary.json"));
-    Resumed = RunSweep(TubeSweep(dir));
-    Again = RunSweep(TubeSweep(dir));
+    Resumed = RunSweep(TubeSweep(tube, dir));
+    Again = RunSweep(TubeSweep(tube, dir));
   }
   static void TearDownTestSuite() { Folder.reset(); }
 
