@@ -105,7 +105,8 @@ std::string ArrayList(const std::vector<std::size_t>& indices)
   return list;
 }
 
-// The batch script: checks the shared folder, runs the case's Allrun, leaves its exit status.
+// The batch script: checks the shared folder, runs the case's Allrun (its output in the case's
+// log.Allrun, as the local engine leaves it, and in the task's output), leaves its exit status.
 std::string BatchScript(const fs::path& work)
 {
   const std::string w = work.string();
@@ -119,9 +120,11 @@ std::string BatchScript(const fs::path& work)
     "a filesystem every node shares\" >&2\n"
     "    exit 3\nfi\n"
     "case=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" \"$work/cases.txt\")\n"
-    "echo \"bender sweep: task $SLURM_ARRAY_TASK_ID on $(hostname): $case\"\n"
-    "sh \"$case/Allrun\"\n"
+    "echo \"bender sweep: task $SLURM_ARRAY_TASK_ID on $(hostname) (${SLURM_NTASKS:-1} tasks): "
+    "$case\"\n"
+    "sh \"$case/Allrun\" > \"$case/log.Allrun\" 2>&1\n"
     "status=$?\n"
+    "cat \"$case/log.Allrun\"\n"
     "echo \"$status\" > \"$work/status/$SLURM_ARRAY_JOB_ID.$SLURM_ARRAY_TASK_ID\"\n"
     "exit $status\n";
 }
