@@ -1,6 +1,7 @@
 #include "FlowPanel.h"
 
 #include "FlowComparisonTable.h"
+#include "FlowReportSaver.h"
 #include "FlowResidualPlot.h"
 #include "FlowViews.h"
 #include "MainActions.h"
@@ -103,7 +104,14 @@ FlowPanel::FlowPanel(bender::BenderSession& session,
   this->ShowComparison->setObjectName("showFlowComparison");
   this->ShowComparison->setEnabled(false);
   layout->addWidget(this->ShowComparison);
+  this->SaveReport = new QPushButton("Save report...", this);
+  this->SaveReport->setObjectName("saveFlowReport");
+  this->SaveReport->setToolTip("The report of the two cases shown (the PDF of bender-cli "
+                               "compare), a PNG of each picture and the plan, into a folder");
+  this->SaveReport->setEnabled(false);
+  layout->addWidget(this->SaveReport);
   layout->addStretch(0);
+  this->Reports = new FlowReportSaver(this->Session, this->Worker, this);
 
   // The comparison: its own window, beside the main one (a second screen in the theatre).
   this->Comparison = new QWidget(this, Qt::Window);
@@ -111,6 +119,12 @@ FlowPanel::FlowPanel(bender::BenderSession& session,
   this->Comparison->setWindowTitle("Bender - flow: original and current shape");
   this->Comparison->resize(1000, 760);
   auto* compareLayout = new QVBoxLayout(this->Comparison);
+  this->StaleNote = new QLabel(this->Comparison);
+  this->StaleNote->setObjectName("flowStale");
+  this->StaleNote->setWordWrap(true);
+  this->StaleNote->setStyleSheet("background: #d90; color: black; padding: 4px;");
+  this->StaleNote->hide();
+  compareLayout->addWidget(this->StaleNote);
   this->Views = new FlowViews(this->Comparison);
   compareLayout->addWidget(this->Views, 3);
   this->Table = new FlowComparisonTable(this->Comparison);
@@ -124,6 +138,17 @@ FlowPanel::FlowPanel(bender::BenderSession& session,
   connect(this->Actions->RunFlow, &QAction::triggered, this, [this]() { this->runFlow(); });
   connect(this->CancelButton, &QPushButton::clicked, this, &FlowPanel::cancel);
   connect(this->ShowComparison, &QPushButton::clicked, this, &FlowPanel::showComparison);
+  connect(this->SaveReport,
+    &QPushButton::clicked,
+    this,
+    [this]()
+    {
+      if (this->Compared)
+      {
+        this->Reports->saveAsked(
+          { this->Results[0]->caseDirectory, this->Results[1]->caseDirectory, this->RunPlan });
+      }
+    });
   // A job of the run that failed or was cancelled (the worker said why in the status bar).
   connect(this->Worker,
     &WorkRunner::finished,
@@ -168,6 +193,57 @@ void FlowPanel::sessionChanged()
   this->Actions->RunFlow->setEnabled(!this->Running && this->Session.HasSurface() &&
     this->Session.GetState() != bender::GrabState::Grabbed);
   this->CancelButton->setEnabled(this->Running);
+  this->SaveReport->setEnabled(this->Compared && !this->Running);
+  // A bend under way is not a shape yet: its release (or its cancel) says.
+  if (this->Compared && this->Session.GetState() != bender::GrabState::Grabbed)
+  {
+    this->showStale(!this->RunCurrent || !this->RunFirst ||
+      this->RunCurrent.GetPointer() != this->Session.GetSurface() ||
+      this->RunFirst.GetPointer() != this->Session.GetFirstSurface());
+  }
+}
+
+bool FlowPanel::saveReport(const QString& folder)
+{
+  if (!this->Compared || this->Running)
+  {
+    this->setStatus("Flow: run the flow of both shapes before saving a report.");
+    return false;
+  }
+  return this->Reports->save(
+    folder, { this->Results[0]->caseDirectory, this->Results[1]->caseDirectory, this->RunPlan });
+}
+
+void FlowPanel::showStale(bool stale)
+{
+  if (stale == this->Stale)
+  {
+    return;
+  }
+  this->Stale = stale;
+  const QString note = "The shape changed after this run (a bend, an undo or another surface): "
+                       "the results shown are of the earlier shape. Run the flow again for the "
+                       "current one.";
+  this->StaleNote->setText(note);
+  this->StaleNote->setVisible(stale);
+  this->Comparison->setWindowTitle(QString("Bender - flow: original and current shape%1")
+                                     .arg(stale ? " (stale: the shape changed)" : ""));
+  this->setStatus(stale ? "Stale: " + note : this->DoneText);
+}
+
+std::string FlowPanel::trimCache()
+{
+  const bender::FlowCacheTrimResult trimmed =
+    bender::TrimFlowCache(QDir(this->CacheFolder).absolutePath().toStdString(),
+      this->CacheLimits,
+      { this->Results[0]->caseDirectory, this->Results[1]->caseDirectory });
+  if (trimmed.removed.empty())
+  {
+    return std::string();
+  }
+  return "; the flow cache's " + std::to_string(trimmed.removed.size()) +
+    " least recently used case(s) removed, " + std::to_string(trimmed.casesLeft) + " kept (" +
+    std::to_string(trimmed.bytesLeft >> 20) + " MB)";
 }
 
 void FlowPanel::setStatus(const QString& text)
@@ -208,9 +284,13 @@ bool FlowPanel::runFlow()
     input->name = this->Session.GetSurfaceName();
   }
   this->Input = input;
+  this->RunFirst = this->Session.GetFirstSurface();
+  this->RunCurrent = this->Session.GetSurface();
+  this->RunPlan = input->plan;
   this->Results[0].reset();
   this->Results[1].reset();
   this->Compared.reset();
+  this->showStale(false);
   this->Plot->clear();
   this->Summary->clear();
   this->ShowComparison->setEnabled(false);
@@ -339,16 +419,18 @@ void FlowPanel::shapeDone(int which, const std::shared_ptr<bender::FlowShapeResu
     }
   }
   this->Cases->setText(cases);
-  this->setStatus(
-    "Flow done. " + RunLine(0, *this->Results[0]) + "; " + RunLine(1, *this->Results[1]) + ".");
+  this->DoneText =
+    "Flow done. " + RunLine(0, *this->Results[0]) + "; " + RunLine(1, *this->Results[1]) + ".";
+  this->setStatus(this->DoneText);
   const int notable = bender::CountHighlighted(*this->Compared);
   this->Summary->setText(QString("%1 of %2 quantities differ notably (highlighted in the table).")
                            .arg(notable)
                            .arg(this->Compared->rows.size()));
   this->ShowComparison->setEnabled(true);
+  this->sessionChanged(); // Save report; stale already when the shape changed between the jobs
   this->Session.AddMessage(bender::MessageSeverity::Info,
     "Flow: original and current shape solved; " + std::to_string(notable) +
-      " quantities differ notably");
+      " quantities differ notably" + this->trimCache());
   this->showComparison();
   emit this->flowFinished(true);
 }

@@ -3,6 +3,7 @@
 #include "ApplyPlan.h"
 #include "BenderErrors.h"
 #include "CfdPatches.h"
+#include "FlowCacheTrim.h"
 #include "FlowCaseCache.h"
 #include "FlowStreamlines.h"
 #include "MeshIO.h"
@@ -172,6 +173,7 @@ FlowShapeResult RunFlowShape(const FlowStudyInput& input,
     caseOptions.sourceName = input.name + " (" + FlowShapeName(shape) + ")";
   }
   const CachedFlowCase stored = StoreFlowCase(ready, caseOptions, options.cacheDirectory);
+  MarkFlowCaseUsed(stored.caseDirectory); // the last to go when the cache is trimmed
   if (stored.solved)
   {
     ReplayIterations(stored.caseDirectory, options.onIteration);

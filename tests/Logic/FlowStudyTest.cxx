@@ -6,6 +6,7 @@
 #include "FlowStudy.h"
 #include "ApplyPlan.h"
 #include "CfdFlowResults.h"
+#include "FlowCacheTrim.h"
 #include "FlowCaseCache.h"
 #include "LogicTestUtilities.h"
 #include "MeshIO.h"
@@ -15,6 +16,7 @@
 
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -55,7 +57,20 @@ std::vector<std::string> Entries(const std::string& folder)
   {
     names.push_back(entry.path().filename().string());
   }
+  std::sort(names.begin(), names.end());
   return names;
+}
+
+/// A case folder of `bytes` bytes in two files, last used `age` minutes ago.
+std::string FakeCase(const std::string& cache, const std::string& name, int bytes, int age)
+{
+  const fs::path folder = fs::path(cache) / name;
+  fs::create_directories(folder / "constant");
+  std::ofstream(folder / "Allrun") << std::string(static_cast<std::size_t>(bytes / 2), 'a');
+  std::ofstream(folder / "constant" / "mesh")
+    << std::string(static_cast<std::size_t>(bytes - bytes / 2), 'm');
+  fs::last_write_time(folder, fs::file_time_type::clock::now() - std::chrono::minutes(age));
+  return folder.string();
 }
 } // namespace
 
@@ -208,4 +223,53 @@ TEST(FlowStudy, TheCacheFindsASolvedCaseAndKeysAChangedPlanOrOptionApart)
   // A cache folder that cannot be made: one line naming it.
   const std::string blocked = cache + "/" + first.key + "/Allrun/flow";
   EXPECT_THROW(StoreFlowCase(current, options, blocked), InputError);
+}
+
+TEST(FlowStudy, TheCacheIsTrimmedLeastRecentlyUsedFirstKeepingTheCasesShown)
+{
+  const std::string cache = test::TemporaryFolder("flow_cache_trim");
+  // Five cases, the first the oldest; a folder that is not a case and a write under way.
+  std::vector<std::string> cases;
+  for (int i = 0; i < 5; ++i)
+  {
+    cases.push_back(FakeCase(cache, "000000000000000" + std::to_string(i), 1000, 50 - 10 * i));
+  }
+  fs::create_directories(fs::path(cache) / "notes");
+  fs::create_directories(fs::path(cache) / ".incoming-1-1");
+  EXPECT_EQ(FolderBytes(cases[0]), 1000u);
+  EXPECT_EQ(FolderBytes(cache), 5000u);
+
+  // Within the limits: nothing goes.
+  FlowCacheTrimResult within = TrimFlowCache(cache, { 5, 5000 }, {});
+  EXPECT_TRUE(within.removed.empty());
+  EXPECT_EQ(within.casesLeft, 5);
+  EXPECT_EQ(within.bytesLeft, 5000u);
+
+  // Three cases at most: the two least recently used go, except a case on screen (the oldest);
+  // a case used again (found in the cache) is the newest.
+  MarkFlowCaseUsed(cases[1]);
+  const FlowCacheTrimResult counted = TrimFlowCache(cache, { 3, 1u << 30 }, { cases[0] });
+  EXPECT_EQ(counted.removed, (std::vector<std::string>{ cases[2], cases[3] }));
+  EXPECT_EQ(counted.casesLeft, 3);
+  EXPECT_EQ(counted.bytesLeft, 3000u);
+  EXPECT_EQ(Entries(cache),
+    (std::vector<std::string>{
+      ".incoming-1-1", "0000000000000000", "0000000000000001", "0000000000000004", "notes" }));
+
+  // By size: 2500 bytes hold two cases; the oldest not shown goes.
+  const FlowCacheTrimResult sized = TrimFlowCache(cache, { 20, 2500 }, { cases[0] });
+  EXPECT_EQ(sized.removed, (std::vector<std::string>{ cases[4] }));
+  EXPECT_EQ(sized.casesLeft, 2);
+  EXPECT_LE(sized.bytesLeft, 2500u);
+
+  // The cases shown stay even when they alone are over the limits.
+  const FlowCacheTrimResult shown = TrimFlowCache(cache, { 1, 10 }, { cases[0], cases[1] });
+  EXPECT_TRUE(shown.removed.empty());
+  EXPECT_EQ(shown.casesLeft, 2);
+  EXPECT_TRUE(fs::exists(cases[0]) && fs::exists(cases[1]));
+
+  // No cache folder yet: nothing to trim.
+  const FlowCacheTrimResult none = TrimFlowCache(cache + "/missing", {}, {});
+  EXPECT_TRUE(none.removed.empty());
+  EXPECT_EQ(none.casesLeft, 0);
 }

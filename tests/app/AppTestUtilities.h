@@ -130,6 +130,22 @@ inline ExportDialog* OpenExportDialog(MainWindow& window)
   return dialog;
 }
 
+/// The visible top-level widget of type T (named `name` when given): a dialog on screen, whether
+/// or not it is the active modal widget yet.
+template<typename T>
+T* VisibleTopLevel(const QString& name = {})
+{
+  for (QWidget* widget : QApplication::topLevelWidgets())
+  {
+    auto* found = qobject_cast<T*>(widget);
+    if (found && found->isVisible() && (name.isEmpty() || found->objectName() == name))
+    {
+      return found;
+    }
+  }
+  return nullptr;
+}
+
 /// Brings `panel` to the front of the window's panel dock (as a click on its tab would). False
 /// when the window has no panel dock or `panel` is not one of its tabs.
 inline bool ShowPanel(MainWindow& window, QWidget* panel)

@@ -6,11 +6,18 @@
 //    loop turning throughout; then the comparison window;
 //  - the table holds the numbers of the two cases' results/flow.json (as bender-cli compare);
 //  - the two views share one colour scale with its unit, and a drag in one moves the other;
+//  - Save report: the PDF, its pictures and the plan in a folder picked in the dialog; saved
+//    again there only when the user says to replace them;
+//  - a later bend marks the results stale (said in the panel and the comparison window), an
+//    undo back to the shape run makes them current again;
 //  - Run again: both shapes found in the flow cache, nothing solved again;
-//  - a changed case option is a new case, and Cancel stops it, leaving no results.
+//  - a changed case option is a new case, and Cancel stops it, leaving no results;
+//  - the flow cache trimmed to its limits after a run, the cases shown kept.
 #include "AppTestUtilities.h"
+#include "FlowAppTestUtilities.h"
 #include "FlowComparisonTable.h"
 #include "FlowPanel.h"
+#include "FlowReportSaver.h"
 #include "FlowResidualPlot.h"
 #include "FlowViews.h"
 #include "MainActions.h"
@@ -30,11 +37,10 @@
 #include <QDateTime>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
+#include <QFileDialog>
 #include <QFileInfo>
-#include <QJsonArray>
-#include <QJsonDocument>
-#include <QJsonObject>
 #include <QLabel>
+#include <QMessageBox>
 #include <QMouseEvent>
 #include <QProcess>
 #include <QProgressBar>
@@ -91,6 +97,55 @@ QDateTime Solved(const std::string& caseDirectory)
 {
   return QFileInfo(QString::fromStdString(caseDirectory) + "/log.simpleFoam").lastModified();
 }
+
+/// Answers the dialogs of one Save report while it lives: picks `folder` in the folder dialog
+/// (Qt's own, typed in its name box), and presses `replace` (Replace or Keep them) in the
+/// question asked when a report is there already, counting the questions.
+class ReportDialogsAnswer
+{
+public:
+  ReportDialogsAnswer(const QString& folder, QMessageBox::StandardButton replace)
+  {
+    QCoreApplication::setAttribute(Qt::AA_DontUseNativeDialogs, true);
+    this->Timer.setInterval(30);
+    QObject::connect(&this->Timer,
+      &QTimer::timeout,
+      [this, folder, replace]()
+      {
+        if (auto* box = bendertest::VisibleTopLevel<QMessageBox>("replaceFlowReport"))
+        {
+          ++this->Questions;
+          this->Text = box->text();
+          QTest::mouseClick(box->button(replace), Qt::LeftButton);
+          return;
+        }
+        auto* dialog = bendertest::VisibleTopLevel<QFileDialog>();
+        if (dialog && bendertest::TypeFileName(*dialog, folder))
+        {
+          QMetaObject::invokeMethod(dialog, "accept"); // as the Choose button does
+        }
+      });
+    this->Timer.start();
+  }
+  int questions() const { return this->Questions; }
+  const QString& text() const { return this->Text; }
+
+private:
+  QTimer Timer;
+  int Questions = 0;
+  QString Text;
+};
+
+/// The modification times of the report's files in `folder` (invalid for a missing one).
+QList<QDateTime> ReportTimes(const QString& folder)
+{
+  QList<QDateTime> times;
+  for (const QString& file : FlowReportSaver::filesIn(folder))
+  {
+    times << QFileInfo(file).lastModified();
+  }
+  return times;
+}
 } // namespace
 
 class FlowAppTest : public QObject
@@ -105,45 +160,10 @@ private:
 
   FlowPanel* panel() { return this->Window->flowPanel(); }
 
-  /// Types `value` into a spin box as a user does (all of it replaced, Enter).
-  static void type(QAbstractSpinBox* box, const QString& value)
-  {
-    box->setFocus();
-    box->selectAll();
-    QTest::keyClick(box, Qt::Key_Delete);
-    QTest::keyClicks(box, value);
-    QTest::keyClick(box, Qt::Key_Enter);
-  }
-
-  /// Clicks Run and waits for flowFinished; its argument (false when none came in time).
-  bool runAndWait(int milliseconds, std::function<void()> whileRunning = {})
-  {
-    QSignalSpy finished(this->panel(), &FlowPanel::flowFinished);
-    QTest::mouseClick(this->panel()->runButton(), Qt::LeftButton);
-    if (!this->panel()->isRunning())
-    {
-      return false;
-    }
-    if (whileRunning)
-    {
-      whileRunning();
-    }
-    // flowFinished may have come while whileRunning waited.
-    return (!finished.isEmpty() || finished.wait(milliseconds)) &&
-      finished.first().first().toBool();
-  }
-
 private slots:
   void initTestCase()
   {
-    if (bender::FindExecutable("simpleFoam").empty())
-    {
-      if (qEnvironmentVariableIsSet("BENDER_REQUIRE_CFD"))
-      {
-        QFAIL("simpleFoam is not installed but BENDER_REQUIRE_CFD is set (scripts/setup)");
-      }
-      QSKIP("OpenFOAM is not installed (scripts/setup installs it)");
-    }
+    BENDER_REQUIRE_OPENFOAM();
     QVERIFY(this->Folder.isValid());
     this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
     QVERIFY(bendertest::ShowTestWindow(*this->Window, true));
@@ -163,8 +183,8 @@ private slots:
     QVERIFY(bendertest::ShowPanel(*this->Window, this->panel()));
     // A small case: coarse cells, few iterations; the cache in the test's folder.
     this->panel()->setCacheFolder(this->Folder.filePath("flow-cache"));
-    type(this->panel()->iterationsBox(), "25");
-    type(this->panel()->cellSizeBox(), "1.60");
+    bendertest::TypeInto(this->panel()->iterationsBox(), "25");
+    bendertest::TypeInto(this->panel()->cellSizeBox(), "1.60");
     QCOMPARE(this->panel()->caseOptions().iterations, 25);
     QVERIFY(std::abs(this->panel()->caseOptions().cellSize - 1.6e-3) < 1e-9);
   }
@@ -191,7 +211,8 @@ private slots:
     QStringList steps;
     QElapsedTimer clock;
     clock.start();
-    const bool ok = this->runAndWait(400000,
+    const bool ok = bendertest::RunFlowAndWait(this->panel(),
+      400000,
       [&]()
       {
         auto* progress = this->Window->findChild<QProgressBar*>();
@@ -233,64 +254,18 @@ private slots:
   {
     QVERIFY(!this->CaseA.isEmpty());
     // What bender-cli compare computes from the two case folders.
-    const bender::CfdComparison files =
-      bender::CompareCfdResults(bender::ReadCfdFlowResults(this->CaseA.toStdString()),
-        bender::ReadCfdFlowResults(this->CaseB.toStdString()));
-    FlowComparisonTable* table = this->panel()->table();
-    QCOMPARE(table->rowCount(), static_cast<int>(files.rows.size()));
-    bool pressureDrop = false, split = false, wss = false;
-    for (const bender::CfdComparisonRow& row : files.rows)
+    bendertest::ExpectTableOfTheResultsFiles(this->panel(), this->CaseA, this->CaseB);
+    if (QTest::currentTestFailed())
     {
-      const int r = table->rowOf(QString::fromStdString(row.key));
-      QVERIFY2(r >= 0, row.key.c_str());
-      const int decimals = bender::CfdRowDecimals(row);
-      if (row.textA.empty() && row.a)
-      {
-        QVERIFY2(table->item(r, 1)->text().startsWith(
-                   QString::fromStdString(bender::FormatCfdValue(row.a, decimals))),
-          qPrintable(table->item(r, 1)->text()));
-      }
-      if (row.textB.empty() && row.b)
-      {
-        QVERIFY2(table->item(r, 2)->text().startsWith(
-                   QString::fromStdString(bender::FormatCfdValue(row.b, decimals))),
-          qPrintable(table->item(r, 2)->text()));
-      }
-      // Highlighted rows are drawn so.
-      QCOMPARE(table->item(r, 0)->font().bold(), row.highlighted);
-      pressureDrop = pressureDrop || row.kind == bender::CfdRowKind::Pressure;
-      split = split || row.kind == bender::CfdRowKind::Split;
-      wss = wss || row.kind == bender::CfdRowKind::Stress;
+      return;
     }
-    QVERIFY(pressureDrop && split && wss);
-
     // bender-cli compare of the two case folders: the same rows, the same numbers, the same
     // highlights as the panel's table.
-    QProcess cli;
-    cli.start(BENDER_CLI_PATH,
-      { "compare", this->CaseA, this->CaseB, "-o", this->Folder.filePath("report.pdf"), "--json" });
-    QVERIFY(cli.waitForFinished(300000));
-    QCOMPARE(cli.exitCode(), 0);
-    const QJsonArray rows =
-      QJsonDocument::fromJson(cli.readAllStandardOutput()).object().value("rows").toArray();
-    const bender::CfdComparison* shown = this->panel()->comparison();
-    QVERIFY(shown);
-    QCOMPARE(rows.size(), static_cast<int>(shown->rows.size()));
-    for (int i = 0; i < rows.size(); ++i)
-    {
-      const QJsonObject row = rows[i].toObject();
-      const bender::CfdComparisonRow& mine = shown->rows[static_cast<std::size_t>(i)];
-      QCOMPARE(row.value("key").toString(), QString::fromStdString(mine.key));
-      QCOMPARE(row.value("highlighted").toBool(), mine.highlighted);
-      const auto same = [](const QJsonValue& value, const std::optional<double>& number)
-      {
-        return value.isNull() ? !number
-                              : number &&
-            std::abs(value.toDouble() - *number) <= 1e-9 * std::max(1.0, std::abs(*number));
-      };
-      QVERIFY2(same(row.value("a"), mine.a), qPrintable(row.value("key").toString()));
-      QVERIFY2(same(row.value("b"), mine.b), qPrintable(row.value("key").toString()));
-    }
+    bendertest::ExpectCompareGivesThePanelsNumbers(this->panel(),
+      BENDER_CLI_PATH,
+      this->CaseA,
+      this->CaseB,
+      this->Folder.filePath("report.pdf"));
   }
 
   void theViewsShareTheScaleAndMoveTogether()
@@ -323,13 +298,13 @@ private slots:
       QVERIFY(this->panel()->result(which)->streamlines->GetNumberOfLines() > 0);
     }
 
-    // The pictures of the docs (streamlines on): the window with the Flow panel, the comparison
-    // window.
-    QVERIFY(this->Window->saveScreenshot(Artifact("flow-panel.png")));
+    // The pictures (streamlines on): the window with the Flow panel, the comparison window
+    // (those of the docs are the demo's: FlowDemoAppTests).
+    QVERIFY(this->Window->saveScreenshot(Artifact("flow-tube-panel.png")));
     QCoreApplication::processEvents();
     views->render();
     QWidget* comparison = this->panel()->comparisonWindow();
-    QVERIFY(comparison->grab().toImage().save(Artifact("flow-comparison.png"), "PNG"));
+    QVERIFY(comparison->grab().toImage().save(Artifact("flow-tube-comparison.png"), "PNG"));
     QTest::mouseClick(streamlines, Qt::LeftButton);
     QVERIFY(!views->streamlinesShown());
 
@@ -354,12 +329,104 @@ private slots:
     QVERIFY(SameCamera(a, b));
   }
 
+  void saveReportWritesThePdfAndAsksBeforeReplacingIt()
+  {
+    QVERIFY(this->panel()->saveReportButton()->isEnabled());
+    const QString folder = this->Folder.filePath("report");
+    QVERIFY(QDir().mkpath(folder)); // the folder dialog picks a folder that is there
+    {
+      // Save report..., the folder picked in the dialog: the PDF, the pictures, the plan.
+      ReportDialogsAnswer answer(folder, QMessageBox::No);
+      QSignalSpy saved(this->panel()->reportSaver(), &FlowReportSaver::saved);
+      QTest::mouseClick(this->panel()->saveReportButton(), Qt::LeftButton);
+      QVERIFY(saved.wait(300000));
+      QVERIFY2(saved.first().first().toBool(), qPrintable(this->Window->statusLabel()->text()));
+      QCOMPARE(saved.first().at(1).toString(), FlowReportSaver::pdfIn(folder));
+      QCOMPARE(answer.questions(), 0); // nothing there to replace
+    }
+    for (const QString& file : FlowReportSaver::filesIn(folder))
+    {
+      QVERIFY2(QFileInfo(file).size() > 0, qPrintable(file));
+    }
+    QFile pdf(FlowReportSaver::pdfIn(folder));
+    QVERIFY(pdf.open(QIODevice::ReadOnly));
+    QCOMPARE(pdf.read(5), QByteArray("%PDF-"));
+    pdf.close();
+    if (!bender::FindExecutable("pdftoppm").empty())
+    {
+      // Every page renders.
+      QProcess render;
+      render.start("pdftoppm",
+        { "-r", "20", "-png", FlowReportSaver::pdfIn(folder), this->Folder.filePath("page") });
+      QVERIFY(render.waitForFinished(120000));
+      QCOMPARE(render.exitCode(), 0);
+      QVERIFY(QFileInfo::exists(this->Folder.filePath("page-1.png")));
+    }
+    // The plan beside it is the session's (the prepared then bent tube).
+    QVERIFY(QFileInfo(folder + "/flow-plan.bender.json").size() > 0);
+    QVERIFY(this->Window->statusLabel()->text().startsWith("Flow report saved"));
+
+    // Saved again there: asked; "Keep them" leaves every file as it was.
+    const QList<QDateTime> before = ReportTimes(folder);
+    QTest::qWait(1100); // a rewrite shows in the time stamps
+    {
+      ReportDialogsAnswer answer(folder, QMessageBox::No);
+      QVERIFY(!this->panel()->saveReport(folder));
+      QCOMPARE(answer.questions(), 1);
+      QVERIFY2(answer.text().contains("flow-report.pdf"), qPrintable(answer.text()));
+    }
+    QCOMPARE(ReportTimes(folder), before);
+    // "Replace": written again.
+    {
+      ReportDialogsAnswer answer(folder, QMessageBox::Yes);
+      QSignalSpy saved(this->panel()->reportSaver(), &FlowReportSaver::saved);
+      QVERIFY(this->panel()->saveReport(folder));
+      QCOMPARE(answer.questions(), 1);
+      QVERIFY(saved.wait(300000));
+      QVERIFY(saved.first().first().toBool());
+    }
+    QVERIFY(QFileInfo(FlowReportSaver::pdfIn(folder)).lastModified() > before.first());
+  }
+
+  void aLaterBendMakesTheResultsStaleUntilUndone()
+  {
+    QVERIFY(!this->panel()->isStale());
+    auto* note = this->panel()->comparisonWindow()->findChild<QLabel*>("flowStale");
+    QVERIFY(note && !note->isVisible());
+    const QString done = this->panel()->statusLabel()->text();
+    QVERIFY(done.startsWith("Flow done"));
+    // Another bend after the run: the results are of the earlier shape, and say so.
+    bender::BenderSession& session = this->Window->session();
+    QVERIFY(session.ApplyWarp(bender::test::Swing(0, 10, 20, 8)));
+    QVERIFY(this->panel()->isStale());
+    QVERIFY(note->isVisible());
+    QVERIFY(this->panel()->statusLabel()->text().startsWith("Stale"));
+    QVERIFY(this->panel()->comparisonWindow()->windowTitle().contains("stale"));
+    // The table still shows the run's numbers.
+    QCOMPARE(this->panel()->table()->rowCount(),
+      static_cast<int>(this->panel()->comparison()->rows.size()));
+    // Undone (Ctrl+Z on the window): the shape of the run again, the results current.
+    this->Window->activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(this->Window.get()));
+    QTest::keyClick(this->Window.get(), Qt::Key_Z, Qt::ControlModifier);
+    QTRY_VERIFY_WITH_TIMEOUT(!this->panel()->isStale(), 10000);
+    QVERIFY(!note->isVisible());
+    QCOMPARE(this->panel()->statusLabel()->text(), done);
+    QVERIFY(!this->panel()->comparisonWindow()->windowTitle().contains("stale"));
+    // Redone: stale again; undone again for the next tests.
+    QTest::keyClick(this->Window.get(), Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+    QTRY_VERIFY_WITH_TIMEOUT(this->panel()->isStale(), 10000);
+    QTest::keyClick(this->Window.get(), Qt::Key_Z, Qt::ControlModifier);
+    QTRY_VERIFY_WITH_TIMEOUT(!this->panel()->isStale(), 10000);
+  }
+
   void theSameShapesAreNotSolvedAgain()
   {
     QVERIFY(!this->CaseA.isEmpty());
     QElapsedTimer clock;
     clock.start();
-    QVERIFY2(this->runAndWait(120000), qPrintable(this->panel()->statusLabel()->text()));
+    QVERIFY2(bendertest::RunFlowAndWait(this->panel(), 120000),
+      qPrintable(this->panel()->statusLabel()->text()));
     for (int which = 0; which < 2; ++which)
     {
       QVERIFY(this->panel()->result(which)->cached);
@@ -377,7 +444,7 @@ private slots:
 
   void aChangedCaseIsANewOneAndCancelStopsIt()
   {
-    type(this->panel()->iterationsBox(), "26");
+    bendertest::TypeInto(this->panel()->iterationsBox(), "26");
     QSignalSpy finished(this->panel(), &FlowPanel::flowFinished);
     QTest::mouseClick(this->panel()->runButton(), Qt::LeftButton);
     QVERIFY(this->panel()->isRunning());
@@ -404,6 +471,27 @@ private slots:
     }
     QCOMPARE(cases - withResults, 1);
     QVERIFY2(withResults == 2 || withResults == 3, qPrintable(QString::number(withResults)));
+  }
+
+  void theCacheIsTrimmedAfterARunKeepingTheCasesShown()
+  {
+    const QDir cache(this->Folder.filePath("flow-cache"));
+    const auto caseFolders = [&cache]()
+    { return cache.entryList(QDir::Dirs | QDir::NoDotAndDotDot).size(); };
+    QVERIFY(caseFolders() >= 3);
+    // Two cases at most: the run of the first settings (found in the cache) keeps its two and
+    // removes the rest, the least recently used first.
+    bender::FlowCacheLimits limits;
+    limits.maxCases = 2;
+    this->panel()->setCacheLimits(limits);
+    bendertest::TypeInto(this->panel()->iterationsBox(), "25");
+    QVERIFY2(bendertest::RunFlowAndWait(this->panel(), 120000),
+      qPrintable(this->panel()->statusLabel()->text()));
+    QVERIFY(this->panel()->result(0)->cached && this->panel()->result(1)->cached);
+    QCOMPARE(caseFolders(), 2);
+    QVERIFY(QFileInfo::exists(this->CaseA) && QFileInfo::exists(this->CaseB));
+    QVERIFY2(this->Window->statusLabel()->text().contains("least recently used"),
+      qPrintable(this->Window->statusLabel()->text()));
   }
 };
 

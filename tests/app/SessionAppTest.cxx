@@ -97,19 +97,7 @@ QByteArray ReadAll(const QString& path)
   return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
 }
 
-// The visible top-level widget of type T (named `name` when given): a dialog on screen, whether
-// or not it is the active modal widget yet.
-template<typename T>
-T* VisibleTopLevel(const QString& name = {})
-{
-  for (QWidget* widget : QApplication::topLevelWidgets())
-  {
-    auto* found = qobject_cast<T*>(widget);
-    if (found && found->isVisible() && (name.isEmpty() || found->objectName() == name))
-      return found;
-  }
-  return nullptr;
-}
+using bendertest::VisibleTopLevel;
 
 // Answers every "Save changes?" box with `button` while it lives, counting them.
 class SaveChangesAnswer
