@@ -11,10 +11,11 @@ namespace bender
 
 namespace
 {
-/// A name FlowCaseKey makes: 16 lower-case hexadecimal digits.
+/// A name FlowCaseKey makes: 32 lower-case hexadecimal digits (16 in caches of earlier
+/// versions, whose cases are trimmed too).
 bool IsCaseKey(const std::string& name)
 {
-  return name.size() == 16 &&
+  return (name.size() == 32 || name.size() == 16) &&
     std::all_of(name.begin(),
       name.end(),
       [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || (c >= 'a' && c <= 'f'); });

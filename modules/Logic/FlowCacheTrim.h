@@ -37,11 +37,11 @@ void MarkFlowCaseUsed(const std::string& caseDirectory);
 /// The bytes of the regular files under `folder` (links not followed); 0 when it is not there.
 std::uintmax_t FolderBytes(const std::string& folder);
 
-/// Removes case folders of `cacheDirectory` (those named by a cache key: 16 hexadecimal
-/// digits; anything else there is left alone), the least recently used first, until at most
-/// limits.maxCases remain and they hold at most limits.maxBytes. The folders in `keep` (the
-/// cases on screen) are never removed, even when they alone exceed the limits. A missing cache
-/// folder is an empty one; a case that cannot be removed is skipped. Throws nothing.
+/// Removes case folders of `cacheDirectory` (those named by a cache key: 32 hexadecimal
+/// digits, or 16 from earlier versions; anything else there is left alone), the least recently used
+/// first, until at most limits.maxCases remain and they hold at most limits.maxBytes. The folders
+/// in `keep` (the cases on screen) are never removed, even when they alone exceed the limits. A
+/// missing cache folder is an empty one; a case that cannot be removed is skipped. Throws nothing.
 FlowCacheTrimResult TrimFlowCache(const std::string& cacheDirectory,
   const FlowCacheLimits& limits,
   const std::vector<std::string>& keep);

@@ -228,33 +228,38 @@ TEST(FlowStudy, TheCacheFindsASolvedCaseAndKeysAChangedPlanOrOptionApart)
 TEST(FlowStudy, TheCacheIsTrimmedLeastRecentlyUsedFirstKeepingTheCasesShown)
 {
   const std::string cache = test::TemporaryFolder("flow_cache_trim");
-  // Five cases, the first the oldest; a folder that is not a case and a write under way.
+  // Five cases, the first the oldest; a folder that is not a case, a write under way.
   std::vector<std::string> cases;
   for (int i = 0; i < 5; ++i)
   {
-    cases.push_back(FakeCase(cache, "000000000000000" + std::to_string(i), 1000, 50 - 10 * i));
+    cases.push_back(FakeCase(cache, std::string(31, '0') + std::to_string(i), 1000, 50 - 10 * i));
   }
+  // A case of an earlier version's cache (a 16-digit key), the least recently used.
+  const std::string older = FakeCase(cache, "00000000000000ff", 1000, 60);
   fs::create_directories(fs::path(cache) / "notes");
   fs::create_directories(fs::path(cache) / ".incoming-1-1");
   EXPECT_EQ(FolderBytes(cases[0]), 1000u);
-  EXPECT_EQ(FolderBytes(cache), 5000u);
+  EXPECT_EQ(FolderBytes(cache), 6000u);
 
   // Within the limits: nothing goes.
-  FlowCacheTrimResult within = TrimFlowCache(cache, { 5, 5000 }, {});
+  FlowCacheTrimResult within = TrimFlowCache(cache, { 6, 6000 }, {});
   EXPECT_TRUE(within.removed.empty());
-  EXPECT_EQ(within.casesLeft, 5);
-  EXPECT_EQ(within.bytesLeft, 5000u);
+  EXPECT_EQ(within.casesLeft, 6);
+  EXPECT_EQ(within.bytesLeft, 6000u);
 
   // Three cases at most: the two least recently used go, except a case on screen (the oldest);
   // a case used again (found in the cache) is the newest.
   MarkFlowCaseUsed(cases[1]);
   const FlowCacheTrimResult counted = TrimFlowCache(cache, { 3, 1u << 30 }, { cases[0] });
-  EXPECT_EQ(counted.removed, (std::vector<std::string>{ cases[2], cases[3] }));
+  EXPECT_EQ(counted.removed, (std::vector<std::string>{ older, cases[2], cases[3] }));
   EXPECT_EQ(counted.casesLeft, 3);
   EXPECT_EQ(counted.bytesLeft, 3000u);
   EXPECT_EQ(Entries(cache),
-    (std::vector<std::string>{
-      ".incoming-1-1", "0000000000000000", "0000000000000001", "0000000000000004", "notes" }));
+    (std::vector<std::string>{ ".incoming-1-1",
+      std::string(31, '0') + "0",
+      std::string(31, '0') + "1",
+      std::string(31, '0') + "4",
+      "notes" }));
 
   // By size: 2500 bytes hold two cases; the oldest not shown goes.
   const FlowCacheTrimResult sized = TrimFlowCache(cache, { 20, 2500 }, { cases[0] });
