@@ -29,7 +29,7 @@ std::vector<MeshFormat> BuiltInFormats()
     { "obj",   { ".obj" },   "Wavefront OBJ",                      ReadObjMesh,       WriteObjMesh,       false, false, false, Float,  false },
     { "ply",   { ".ply" },   "PLY",                                ReadPlyMesh,       WritePlyMesh,       false, false, false, Float,  false },
     { "vtp",   { ".vtp" },   "VTK XML polydata with patch labels", ReadVtpMesh,       WriteVtpMesh,       false, true,  false, Double, false },
-    { "vtk",   { ".vtk" },   "Legacy VTK polydata",                ReadLegacyVtkMesh, WriteLegacyVtkMesh, false, false, false, Double, false },
+    { "vtk",   { ".vtk" },   "Legacy VTK polydata",                ReadLegacyVtkMesh, WriteLegacyVtkMesh, false, true,  false, Double, false },
     { "off",   { ".off" },   "OFF",                                ReadOffMesh,       WriteOffMesh,       false, false, false, Double, false },
     { "smesh", { ".smesh" }, "TetGen surface mesh",                ReadTetgenMesh,    WriteSmeshMesh,     false, false, true,  Double, false },
     { "poly",  { ".poly" },  "TetGen piecewise linear complex",    ReadTetgenMesh,    WritePolyMesh,      false, false, true,  Double, false },

@@ -89,7 +89,8 @@ struct MeshFormat
   /// Patches can be written as named parts (STL: one solid per patch, or one file per patch).
   bool namedPatches = false;
   /// The written file keeps the patch labels (CellEntityIds ...) of PatchLabels.h and states
-  /// the export's frame and unit in its field data (VTK XML polydata).
+  /// the export's frame and unit in its field data (VTK polydata, XML and legacy: both read
+  /// back with their labels).
   bool patchLabels = false;
   /// The format takes a region point inside the lumen (TetGen): an export measures the
   /// patches to find one.

@@ -21,9 +21,10 @@ namespace bender
 /// Options of ExportSurface, the one export of Bender (GUI, session, bender-cli export).
 /// The format follows the extension of `output`: every writable row of the mesh-format table
 /// (MeshFormats.h; the rules of ResolveMeshExport apply): .stl (binary, ASCII, named solids or
-/// one file per patch), .vtp (keeps the labels of PatchLabels.h: CellEntityIds, ModelFaceID and
-/// the names and types in field data, plus the field data strings Unit and Frame), .smesh and
-/// .poly (TetGen: facet markers = CellEntityIds, TetgenExport.h), .ply, .obj, .vtk, .off.
+/// one file per patch), .vtp and .vtk (keep the labels of PatchLabels.h: CellEntityIds,
+/// ModelFaceID and the names and types in field data, plus the field data strings Unit and
+/// Frame), .smesh and .poly (TetGen: facet markers = CellEntityIds, TetgenExport.h), .ply, .obj,
+/// .off.
 struct ExportSurfaceOptions
 {
   std::string output;

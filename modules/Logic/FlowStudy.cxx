@@ -132,8 +132,7 @@ LabelledSurface FlowReadySurface(const FlowStudyInput& input,
     apply.planName = input.name;
     apply.progress = progress;
     const ApplyPlanResult made = ApplyPlan(input.first, PrepareStepsOnly(input.plan), apply);
-    const PrepareForCfdResult& last = made.prepared.back();
-    original = LabelledSurface{ last.surface, last.patches };
+    original = made.prepared.back();
   }
   const std::vector<std::string> want = EndNames(current.patches);
   const std::vector<std::string> got = EndNames(original.patches);

@@ -14,6 +14,7 @@
 //     With cap off, the surface stays open and is labelled all wall.
 // Units are the surface's (mm for Bender's surfaces); nothing is written to disk.
 
+#include "LabelledSurface.h"
 #include "PatchLabels.h"
 #include "Progress.h"
 #include "VesselClip.h"
@@ -80,13 +81,12 @@ struct CfdEnd
   double clipDistance = -1.0;
 };
 
-struct PrepareForCfdResult
+/// The prepared surface is a LabelledSurface: `surface` labelled (PatchLabels.h) and `patches`
+/// its table as written (the wall, then each capped end by id; ReadPatchLabels of `surface`
+/// gives the same), so that the result goes to the export and the case as it is, without
+/// parsing the cell data again.
+struct PrepareForCfdResult : LabelledSurface
 {
-  vtkSmartPointer<vtkPolyData> surface; ///< labelled (PatchLabels.h)
-  /// The patch table of `surface` as written (the wall, then each capped end by id; ReadPatchLabels
-  /// of it gives the same): LabelledSurface{ surface, patches } goes to the export and the case
-  /// without parsing the cell data again.
-  std::vector<PatchLabel> patches;
   std::vector<CfdEnd> ends; ///< by id
   std::vector<std::string> warnings;
   /// With clip: the centerlines the ends were clipped by (given, or computed); null without.

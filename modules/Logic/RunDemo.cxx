@@ -126,7 +126,6 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
         warn(w);
       }
       options.progress.ThrowIfCancelled("demo CFD");
-      const LabelledSurface cfdBent{ prepared.surface, prepared.patches };
       ExportSurfaceOptions stl;
       stl.output = out("demo-cfd.stl");
       stl.protectedPath = vesselPath;
@@ -139,7 +138,7 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
       vtp.protectedPath = vesselPath;
       for (const auto* exportOptions : { &stl, &vtp })
       {
-        for (const std::string& file : ExportSurface(cfdBent, *exportOptions).written)
+        for (const std::string& file : ExportSurface(prepared, *exportOptions).written)
         {
           result.written.push_back(file);
         }
@@ -148,7 +147,7 @@ RunDemoResult RunDemo(const RunDemoOptions& options)
       caseOptions.caseDirectory = out("demo-openfoam");
       caseOptions.force = true; // the job's own folder, rewritten at every run
       caseOptions.sourceName = "demo-cfd.vtp";
-      const CfdCaseResult written = WriteOpenFoamCase(cfdBent, caseOptions);
+      const CfdCaseResult written = WriteOpenFoamCase(prepared, caseOptions);
       result.cfdCase = written.caseDirectory;
       result.written.push_back(written.caseDirectory);
       say(FormatCfdCase(written));

@@ -3,7 +3,6 @@
 #include "ApplyPlan.h"
 #include "BenderErrors.h"
 #include "BenderMeshCheck.h"
-#include "LabelledSurface.h"
 #include "MeshIO.h"
 #include "PrepareForCfd.h"
 #include "RibbonLengthChange.h"
@@ -149,8 +148,7 @@ SweepBase PrepareSweepBase(const SweepBaseOptions& options, const ProgressReport
   scratch.caseDirectory = options.scratchFolder;
   scratch.force = true;
   scratch.sourceName = base.surfaceName;
-  const CfdCaseResult written =
-    WriteOpenFoamCase(LabelledSurface{ original.surface, original.patches }, scratch);
+  const CfdCaseResult written = WriteOpenFoamCase(original, scratch);
   std::error_code ec;
   fs::remove_all(options.scratchFolder, ec);
   base.caseOptions.cellSize = written.cellSize;
@@ -258,7 +256,7 @@ PreparedCandidate PrepareCandidate(const SweepBase& base,
   caseOptions.caseDirectory = caseDirectory;
   caseOptions.force = true;
   caseOptions.sourceName = options.inputName;
-  WriteOpenFoamCase(LabelledSurface{ result.surface, result.patches }, caseOptions);
+  WriteOpenFoamCase(result, caseOptions);
   return prepared;
 }
 

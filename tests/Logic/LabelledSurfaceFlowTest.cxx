@@ -7,6 +7,7 @@
 #include "ExportSurface.h"
 #include "LabelledSurface.h"
 #include "LogicTestUtilities.h"
+#include "MeshFormats.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
 #include "PatchSidecar.h"
@@ -18,6 +19,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,17 @@ PatchSidecar MeasureInMillimetres(const LabelledSurface& surface)
 {
   return ComputePatchSidecar(surface, ExportTransform(StlFrame::LPS, "mm"));
 }
+
+/// Triangles per patch id (CellPatchIds: all wall without labels).
+std::map<int, std::size_t> TrianglesPerPatch(vtkPolyData* surface)
+{
+  std::map<int, std::size_t> counts;
+  for (int id : CellPatchIds(surface))
+  {
+    ++counts[id];
+  }
+  return counts;
+}
 } // namespace
 
 TEST(LabelledSurfaceFlow, ClipExportReadBackAndCaseKeepTheTableAndTheAreas)
@@ -49,7 +62,7 @@ TEST(LabelledSurfaceFlow, ClipExportReadBackAndCaseKeepTheTableAndTheAreas)
   PrepareForCfdOptions options;
   options.inputName = "aneurysm_data.stl";
   const PrepareForCfdResult prepared = PrepareForCfd(ReadMesh(Aneurysm), options);
-  const LabelledSurface clipped{ prepared.surface, prepared.patches };
+  const LabelledSurface& clipped = prepared;
   // The table the clip carries is the one its cell data hold.
   ExpectSameTable(clipped.patches, ReadPatchLabels(prepared.surface));
   ASSERT_EQ(clipped.patches.size(), prepared.ends.size() + 1);
@@ -141,5 +154,58 @@ TEST(LabelledSurfaceFlow, ATableOfAnotherSurfaceIsRefusedInOneLine)
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
   EXPECT_FALSE(std::filesystem::exists(stl.output));
+  std::filesystem::remove_all(folder);
+}
+
+// Every writable format that carries patches, read back after an export of a labelled tube:
+// the label formats (.vtp, .vtk) give back the table, each cell's patch and the coordinates;
+// TetGen's facet markers each triangle's patch id; the STL's one file per patch the triangles
+// of that patch.
+TEST(LabelledSurfaceFlow, EveryFormatThatCarriesPatchesIsReadBackWithThem)
+{
+  PrepareForCfdOptions options;
+  options.clip = false; // the tube's open ends as they are
+  options.inletExtension = options.outletExtension = 0.0;
+  const PrepareForCfdResult prepared = PrepareForCfd(test::MakeTube(0, 60, 3), options);
+  ASSERT_EQ(prepared.patches.size(), 3u);
+  const std::map<int, std::size_t> triangles = TrianglesPerPatch(prepared.surface);
+  ASSERT_EQ(triangles.size(), 3u);
+  const std::string folder = test::TemporaryFolder("bender_labelled_formats");
+  std::vector<std::string> checked;
+  for (const MeshFormat& format : MeshFormats())
+  {
+    if (!format.CanWrite() || !format.CanRead() ||
+      !(format.patchLabels || format.namedPatches || format.regionPoint))
+    {
+      continue;
+    }
+    SCOPED_TRACE(format.name);
+    checked.push_back(format.name);
+    ExportSurfaceOptions exportOptions;
+    exportOptions.output = folder + "/tube" + format.extensions.front();
+    exportOptions.patches = format.namedPatches ? StlPatchMode::Files : StlPatchMode::Single;
+    const ExportSurfaceResult exported = ExportSurface(prepared, exportOptions);
+    ExpectSameTable(exported.patches, prepared.patches);
+    if (format.namedPatches)
+    {
+      for (const PatchLabel& patch : prepared.patches)
+      {
+        const vtkSmartPointer<vtkPolyData> part =
+          ReadMesh(folder + "/tube_" + patch.name + format.extensions.front());
+        EXPECT_EQ(static_cast<std::size_t>(part->GetNumberOfPolys()), triangles.at(patch.id))
+          << patch.name;
+      }
+      continue;
+    }
+    const vtkSmartPointer<vtkPolyData> back = ReadMesh(exportOptions.output);
+    EXPECT_EQ(TrianglesPerPatch(back), triangles);
+    if (format.patchLabels)
+    {
+      ExpectSameTable(ReadPatchLabels(back), prepared.patches);
+      EXPECT_EQ(CellPatchIds(back), CellPatchIds(prepared.surface));
+      EXPECT_EQ(test::MaxDifference(back, prepared.surface), 0.0);
+    }
+  }
+  EXPECT_EQ(checked, (std::vector<std::string>{ "stl", "vtp", "vtk", "smesh", "poly" }));
   std::filesystem::remove_all(folder);
 }
