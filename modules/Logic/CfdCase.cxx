@@ -9,8 +9,10 @@
 #include "CfdDictionaries.h"
 #include "CfdMeshing.h"
 #include "CfdPatches.h"
+#include "CfdWallEnds.h"
 #include "ExportSurface.h"
 #include "FaultInjection.h"
+#include "StringUtil.h"
 
 #include <vtkAbstractArray.h>
 #include <vtkCellData.h>
@@ -296,6 +298,7 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     largest = std::max(largest, patches[i].diameter);
   }
   CheckScale(surface, largest, name);
+  CheckNoWallEnd(labelled, 1e3 * smallest, name);
   CfdCaseResult result;
   result.caseDirectory = options.caseDirectory;
   result.inlet = patches[inlet].name;
@@ -429,6 +432,19 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     fs::permissions(temp / "Allrun",
       fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
       fs::perm_options::add);
+  }
+  catch (const InputError& e)
+  {
+    // A write that failed (a full disk): the case named, never its temporary sibling.
+    fs::remove_all(temp, ec);
+    std::string what = e.what();
+    for (std::size_t at = what.find(temp.string()); at != std::string::npos;
+         at = what.find(temp.string()))
+    {
+      what.replace(at, temp.string().size(), target.string());
+    }
+    throw InputError(
+      StartsWith(what, options.caseDirectory) ? what : options.caseDirectory + ": " + what);
   }
   catch (...)
   {

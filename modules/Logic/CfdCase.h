@@ -11,6 +11,7 @@
 // throughout; OpenFOAM's p is kinematic (p / rho), reported here in Pa with rho.
 
 #include "CfdFlowResults.h"
+#include "CfdStageTimes.h"
 #include "LabelledSurface.h"
 #include "PatchLabels.h"
 #include "Progress.h"
@@ -205,6 +206,8 @@ struct CfdRunResult
   std::optional<CfdFlowResults> flow;
   /// The mesh's report (ReadCfdMeshReport, CfdMeshing.h) when RunOpenFoamCase meshed it.
   CfdMeshReport mesh;
+  /// How long RunOpenFoamCase's stages took (wall clock); zero from ReadCfdResults.
+  CfdStageTimes stages;
 };
 
 /// Options of RunOpenFoamCase.

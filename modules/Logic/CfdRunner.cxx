@@ -3,6 +3,7 @@
 #include "BenderErrors.h"
 #include "CfdCaseFile.h"
 #include "CfdMeshing.h"
+#include "CfdStageTimes.h"
 #include "StringUtil.h"
 
 #include "ProcessRunner.h"
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -57,21 +59,30 @@ std::string FindOpenFoamProblem(int processors)
 namespace
 {
 /// Runs `sh ./Allrun what` in dir, its output to log.Allrun (appended when append) and to
-/// options.onLine. Throws Error naming the failed step.
+/// options.onLine, its steps timed by clock. Throws Error naming the failed step.
 void RunAllrun(const fs::path& dir,
   const std::string& caseDirectory,
   const std::string& what,
   const CfdRunOptions& options,
-  bool append)
+  bool append,
+  CfdStepClock& clock)
 {
   ProcessOptions run;
   run.argv = { "/bin/sh", "./Allrun", what };
   run.workingDirectory = dir.string();
   run.logPath = (dir / "log.Allrun").string();
   run.appendLog = append;
-  run.onLine = options.onLine;
+  run.onLine = [&](const std::string& line)
+  {
+    clock.Line(line);
+    if (options.onLine)
+    {
+      options.onLine(line);
+    }
+  };
   run.cancel = options.progress.cancel;
   const ProcessResult result = RunProcess(run);
+  clock.Finish();
   if (result.cancelled)
   {
     throw Cancelled(caseDirectory + ": cancelled during Allrun " + what);
@@ -163,19 +174,23 @@ CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptio
     throw EnvironmentError(problem);
   }
   using Steps = CfdRunOptions::Steps;
+  CfdStepClock clock;
   if (options.steps != Steps::Solve)
   {
-    RunAllrun(dir, caseDirectory, "mesh", options, false);
+    RunAllrun(dir, caseDirectory, "mesh", options, false, clock);
     CheckMeshPatches(caseDirectory);
   }
   if (options.steps != Steps::Mesh)
   {
-    RunAllrun(dir, caseDirectory, "solve", options, options.steps == Steps::All);
+    RunAllrun(dir, caseDirectory, "solve", options, options.steps == Steps::All, clock);
   }
+  const CfdStageTimes stages = GroupCfdStages(clock.Steps(),
+    options.steps == Steps::Solve ? std::string() : ReadTextFile(dir / "log.snappyHexMesh"));
   if (options.steps == CfdRunOptions::Steps::Mesh)
   {
     CfdRunResult meshed;
     meshed.mesh = ReadCfdMeshReport(caseDirectory);
+    meshed.stages = stages;
     return meshed;
   }
   CfdRunResult run = ReadCfdResults(caseDirectory);
@@ -183,7 +198,11 @@ CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptio
   {
     run.mesh = ReadCfdMeshReport(caseDirectory);
   }
+  run.stages = stages;
+  const auto mapStart = std::chrono::steady_clock::now();
   run.flow = MapCfdResults(caseDirectory);
+  run.stages.map =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - mapStart).count();
   return run;
 }
 

@@ -291,18 +291,26 @@ void WriteResultsFolder(const fs::path& dir,
   std::error_code ec;
   try
   {
-    WriteMesh(surface, (temp / kCfdSurfaceResults).string());
+    // A write that fails (a full disk) names the results folder, not its temporary sibling.
+    try
+    {
+      WriteMesh(surface, (temp / kCfdSurfaceResults).string());
+    }
+    catch (const MeshIOError& e)
+    {
+      throw Error(target.string() + ": " + e.what());
+    }
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
     writer->SetInputData(volume);
     writer->SetFileName((temp / kCfdVolumeResults).string().c_str());
     writer->SetDataModeToAppended();
     writer->SetCompressorTypeToZLib();
-    if (writer->Write() != 1)
+    std::string problem;
+    if (!io_detail::RunWriter(writer.Get(), problem))
     {
-      throw Error((target / kCfdVolumeResults).string() + ": cannot be written");
+      throw Error((target / kCfdVolumeResults).string() + ": " + problem);
     }
     FaultPoint("cfd-results");
-    std::string problem;
     if (!AtomicWriteText((temp / kCfdFlowJson).string(), CfdFlowResultsToJson(results), problem))
     {
       throw Error((target / kCfdFlowJson).string() + ": " + problem);

@@ -3,11 +3,11 @@
 #include "SegmentationTestUtilities.h"
 
 #include "DicomTestSeries.h"
+#include "FileSizeLimit.h"
 
 #include "SegmentationErrors.h"
 #include "VolumeIO.h"
 
-#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -15,7 +15,6 @@
 #include <random>
 #include <set>
 
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -441,30 +440,6 @@ TEST(VolumeIO, LibraryMessagesAreCleaned)
   }
 }
 
-/// Lowers this process's file size limit (RLIMIT_FSIZE, unprivileged): writes past it fail
-/// with EFBIG, as they would with ENOSPC on a full disk; SIGXFSZ is ignored meanwhile.
-class FileSizeLimit
-{
-public:
-  explicit FileSizeLimit(rlim_t bytes)
-  {
-    this->PreviousHandler = std::signal(SIGXFSZ, SIG_IGN);
-    ::getrlimit(RLIMIT_FSIZE, &this->Previous);
-    rlimit limit = this->Previous;
-    limit.rlim_cur = bytes;
-    ::setrlimit(RLIMIT_FSIZE, &limit);
-  }
-  ~FileSizeLimit()
-  {
-    ::setrlimit(RLIMIT_FSIZE, &this->Previous);
-    std::signal(SIGXFSZ, this->PreviousHandler);
-  }
-
-private:
-  rlimit Previous{};
-  void (*PreviousHandler)(int) = nullptr;
-};
-
 // Issue 13: on a full disk the phantom's volume was reported written for .nii/.nii.gz/.mha/.vti
 // (a truncated file), .nrrd left "*.part.nrrd", .mhd/.nhdr left the data file under its
 // temporary name. Simulated here with the file size limit: every format fails, nothing is
@@ -495,7 +470,7 @@ TEST(VolumeIO, FullDiskLeavesNothingBehind)
     }
     bool threw = false;
     {
-      FileSizeLimit limit(64 * 1024);
+      bender::test::FileSizeLimit limit(64 * 1024);
       try
       {
         bender::WriteVolume(big, path);

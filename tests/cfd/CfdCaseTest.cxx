@@ -5,13 +5,16 @@
 #include "BenderErrors.h"
 #include "BenderMeshCheck.h"
 #include "CfdTestUtilities.h"
+#include "CfdWallEnds.h"
 #include "CliCommands.h"
+#include "FileSizeLimit.h"
 #include "InsidePoint.h"
 #include "LabelledSurface.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
 #include "RunDemo.h"
 
+#include <vtkCell.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkSelectEnclosedPoints.h>
@@ -19,11 +22,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -415,6 +421,135 @@ TEST(CfdCase, NeverLeavesAHalfWrittenCaseAndReplacesOnlyWithForce)
   fresh.force = true;
   EXPECT_THROW(bender::WriteOpenFoamCase(Aneurysm(), fresh), bender::InputError);
   EXPECT_EQ(ReadText(folder.Path() + "/file"), "x");
+}
+
+// Issue 23: a full disk while the case is written (simulated by the file size limit, which the
+// STL of the surface, about 2 MB, exceeds): one line naming the case and the file that failed,
+// the previous case kept as it was, nothing left beside it.
+TEST(CfdCase, AFullDiskKeepsThePreviousCase)
+{
+  bender::test::TemporaryFolder folder("cfd-case");
+  bender::CfdCaseOptions options;
+  options.caseDirectory = folder.Path() + "/case";
+  bender::WriteOpenFoamCase(Aneurysm(), options);
+  std::map<std::string, std::string> before;
+  for (const auto& e : fs::recursive_directory_iterator(options.caseDirectory))
+  {
+    before[e.path().string()] = e.is_regular_file() ? ReadText(e.path().string()) : "";
+  }
+  options.force = true;
+  options.flowRate = 2e-5;
+  std::string message = "no error";
+  {
+    bender::test::FileSizeLimit limit(256 * 1024);
+    try
+    {
+      bender::WriteOpenFoamCase(Aneurysm(), options);
+    }
+    catch (const bender::Error& e)
+    {
+      message = e.what();
+    }
+  }
+  EXPECT_EQ(message.rfind(options.caseDirectory + ": ", 0), 0u) << message;
+  EXPECT_NE(message.find("write failed"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  std::map<std::string, std::string> after;
+  for (const auto& e : fs::recursive_directory_iterator(options.caseDirectory))
+  {
+    after[e.path().string()] = e.is_regular_file() ? ReadText(e.path().string()) : "";
+  }
+  EXPECT_TRUE(after == before) << "the previous case changed";
+  EXPECT_EQ(Entries(folder.Path()), 1u);
+}
+
+// Issue 23: an end whose cap is labelled wall would be closed in the case, the flow going
+// elsewhere; cfd-case refuses it before anything is written, with or without --run, naming where
+// the end is. The capped aneurysm with its outlet_2 labelled wall.
+TEST(CfdCase, AnEndLabelledAsWallIsRefusedBeforeAnythingIsWritten)
+{
+  // No flat part of a real wall is taken for an end, nor a coarse tube's flat facets.
+  EXPECT_TRUE(bender::FindWallEnds(bender::ReadLabelledSurface(Aneurysm()), 0.0).empty());
+  EXPECT_TRUE(bender::FindWallEnds(
+    bender::ReadLabelledSurface(bender::test::CappedTube(40.0, 2.0, 81, 12)), 0.0)
+                .empty());
+
+  vtkNew<vtkPolyData> closedEnd;
+  closedEnd->DeepCopy(Aneurysm());
+  std::vector<int> ids = bender::CellPatchIds(closedEnd);
+  std::vector<bender::PatchLabel> labels = bender::ReadPatchLabels(closedEnd);
+  const auto outlet = std::find_if(
+    labels.begin(), labels.end(), [](const bender::PatchLabel& p) { return p.name == "outlet_2"; });
+  ASSERT_NE(outlet, labels.end());
+  // The cap's centre (the mean of its triangles' centroids, nearly the area-weighted one).
+  std::array<double, 3> centre{};
+  int capTriangles = 0;
+  for (std::size_t c = 0; c < ids.size(); ++c)
+  {
+    if (ids[c] != outlet->id)
+    {
+      continue;
+    }
+    vtkCell* cell = closedEnd->GetCell(static_cast<vtkIdType>(c));
+    for (int k = 0; k < 3; ++k)
+    {
+      double x[3];
+      closedEnd->GetPoint(cell->GetPointId(k), x);
+      for (int i = 0; i < 3; ++i)
+      {
+        centre[i] += x[i] / 3.0;
+      }
+    }
+    ++capTriangles;
+    ids[c] = bender::kWallEntityId;
+  }
+  ASSERT_GT(capTriangles, 0);
+  for (double& x : centre)
+  {
+    x /= capTriangles;
+  }
+  labels.erase(outlet);
+  bender::WritePatchLabels(closedEnd, ids, labels);
+
+  const std::vector<bender::CfdWallEnd> found =
+    bender::FindWallEnds(bender::ReadLabelledSurface(closedEnd), 0.0);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_LT(std::hypot(found[0].centre[0] - centre[0],
+              found[0].centre[1] - centre[1],
+              found[0].centre[2] - centre[2]),
+    0.1 * found[0].diameter);
+  EXPECT_EQ(found[0].triangles, capTriangles);
+
+  bender::test::TemporaryFolder folder("cfd-case");
+  bender::CfdCaseOptions options;
+  options.caseDirectory = folder.Path() + "/case";
+  options.sourceName = "closed.vtp";
+  try
+  {
+    bender::WriteOpenFoamCase(closedEnd, options);
+    ADD_FAILURE() << "a case with an end labelled wall was written";
+  }
+  catch (const bender::InputError& e)
+  {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("closed.vtp: the end at (", 0), 0u) << what;
+    EXPECT_NE(
+      what.find(" mm wide) is labelled wall: the case would close that vessel"), std::string::npos)
+      << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  EXPECT_EQ(Entries(folder.Path()), 0u);
+
+  // The command: exit 1, one line, no case.
+  const std::string surface = folder.Path() + "/closed.vtp";
+  bender::WriteMesh(closedEnd, surface);
+  int status = 0;
+  const std::string output = bender::test::RunIn(
+    folder.Path(), std::string(BENDER_CLI_PATH) + " cfd-case closed.vtp -o case", status);
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("is labelled wall"), std::string::npos) << output;
+  EXPECT_EQ(Count(output, "\n"), 1u) << output;
+  EXPECT_FALSE(fs::exists(folder.Path() + "/case"));
 }
 
 void WriteDat(const std::string& dir,

@@ -8,6 +8,7 @@
 #include "CfdCase.h"
 #include "CfdFlowResults.h"
 #include "CfdTestUtilities.h"
+#include "FileSizeLimit.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
 
@@ -23,11 +24,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using bender::test::ReadText;
@@ -63,8 +67,8 @@ protected:
       {
         RunError = e.what();
       }
-      std::printf("[ timing ] tube case meshed, solved and mapped in %.1f s\n",
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      RunSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::printf("[ timing ] tube case meshed, solved and mapped in %.1f s\n", RunSeconds);
     }
   }
   static void TearDownTestSuite()
@@ -85,12 +89,14 @@ protected:
   static bender::CfdCaseResult Written;
   static bender::CfdRunResult First;
   static std::string RunError;
+  static double RunSeconds; ///< wall time of the first run
 };
 
 bender::test::TemporaryFolder* CfdFlowRun::Folder = nullptr;
 bender::CfdCaseResult CfdFlowRun::Written;
 bender::CfdRunResult CfdFlowRun::First;
 std::string CfdFlowRun::RunError;
+double CfdFlowRun::RunSeconds = 0.0;
 
 /// The entries of the case folder whose name holds "results" (results and its temporaries).
 int ResultsEntries(const std::string& caseDirectory)
@@ -218,6 +224,29 @@ TEST_F(CfdFlowRun, PressureAndWallShearStressOnTheSurface)
   EXPECT_EQ(bender::CfdFlowResultsToJson(back), bender::CfdFlowResultsToJson(flow));
 }
 
+// The run's stages timed (CfdStageTimes.h): every Allrun step in order, the stages adding up to
+// the steps and the mapping, within the wall time the suite measured around the run.
+TEST_F(CfdFlowRun, TheRunIsTimedStageByStage)
+{
+  const bender::CfdStageTimes& t = First.stages;
+  std::vector<std::string> programs;
+  double steps = 0.0;
+  for (const auto& [program, seconds] : t.steps)
+  {
+    programs.push_back(program);
+    steps += seconds;
+  }
+  EXPECT_EQ(programs,
+    std::vector<std::string>(
+      { "blockMesh", "surfaceFeatureExtract", "snappyHexMesh", "checkMesh", "simpleFoam" }));
+  EXPECT_GT(t.mesh, 0.0);
+  EXPECT_GT(t.layers, 0.0); // the case has 3 prism layers
+  EXPECT_GT(t.solve, 0.0);
+  EXPECT_GT(t.map, 0.0);
+  EXPECT_NEAR(t.Total(), steps + t.map, 1e-9);
+  EXPECT_LE(t.Total(), RunSeconds);
+}
+
 /// A fault: `action` must throw E with a one-line message containing `what`, and leave
 /// CASE/results as it was.
 template<typename E, typename Action>
@@ -284,6 +313,27 @@ TEST_F(CfdFlowRun, ResultsThatDoNotMatchTheSurfaceAreRefused)
     "the results do not match the surface: its patch outlet_1 is not a patch of the mesh",
     [&] { bender::MapCfdResults(Case()); });
   std::ofstream(boundary) << original;
+}
+
+// A full disk while the results are written (simulated by the file size limit, half the
+// smallest of surface.vtp and volume.vtu): one line naming the results folder and the file, the
+// previous results kept,
+// no temporary folder left beside them; with room again the results are written whole.
+TEST_F(CfdFlowRun, AFullDiskKeepsThePreviousResults)
+{
+  const std::uintmax_t smallest = std::min(
+    fs::file_size(Case() + "/results/surface.vtp"), fs::file_size(Case() + "/results/volume.vtu"));
+  ExpectFaultKeepsResults<bender::Error>(Case(),
+    Case() + "/results: surface.vtp: write error (",
+    [&]
+    {
+      bender::test::FileSizeLimit limit(smallest / 2);
+      bender::MapCfdResults(Case());
+    });
+  EXPECT_EQ(ResultsEntries(Case()), 1);
+  const bender::CfdFlowResults again = bender::MapCfdResults(Case());
+  EXPECT_EQ(bender::CfdFlowResultsToJson(again), bender::CfdFlowResultsToJson(*First.flow));
+  EXPECT_EQ(ResultsEntries(Case()), 1);
 }
 
 TEST_F(CfdFlowRun, MissingOpenFoamKeepsThePreviousResults)
