@@ -5,10 +5,10 @@
 #include "StringUtil.h"
 #include "Vec3.h"
 
-#include <vtkCellArray.h>
+#include <vtkCellType.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
-#include <vtkPoints.h>
+#include <vtkPolyData.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +23,9 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 /// Normals of one flat region agree within 1 degree.
 const double kFlatCosine = std::cos(kPi / 180.0);
-/// A cap's rim: the wall beside it turns by more than 60 degrees on average (|cos| < 0.5).
+/// A cap's rim: the wall beside it turns by more than 60 degrees (|cos| < 0.5) on average and
+/// along at least half of it (a coarse tube's flat facet turns sharply at its two short ends
+/// only; a cap cut 45 degrees across its vessel still qualifies).
 constexpr double kRimCosine = 0.5;
 /// 4 pi area / perimeter^2: 1 for a disc, 0.79 for a square, 0.03 for a 1:40 strip.
 constexpr double kMinimumRoundness = 0.5;
@@ -166,7 +168,7 @@ std::vector<CfdWallEnd> FindWallEnds(const LabelledSurface& surface, double minD
       continue;
     }
     // Its area, centre, perimeter and how sharply the wall turns at its rim.
-    double area = 0.0, perimeter = 0.0, rimTurn = 0.0;
+    double area = 0.0, perimeter = 0.0, rimTurn = 0.0, sharpRim = 0.0;
     Vec3 centre;
     for (const std::size_t t : region)
     {
@@ -202,13 +204,14 @@ std::vector<CfdWallEnd> FindWallEnds(const LabelledSurface& surface, double minD
           const double length = Distance(Vec3{ a[0], a[1], a[2] }, Vec3{ b[0], b[1], b[2] });
           perimeter += length;
           rimTurn += cosine * length;
+          sharpRim += cosine < kRimCosine ? length : 0.0;
         }
       }
     }
     const double diameter = 2.0 * std::sqrt(area / kPi);
     if (perimeter <= 0.0 || diameter < minDiameter ||
       4.0 * kPi * area / (perimeter * perimeter) < kMinimumRoundness ||
-      rimTurn / perimeter >= kRimCosine)
+      rimTurn / perimeter >= kRimCosine || sharpRim < 0.5 * perimeter)
     {
       continue;
     }

@@ -28,8 +28,8 @@ struct CfdWallEnd
 /// The flat regions of the wall (its triangles coplanar within 1 degree and a hundred-thousandth
 /// of the surface's size) that look like a vessel's cap: at least minDiameter across, at least
 /// three triangles, disc-like (4 pi area / perimeter^2 >= 0.5), with a rim where the wall turns
-/// by more than 60 degrees on average. In order of decreasing diameter; empty for a surface
-/// without triangles.
+/// by more than 60 degrees on average and along at least half of it. In order of decreasing
+/// diameter; empty for a surface without triangles.
 std::vector<CfdWallEnd> FindWallEnds(const LabelledSurface& surface, double minDiameter);
 
 /// Throws InputError, one line naming `name` and the widest end labelled as wall (where and how

@@ -5,6 +5,7 @@
 #include "BenderErrors.h"
 #include "BenderMeshCheck.h"
 #include "CfdTestUtilities.h"
+#include "CfdVerificationTubes.h"
 #include "CfdWallEnds.h"
 #include "CliCommands.h"
 #include "FileSizeLimit.h"
@@ -473,6 +474,24 @@ TEST(CfdCase, AnEndLabelledAsWallIsRefusedBeforeAnythingIsWritten)
   EXPECT_TRUE(bender::FindWallEnds(
     bender::ReadLabelledSurface(bender::test::CappedTube(40.0, 2.0, 81, 12)), 0.0)
                 .empty());
+  // An octagonal tube as long as it is wide: each facet is one flat quad of 3.8 x 10 mm, round
+  // enough (4 pi area / perimeter^2 = 0.63), but its rim turns by 45 degrees along its long
+  // sides. Its outlet cap, labelled wall, is found.
+  vtkSmartPointer<vtkPolyData> octagonal =
+    bender::SweepClosedTube(bender::StraightCentreline(0.0, 10.0, 1), 5.0, 8);
+  EXPECT_TRUE(bender::FindWallEnds(bender::ReadLabelledSurface(octagonal), 0.0).empty());
+  std::vector<int> octagonalIds = bender::CellPatchIds(octagonal);
+  std::vector<bender::PatchLabel> octagonalLabels = bender::ReadPatchLabels(octagonal);
+  for (int& id : octagonalIds)
+  {
+    id = id == octagonalLabels.back().id ? bender::kWallEntityId : id;
+  }
+  octagonalLabels.pop_back();
+  bender::WritePatchLabels(octagonal, octagonalIds, octagonalLabels);
+  const std::vector<bender::CfdWallEnd> octagonalEnds =
+    bender::FindWallEnds(bender::ReadLabelledSurface(octagonal), 0.0);
+  ASSERT_EQ(octagonalEnds.size(), 1u);
+  EXPECT_NEAR(octagonalEnds[0].centre[0], 10.0, 1e-6);
 
   vtkNew<vtkPolyData> closedEnd;
   closedEnd->DeepCopy(Aneurysm());
