@@ -22,6 +22,18 @@ vtkIdType Ring(int sides, std::size_t r, int k)
   return static_cast<vtkIdType>(
     r * static_cast<std::size_t>(sides) + static_cast<std::size_t>(k % sides));
 }
+
+// Throws InputError unless there are 2 stations or more, radius > 0 and `minSides` sides or more.
+void CheckTube(const std::vector<TubeStation>& stations, double radius, int sides, int minSides)
+{
+  if (stations.size() < 2 || !(radius > 0.0) || sides < minSides)
+  {
+    throw InputError("generated tube: " + std::to_string(stations.size()) + " stations, radius " +
+      std::to_string(radius) + " mm, " + std::to_string(sides) +
+      " sides (give 2 stations or more, a radius > 0 and " + std::to_string(minSides) +
+      " sides or more)");
+  }
+}
 } // namespace
 
 std::vector<TubeStation> StraightCentreline(double length, double spacing)
@@ -62,12 +74,7 @@ vtkSmartPointer<vtkPolyData> SweepOpenTube(const std::vector<TubeStation>& stati
   double radius,
   int sides)
 {
-  if (stations.size() < 2 || !(radius > 0.0) || sides < 8)
-  {
-    throw InputError("generated tube: " + std::to_string(stations.size()) + " stations, radius " +
-      std::to_string(radius) + " mm, " + std::to_string(sides) +
-      " sides (give 2 stations or more, a radius > 0 and 8 sides or more)");
-  }
+  CheckTube(stations, radius, sides, 3);
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();
   for (const TubeStation& s : stations)
@@ -104,6 +111,7 @@ vtkSmartPointer<vtkPolyData> SweepClosedTube(const std::vector<TubeStation>& sta
   double radius,
   int sides)
 {
+  CheckTube(stations, radius, sides, 8);
   vtkSmartPointer<vtkPolyData> tube = SweepOpenTube(stations, radius, sides);
   vtkPoints* points = tube->GetPoints();
   vtkCellArray* triangles = tube->GetPolys();

@@ -41,9 +41,9 @@ std::vector<TubeStation> StraightCentreline(double from, double to, int pieces);
 /// (0, bendRadius, 0)): a torus section. Stations every `spacing` mm of arc or closer.
 std::vector<TubeStation> ArcCentreline(double bendRadius, double angle, double spacing);
 
-/// The open tube of `radius` (mm) around the centreline, `sides` points per ring (>= 8), two
+/// The open tube of `radius` (mm) around the centreline, `sides` points per ring (>= 3), two
 /// triangles between consecutive rings, no caps and no labels: point k of ring r is
-/// r * sides + k. Throws InputError for fewer than 2 stations, radius <= 0 or sides < 8.
+/// r * sides + k. Throws InputError for fewer than 2 stations, radius <= 0 or sides < 3.
 vtkSmartPointer<vtkPolyData> SweepOpenTube(const std::vector<TubeStation>& stations,
   double radius,
   int sides);

@@ -2,11 +2,10 @@
 
 #include "ApplyPlan.h"
 #include "BenderSession.h"
+#include "CfdVerificationTubes.h"
 #include "PolyDataCopy.h"
 #include "Ribbon.h"
 
-#include <vtkCellArray.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 
 #include <algorithm>
@@ -21,37 +20,7 @@ namespace test
 
 vtkSmartPointer<vtkPolyData> MakeTube(double x0, double x1, double radius, int rings, int sides)
 {
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  const double pi = 3.14159265358979323846;
-  for (int r = 0; r < rings; ++r)
-  {
-    const double x = x0 + (x1 - x0) * r / (rings - 1);
-    for (int k = 0; k < sides; ++k)
-    {
-      const double a = 2.0 * pi * k / sides;
-      points->InsertNextPoint(x, radius * std::cos(a), radius * std::sin(a));
-    }
-  }
-  auto triangles = vtkSmartPointer<vtkCellArray>::New();
-  for (int r = 0; r + 1 < rings; ++r)
-  {
-    for (int k = 0; k < sides; ++k)
-    {
-      const vtkIdType a = r * sides + k;
-      const vtkIdType b = r * sides + (k + 1) % sides;
-      const vtkIdType c = a + sides;
-      const vtkIdType d = b + sides;
-      const vtkIdType t1[3] = { a, b, d };
-      const vtkIdType t2[3] = { a, d, c };
-      triangles->InsertNextCell(3, t1);
-      triangles->InsertNextCell(3, t2);
-    }
-  }
-  auto tube = vtkSmartPointer<vtkPolyData>::New();
-  tube->SetPoints(points);
-  tube->SetPolys(triangles);
-  return tube;
+  return SweepOpenTube(StraightCentreline(x0, x1, rings - 1), radius, sides);
 }
 
 RibbonSpec StraightRibbon(double a, double b)

@@ -16,7 +16,8 @@ namespace test
 {
 
 /// A closed-side open-ended tube along +x: `rings` rings of `sides` points, radius `radius`,
-/// from x0 to x1, triangulated. Double points.
+/// from x0 to x1, triangulated. Double points. The one tube generator's (SweepOpenTube,
+/// CfdVerificationTubes.h).
 vtkSmartPointer<vtkPolyData> MakeTube(double x0,
   double x1,
   double radius,

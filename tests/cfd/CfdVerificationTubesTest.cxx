@@ -132,7 +132,8 @@ TEST(CfdVerificationTubes, AnOpenTubeIsTheClosedOnesWallWithTwoOpenEnds)
     open->GetPoint(i, p);
     EXPECT_NEAR(std::hypot(p[1], p[2]), radius, 1e-12);
   }
-  EXPECT_THROW(bender::SweepOpenTube(stations, radius, 4), bender::InputError);
+  EXPECT_THROW(bender::SweepOpenTube(stations, radius, 2), bender::InputError);
+  EXPECT_THROW(bender::SweepOpenTube(stations, 0.0, 24), bender::InputError);
 }
 
 TEST(CfdVerificationTubes, TheCaseTakesATubeLikeAVessel)
