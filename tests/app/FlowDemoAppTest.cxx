@@ -1,7 +1,7 @@
 // The Flow panel on the demo vessel (issue 23, "done when": on the demo vessel and its bent
 // candidate, bender-cli compare and the Flow panel show the same numbers; labels gui and cfd:
 // OpenFOAM runs). On the real window: Demo (the segmented vessel), its bend by the demo plan,
-// Prepare for CFD (Export panel: the three ends clipped, named and capped), then the Flow
+// Prepare for CFD (the default step: the three ends clipped, named and capped), then the Flow
 // panel's Run: the original and the bent candidate solved as two jobs on a coarse mesh (cells
 // of 1.6 mm, 20 iterations: the numbers are not converged, the comparison's agreement is what
 // is tested). The panel's table holds the two cases' results, and bender-cli compare of the
@@ -14,7 +14,7 @@
 #include "MainActions.h"
 #include "MainWindow.h"
 
-#include "ExportPanel.h"
+#include "ApplyPlan.h"
 #include "PatchLabels.h"
 #include "WarpPlanIO.h"
 
@@ -23,8 +23,6 @@
 #include <QCheckBox>
 #include <QDir>
 #include <QElapsedTimer>
-#include <QPushButton>
-#include <QSignalSpy>
 #include <QSpinBox>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -72,22 +70,19 @@ private slots:
     QVERIFY(!demo.warps.empty());
     QVERIFY2(
       session.ApplyWarp(demo.warps.front()), qPrintable(this->Window->statusLabel()->text()));
-    // Prepare for CFD on the bent vessel (Export panel), as bender-cli clip does: the flow's
-    // original is the unbent vessel prepared by the same step.
-    auto* exports = this->Window->findChild<ExportPanel*>();
-    QVERIFY(exports);
-    QVERIFY(bendertest::ShowPanel(*this->Window, exports));
-    QVERIFY(this->Window->waitForCenterlines(300000));
-    QApplication::processEvents();
-    QSignalSpy prepared(this->Window.get(), &MainWindow::workFinished);
-    exports->Clip->setChecked(true);
-    QTest::mouseClick(exports->Prepare, Qt::LeftButton);
-    QVERIFY(this->Window->waitUntilIdle(300000));
-    QVERIFY(prepared.count() == 1 && prepared.first().first().toBool());
+    this->Window->setRibbon(demo.warps.front().final); // where a drag would have left it
+    // Prepare for CFD of the bent vessel with the default step, as bender-cli clip does: the
+    // flow's original is the unbent vessel prepared by the same step (clip(vessel) against
+    // clip(warp(vessel)), the pair docs/cfd.md compares).
+    const bender::CfdStep step;
+    const bender::PrepareForCfdResult prepared = bender::ApplyCfdStep(session.GetSurface(), step);
+    QVERIFY(prepared.surface);
+    QVERIFY(session.CommitCfdStep(step, prepared.surface, false));
     QCOMPARE(bender::ReadPatchLabels(session.GetSurface()).size(), std::size_t(4)); // wall + 3 ends
     qInfo("demo loaded, bent and prepared in %.1f s", clock.elapsed() / 1000.0);
-    // Seen from the patient's front, framed.
-    this->Window->actions()->StandardViews[0]->trigger();
+    // Seen from the patient's left, framed: the trunk's swing from anterior to superior lies in
+    // the picture's plane.
+    this->Window->actions()->StandardViews[2]->trigger();
     QVERIFY(bendertest::ShowPanel(*this->Window, this->panel()));
     // A coarse case in the test's folder.
     this->panel()->setCacheFolder(this->Folder.filePath("flow-cache"));
@@ -149,7 +144,12 @@ private slots:
 
   void thePicturesOfTheDocs()
   {
-    // The window with the Flow panel; the comparison window with the streamlines.
+    // The window with the Flow panel (no field being edited); the comparison window with the
+    // streamlines.
+    if (QWidget* focused = QApplication::focusWidget())
+    {
+      focused->clearFocus();
+    }
     QVERIFY(this->Window->saveScreenshot(Artifact("flow-panel.png")));
     FlowViews* views = this->panel()->views();
     auto* streamlines = views->findChild<QCheckBox*>("flowStreamlines");
