@@ -144,10 +144,7 @@ std::map<std::string, double> ValuePerOutlet(const std::vector<CfdPatch>& patche
 
 CfdInletProfileData PoiseuilleInletProfile(vtkPolyData* surface,
   const std::vector<int>& cellIds,
-  int inletId,
-  const std::array<double, 3>& outwardNormal,
-  double flowRate,
-  double faceSize,
+  const CfdInletFlow& inlet,
   const std::string& name)
 {
   // The cap's triangles (fans of its polygons) and its rim: the edges of one cap triangle only.
@@ -157,7 +154,7 @@ CfdInletProfileData PoiseuilleInletProfile(vtkPolyData* surface,
   polys->InitTraversal();
   for (std::size_t cell = 0; polys->GetNextCell(ids); ++cell)
   {
-    if (cell < cellIds.size() && cellIds[cell] == inletId)
+    if (cell < cellIds.size() && cellIds[cell] == inlet.id)
     {
       for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
       {
@@ -241,9 +238,11 @@ CfdInletProfileData PoiseuilleInletProfile(vtkPolyData* surface,
   CfdInletProfileData profile;
   // OpenFOAM takes each face's value at its centre: on faces of h the midpoint rule gives a
   // parabola of half-width R a flow h^2 / (3 R^2) too large; the samples are lowered by as much.
-  profile.faceCorrection = 1.0 / (1.0 + faceSize * faceSize / (3.0 * farthest * farthest));
-  const double peak = profile.faceCorrection * flowRate / integral;
-  const Vec3 inward = -1.0 * Vec3{ outwardNormal[0], outwardNormal[1], outwardNormal[2] };
+  profile.faceCorrection =
+    1.0 / (1.0 + inlet.faceSize * inlet.faceSize / (3.0 * farthest * farthest));
+  const double peak = profile.faceCorrection * inlet.flowRate / integral;
+  const Vec3 inward =
+    -1.0 * Vec3{ inlet.outwardNormal[0], inlet.outwardNormal[1], inlet.outwardNormal[2] };
   for (std::size_t i = 0; i < x.size(); ++i)
   {
     const Vec3 u = peak * shape[i] * inward;

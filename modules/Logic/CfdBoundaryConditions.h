@@ -37,20 +37,25 @@ struct CfdInletProfileData
   double peakToMean = 0.0; ///< u_max / u_mean (2 for Poiseuille in a circle)
 };
 
+/// The inlet a profile is laid on and the flow it carries.
+struct CfdInletFlow
+{
+  int id = 0;                                         ///< the cap's patch id (CellPatchIds)
+  std::array<double, 3> outwardNormal{ { 0, 0, 1 } }; ///< unit, out of the domain
+  double flowRate = 0.0;                              ///< m^3/s
+  double faceSize = 0.0;                              ///< m, of the mesh's faces; 0: none
+};
+
 /// The Poiseuille profile on the inlet's shape: u = u_max (2 s - s^2), s = the distance to the
 /// cap's rim over its largest value (for a circle of radius R, s = 1 - r / R and the profile is
-/// u_max (1 - r^2 / R^2)); 0 on the rim; directed along -`outwardNormal`; u_max such that the
-/// profile, linear on the thirds of the cap's triangles (two corners and the centroid),
-/// carries `flowRate` (m^3/s), then scaled by faceCorrection for faces of `faceSize` (m; 0:
-/// none). `surface` in mm,
-/// `cellIds` its CellPatchIds, the cap the cells of `inletId`. Throws InputError naming `name`
-/// when the cap has no triangle or no rim.
+/// u_max (1 - r^2 / R^2)); 0 on the rim; directed along -`inlet.outwardNormal`; u_max such that
+/// the profile, linear on the thirds of the cap's triangles (two corners and the centroid),
+/// carries `inlet.flowRate`, then scaled by faceCorrection for faces of `inlet.faceSize`.
+/// `surface` in mm, `cellIds` its CellPatchIds, the cap the cells of `inlet.id`. Throws
+/// InputError naming `name` when the cap has no triangle or no rim.
 CfdInletProfileData PoiseuilleInletProfile(vtkPolyData* surface,
   const std::vector<int>& cellIds,
-  int inletId,
-  const std::array<double, 3>& outwardNormal,
-  double flowRate,
-  double faceSize,
+  const CfdInletFlow& inlet,
   const std::string& name);
 
 /// constant/boundaryData/<inlet>/points and .../0/U of timeVaryingMappedFixedValue.

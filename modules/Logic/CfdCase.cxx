@@ -344,18 +344,15 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
   CfdInletProfileData profile;
   if (options.inletProfile == CfdInletProfile::Poiseuille)
   {
-    int inletId = 0;
+    CfdInletFlow inlet;
     for (const PatchLabel& l : labelled.patches)
     {
-      inletId = l.name == in.name ? l.id : inletId;
+      inlet.id = l.name == in.name ? l.id : inlet.id;
     }
-    profile = PoiseuilleInletProfile(labelled.surface,
-      CellPatchIds(labelled.surface),
-      inletId,
-      in.normal,
-      result.inletFlowRate,
-      result.cellSize,
-      name);
+    inlet.outwardNormal = in.normal;
+    inlet.flowRate = result.inletFlowRate;
+    inlet.faceSize = result.cellSize;
+    profile = PoiseuilleInletProfile(labelled.surface, CellPatchIds(labelled.surface), inlet, name);
     result.inletPeakToMean = profile.peakToMean;
   }
 

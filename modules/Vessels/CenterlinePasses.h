@@ -178,9 +178,25 @@ double Length(const std::vector<Point3>& p);
 std::vector<Point3> Resample(const std::vector<Point3>& p, double h);
 /// Laplacian smoothing with fixed ends; the kernel's standard deviation is about sigmaSamples.
 void Smooth(std::vector<Point3>& p, double sigmaSamples);
+/// Which ends of a curve stay where they are (open ends of the surface); the others are free.
+struct FixedEnds
+{
+  bool first = false;
+  bool last = false;
+};
+
+/// The terms of a smoothing spline: the order of the differences penalised (2 or 3), their
+/// weight lambda, and the ends held at their current values.
+struct SplineTerms
+{
+  int order = 2;
+  double lambda = 0.0;
+  FixedEnds fixed;
+};
+
 /// Smoothing spline through weighted targets: minimises
 ///   sum_i w_i |x_i - c_i|^2 + lambda sum_i |order-th difference of x at i|^2   (order 2 or 3)
-/// with x_0 and x_{n-1} fixed where fixFirst / fixLast (to their current values), else free.
+/// with x_0 and x_{n-1} fixed where terms.fixed says (to their current values), else free.
 /// Runs of zero weight are bridged by cubic (order 2) or quintic (order 3) curves. The ends of
 /// a second-difference spline straighten (its natural end condition is zero curvature), those
 /// of a third-difference spline keep their curvature. The system is symmetric positive definite
@@ -188,13 +204,15 @@ void Smooth(std::vector<Point3>& p, double sigmaSamples);
 void SmoothingSpline(std::vector<Point3>& x,
   const std::vector<Point3>& targets,
   const std::vector<double>& weights,
-  int order,
-  double lambda,
-  bool fixFirst,
-  bool fixLast);
+  const SplineTerms& terms);
 
 // ---- 6. cross-sections and re-centring (CenterlineSections.cxx) ------------------------------
-/// Distance queries against the oriented wall.
+/// The triangles on either side of every edge of the wall (-1: none; an edge of three or more
+/// triangles keeps its first two and is marked by a third entry of -2).
+using EdgeTriangles = std::unordered_map<std::uint64_t, std::array<vtkIdType, 3>>;
+
+/// Distance queries against the oriented wall, and its edge table (for tracing cross-sections
+/// triangle by triangle).
 class WallDistance
 {
 public:
@@ -207,27 +225,22 @@ public:
   bool Ray(const Point3& p, const Point3& u, double length, Point3& hit, vtkIdType& cellId);
 
   vtkPolyData* GetWall() const { return this->Wall; }
+  const EdgeTriangles& GetEdges() const { return this->Edges; }
 
 private:
   vtkPolyData* Wall;
   vtkNew<vtkStaticCellLocator> Locator;
   vtkNew<vtkGenericCell> Cell;
+  EdgeTriangles Edges;
 };
-
-/// The triangles on either side of every edge of the wall (-1: none; an edge of three or more
-/// triangles keeps its first two and is marked by a third entry of -2).
-using EdgeTriangles = std::unordered_map<std::uint64_t, std::array<vtkIdType, 3>>;
-EdgeTriangles BuildEdgeTriangles(vtkPolyData* wall);
 
 /// The path's samples moved onto the centroids of the lumen's cross-sections (see
 /// VesselCenterlines.h, step 4), resampled at `step`. The ends stay where they are when fixed.
 std::vector<Point3> RecentrePath(std::vector<Point3> points,
   WallDistance& distance,
-  const EdgeTriangles& edges,
   double medianRadius,
   double step,
-  bool fixFirst,
-  bool fixLast);
+  FixedEnds fixed);
 
 // ---- 7. branches (CenterlineBranches.cxx) ----------------------------------------------------
 struct PathSamples

@@ -82,11 +82,10 @@ void Smooth(std::vector<Point3>& p, double sigmaSamples)
 void SmoothingSpline(std::vector<Point3>& x,
   const std::vector<Point3>& targets,
   const std::vector<double>& weights,
-  int order,
-  double lambda,
-  bool fixFirst,
-  bool fixLast)
+  const SplineTerms& terms)
 {
+  const int order = terms.order;
+  const double lambda = terms.lambda;
   constexpr int MaxBand = 3;
   constexpr int Width = 2 * MaxBand + 1;
   constexpr int Band = MaxBand; // storage offset; the matrix has `order` diagonals each side
@@ -138,11 +137,11 @@ void SmoothingSpline(std::vector<Point3>& x,
     A[k][Band] = 1.0;
     b[k] = x[k];
   };
-  if (fixFirst)
+  if (terms.fixed.first)
   {
     fix(0);
   }
-  if (fixLast)
+  if (terms.fixed.last)
   {
     fix(n - 1);
   }

@@ -48,7 +48,6 @@ struct Section
 // tube (circular or elliptic) lies on its axis, so errors of the plane's direction do not move
 // it either.
 Section CutSection(WallDistance& distance,
-  const EdgeTriangles& edges,
   const Point3& p,
   const Point3& t,
   double reach,
@@ -56,6 +55,7 @@ Section CutSection(WallDistance& distance,
 {
   Section section;
   vtkPolyData* wall = distance.GetWall();
+  const EdgeTriangles& edges = distance.GetEdges();
   const Point3 axis = std::abs(t[0]) < 0.9 ? Point3{ { 1, 0, 0 } } : Point3{ { 0, 1, 0 } };
   const Point3 e1 = UnitVector(Cross(t, axis));
   const Point3 e2 = Cross(t, e1);
@@ -234,10 +234,44 @@ double WidthWeight(const Section& s, double inscribed)
   return inscribed > 0 ? std::clamp((1.6 - s.meanRadius / inscribed) / 0.25, 0.0, 1.0) : 0.0;
 }
 
+// The edge table of WallDistance.
+EdgeTriangles BuildEdgeTriangles(vtkPolyData* wall)
+{
+  EdgeTriangles edges;
+  edges.reserve(static_cast<std::size_t>(wall->GetNumberOfCells()) * 2);
+  for (vtkIdType c = 0; c < wall->GetNumberOfCells(); ++c)
+  {
+    const vtkIdType* ids = nullptr;
+    vtkIdType npts = 0;
+    wall->GetCellPoints(c, npts, ids);
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      auto& entry = edges
+                      .try_emplace(EdgeKey(ids[k], ids[(k + 1) % npts]),
+                        std::array<vtkIdType, 3>{ { -1, -1, -1 } })
+                      .first->second;
+      if (entry[0] < 0)
+      {
+        entry[0] = c;
+      }
+      else if (entry[1] < 0)
+      {
+        entry[1] = c;
+      }
+      else
+      {
+        entry[2] = -2;
+      }
+    }
+  }
+  return edges;
+}
+
 } // namespace
 
 WallDistance::WallDistance(vtkPolyData* wall)
   : Wall(wall)
+  , Edges(BuildEdgeTriangles(wall))
 {
   this->Locator->SetDataSet(wall);
   this->Locator->BuildLocator();
@@ -286,45 +320,11 @@ bool WallDistance::Ray(const Point3& p,
   return true;
 }
 
-EdgeTriangles BuildEdgeTriangles(vtkPolyData* wall)
-{
-  EdgeTriangles edges;
-  edges.reserve(static_cast<std::size_t>(wall->GetNumberOfCells()) * 2);
-  for (vtkIdType c = 0; c < wall->GetNumberOfCells(); ++c)
-  {
-    const vtkIdType* ids = nullptr;
-    vtkIdType npts = 0;
-    wall->GetCellPoints(c, npts, ids);
-    for (vtkIdType k = 0; k < npts; ++k)
-    {
-      auto& entry = edges
-                      .try_emplace(EdgeKey(ids[k], ids[(k + 1) % npts]),
-                        std::array<vtkIdType, 3>{ { -1, -1, -1 } })
-                      .first->second;
-      if (entry[0] < 0)
-      {
-        entry[0] = c;
-      }
-      else if (entry[1] < 0)
-      {
-        entry[1] = c;
-      }
-      else
-      {
-        entry[2] = -2;
-      }
-    }
-  }
-  return edges;
-}
-
 std::vector<Point3> RecentrePath(std::vector<Point3> points,
   WallDistance& distance,
-  const EdgeTriangles& edgeTriangles,
   double medianRadius,
   double step,
-  bool fixFirst,
-  bool fixLast)
+  FixedEnds fixed)
 {
   if (points.size() <= 2)
   {
@@ -368,8 +368,8 @@ std::vector<Point3> RecentrePath(std::vector<Point3> points,
         continue;
       }
       const double reach = 6.0 * medianRadius;
-      const Section s = CutSection(
-        distance, edgeTriangles, points[i], t, reach, 2.0 * 3.14159265358979323846 * reach);
+      const Section s =
+        CutSection(distance, points[i], t, reach, 2.0 * 3.14159265358979323846 * reach);
       weights[i] = SectionWeight(s, points[i]);
       if (weights[i] > 0)
       {
@@ -402,7 +402,7 @@ std::vector<Point3> RecentrePath(std::vector<Point3> points,
       break;
     }
     std::vector<Point3> bridge(points);
-    SmoothingSpline(bridge, targets, weights, 2, lambdaBridge, fixFirst, fixLast);
+    SmoothingSpline(bridge, targets, weights, SplineTerms{ 2, lambdaBridge, fixed });
     for (std::size_t i = 0; i < points.size(); ++i)
     {
       targets[i] = Add(Scale(targets[i], weights[i]), Scale(bridge[i], 1.0 - weights[i]));
@@ -415,7 +415,7 @@ std::vector<Point3> RecentrePath(std::vector<Point3> points,
       cut[i] = 1.0;
     }
     points = bridge;
-    SmoothingSpline(points, targets, cut, 3, lambdaLine, fixFirst, fixLast);
+    SmoothingSpline(points, targets, cut, SplineTerms{ 3, lambdaLine, fixed });
   }
   return Resample(points, step);
 }

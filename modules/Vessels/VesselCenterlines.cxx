@@ -190,7 +190,6 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
   const double step = options.step > 0 ? options.step : 0.05 * medianRadius;
   result.step = step;
   WallDistance distance(wall.surface);
-  const EdgeTriangles edgeTriangles = BuildEdgeTriangles(wall.surface);
   std::vector<PathSamples> paths;
   for (std::size_t p = 0; p < rawPaths.size(); ++p)
   {
@@ -202,11 +201,10 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
       // the Voronoi graph.
       points = RecentrePath(std::move(points),
         distance,
-        edgeTriangles,
         medianRadius,
         step,
-        ends[0].prependPosition,
-        ends[static_cast<std::size_t>(rawOutlets[p])].prependPosition);
+        FixedEnds{
+          ends[0].prependPosition, ends[static_cast<std::size_t>(rawOutlets[p])].prependPosition });
     }
     PathSamples samplesOut;
     samplesOut.points = points;

@@ -119,13 +119,13 @@ TEST(CfdInletProfile, PoiseuilleOnACircleCarriesTheFlowWithTwiceTheMeanAtItsCent
   const std::array<double, 3> normal{ xInlet < 10.0 ? -1.0 : 1.0, 0.0, 0.0 };
   const double q = 2e-6;
   const bender::CfdInletProfileData profile =
-    bender::PoiseuilleInletProfile(tube, ids, inlet, normal, q, 0.0, "tube");
+    bender::PoiseuilleInletProfile(tube, ids, { inlet, normal, q, 0.0 }, "tube");
   ASSERT_EQ(profile.points.size(), profile.velocities.size());
   EXPECT_NEAR(profile.flowRate, q, 1e-12 * q);
   EXPECT_DOUBLE_EQ(profile.faceCorrection, 1.0);
   // For faces of 0.5 mm the samples are lowered by 1 + h^2 / (3 R^2).
   const bender::CfdInletProfileData faces =
-    bender::PoiseuilleInletProfile(tube, ids, inlet, normal, q, 0.5e-3, "tube");
+    bender::PoiseuilleInletProfile(tube, ids, { inlet, normal, q, 0.5e-3 }, "tube");
   EXPECT_NEAR(faces.flowRate * (1.0 + 0.25 / 12.0), q, 0.01 * q);
   EXPECT_NEAR(faces.flowRate / faces.faceCorrection, q, 1e-12 * q);
   EXPECT_NEAR(profile.area, kPi * 4e-6, 0.02 * kPi * 4e-6); // the cap of a 32-gon
