@@ -88,23 +88,16 @@ template<typename T>
 struct EvaluateWorker
 {
   const bender::WarpEvaluator& Evaluator;
-  const T* In;
-  T* Out;
-  const bender::BoundPoint* Records;
-  const std::int64_t* Ids;
+  bender::WarpBatch<T> Batch;
   vtkSMPThreadLocal<vtkIdType> Bad;
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    this->Evaluator.EvaluateRange(this->In,
-      this->Out,
-      this->Records,
-      this->Ids,
-      static_cast<std::size_t>(begin),
-      static_cast<std::size_t>(end));
+    this->Evaluator.EvaluateRange(
+      this->Batch, static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
     vtkIdType& bad = this->Bad.Local();
     for (vtkIdType k = begin; k < end; ++k)
     {
-      const T* o = this->Out + 3 * this->Ids[k];
+      const T* o = this->Batch.out + 3 * this->Batch.ids[k];
       if (!std::isfinite(o[0]) || !std::isfinite(o[1]) || !std::isfinite(o[2]))
       {
         ++bad;
@@ -395,7 +388,7 @@ int vtkBenderWarpFilter::RequestData(vtkInformation*,
       if (this->Precision == bender::WarpPrecision::Exact)
       {
         EvaluateWorker<T> eval{
-          evaluator, xyz, out, cache.Records.data(), layout.BoundIds().data(), {}
+          evaluator, { xyz, out, cache.Records.data(), layout.BoundIds().data() }, {}
         };
         vtkSMPTools::For(0, static_cast<vtkIdType>(layout.BoundIds().size()), eval);
         bad = SumLocal(eval.Bad);
@@ -406,7 +399,7 @@ int vtkBenderWarpFilter::RequestData(vtkInformation*,
       FastWorker<T> fast{ kernel, layout, out, {} };
       vtkSMPTools::For(0, static_cast<vtkIdType>(layout.SingleIds().size()), fast);
       EvaluateWorker<T> pairs{
-        evaluator, xyz, out, cache.Records.data(), layout.PairIds().data(), {}
+        evaluator, { xyz, out, cache.Records.data(), layout.PairIds().data() }, {}
       };
       vtkSMPTools::For(0, static_cast<vtkIdType>(layout.PairIds().size()), pairs);
       bad = SumLocal(fast.Bad) + SumLocal(pairs.Bad);

@@ -304,13 +304,14 @@ void ExactWarpKernel::Fill(Block& b, int lane, const Vec3& p, const BoundPoint& 
 }
 
 template<typename T>
-std::size_t ExactWarpKernel::EvaluateRange(const T* in,
-  T* out,
-  const BoundPoint* records,
-  const std::int64_t* ids,
+std::size_t ExactWarpKernel::EvaluateRange(const WarpBatch<T>& batch,
   std::size_t begin,
   std::size_t end) const
 {
+  const T* in = batch.in;
+  T* out = batch.out;
+  const BoundPoint* records = batch.records;
+  const std::int64_t* ids = batch.ids;
   Block b;
   std::size_t bad = 0;
   for (std::size_t first = begin; first < end; first += Lanes)
@@ -353,16 +354,10 @@ Vec3 ExactWarpKernel::Apply(const Vec3& p, const BoundPoint& rec) const
   return { b.ox[0], b.oy[0], b.oz[0] };
 }
 
-template std::size_t ExactWarpKernel::EvaluateRange<float>(const float*,
-  float*,
-  const BoundPoint*,
-  const std::int64_t*,
+template std::size_t ExactWarpKernel::EvaluateRange(const WarpBatch<float>&,
   std::size_t,
   std::size_t) const;
-template std::size_t ExactWarpKernel::EvaluateRange<double>(const double*,
-  double*,
-  const BoundPoint*,
-  const std::int64_t*,
+template std::size_t ExactWarpKernel::EvaluateRange(const WarpBatch<double>&,
   std::size_t,
   std::size_t) const;
 

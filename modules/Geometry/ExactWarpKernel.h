@@ -26,15 +26,10 @@ public:
   /// Refers to `warp`, which must outlive the kernel.
   explicit ExactWarpKernel(const RibbonWarp& warp);
 
-  /// out[ids[k]] = warp of in[ids[k]] with the record records[ids[k]], for k in [begin, end).
-  /// Returns how many results are not finite. Safe to call concurrently on disjoint ranges.
+  /// Warps the points of `batch` listed in batch.ids[begin, end). Returns how many results are
+  /// not finite. Safe to call concurrently on disjoint ranges.
   template<typename T>
-  std::size_t EvaluateRange(const T* in,
-    T* out,
-    const BoundPoint* records,
-    const std::int64_t* ids,
-    std::size_t begin,
-    std::size_t end) const;
+  std::size_t EvaluateRange(const WarpBatch<T>& batch, std::size_t begin, std::size_t end) const;
 
   /// The warp of one point (the same block computation as EvaluateRange).
   Vec3 Apply(const Vec3& p, const BoundPoint& rec) const;

@@ -265,17 +265,6 @@ BENDER_ALWAYS_INLINE int KernelBody(const float* table,
   return nonFinite;
 }
 
-using KernelFunction = int (*)(const float*,
-  const KernelPieces&,
-  const float*,
-  const float*,
-  const float*,
-  const float*,
-  const float*,
-  float*,
-  const float*,
-  int);
-
 #define BENDER_KERNEL_PARAMETERS                                                                   \
   const float *table, const KernelPieces &pc, const float *px, const float *py, const float *pz,   \
     const float *sp, const float *fp, float *out, const float *shift, int n
@@ -288,6 +277,8 @@ int KernelBaseline(BENDER_KERNEL_PARAMETERS)
 {
   return KernelBody(BENDER_KERNEL_ARGUMENTS);
 }
+
+using KernelFunction = decltype(&KernelBaseline);
 
 #if defined(__GNUC__) && defined(__x86_64__)
 #define BENDER_KERNEL_DISPATCH 1
@@ -401,14 +392,8 @@ bool FastWarpKernel::SetLevel(SimdLevel level)
   return true;
 }
 
-void FastWarpKernel::Evaluate(const float* px,
-  const float* py,
-  const float* pz,
-  const float* s,
-  const float* f,
-  float* ox,
-  float* oy,
-  float* oz,
+void FastWarpKernel::Evaluate(const FastWarpPoints& points,
+  const std::array<float*, 3>& out,
   std::size_t begin,
   std::size_t end) const
 {
@@ -417,21 +402,17 @@ void FastWarpKernel::Evaluate(const float* px,
   for (std::size_t b = begin; b < end; b += block)
   {
     const std::size_t n = std::min(block, end - b);
-    this->EvaluateInterleaved(px + b, py + b, pz + b, s + b, f + b, xyz, nullptr, 0, n);
+    this->EvaluateInterleaved(points.From(b), xyz, nullptr, 0, n);
     for (std::size_t k = 0; k < n; ++k)
     {
-      ox[b + k] = xyz[3 * k];
-      oy[b + k] = xyz[3 * k + 1];
-      oz[b + k] = xyz[3 * k + 2];
+      out[0][b + k] = xyz[3 * k];
+      out[1][b + k] = xyz[3 * k + 1];
+      out[2][b + k] = xyz[3 * k + 2];
     }
   }
 }
 
-std::size_t FastWarpKernel::EvaluateInterleaved(const float* px,
-  const float* py,
-  const float* pz,
-  const float* s,
-  const float* f,
+std::size_t FastWarpKernel::EvaluateInterleaved(const FastWarpPoints& points,
   float* xyz,
   const float* shift,
   std::size_t begin,
@@ -447,11 +428,11 @@ std::size_t FastWarpKernel::EvaluateInterleaved(const float* px,
     const int n = static_cast<int>(std::min(chunk, end - b));
     bad += static_cast<std::size_t>(kernel(this->Table.data(),
       pc,
-      px + b,
-      py + b,
-      pz + b,
-      s + b,
-      f + b,
+      points.px + b,
+      points.py + b,
+      points.pz + b,
+      points.s + b,
+      points.f + b,
       xyz + 3 * b,
       shift ? shift : zero,
       n));
@@ -476,25 +457,13 @@ void FastWarpLayout::Build(const T* xyz,
   std::size_t n,
   const BoundPoint* records,
   const std::uint8_t* bound,
-  const Vec3& origin)
-{
-  this->Build(xyz,
-    n,
-    records,
-    bound,
-    origin,
-    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
-    { body(0, count); });
-}
-
-template<typename T>
-void FastWarpLayout::Build(const T* xyz,
-  std::size_t n,
-  const BoundPoint* records,
-  const std::uint8_t* bound,
   const Vec3& origin,
-  const ParallelFor& parallelFor)
+  const ParallelFor& parallel)
 {
+  const ParallelFor serial =
+    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  { body(0, count); };
+  const ParallelFor& parallelFor = parallel ? parallel : serial;
   this->Center = origin;
   // Fixed chunks (independent of the thread count): counts first, then each chunk writes its
   // points at its offsets, so the layout is the serial one whoever runs which chunk.
@@ -586,25 +555,24 @@ std::size_t FastWarpLayout::EvaluateSingles(const FastWarpKernel& kernel,
   const float center[3] = { static_cast<float>(this->Center.x),
     static_cast<float>(this->Center.y),
     static_cast<float>(this->Center.z) };
+  const FastWarpPoints all{
+    this->Px.data(), this->Py.data(), this->Pz.data(), this->S.data(), this->F.data()
+  };
   std::size_t bad = 0;
   for (std::size_t b = begin; b < end; b += block)
   {
     const std::size_t n = std::min(block, end - b);
     const std::int64_t* ids = this->Singles.data() + b;
-    const float* px = this->Px.data() + b;
-    const float* py = this->Py.data() + b;
-    const float* pz = this->Pz.data() + b;
-    const float* s = this->S.data() + b;
-    const float* f = this->F.data() + b;
+    const FastWarpPoints points = all.From(b);
     // The ids increase, so a block without gaps is one contiguous run of the output: float
     // points are then written there directly, with the origin added by the kernel.
     if (std::is_same<T, float>::value && ids[n - 1] - ids[0] == static_cast<std::int64_t>(n - 1))
     {
       bad += kernel.EvaluateInterleaved(
-        px, py, pz, s, f, reinterpret_cast<float*>(out + 3 * ids[0]), center, 0, n);
+        points, reinterpret_cast<float*>(out + 3 * ids[0]), center, 0, n);
       continue;
     }
-    bad += kernel.EvaluateInterleaved(px, py, pz, s, f, xyz, nullptr, 0, n);
+    bad += kernel.EvaluateInterleaved(points, xyz, nullptr, 0, n);
     const T cx = static_cast<T>(this->Center.x);
     const T cy = static_cast<T>(this->Center.y);
     const T cz = static_cast<T>(this->Center.z);
@@ -619,35 +587,18 @@ std::size_t FastWarpLayout::EvaluateSingles(const FastWarpKernel& kernel,
   return bad;
 }
 
-template void FastWarpLayout::Build<float>(const float*,
-  std::size_t,
-  const BoundPoint*,
-  const std::uint8_t*,
-  const Vec3&);
-template void FastWarpLayout::Build<float>(const float*,
-  std::size_t,
-  const BoundPoint*,
-  const std::uint8_t*,
-  const Vec3&,
-  const ParallelFor&);
-template void FastWarpLayout::Build<double>(const double*,
-  std::size_t,
-  const BoundPoint*,
-  const std::uint8_t*,
-  const Vec3&,
-  const ParallelFor&);
-template void FastWarpLayout::Build<double>(const double*,
-  std::size_t,
-  const BoundPoint*,
-  const std::uint8_t*,
-  const Vec3&);
-template std::size_t FastWarpLayout::EvaluateSingles<float>(const FastWarpKernel&,
-  float*,
-  std::size_t,
-  std::size_t) const;
-template std::size_t FastWarpLayout::EvaluateSingles<double>(const FastWarpKernel&,
-  double*,
-  std::size_t,
-  std::size_t) const;
+// Built for the point types the filters warp (vtkPoints of float or double).
+#define BENDER_FAST_WARP_LAYOUT_OF(T)                                                              \
+  template void FastWarpLayout::Build<T>(const T*,                                                 \
+    std::size_t,                                                                                   \
+    const BoundPoint*,                                                                             \
+    const std::uint8_t*,                                                                           \
+    const Vec3&,                                                                                   \
+    const ParallelFor&);                                                                           \
+  template std::size_t FastWarpLayout::EvaluateSingles<T>(                                         \
+    const FastWarpKernel&, T*, std::size_t, std::size_t) const
+BENDER_FAST_WARP_LAYOUT_OF(float);
+BENDER_FAST_WARP_LAYOUT_OF(double);
+#undef BENDER_FAST_WARP_LAYOUT_OF
 
 } // namespace bender

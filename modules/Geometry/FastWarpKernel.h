@@ -5,6 +5,7 @@
 #include "SimdLevel.h"
 #include "WarpBinding.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -12,6 +13,25 @@
 
 namespace bender
 {
+
+/// Points for FastWarpKernel, structure of arrays: each point's position relative to the
+/// kernel's origin (px, py, pz), its projection parameter s in [0, 1] and its weight f.
+struct FastWarpPoints
+{
+  const float* px = nullptr;
+  const float* py = nullptr;
+  const float* pz = nullptr;
+  const float* s = nullptr;
+  const float* f = nullptr;
+
+  /// The points from index `first` on.
+  FastWarpPoints From(std::size_t first) const
+  {
+    return {
+      this->px + first, this->py + first, this->pz + first, this->s + first, this->f + first
+    };
+  }
+};
 
 /// The interactive evaluation path of spec 9(b): single-precision, branch-free, vectorised
 /// evaluation of points that have one projection, from the lifted dual-quaternion table
@@ -37,26 +57,16 @@ public:
   /// Prepares the per-move table from `table`, for positions given relative to `origin`.
   void SetMotion(const MotionTable& table, const Vec3& origin);
 
-  /// For k in [begin, end): (ox, oy, oz)[k] = warp of (px, py, pz)[k] (relative to the origin)
-  /// with projection parameter s[k] and weight f[k]. Safe to call concurrently.
-  void Evaluate(const float* px,
-    const float* py,
-    const float* pz,
-    const float* s,
-    const float* f,
-    float* ox,
-    float* oy,
-    float* oz,
+  /// For k in [begin, end): out[c][k] = coordinate c of the warp of point k of `points`
+  /// (relative to the origin). Safe to call concurrently.
+  void Evaluate(const FastWarpPoints& points,
+    const std::array<float*, 3>& out,
     std::size_t begin,
     std::size_t end) const;
 
   /// Same, written interleaved: xyz[3 k + c] for k in [begin, end), each point plus
   /// `shift` (3 floats; null for none). Returns how many results are not finite.
-  std::size_t EvaluateInterleaved(const float* px,
-    const float* py,
-    const float* pz,
-    const float* s,
-    const float* f,
+  std::size_t EvaluateInterleaved(const FastWarpPoints& points,
     float* xyz,
     const float* shift,
     std::size_t begin,
@@ -82,28 +92,22 @@ private:
 class FastWarpLayout
 {
 public:
-  /// Lays out the points of `xyz` (n points, x y z interleaved) whose `bound` flag is set, with
-  /// their `records`, relative to `origin` (a point near the wire). The flags are those of
-  /// WarpBinding::BindRange: 0 outside, 1 one projection, 2 two (lambda0 < 1).
-  template<typename T>
-  void Build(const T* xyz,
-    std::size_t n,
-    const BoundPoint* records,
-    const std::uint8_t* bound,
-    const Vec3& origin);
-
   /// Runs body(first, last) over subranges covering [0, count), possibly concurrently.
   using ParallelFor =
     std::function<void(std::size_t count, const std::function<void(std::size_t, std::size_t)>&)>;
-  /// Same layout as Build, computed in parallel with `parallelFor` (for instance vtkSMPTools):
-  /// counts per fixed chunk, then every chunk written at its offset.
+
+  /// Lays out the points of `xyz` (n points, x y z interleaved) whose `bound` flag is set, with
+  /// their `records`, relative to `origin` (a point near the wire). The flags are those of
+  /// WarpBinding::BindRange: 0 outside, 1 one projection, 2 two (lambda0 < 1). With
+  /// `parallelFor` (for instance vtkSMPTools) computed in parallel, counts per fixed chunk, then
+  /// every chunk written at its offset; without it serially: the same layout either way.
   template<typename T>
   void Build(const T* xyz,
     std::size_t n,
     const BoundPoint* records,
     const std::uint8_t* bound,
     const Vec3& origin,
-    const ParallelFor& parallelFor);
+    const ParallelFor& parallelFor = nullptr);
   void Clear();
 
   const Vec3& Origin() const { return this->Center; }

@@ -353,41 +353,30 @@ Vec3 WarpEvaluator::Apply(const Vec3& p, const BoundPoint& rec) const
 }
 
 template<typename T>
-void WarpEvaluator::EvaluateRange(const T* in,
-  T* out,
-  const BoundPoint* records,
-  const std::int64_t* ids,
+void WarpEvaluator::EvaluateRange(const WarpBatch<T>& batch,
   std::size_t begin,
   std::size_t end) const
 {
   if (this->Exact)
   {
-    this->Exact->EvaluateRange(in, out, records, ids, begin, end);
+    this->Exact->EvaluateRange(batch, begin, end);
     return;
   }
   for (std::size_t k = begin; k < end; ++k)
   {
-    const std::int64_t i = ids[k];
-    const T* q = in + 3 * i;
+    const std::int64_t i = batch.ids[k];
+    const T* q = batch.in + 3 * i;
     const Vec3 p{ static_cast<double>(q[0]), static_cast<double>(q[1]), static_cast<double>(q[2]) };
-    const Vec3 r = this->Apply(p, records[i]);
-    T* o = out + 3 * i;
+    const Vec3 r = this->Apply(p, batch.records[i]);
+    T* o = batch.out + 3 * i;
     o[0] = static_cast<T>(r.x);
     o[1] = static_cast<T>(r.y);
     o[2] = static_cast<T>(r.z);
   }
 }
 
-template void WarpEvaluator::EvaluateRange<float>(const float*,
-  float*,
-  const BoundPoint*,
-  const std::int64_t*,
-  std::size_t,
-  std::size_t) const;
-template void WarpEvaluator::EvaluateRange<double>(const double*,
-  double*,
-  const BoundPoint*,
-  const std::int64_t*,
+template void WarpEvaluator::EvaluateRange(const WarpBatch<float>&, std::size_t, std::size_t) const;
+template void WarpEvaluator::EvaluateRange(const WarpBatch<double>&,
   std::size_t,
   std::size_t) const;
 

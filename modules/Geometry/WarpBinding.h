@@ -27,6 +27,17 @@ struct BoundPoint
   double lambda0 = 1.0; ///< f0 / (f0 + f1); the second image gets 1 - lambda0
 };
 
+/// Points to warp, all of them x y z interleaved: for each listed id i, out[3 i + c] is the
+/// warp of in[3 i + c] with the record records[i]; the other points are not touched.
+template<typename T>
+struct WarpBatch
+{
+  const T* in = nullptr;
+  T* out = nullptr;
+  const BoundPoint* records = nullptr;
+  const std::int64_t* ids = nullptr;
+};
+
 /// The per-grab half of the warp (spec 9): projections of points onto the initial wire,
 /// depending only on the initial ribbon, R, the decay and the blend mode. Computed once when
 /// the user grabs; the final ribbon can then move freely at the cost of an evaluation only.
@@ -111,16 +122,10 @@ public:
   /// result, bit-for-bit what EvaluateRange gives for the point.
   Vec3 Apply(const Vec3& p, const BoundPoint& rec) const;
 
-  /// out[i] = warp(in[i]) for the points listed in ids[begin, end), with their records
-  /// records[ids[k]]. Safe to call concurrently on disjoint ranges; exact results do not
-  /// depend on how a range is split (thread counts).
+  /// Warps the points of `batch` listed in batch.ids[begin, end). Safe to call concurrently on
+  /// disjoint ranges; exact results do not depend on how a range is split (thread counts).
   template<typename T>
-  void EvaluateRange(const T* in,
-    T* out,
-    const BoundPoint* records,
-    const std::int64_t* ids,
-    std::size_t begin,
-    std::size_t end) const;
+  void EvaluateRange(const WarpBatch<T>& batch, std::size_t begin, std::size_t end) const;
 
 private:
   const RibbonWarp& Warp;

@@ -189,7 +189,10 @@ TEST_P(Conformance, BindingAndTableEvaluationAgree)
       const bender::WarpEvaluator eval(
         warp, xyz == &exact ? bender::WarpPrecision::Exact : bender::WarpPrecision::Table);
       std::vector<double> out = *xyz;
-      eval.EvaluateRange(xyz->data(), out.data(), rec.data(), ids.data(), 0, ids.size());
+      eval.EvaluateRange(
+        bender::WarpBatch<double>{ xyz->data(), out.data(), rec.data(), ids.data() },
+        0,
+        ids.size());
       *xyz = out;
     }
   }

@@ -72,8 +72,10 @@ TEST(FastWarpKernel, AgreesWithTheExactWarpWithinOneHundredThousandthOfTheScene)
     const std::size_t n = points.size();
     ASSERT_GT(n, 100u);
     std::vector<float> ox(n), oy(n), oz(n);
-    kernel.Evaluate(
-      px.data(), py.data(), pz.data(), s.data(), f.data(), ox.data(), oy.data(), oz.data(), 0, n);
+    kernel.Evaluate({ px.data(), py.data(), pz.data(), s.data(), f.data() },
+      { ox.data(), oy.data(), oz.data() },
+      0,
+      n);
     double scene = 0.0;
     double worstKernel = 0.0, worstTable = 0.0;
     for (std::size_t i = 0; i < n; ++i)

@@ -200,16 +200,10 @@ TEST(FastWarpKernel, EverySimdLevelAgreesWithTheExactWarp)
       EXPECT_EQ(kernel.Level(), level);
       kernel.SetMotion(*table.GetMotionTable(), origin);
       std::vector<float> ox(n), oy(n), oz(n);
-      kernel.Evaluate(c.px.data(),
-        c.py.data(),
-        c.pz.data(),
-        c.s.data(),
-        c.f.data(),
-        ox.data(),
-        oy.data(),
-        oz.data(),
-        0,
-        n);
+      const bender::FastWarpPoints points{
+        c.px.data(), c.py.data(), c.pz.data(), c.s.data(), c.f.data()
+      };
+      kernel.Evaluate(points, { ox.data(), oy.data(), oz.data() }, 0, n);
       double worst = 0.0;
       for (std::size_t i = 0; i < n; ++i)
       {
@@ -223,16 +217,7 @@ TEST(FastWarpKernel, EverySimdLevelAgreesWithTheExactWarp)
       std::vector<float> sx(n), sy(n), sz(n);
       for (std::size_t b = 0; b < n; b += 37)
       {
-        kernel.Evaluate(c.px.data(),
-          c.py.data(),
-          c.pz.data(),
-          c.s.data(),
-          c.f.data(),
-          sx.data(),
-          sy.data(),
-          sz.data(),
-          b,
-          std::min(n, b + 37));
+        kernel.Evaluate(points, { sx.data(), sy.data(), sz.data() }, b, std::min(n, b + 37));
       }
       EXPECT_EQ(0, std::memcmp(sx.data(), ox.data(), n * sizeof(float)));
       EXPECT_EQ(0, std::memcmp(sz.data(), oz.data(), n * sizeof(float)));
@@ -258,7 +243,7 @@ TEST(FastWarpKernel, OutOfRangeParametersStayInsideTheTable)
   const float p[4] = { 0.5f, 0.5f, 0.5f, 0.5f };
   const float f[4] = { 0.5f, 0.5f, 0.5f, 0.5f };
   float o[3][4];
-  kernel.Evaluate(p, p, p, s, f, o[0], o[1], o[2], 0, 4);
+  kernel.Evaluate({ p, p, p, s, f }, { o[0], o[1], o[2] }, 0, 4);
   for (int k = 0; k < 3; ++k)
   {
     for (int d = 0; d < 3; ++d)
@@ -373,7 +358,10 @@ TEST(WarpEvaluator, BatchedExactAgreesWithTheSinglePointWarp)
       }
     }
     std::vector<double> out(xyz);
-    exact.EvaluateRange(xyz.data(), out.data(), records.data(), ids.data(), 0, ids.size());
+    exact.EvaluateRange(
+      bender::WarpBatch<double>{ xyz.data(), out.data(), records.data(), ids.data() },
+      0,
+      ids.size());
     for (std::int64_t i : ids)
     {
       const bender::BoundPoint& rec = records[i];
@@ -432,7 +420,10 @@ TEST(WarpEvaluator, ExactIdentityLeavesPointsBitForBit)
     }
     ASSERT_GT(ids.size(), 50u);
     std::vector<double> out(xyz.size(), 0.0);
-    exact.EvaluateRange(xyz.data(), out.data(), records.data(), ids.data(), 0, ids.size());
+    exact.EvaluateRange(
+      bender::WarpBatch<double>{ xyz.data(), out.data(), records.data(), ids.data() },
+      0,
+      ids.size());
     for (std::int64_t i : ids)
     {
       for (int d = 0; d < 3; ++d)
@@ -485,14 +476,19 @@ TEST(WarpEvaluator, ExactResultsDoNotDependOnTheSplitOfTheRange)
     ASSERT_GT(ids.size(), 100u);
     const bender::WarpEvaluator exact(*warp, bender::WarpPrecision::Exact);
     std::vector<double> whole(xyz), split(xyz);
-    exact.EvaluateRange(xyz.data(), whole.data(), records.data(), ids.data(), 0, ids.size());
+    const bender::WarpBatch<double> wholeBatch{
+      xyz.data(), whole.data(), records.data(), ids.data()
+    };
+    exact.EvaluateRange(wholeBatch, 0, ids.size());
     for (std::size_t chunk : { std::size_t(1), std::size_t(3), std::size_t(64), std::size_t(333) })
     {
       std::fill(split.begin(), split.end(), 0.0);
       for (std::size_t b = 0; b < ids.size(); b += chunk)
       {
         exact.EvaluateRange(
-          xyz.data(), split.data(), records.data(), ids.data(), b, std::min(ids.size(), b + chunk));
+          bender::WarpBatch<double>{ xyz.data(), split.data(), records.data(), ids.data() },
+          b,
+          std::min(ids.size(), b + chunk));
       }
       for (std::int64_t i : ids)
       {

@@ -714,9 +714,11 @@ TEST(WarpBinding, ExactEvaluationEqualsApplyAndTableIsClose)
       }
     }
     std::vector<double> out = xyz;
-    exact.EvaluateRange(xyz.data(), out.data(), recs.data(), ids.data(), 0, ids.size());
+    exact.EvaluateRange(
+      bender::WarpBatch<double>{ xyz.data(), out.data(), recs.data(), ids.data() }, 0, ids.size());
     std::vector<float> xyzf(xyz.begin(), xyz.end()), outf(xyzf);
-    table.EvaluateRange(xyzf.data(), outf.data(), recs.data(), ids.data(), 0, ids.size());
+    table.EvaluateRange(
+      bender::WarpBatch<float>{ xyzf.data(), outf.data(), recs.data(), ids.data() }, 0, ids.size());
     for (std::size_t k = 0; k < pts.size(); ++k)
     {
       const Vec3 ref = warp->Apply(pts[k]);
