@@ -424,6 +424,17 @@ TEST(CfdCase, NeverLeavesAHalfWrittenCaseAndReplacesOnlyWithForce)
   EXPECT_EQ(ReadText(folder.Path() + "/file"), "x");
 }
 
+/// Every file and folder under `folder` with its content (folders: empty).
+std::map<std::string, std::string> CaseFiles(const std::string& folder)
+{
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(folder))
+  {
+    files[e.path().string()] = e.is_regular_file() ? ReadText(e.path().string()) : "";
+  }
+  return files;
+}
+
 // Issue 23: a full disk while the case is written (simulated by the file size limit, which the
 // STL of the surface, about 2 MB, exceeds): one line naming the case and the file that failed,
 // the previous case kept as it was, nothing left beside it.
@@ -433,11 +444,7 @@ TEST(CfdCase, AFullDiskKeepsThePreviousCase)
   bender::CfdCaseOptions options;
   options.caseDirectory = folder.Path() + "/case";
   bender::WriteOpenFoamCase(Aneurysm(), options);
-  std::map<std::string, std::string> before;
-  for (const auto& e : fs::recursive_directory_iterator(options.caseDirectory))
-  {
-    before[e.path().string()] = e.is_regular_file() ? ReadText(e.path().string()) : "";
-  }
+  const std::map<std::string, std::string> before = CaseFiles(options.caseDirectory);
   options.force = true;
   options.flowRate = 2e-5;
   std::string message = "no error";
@@ -455,13 +462,26 @@ TEST(CfdCase, AFullDiskKeepsThePreviousCase)
   EXPECT_EQ(message.rfind(options.caseDirectory + ": ", 0), 0u) << message;
   EXPECT_NE(message.find("write failed"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  std::map<std::string, std::string> after;
-  for (const auto& e : fs::recursive_directory_iterator(options.caseDirectory))
-  {
-    after[e.path().string()] = e.is_regular_file() ? ReadText(e.path().string()) : "";
-  }
-  EXPECT_TRUE(after == before) << "the previous case changed";
+  EXPECT_TRUE(CaseFiles(options.caseDirectory) == before) << "the previous case changed";
   EXPECT_EQ(Entries(folder.Path()), 1u);
+
+  // The command under the same limit (inherited, as SIGXFSZ ignored): exit 1, one line.
+  const std::string surface = folder.Path() + "/capped.vtp";
+  bender::WriteMesh(Aneurysm(), surface);
+  int status = 0;
+  std::string output;
+  {
+    bender::test::FileSizeLimit limit(256 * 1024);
+    output = bender::test::RunIn(folder.Path(),
+      std::string(BENDER_CLI_PATH) + " cfd-case capped.vtp -o case --force --flow-rate 2e-5",
+      status);
+  }
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("case: vessel.stl: write failed"), std::string::npos) << output;
+  EXPECT_EQ(Count(output, "\n"), 1u) << output;
+  EXPECT_TRUE(CaseFiles(options.caseDirectory) == before)
+    << "the command changed the previous case";
+  EXPECT_EQ(Entries(folder.Path()), 2u); // the case and capped.vtp
 }
 
 // Issue 23: an end whose cap is labelled wall would be closed in the case, the flow going
