@@ -17,6 +17,7 @@
 
 #include "ApplyPlan.h"
 #include "DemoPipeline.h"
+#include "LogicTestUtilities.h"
 #include "MeshIO.h"
 #include "PatchLabels.h"
 #include "PolyDataCopy.h"
@@ -56,22 +57,8 @@ namespace
 /// Same cells and the same points, exactly.
 bool SameSurface(vtkPolyData* a, vtkPolyData* b)
 {
-  if (!a || !b || a->GetNumberOfPoints() != b->GetNumberOfPoints() ||
-    a->GetNumberOfCells() != b->GetNumberOfCells())
-  {
-    return false;
-  }
-  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
-  {
-    double p[3], q[3];
-    a->GetPoint(i, p);
-    b->GetPoint(i, q);
-    if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2])
-    {
-      return false;
-    }
-  }
-  return true;
+  return a && b && a->GetNumberOfCells() == b->GetNumberOfCells() &&
+    bender::test::MaxDifference(a, b) == 0.0;
 }
 
 /// Runs bender-cli with `arguments`; its exit code, output in `output`.
