@@ -243,7 +243,7 @@ int vtkBenderAdaptiveSubdivisionFilter::RequestData(vtkInformation*,
     warp.reset(new bender::RibbonWarp(this->Spec, options));
     binding.reset(new bender::WarpBinding(this->Spec, this->Blend));
   }
-  catch (const std::exception& e)
+  catch (const bender::GeometryError& e) // an invalid ribbon or warp
   {
     return fail(std::string("invalid warp: ") + e.what());
   }

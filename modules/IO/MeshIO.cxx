@@ -143,7 +143,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& stat
     // A corrupt count in a binary header can ask a VTK reader for terabytes.
     FailMesh(path, "corrupt file (its sizes ask for more memory than there is)");
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // VTK's readers and the standard library on a corrupt file
   {
     FailMesh(path, std::string("corrupt file (") + e.what() + ")");
   }

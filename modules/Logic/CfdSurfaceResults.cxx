@@ -320,7 +320,7 @@ void WriteResultsFolder(const fs::path& dir,
       throw Error(target.string() + ": " + problem);
     }
   }
-  catch (const std::exception&)
+  catch (...) // whatever stopped the write: the half-written folder goes, the error goes on
   {
     fs::remove_all(temp, ec);
     throw;

@@ -213,7 +213,7 @@ void FastrakDevice::ReaderLoop()
       finish({ TrackerEventType::Disconnected, 0, this->ReaderTime(), e.what() });
       return;
     }
-    catch (const std::exception& e)
+    catch (const std::exception& e) // the reader thread's boundary: the transport's errors, std's
     {
       finish({ TrackerEventType::ReadError, 0, this->ReaderTime(), e.what() });
       return;

@@ -138,7 +138,7 @@ void IgtlDevice::ReaderLoop()
       }
     }
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e) // the reader thread's boundary: TransportError, std's
   {
     this->ReaderEnded();
     this->Store.PublishEvent({ TrackerEventType::ReadError, 0, this->ReaderTime(), e.what() });

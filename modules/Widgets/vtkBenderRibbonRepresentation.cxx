@@ -1,5 +1,6 @@
 #include "vtkBenderRibbonRepresentation.h"
 
+#include "GeometryErrors.h"
 #include "vtkBenderRegionOutline.h"
 #include "vtkBenderRibbonSource.h"
 
@@ -308,7 +309,7 @@ void vtkBenderRibbonRepresentation::UpdateValidity()
     this->Valid = true;
     this->LastError.clear();
   }
-  catch (const std::exception& e)
+  catch (const bender::GeometryError& e) // an invalid ribbon (InvalidRibbonError)
   {
     this->Valid = false;
     this->LastError = e.what();
