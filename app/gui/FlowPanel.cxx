@@ -5,6 +5,7 @@
 #include "FlowResidualPlot.h"
 #include "FlowViews.h"
 #include "MainActions.h"
+#include "SweepControls.h"
 #include "WorkRunner.h"
 
 #include "BenderSession.h"
@@ -110,6 +111,9 @@ FlowPanel::FlowPanel(bender::BenderSession& session,
                                "compare), a PNG of each picture and the plan, into a folder");
   this->SaveReport->setEnabled(false);
   layout->addWidget(this->SaveReport);
+  this->Sweep = new SweepControls(
+    session, worker, [this]() { return this->caseOptions(); }, this);
+  layout->addWidget(this->Sweep);
   layout->addStretch(0);
   this->Reports = new FlowReportSaver(this->Session, this->Worker, this);
 
@@ -164,6 +168,12 @@ FlowPanel::FlowPanel(bender::BenderSession& session,
 }
 
 FlowPanel::~FlowPanel() = default;
+
+void FlowPanel::setViewRenderer(vtkRenderer* renderer)
+{
+  this->ViewRenderer = renderer;
+  this->Sweep->setViewRenderer(renderer);
+}
 
 void FlowPanel::setCacheFolder(const QString& folder)
 {

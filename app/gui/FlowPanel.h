@@ -26,6 +26,7 @@ class QLabel;
 class QPushButton;
 class QSpinBox;
 class QToolButton;
+class SweepControls;
 class WorkRunner;
 class vtkRenderer;
 
@@ -69,8 +70,8 @@ public:
   bool saveReport(const QString& folder);
 
   /// The renderer whose camera the comparison's views take their viewpoint from (the main 3D
-  /// view's).
-  void setViewRenderer(vtkRenderer* renderer) { this->ViewRenderer = renderer; }
+  /// view's); the sweep's views too.
+  void setViewRenderer(vtkRenderer* renderer);
   /// Where the cases are kept; default: the user's cache folder, "flow" in it.
   void setCacheFolder(const QString& folder);
   QString cacheFolder() const { return this->CacheFolder; }
@@ -95,6 +96,8 @@ public:
   QPushButton* cancelButton() const { return this->CancelButton; }
   QPushButton* saveReportButton() const { return this->SaveReport; }
   FlowReportSaver* reportSaver() const { return this->Reports; }
+  /// The sweep: a sweep folder opened, or the bend's fraction swept with the case above.
+  SweepControls* sweepControls() const { return this->Sweep; }
 
 signals:
   /// Both shapes' results are shown (ok), or the run stopped (failed or cancelled).
@@ -141,6 +144,7 @@ private:
   FlowViews* Views = nullptr;
   FlowComparisonTable* Table = nullptr;
   QLabel* Cases = nullptr;
+  SweepControls* Sweep = nullptr;
 };
 
 #endif

@@ -192,6 +192,12 @@ void FlowViews::setStreamlines(vtkPolyData* original, vtkPolyData* current)
   this->setStreamlinesShown(this->Streamlines->isChecked());
 }
 
+void FlowViews::setTitles(const QString& left, const QString& right)
+{
+  this->Views[0].title->setText(left);
+  this->Views[1].title->setText(right);
+}
+
 void FlowViews::setStreamlinesShown(bool shown)
 {
   if (this->Streamlines->isChecked() != shown)

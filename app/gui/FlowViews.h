@@ -45,6 +45,8 @@ public:
   /// The streamlines of each shape (FlowStreamlines; null: none), drawn when the Streamlines box
   /// is ticked, through the surfaces made translucent.
   void setStreamlines(vtkPolyData* original, vtkPolyData* current);
+  /// The titles above the two views ("Original", "Current shape" until set).
+  void setTitles(const QString& left, const QString& right);
   void setStreamlinesShown(bool shown);
   bool streamlinesShown() const;
   void setField(Field field);

@@ -1,9 +1,10 @@
-// summary.png of a sweep: three VTK charts side by side (pressure drop, flow split per outlet,
-// low-WSS area) against the varied value, each with the original drawn as a dashed line.
+// The charts of a sweep (SweepPlot.h): three VTK charts side by side (pressure drop, flow split
+// per outlet, low-WSS area) against the varied value, each with the original drawn as a dashed
+// line; summary.png draws them off screen.
 
+#include "SweepPlot.h"
 #include "BenderErrors.h"
 #include "RenderToPng.h"
-#include "Sweep.h"
 
 #include <vtkAxis.h>
 #include <vtkChartLegend.h>
@@ -16,6 +17,7 @@
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotLine.h>
+#include <vtkPlotPoints.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTable.h>
@@ -65,9 +67,11 @@ void AddSeries(vtkChartXY* chart,
   const std::vector<SweepRow>& rows,
   const Value& y,
   const std::string& label,
-  std::size_t color)
+  std::size_t color,
+  const std::string& highlight)
 {
   std::vector<std::pair<double, double>> points;
+  std::vector<std::pair<double, double>> chosen;
   double originalY = std::numeric_limits<double>::quiet_NaN();
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const SweepRow& row : rows)
@@ -83,6 +87,10 @@ void AddSeries(vtkChartXY* chart,
     if (!row.original || row.parameter == "fraction")
     {
       points.emplace_back(row.value, y(row));
+      if (row.id == highlight)
+      {
+        chosen.emplace_back(row.value, y(row));
+      }
       lo = std::min(lo, row.value);
       hi = std::max(hi, row.value);
     }
@@ -111,6 +119,15 @@ void AddSeries(vtkChartXY* chart,
     original->GetPen()->SetLineType(vtkPen::DASH_LINE);
     original->SetLabel(label + " (original)");
   }
+  if (!chosen.empty())
+  {
+    auto* point = vtkPlotPoints::SafeDownCast(chart->AddPlot(vtkChart::POINTS));
+    point->SetInputData(Table(chosen), 0, 1);
+    point->SetColor(c[0], c[1], c[2], 255);
+    point->SetMarkerStyle(vtkPlotPoints::DIAMOND);
+    point->SetMarkerSize(18.0);
+    point->SetLabel(label + " (" + highlight + ")");
+  }
 }
 
 void Style(vtkChartXY* chart, const std::string& title, const std::string& x, const std::string& y)
@@ -134,30 +151,19 @@ std::string AxisTitle(const std::string& parameter)
 }
 } // namespace
 
-void WriteSweepPlot(const std::vector<SweepRow>& rows,
+void AddSweepCharts(vtkChartMatrix* matrix,
+  const std::vector<SweepRow>& rows,
   const std::string& parameter,
-  const std::string& path)
+  const std::string& highlight)
 {
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
-  {
-    throw EnvironmentError(path + ": no display to draw the plot (DISPLAY is not set)");
-  }
-  vtkNew<vtkContextView> view;
-  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-  view->GetRenderWindow()->SetOffScreenRendering(1);
-  view->GetRenderWindow()->SetSize(1500, 500);
-  view->GetRenderWindow()->SetMultiSamples(0);
-  vtkNew<vtkChartMatrix> matrix;
   matrix->SetSize(vtkVector2i(3, 1));
   matrix->SetGutter(vtkVector2f(70.0f, 60.0f));
-  view->GetScene()->AddItem(matrix);
   const std::string x = AxisTitle(parameter);
 
   auto* drop = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(0, 0)));
   Style(drop, "Pressure drop", x, "inlet - outlets (Pa)");
   AddSeries(
-    drop, rows, [](const SweepRow& r) { return r.pressureDrop; }, "pressure drop", 0);
+    drop, rows, [](const SweepRow& r) { return r.pressureDrop; }, "pressure drop", 0, highlight);
 
   auto* split = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(1, 0)));
   Style(split, "Flow split", x, "% of the inlet's flow");
@@ -192,7 +198,8 @@ void WriteSweepPlot(const std::vector<SweepRow>& rows,
         return std::numeric_limits<double>::quiet_NaN();
       },
       name,
-      k + 1);
+      k + 1,
+      highlight);
   }
 
   auto* wss = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(2, 0)));
@@ -203,8 +210,27 @@ void WriteSweepPlot(const std::vector<SweepRow>& rows,
     [](const SweepRow& r)
     { return r.wallShearStress ? r.lowWssArea : std::numeric_limits<double>::quiet_NaN(); },
     "low-WSS area",
-    4);
+    4,
+    highlight);
+}
 
+void WriteSweepPlot(const std::vector<SweepRow>& rows,
+  const std::string& parameter,
+  const std::string& path)
+{
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    throw EnvironmentError(path + ": no display to draw the plot (DISPLAY is not set)");
+  }
+  vtkNew<vtkContextView> view;
+  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+  view->GetRenderWindow()->SetOffScreenRendering(1);
+  view->GetRenderWindow()->SetSize(1500, 500);
+  view->GetRenderWindow()->SetMultiSamples(0);
+  vtkNew<vtkChartMatrix> matrix;
+  view->GetScene()->AddItem(matrix);
+  AddSweepCharts(matrix, rows, parameter);
   WriteRenderWindowPng(view->GetRenderWindow(), path);
 }
 

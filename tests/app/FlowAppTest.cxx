@@ -164,29 +164,10 @@ private slots:
   void initTestCase()
   {
     BENDER_REQUIRE_OPENFOAM();
-    QVERIFY(this->Folder.isValid());
-    this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
-    QVERIFY(bendertest::ShowTestWindow(*this->Window, true));
-    // The session: a tube, prepared for CFD (its open ends capped and named, short extensions),
-    // then bent: the plan's Prepare step comes before its warp.
-    bender::BenderSession& session = this->Window->session();
-    const auto tube = bendertest::Tube(-20, 20, 5, 41, 32);
-    QVERIFY(session.SetSurface(tube, "tube"));
-    bender::CfdStep step;
-    step.clip = false;
-    step.inletExtension = 2.0;
-    step.outletExtension = 1.0;
-    QVERIFY(session.CommitCfdStep(step, bender::ApplyCfdStep(tube, step).surface, false));
-    QVERIFY(session.ApplyWarp(bender::test::Swing(0, 15, 20, 8)));
-    // Seen from above (the bend is about +z), framed.
-    this->Window->actions()->StandardViews[4]->trigger();
-    QVERIFY(bendertest::ShowPanel(*this->Window, this->panel()));
-    // A small case: coarse cells, few iterations; the cache in the test's folder.
+    // A bent tube, a small case; the cache in the test's folder.
+    this->Window = bendertest::BentTubeWindow(this->Folder);
+    QVERIFY(this->Window);
     this->panel()->setCacheFolder(this->Folder.filePath("flow-cache"));
-    bendertest::TypeInto(this->panel()->iterationsBox(), "25");
-    bendertest::TypeInto(this->panel()->cellSizeBox(), "1.60");
-    QCOMPARE(this->panel()->caseOptions().iterations, 25);
-    QVERIFY(std::abs(this->panel()->caseOptions().cellSize - 1.6e-3) < 1e-9);
   }
 
   void cleanupTestCase()

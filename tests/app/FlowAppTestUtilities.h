@@ -2,16 +2,23 @@
 #define bender_FlowAppTestUtilities_h
 
 // Pieces shared by the Flow panel's window suites (FlowAppTests on a bent tube,
-// FlowDemoAppTests on the demo vessel).
+// FlowDemoAppTests on the demo vessel, SweepAppTests on a bent tube).
 
+#include "AppTestUtilities.h"
 #include "FlowComparisonTable.h"
 #include "FlowPanel.h"
+#include "MainActions.h"
+#include "MainWindow.h"
+
+#include "ApplyPlan.h"
 
 #include "CfdComparison.h"
 #include "CfdFlowResults.h"
+#include "LogicTestUtilities.h"
 #include "ProcessRunner.h"
 
 #include <QAbstractSpinBox>
+#include <QAction>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -19,12 +26,14 @@
 #include <QProcess>
 #include <QSignalSpy>
 #include <QStringList>
+#include <QTemporaryDir>
 #include <QToolButton>
 #include <QtTest>
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <optional>
 
 /// In a test function: skips it when OpenFOAM is not installed, or fails it when
@@ -146,6 +155,47 @@ inline void ExpectCompareGivesThePanelsNumbers(FlowPanel* panel,
     QVERIFY2(same(row.value("a"), mine.a), qPrintable(row.value("key").toString()));
     QVERIFY2(same(row.value("b"), mine.b), qPrintable(row.value("key").toString()));
   }
+}
+
+/// A test window (autosave in `folder`) shown and active, with a tube prepared for CFD (its open
+/// ends capped and named, short extensions) then bent (the plan's Prepare step comes before its
+/// warp), seen from above (the bend is about +z); the Flow panel in front with a small case (25
+/// iterations, 1.6 mm cells). Null when the folder is not valid, the window could not be shown
+/// or the session refused a step.
+inline std::unique_ptr<MainWindow> BentTubeWindow(const QTemporaryDir& folder)
+{
+  if (!folder.isValid())
+  {
+    return nullptr;
+  }
+  auto window = std::make_unique<MainWindow>(TestWindowOptions(folder.path()));
+  if (!ShowTestWindow(*window, true))
+  {
+    return nullptr;
+  }
+  bender::BenderSession& session = window->session();
+  const auto tube = Tube(-20, 20, 5, 41, 32);
+  bender::CfdStep step;
+  step.clip = false;
+  step.inletExtension = 2.0;
+  step.outletExtension = 1.0;
+  if (!session.SetSurface(tube, "tube") ||
+    !session.CommitCfdStep(step, bender::ApplyCfdStep(tube, step).surface, false) ||
+    !session.ApplyWarp(bender::test::Swing(0, 15, 20, 8)))
+  {
+    return nullptr;
+  }
+  window->actions()->StandardViews[4]->trigger();
+  FlowPanel* panel = window->flowPanel();
+  if (!ShowPanel(*window, panel))
+  {
+    return nullptr;
+  }
+  TypeInto(panel->iterationsBox(), "25");
+  TypeInto(panel->cellSizeBox(), "1.60");
+  const bool small = panel->caseOptions().iterations == 25 &&
+    std::abs(panel->caseOptions().cellSize - 1.6e-3) < 1e-9;
+  return small ? std::move(window) : nullptr;
 }
 
 } // namespace bendertest
