@@ -19,12 +19,14 @@
 
 #include <QAbstractSpinBox>
 #include <QAction>
+#include <QDoubleSpinBox>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
 #include <QProcess>
 #include <QSignalSpy>
+#include <QSpinBox>
 #include <QStringList>
 #include <QTemporaryDir>
 #include <QToolButton>
