@@ -323,14 +323,25 @@ void SweepControls::done(bool ok, const QString& why)
   this->CancelButton->setEnabled(false);
   // What the sweep left (all of it, or what was finished before it stopped).
   const QString folder = this->Folder->text().trimmed();
-  if (QFileInfo::exists(QDir(folder).filePath("sweep.json")))
+  QString line = why;
+  if (QFileInfo::exists(QDir(folder).filePath("sweep.json")) && this->show(folder))
   {
-    this->show(folder);
+    // summary.png, drawn here: the window renders on this thread only.
+    const bender::SweepFolder& sweep = this->Window->sweep();
+    try
+    {
+      bender::WriteSweepPlot(
+        sweep.rows, sweep.parameter, QDir(folder).filePath("summary.png").toStdString());
+    }
+    catch (const bender::Error& e)
+    {
+      line += QString(" No summary.png: %1").arg(e.what());
+    }
   }
-  this->setStatus(why);
+  this->setStatus(line);
   if (ok)
   {
-    this->Session.AddMessage(bender::MessageSeverity::Info, why.toStdString());
+    this->Session.AddMessage(bender::MessageSeverity::Info, line.toStdString());
   }
   emit this->sweepFinished(ok);
 }

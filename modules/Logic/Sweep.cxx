@@ -266,7 +266,7 @@ SweepResult RunSweep(const SweepOptions& options)
 
   auto finish = [&]()
   {
-    WriteSweepSummary(rows, candidates.parameter, dir.string(), result);
+    WriteSweepSummary(rows, candidates.parameter, dir.string(), result, options.plot);
     return result;
   };
   try

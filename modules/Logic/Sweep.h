@@ -47,6 +47,9 @@ struct SweepOptions
   SweepEngineOptions engine;
   /// Only prepare the candidates (warp, check, clip, cases); solve nothing.
   bool prepareOnly = false;
+  /// Draw summary.png. Off: the caller draws it (WriteSweepPlot) on its own thread, as a window
+  /// must (VTK's text rendering is not safe on two threads at once).
+  bool plot = true;
   /// Lines for the user ("c02: solved").
   std::function<void(const std::string&)> onLine;
   /// Stages "prepare" and "solve"; its cancel flag (Ctrl+C) stops the sweep with the folder

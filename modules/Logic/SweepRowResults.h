@@ -22,12 +22,14 @@ void ReadSweepRowResults(const std::string& caseDirectory, SweepRow& row);
 /// when none is readable.
 double SweepCaseSeconds(const std::string& caseDirectory);
 
-/// Writes SWEEP_DIR/summary.csv, summary.json and (where a display is) summary.png; sets the
-/// paths (and plotProblem) in `result`. Throws InputError when a summary cannot be written.
+/// Writes SWEEP_DIR/summary.csv, summary.json and (where a display is, and `plot`) summary.png;
+/// sets the paths (and plotProblem) in `result`. Throws InputError when a summary cannot be
+/// written.
 void WriteSweepSummary(const std::vector<SweepRow>& rows,
   const std::string& parameter,
   const std::string& folder,
-  SweepResult& result);
+  SweepResult& result,
+  bool plot = true);
 
 } // namespace bender
 

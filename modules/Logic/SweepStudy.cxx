@@ -151,6 +151,7 @@ SweepResult RunSessionSweep(const SessionSweepInput& input, const SessionSweepOp
   sweep.caseOptions = options.caseOptions;
   sweep.engine.kind = SweepEngineKind::Local;
   sweep.engine.jobs = options.jobs;
+  sweep.plot = false;
   sweep.onLine = options.onLine;
   sweep.progress = options.progress;
   return RunSweep(sweep);

@@ -64,7 +64,8 @@ struct SessionSweepOptions
 };
 
 /// Writes the session's surface and plan into SWEEP_DIR/input (surface.vtp, plan.bender.json)
-/// and runs the local sweep of the fraction on them (RunSweep). Throws InputError (a plan
+/// and runs the local sweep of the fraction on them (RunSweep) without drawing summary.png: the
+/// window draws it on its own thread (SweepOptions::plot). Throws InputError (a plan
 /// without a warp, a folder that holds something else than a sweep, RunSweep's), RunSweep's
 /// EnvironmentError and Cancelled (after the summary is written).
 SweepResult RunSessionSweep(const SessionSweepInput& input, const SessionSweepOptions& options);

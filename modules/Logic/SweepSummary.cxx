@@ -247,7 +247,8 @@ std::string SweepSummaryCsv(const std::vector<SweepRow>& rows)
 void WriteSweepSummary(const std::vector<SweepRow>& rows,
   const std::string& parameter,
   const std::string& folder,
-  SweepResult& result)
+  SweepResult& result,
+  bool plot)
 {
   const std::filesystem::path dir(folder);
   result.summaryCsv = (dir / "summary.csv").string();
@@ -257,6 +258,11 @@ void WriteSweepSummary(const std::vector<SweepRow>& rows,
     !AtomicWriteText(result.summaryJson, SweepSummaryJson(rows, parameter), problem))
   {
     throw InputError(folder + ": cannot write the summary: " + problem);
+  }
+  if (!plot)
+  {
+    result.plotProblem = "summary.png is left to the caller";
+    return;
   }
   result.summaryPng = (dir / "summary.png").string();
   try

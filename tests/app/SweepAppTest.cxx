@@ -180,6 +180,8 @@ private slots:
       QCOMPARE(window->table()->item(r, 2)->text(), QString("solved"));
     }
     QVERIFY(QFileInfo::exists(QDir(this->Sweep).filePath("summary.json")));
+    // summary.png drawn by the window, on its own thread.
+    QVERIFY(QFileInfo(QDir(this->Sweep).filePath("summary.png")).size() > 0);
   }
 
   void theTableHoldsTheSummarysNumbers()
