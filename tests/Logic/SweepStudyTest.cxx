@@ -123,7 +123,8 @@ TEST(SweepStudy, TheRowsAreAsTheCandidatesLeftThem)
   const SweepRow* original = SweepOriginalRow(sweep.rows);
   ASSERT_NE(original, nullptr);
   EXPECT_EQ(original->id, "c00");
-  EXPECT_EQ(fs::path(SweepCaseFolder(sweep, *original)), fs::absolute(folder.Path / "c00" / "case"));
+  EXPECT_EQ(
+    fs::path(SweepCaseFolder(sweep, *original)), fs::absolute(folder.Path / "c00" / "case"));
 }
 
 TEST(SweepStudy, TheSessionsSweepRefusesWhatItCannotRun)
