@@ -123,11 +123,11 @@ vtkSmartPointer<vtkPolyData> ReadMeshUnchecked(const std::string& path)
 
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
 {
-  std::string statedUnit;
-  return ReadMesh(path, statedUnit);
+  StatedSpace stated;
+  return ReadMesh(path, stated);
 }
 
-vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& statedUnit)
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, StatedSpace& stated)
 {
   vtkSmartPointer<vtkPolyData> mesh;
   try
@@ -148,7 +148,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& stat
     FailMesh(path, std::string("corrupt file (") + e.what() + ")");
   }
   CheckMesh(path, mesh);
-  statedUnit = ToMillimetres(path, mesh);
+  stated = ToLpsMillimetres(path, mesh);
   return mesh;
 }
 

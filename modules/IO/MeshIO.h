@@ -3,6 +3,7 @@
 
 #include "BenderErrors.h"
 #include "FileIdentity.h"
+#include "MeshUnit.h"
 
 #include <vtkSmartPointer.h>
 
@@ -54,11 +55,12 @@ struct MeshWriteOptions
 /// into that line instead of stderr (the VTK output window is redirected while a file is
 /// read, so reads and writes of meshes run one at a time across threads).
 /// A mesh with points but no polygons is returned as is (callers decide).
-/// Always in millimetres: a file that states metres (an export of Bender's, MeshUnit.h) is
-/// scaled by 1000.
+/// Always in LPS millimetres: a file that states metres (an export of Bender's, MeshUnit.h) is
+/// scaled by 1000, one that states RAS has x and y negated.
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path);
-/// The same, and the unit the file states ("m", "mm", or empty when none) in `statedUnit`.
-vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& statedUnit);
+/// The same, and what the file states (unit "m", "mm"; frame "LPS", "RAS"; empty when none) in
+/// `stated`.
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, StatedSpace& stated);
 
 /// Writes a surface mesh; the format is the row of the mesh-format table (MeshFormats.h) for
 /// the extension. The built-in writable formats: .stl (binary or ASCII per

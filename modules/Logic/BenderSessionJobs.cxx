@@ -250,13 +250,25 @@ bool BenderSession::FinishLoad(SessionJob& job)
   {
     return false;
   }
-  if (job.StatedUnit == "m")
+  // The status line's last word: the numbers in the file are not those shown.
+  std::string says, in, read;
+  if (job.Stated.frame == "RAS")
   {
-    // The status line's last word: the numbers in the file are not those shown.
+    says = "frame RAS";
+    in = "RAS ";
+    read = "LPS ";
+  }
+  if (job.Stated.unit == "m")
+  {
+    says += std::string(says.empty() ? "" : ", ") + "unit m";
+    in += "metres";
+    read += "millimetres";
+  }
+  if (!says.empty())
+  {
     this->Report(MessageSeverity::Info,
-      job.Name +
-        ": the file is in metres (it says unit m); read in millimetres, as everything "
-        "in Bender");
+      job.Name + ": the file is in " + std::string(Trim(in)) + " (it says " + says + "); read in " +
+        std::string(Trim(read)) + ", as everything in Bender");
   }
   return true;
 }

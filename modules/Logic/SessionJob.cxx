@@ -17,7 +17,7 @@ void SessionJob::Run(const ProgressReporter& progress)
     switch (this->JobKind)
     {
       case Kind::Load:
-        this->Input = ReadMesh(this->Path, this->StatedUnit);
+        this->Input = ReadMesh(this->Path, this->Stated);
         break;
       case Kind::Recover:
       {

@@ -5,6 +5,7 @@
 #include "BenderMeshCheck.h"
 #include "CommitGuard.h"
 #include "ExportSurface.h"
+#include "MeshUnit.h"
 #include "Progress.h"
 #include "WarpPlan.h"
 
@@ -73,7 +74,7 @@ private:
   std::string SourcePath;              // Recover: the source read by the job
   std::string SurfaceName;             // Recover: the surface's name in the session file
   std::string Path;                    // Load: the mesh read; Export: the file written
-  std::string StatedUnit;              // Load: the unit the mesh file states (ReadMesh)
+  StatedSpace Stated;                  // Load: the unit and frame the file states (ReadMesh)
   ExportSurfaceOptions Options;
   bool ProceedOnProblems = false;
   bool AskOnProblems = false; // Export: the caller asks the user when the check finds problems

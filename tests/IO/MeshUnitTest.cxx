@@ -66,9 +66,9 @@ vtkSmartPointer<vtkPolyData> InMetres(vtkPolyData* mesh, bool unitField)
 
 void ExpectMillimetres(const std::string& path, vtkPolyData* original)
 {
-  std::string unit;
-  const auto back = bender::ReadMesh(path, unit);
-  EXPECT_EQ(unit, "m") << path;
+  bender::StatedSpace stated;
+  const auto back = bender::ReadMesh(path, stated);
+  EXPECT_EQ(stated.unit, "m") << path;
   EXPECT_LT(BoundsDifference(back, original), 1e-4) << path;
 }
 } // namespace
@@ -87,9 +87,9 @@ TEST(MeshUnit, EveryFormatWrittenInMetresReadsBackInMillimetres)
     const std::string name = "v" + std::to_string(static_cast<int>(mode)) + ".stl";
     for (const std::string& written : bender::ExportStl(mesh, dir / name, stl))
     {
-      std::string unit;
-      const auto back = bender::ReadMesh(written, unit);
-      EXPECT_EQ(unit, "m") << written;
+      bender::StatedSpace stated;
+      const auto back = bender::ReadMesh(written, stated);
+      EXPECT_EQ(stated.unit, "m") << written;
       double bounds[6];
       back->GetBounds(bounds);
       EXPECT_NEAR(bounds[1], bender_test::Offset + 1.0, 1e-4) << written; // not 0.101
@@ -145,9 +145,10 @@ TEST(MeshUnit, MillimetresAndFilesWithoutAUnitAreReadAsTheyAre)
   for (const auto& [name, stated] :
     { std::pair{ "mm.stl", "mm" }, std::pair{ "plain.obj", "" }, std::pair{ "other.off", "" } })
   {
-    std::string unit;
-    const auto back = bender::ReadMesh(dir / name, unit);
-    EXPECT_EQ(unit, stated) << name;
+    bender::StatedSpace space;
+    const auto back = bender::ReadMesh(dir / name, space);
+    EXPECT_EQ(space.unit, stated) << name;
+    EXPECT_EQ(space.frame, std::string(name) == "mm.stl" ? "LPS" : "") << name;
     EXPECT_LT(BoundsDifference(back, mesh), 1e-4) << name;
   }
 }

@@ -72,9 +72,10 @@ TEST_F(CliMesherExport, NamedSolidsInMetresWithTheSidecar)
   }
   EXPECT_NEAR(topZ, 0.01, 1e-8);
   // ... and read back in millimetres, as the file says.
-  std::string unit;
-  const auto back = bender::ReadMesh(Tmp("v.stl"), unit);
-  EXPECT_EQ(unit, "m");
+  bender::StatedSpace stated;
+  const auto back = bender::ReadMesh(Tmp("v.stl"), stated);
+  EXPECT_EQ(stated.unit, "m");
+  EXPECT_EQ(stated.frame, "LPS");
   double bounds[6];
   back->GetBounds(bounds);
   EXPECT_NEAR(bounds[5] - bounds[4], 10.0, 1e-5);
@@ -103,8 +104,8 @@ TEST_F(CliMesherExport, VtpKeepsLabelsNamesUnitAndFrame)
   ASSERT_EQ(r.status, 0) << r.errors;
   EXPECT_EQ(r.output, "");
   EXPECT_FALSE(std::filesystem::exists(Tmp("v.patches.json"))); // not asked for
-  std::string unit;
-  const auto back = bender::ReadMesh(Tmp("v.vtp"), unit);
+  bender::StatedSpace stated;
+  const auto back = bender::ReadMesh(Tmp("v.vtp"), stated);
   const auto original = bender::ReadMesh(Input);
   EXPECT_EQ(bender::CellPatchIds(back), bender::CellPatchIds(original));
   ASSERT_NE(back->GetCellData()->GetArray(bender::kModelFaceIdArrayName), nullptr);
@@ -112,16 +113,22 @@ TEST_F(CliMesherExport, VtpKeepsLabelsNamesUnitAndFrame)
   ASSERT_EQ(labels.size(), 3u);
   EXPECT_EQ(labels[1].name, "inlet");
   EXPECT_EQ(labels[1].type, bender::PatchType::Inlet);
-  // The file states metres; read back in millimetres (its field now says so), RAS kept.
-  EXPECT_EQ(unit, "m");
+  // The file states RAS metres; read back in LPS millimetres (its fields now say so), where
+  // the original's points are.
+  EXPECT_EQ(stated.unit, "m");
+  EXPECT_EQ(stated.frame, "RAS");
   EXPECT_EQ(FieldString(back, "Unit"), "mm");
-  EXPECT_EQ(FieldString(back, "Frame"), "RAS");
-  double p[3], q[3];
-  original->GetPoint(7, p);
-  back->GetPoint(7, q);
-  EXPECT_NEAR(q[0], -p[0], 1e-12 * (1 + std::abs(p[0])));
-  EXPECT_NEAR(q[1], -p[1], 1e-12 * (1 + std::abs(p[1])));
-  EXPECT_NEAR(q[2], p[2], 1e-12 * (1 + std::abs(p[2])));
+  EXPECT_EQ(FieldString(back, "Frame"), "LPS");
+  for (const vtkIdType id : { vtkIdType(0), vtkIdType(7), original->GetNumberOfPoints() - 1 })
+  {
+    double p[3], q[3];
+    original->GetPoint(id, p);
+    back->GetPoint(id, q);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(q[c], p[c], 1e-12 * (1 + std::abs(p[c]))) << id;
+    }
+  }
 }
 
 TEST_F(CliMesherExport, SmeshHasEveryMarkerAndTheSidecar)
