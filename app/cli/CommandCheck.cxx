@@ -34,8 +34,8 @@ std::string Details()
     ". Lengths in millimetres (a file that states metres, as an export in metres does, is read "
     "in millimetres).\n"
     "\n"
-    "exit status: 0 clean, 1 problems found (or a branch narrowed), 2 the mesh could not be "
-    "read or usage error";
+    "exit status: 0 clean, 1 problems found (or a branch narrowed), 2 a mesh could not be read "
+    "(missing, unreadable) or usage error";
 }
 
 struct CheckArguments
@@ -91,16 +91,15 @@ void bender::AddCheckCommand(CLI::App& cli)
     "check a mesh for CFD: watertight, manifold, flips, self-intersections",
     Details(),
     [a] { return RunCheck(*a); });
-  check->add_option("MESH", a->options.input, "the mesh to check")
-    ->required()
-    ->check(CLI::ExistingFile);
+  // A missing file is bad input, said by the reader as for every command ("FILE: no such
+  // file"), not a usage error.
+  check->add_option("MESH", a->options.input, "the mesh to check")->required();
   check
     ->add_option("--before",
       a->options.before,
       "the same mesh before a warp: also report triangles whose orientation flipped (same "
       "points and triangles; space inversion, paper 3.8) and each branch's narrowing")
-    ->type_name("MESH")
-    ->check(CLI::ExistingFile);
+    ->type_name("MESH");
   check
     ->add_option("--max-narrowing",
       a->maxNarrowingPercent,

@@ -194,15 +194,17 @@ void bender::AddClipCommand(CLI::App& cli)
       ->add_option("--end",
         a->ends,
         "x,y,z near a vessel end and DIST the cut's distance from it along the centerline; "
-        "without DIST, cut at the centerline point nearest to x,y,z (repeat per end)")
+        "without DIST, cut at the centerline point nearest to x,y,z (repeat the flag per end)")
       ->type_name("x,y,z[:DIST]")
+      ->allow_extra_args(false)
       ->check(Check(ReadEnd, "x,y,z[:DIST]"));
   clip
     ->add_option("--name",
       a->names,
       "the end nearest to x,y,z is called NAME ('inlet' makes it the inlet; letters, digits, "
-      "'_')")
+      "'_'; repeat the flag per end)")
     ->type_name("x,y,z=NAME")
+    ->allow_extra_args(false)
     ->check(Check(ReadName, "x,y,z=NAME"));
   clip
     ->add_option(

@@ -305,7 +305,8 @@ int RunSegment(SegmentState state, std::ostream& out, std::ostream& err)
                                       : std::to_string(result.boundaryEdges) + " open edges")
         << ", " << std::fixed << std::setprecision(2) << total << " s\n";
     if (!result.warning.empty())
-      err << "bender-cli segment: warning: " << result.warning << "\n";
+      err << "bender-cli segment: warning: " << result.warning
+          << " Run again with a lower --lower.\n";
     return 0;
   }
   catch (const std::exception& e)

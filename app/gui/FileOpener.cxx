@@ -397,16 +397,19 @@ bool FileOpener::segmentVolume()
         {
           this->Segmentation.FinishSegment(*job);
           emit this->volumeChanged();
-          this->Segment->showWarning(job->warning);
+          const std::string warning = job->warning.empty()
+            ? std::string()
+            : job->warning + " Pick a lower threshold on the histogram and segment again.";
+          this->Segment->showWarning(warning);
           if (this->Session.SetSurface(job->surface, "segmented vessel"))
           {
             this->View->resetCamera();
             emit this->panelWanted(this->Bend);
           }
-          if (!job->warning.empty())
+          if (!warning.empty())
           {
             // Back to the Segment panel and its histogram, the warning as the last word.
-            this->Session.AddMessage(bender::MessageSeverity::Warning, job->warning);
+            this->Session.AddMessage(bender::MessageSeverity::Warning, warning);
             emit this->panelWanted(this->Segment);
           }
         });

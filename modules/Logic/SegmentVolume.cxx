@@ -55,8 +55,7 @@ std::string SegmentationWarning(double threshold,
   {
     text << maskVoxels << " voxels and no surface";
   }
-  text << ": too little for a vessel. Pick a lower threshold on the histogram (Segment panel) "
-          "and segment again.";
+  text << ": too little for a vessel.";
   return text.str();
 }
 

@@ -39,7 +39,8 @@ bool IsEightBit(const Volume& volume);
 /// The plausibility rule of a segmentation: empty when its surface has at least
 /// MinimumSurfacePoints points, else one sentence for the user naming the lumen threshold, the
 /// volume (`eightBit`: "an 8-bit volume") and what was kept: the surface's points, or
-/// (`surfacePoints` < 0: no surface was made) the mask's `maskVoxels` voxels.
+/// (`surfacePoints` < 0: no surface was made) the mask's `maskVoxels` voxels. What to do about
+/// it is each front end's to say (the window's histogram, the command line's --lower).
 std::string SegmentationWarning(double threshold,
   bool eightBit,
   std::size_t maskVoxels,

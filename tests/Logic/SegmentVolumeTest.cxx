@@ -57,6 +57,10 @@ TEST(SegmentationWarning, ItWarnsBelowTheMinimumAndNamesWhatWasKept)
   EXPECT_TRUE(Contains(none, "threshold 187.125 on this volume kept 7 voxels and no surface"))
     << none;
   EXPECT_EQ(few.find('\n'), std::string::npos) << "one line";
+  // What to do is each front end's to say: the sentence names neither the window nor a flag.
+  EXPECT_FALSE(Contains(few, "panel")) << few;
+  EXPECT_FALSE(Contains(few, "histogram")) << few;
+  EXPECT_FALSE(Contains(few, "--")) << few;
 }
 
 TEST(SegmentationWarning, EightBitMeansIntegersFrom0To255)

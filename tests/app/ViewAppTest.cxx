@@ -291,6 +291,8 @@ private slots:
     QVERIFY2(panel->warningLabel()->isVisible(), qPrintable(this->Window->statusLabel()->text()));
     const QString warning = panel->warningLabel()->text();
     QVERIFY2(warning.contains("threshold 250 on an 8-bit volume kept"), qPrintable(warning));
+    // The window's advice: its histogram (the command line's is its --lower).
+    QVERIFY2(warning.contains("lower threshold on the histogram"), qPrintable(warning));
     QVERIFY2(this->Window->statusLabel()->text().contains("too little for a vessel"),
       qPrintable(this->Window->statusLabel()->text()));
     this->Window->saveScreenshot(QString(BENDER_ARTIFACT_DIR) + "/view-head-mri.png");

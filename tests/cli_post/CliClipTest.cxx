@@ -118,6 +118,16 @@ TEST(CliClip, BadInputIsOneLineAndNonZero)
   EXPECT_EQ(run.status, 2);
   run = bendertest::RunInProcess({ "clip", Aneurysm, "-o", out, "--name", "1,2,3" });
   EXPECT_EQ(run.status, 2);
+  // One value per flag (repeat the flag per end): a second value after one flag is not taken.
+  run = bendertest::RunInProcess(
+    { "clip", Aneurysm, "-o", out, "--end", "900,900,900", "901,900,900" });
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("901,900,900"), std::string::npos) << run.err;
+  run = bendertest::RunInProcess(
+    { "clip", Aneurysm, "-o", out, "--name", "1,2,3=a", "4,5,6=b", "--no-clip" });
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("4,5,6=b"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
   run = bendertest::RunInProcess({ "clip", Aneurysm, "-o", out, "--extend-inlet", "-1" });
   EXPECT_EQ(run.status, 2);
   run = bendertest::RunInProcess({ "clip", Aneurysm });

@@ -74,9 +74,21 @@ TEST_F(CliCheck, UnreadableExitsTwo)
   Result r = Run("check " + Q(Data + "/cli/truncated.stl"));
   EXPECT_EQ(r.status, 2) << r.output << r.errors;
   EXPECT_NE(r.errors.find("truncated.stl"), std::string::npos) << r.errors;
+  // A missing file is unreadable input, said in the reader's words as by every command (not
+  // a usage error): exit 2 as for every mesh check cannot read (its 1 is "problems found").
   r = Run("check " + Q(Tmp("missing.off")));
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.errors.find("missing.off"), std::string::npos) << r.errors;
+  EXPECT_NE(r.errors.find("bender-cli check: missing.off: no such file"), std::string::npos)
+    << r.errors;
+  EXPECT_EQ(r.errors.find("--help"), std::string::npos) << r.errors;
+  const Result measure = Run("measure " + Q(Tmp("missing.off")));
+  EXPECT_NE(measure.errors.find("bender-cli measure: missing.off: no such file"), std::string::npos)
+    << measure.errors;
+  WriteText(Tmp("octa.off"), Octahedron);
+  r = Run("check " + Q(Tmp("octa.off")) + " --before " + Q(Tmp("missing.off")));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.errors.find("bender-cli check: missing.off: no such file"), std::string::npos)
+    << r.errors;
   EXPECT_EQ(Run("check").status, 2);
   EXPECT_EQ(Run("check a.off --no-such-option").status, 2);
 }
