@@ -21,6 +21,11 @@ double Seconds(std::chrono::steady_clock::time_point since)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
+// A centerline point on the outer side of the wall by more than this fraction of the median
+// inscribed radius is outside the surface (closer to the wall, the side is a matter of the
+// wall's triangles, not of the shape).
+constexpr double OutsideTolerance = 0.05;
+
 CenterlineResult Fail(CenterlineResult result, const std::string& message)
 {
   result.ok = false;
@@ -191,6 +196,7 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
   result.step = step;
   WallDistance distance(wall.surface);
   std::vector<PathSamples> paths;
+  std::size_t outside = 0, sampled = 0;
   for (std::size_t p = 0; p < rawPaths.size(); ++p)
   {
     std::vector<Point3> points = Resample(rawPaths[p], step);
@@ -215,7 +221,12 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
       bool inside = true;
       Point3 closest;
       samplesOut.radius[i] = distance.Query(points[i], inside, closest);
+      if (!inside && samplesOut.radius[i] > OutsideTolerance * medianRadius)
+      {
+        ++outside;
+      }
     }
+    sampled += points.size();
     samplesOut.frames = ComputeCurveFrames(points, medianRadius);
     paths.push_back(std::move(samplesOut));
   }
@@ -228,6 +239,15 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     result.endpoints[path.outlet].reached = true;
   }
   result.times.smoothing = Seconds(clock);
+  if (outside > 0)
+  {
+    // A centerline outside the surface measures nothing of a lumen: the shape is no tube (a
+    // closed blob, an animal), whose Voronoi graph's shortest paths and their smoothing cut
+    // through its wall.
+    return Fail(result,
+      "the centerlines leave the surface (" + std::to_string(outside) + " of " +
+        std::to_string(sampled) + " points outside): the shape is not tubular");
+  }
 
   // 7. Branches: split where the centerlines of different outlets separate by more than the
   // local inscribed radius.
