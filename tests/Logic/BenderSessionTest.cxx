@@ -390,13 +390,16 @@ TEST_F(BenderSessionTest, ExportCapsTheOpenEndsIntoNamedPatchesForCfd)
   ExportSurfaceOptions ras;
   ras.frame = StlFrame::RAS;
   ASSERT_TRUE(this->Session.Export(folder + "/ras.vtp", ras));
+  // The file is in RAS and says so; read back, it is in LPS where the session's surface is.
   auto lps = this->Session.GetSurface();
-  auto back = ReadMesh(folder + "/ras.vtp");
+  StatedSpace stated;
+  auto back = ReadMesh(folder + "/ras.vtp", stated);
+  EXPECT_EQ(stated.frame, "RAS");
   double a[3], b[3];
   lps->GetPoint(5, a);
   back->GetPoint(5, b);
-  EXPECT_DOUBLE_EQ(b[0], -a[0]);
-  EXPECT_DOUBLE_EQ(b[1], -a[1]);
+  EXPECT_DOUBLE_EQ(b[0], a[0]);
+  EXPECT_DOUBLE_EQ(b[1], a[1]);
   EXPECT_DOUBLE_EQ(b[2], a[2]);
 }
 

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkCellArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -186,25 +187,41 @@ TEST_F(Scratch, ExportSurfaceWritesTheFrameItIsAskedFor)
   options.output = this->Tmp("ras.vtp");
   options.frame = bender::StlFrame::RAS;
   bender::ExportSurface(tube, options);
+  // The file in RAS says so, and reads back where the LPS one is (negated twice, exactly).
   const auto lps = bender::ReadMesh(this->Tmp("lps.vtp"));
-  const auto ras = bender::ReadMesh(this->Tmp("ras.vtp"));
+  bender::StatedSpace stated;
+  const auto ras = bender::ReadMesh(this->Tmp("ras.vtp"), stated);
+  EXPECT_EQ(stated.frame, "RAS");
   ASSERT_EQ(lps->GetNumberOfPoints(), ras->GetNumberOfPoints());
   for (vtkIdType i = 0; i < lps->GetNumberOfPoints(); ++i)
   {
     double p[3], q[3];
     lps->GetPoint(i, p);
     ras->GetPoint(i, q);
-    ASSERT_EQ(q[0], -p[0]);
-    ASSERT_EQ(q[1], -p[1]);
+    ASSERT_EQ(q[0], p[0]);
+    ASSERT_EQ(q[1], p[1]);
     ASSERT_EQ(q[2], p[2]);
   }
-  // STL: the frame is in the 80-byte header.
+  // STL: the frame is in the 80-byte header, and the file holds x and y negated (the first
+  // triangle's first vertex, after the header, the count and the normal).
   options.output = this->Tmp("ras.stl");
   bender::ExportSurface(tube, options);
   std::ifstream stl(options.output, std::ios::binary);
   std::string header(80, '\0');
   stl.read(&header[0], 80);
   EXPECT_NE(header.find("frame RAS, unit mm"), std::string::npos) << header;
+  float vertex[3];
+  stl.seekg(80 + 4 + 12);
+  stl.read(reinterpret_cast<char*>(vertex), sizeof vertex);
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  tube->GetPolys()->InitTraversal();
+  ASSERT_TRUE(tube->GetPolys()->GetNextCell(npts, ids));
+  double p[3];
+  tube->GetPoint(ids[0], p);
+  EXPECT_FLOAT_EQ(vertex[0], static_cast<float>(-p[0]));
+  EXPECT_FLOAT_EQ(vertex[1], static_cast<float>(-p[1]));
+  EXPECT_FLOAT_EQ(vertex[2], static_cast<float>(p[2]));
 }
 
 TEST_F(Scratch, ExportSurfaceRefusesTheProtectedInputAndPatchesOutsideStl)

@@ -208,7 +208,7 @@ TEST_F(CliExport, FilesModeWritesOneFilePerPatch)
   }
 }
 
-TEST_F(CliExport, FrameIsStatedAndRasNegatesXAndY)
+TEST_F(CliExport, FrameIsStatedRasNegatesXAndYAndReadsBackInLps)
 {
   WriteText(Tmp("octa.off"), Octahedron);
   WriteText(Tmp("shifted.off"), "OFF\n3 1 0\n10 20 30\n11 20 30\n10 21 30\n3 0 1 2\n");
@@ -222,15 +222,26 @@ TEST_F(CliExport, FrameIsStatedAndRasNegatesXAndY)
     ReadText(Tmp("lps.stl")).substr(0, 80).find("frame LPS, unit mm") == std::string::npos, false);
   EXPECT_EQ(
     ReadText(Tmp("ras.stl")).substr(0, 80).find("frame RAS, unit mm") == std::string::npos, false);
+  // The file holds the first vertex with x and y negated (after the header, the triangle
+  // count and the normal)...
+  std::ifstream file(Tmp("ras.stl"), std::ios::binary);
+  float vertex[3];
+  file.seekg(80 + 4 + 12);
+  file.read(reinterpret_cast<char*>(vertex), sizeof vertex);
+  EXPECT_FLOAT_EQ(vertex[0], -10.0f);
+  EXPECT_FLOAT_EQ(vertex[1], -20.0f);
+  EXPECT_FLOAT_EQ(vertex[2], 30.0f);
+  // ... and reads back in LPS, where the LPS export is.
   const auto lps = bender::ReadMesh(Tmp("lps.stl"));
   const auto ras = bender::ReadMesh(Tmp("ras.stl"));
   ASSERT_EQ(lps->GetNumberOfPoints(), ras->GetNumberOfPoints());
   double lo[6], ro[6];
   lps->GetBounds(lo);
   ras->GetBounds(ro);
-  EXPECT_DOUBLE_EQ(ro[0], -lo[1]);
-  EXPECT_DOUBLE_EQ(ro[2], -lo[3]);
-  EXPECT_DOUBLE_EQ(ro[4], lo[4]);
+  for (int k = 0; k < 6; ++k)
+  {
+    EXPECT_DOUBLE_EQ(ro[k], lo[k]) << k;
+  }
   EXPECT_DOUBLE_EQ(lo[0], 10.0);
   EXPECT_EQ(
     Run("export " + Q(Tmp("octa.off")) + " -o " + Q(Tmp("x.stl")) + " --frame xyz").status, 2);
