@@ -306,15 +306,15 @@ private slots:
     bender::RegisterTrackerDeviceKind(PanelDummyKind()); // before the panel lists the kinds
     this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
     QVERIFY(bendertest::ShowTestWindow(*this->Window, false));
-    // The lumen guard off (as bender --max-narrowing 0): the tube bends below shear it past
-    // the ribbon's end (a waist it would hold), and what is tested is OpenIGTLink.
-    this->Window->bendPanel()->setMaxNarrowing(0.0);
-    QVERIFY(!this->Window->session().GetLumenGuard().enabled);
+    // The lumen guard on: the tube ends where the bends' ribbons end (x = 50), so they turn
+    // its end whole (a ribbon ending mid-tube would shear the tube beyond it: a waist the
+    // guard holds).
+    QVERIFY(this->Window->session().GetLumenGuard().enabled);
     auto* panels = this->Window->findChild<QTabWidget*>("panels");
     QVERIFY(panels);
     panels->setCurrentWidget(this->panel());
     bender::BenderSession& session = this->Window->session();
-    QVERIFY(session.SetSurface(bendertest::Tube(-150, 150, 10, 61, 16), "tube"));
+    QVERIFY(session.SetSurface(bendertest::Tube(-150, 50, 10, 41, 16), "tube"));
     bender::WarpParameters parameters = session.GetParameters();
     parameters.radius = 30;
     QVERIFY(session.SetParameters(parameters));

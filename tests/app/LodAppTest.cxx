@@ -78,14 +78,14 @@ private:
     return this->Window->renderer()->GetRenderWindow()->GetInteractor();
   }
 
-  /// A straight ribbon along the tube's axis, its handles sized for the tube.
+  /// A straight ribbon along the tube's axis to its open end, its handles sized for the tube.
   void placeRibbon()
   {
     bender::RibbonSpec ribbon;
     ribbon.start.position = { -12, 0, 0 };
     ribbon.start.tangent = { 1, 0, 0 };
     ribbon.start.normal = { 0, 0, 1 };
-    ribbon.end.position = { 12, 0, 0 };
+    ribbon.end.position = { 40, 0, 0 };
     ribbon.end.tangent = { 1, 0, 0 };
     ribbon.end.normal = { 0, 0, 1 };
     auto* rep = this->Window->ribbonWidget()->GetRibbonRepresentation();
@@ -138,10 +138,10 @@ private slots:
     QVERIFY(this->Folder.isValid());
     this->Window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(this->Folder.path()));
     QVERIFY(bendertest::ShowTestWindow(*this->Window, true));
-    // The lumen guard off (as bender --max-narrowing 0): the drags below shear the tube past
-    // the ribbon's end (a waist it would hold), and what is tested is the level of detail.
-    this->Window->bendPanel()->setMaxNarrowing(0.0);
-    QVERIFY(!this->Window->session().GetLumenGuard().enabled);
+    // The lumen guard on: the ribbon runs to the tube's open end (placeRibbon), so the drags
+    // below move the tube's end whole (a ribbon ending mid-tube would shear the tube beyond
+    // it: a waist the guard holds).
+    QVERIFY(this->Window->session().GetLumenGuard().enabled);
     // 401 rings of 64 points: 51k triangles, radius 5, along x from -40 to 40.
     this->Tube = bendertest::Tube(-40, 40, 5, 401, 64);
     const QString path = this->Folder.filePath("tube.vtp");

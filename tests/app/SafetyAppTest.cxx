@@ -484,13 +484,12 @@ private slots:
     QVERIFY(QTest::qWaitForWindowExposed(window.get()));
     bender::BenderSession& session = window->session();
     QVERIFY(session.SetSurface(bendertest::Tube(0, 60, 3), "tube"));
-    // The lumen guard off: this bend shears the tube past the ribbon's end (a waist the guard
-    // would hold), and what is tested here is the unsaved warp.
-    window->bendPanel()->setMaxNarrowing(0.0);
-    QVERIFY(!session.GetLumenGuard().enabled);
+    // The lumen guard on: the ribbon runs to the tube's open end, so the bend turns the tube's
+    // end whole (a ribbon ending mid-tube would shear the tube beyond it: a waist it holds).
+    QVERIFY(session.GetLumenGuard().enabled);
     bender::RibbonSpec ribbon;
     ribbon.start.position = { 20, 0, 0 };
-    ribbon.end.position = { 40, 0, 0 };
+    ribbon.end.position = { 60, 0, 0 };
     bender::WarpParameters parameters = session.GetParameters();
     parameters.radius = 6;
     QVERIFY(session.SetParameters(parameters));

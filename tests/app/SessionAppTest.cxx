@@ -2,8 +2,9 @@
 // small ones), on the real window under Xvfb, with the keys and dialogs a user has: a failed
 // Ctrl+O changes nothing (the warps, their unsaved state, the autosave; Ctrl+Q still asks); a
 // mesh is asked about only once it has been read; another patient's volume closes the surface
-// with its warps, ribbon and centerlines (asking first); an export in metres opens again at its
-// size in millimetres, in every format that states its unit; the Bend panel says a ribbon is
+// with its warps, ribbon and centerlines (asking first); an export in metres and in RAS opens
+// again where it was in LPS millimetres, in every format that states its unit and frame; the
+// Bend panel says a ribbon is
 // placed, counts say "1 warp", F1's table fits without sideways scrolling, the region's outline
 // stays one simple closed curve while the ribbon is dragged.
 #include "AppTestUtilities.h"
@@ -178,6 +179,16 @@ bender::RibbonSpec TubeRibbon()
   return ribbon;
 }
 
+// The ribbon from x = 20 to the open end (x = 60) of the tube of 0 to 60: its bends turn the
+// tube's end whole and pass the lumen guard (one ending mid-tube shears the tube beyond it, a
+// waist the guard holds).
+bender::RibbonSpec OpenEndRibbon()
+{
+  bender::RibbonSpec ribbon = TubeRibbon();
+  ribbon.end.position = { 60, 0, 0 };
+  return ribbon;
+}
+
 } // namespace
 
 class SessionAppTest : public QObject
@@ -196,17 +207,17 @@ private:
     bender::BenderSession& session = window->session();
     if (!session.SetSurface(bendertest::Tube(0, 60, 3), "patient A tube"))
       return nullptr;
-    // The lumen guard off: a ribbon ending mid-tube shears the tube beyond it (a waist the guard
-    // holds), and what is tested here is the session around a committed warp.
-    window->bendPanel()->setMaxNarrowing(0.0);
+    // The lumen guard on (its default), the bend to the open end passes it.
+    if (!session.GetLumenGuard().enabled)
+      return nullptr;
     bender::WarpParameters parameters = session.GetParameters();
     parameters.radius = 6;
     session.SetParameters(parameters);
     window->bendPanel()->setParameters(parameters);
-    window->gesture()->showRibbon(TubeRibbon(), 3.0);
+    window->gesture()->showRibbon(OpenEndRibbon(), 3.0);
     if (!window->grab())
       return nullptr;
-    window->setRibbon(bendertest::Swung(TubeRibbon(), 25));
+    window->setRibbon(bendertest::Swung(OpenEndRibbon(), 25));
     if (!window->release() || !window->waitUntilIdle(60000) || session.GetHistoryPosition() != 1)
       return nullptr;
     window->files()->setInteractive(interactive);
@@ -384,7 +395,7 @@ private slots:
     }
   }
 
-  void anExportInMetresOpensAtItsSize()
+  void anExportInRasMetresOpensWhereItWas()
   {
     QTemporaryDir folder;
     auto window = std::make_unique<MainWindow>(bendertest::TestWindowOptions(folder.path()));
@@ -397,6 +408,9 @@ private slots:
     form->Patches->setCurrentIndex(0);
     form->Unit->setCurrentIndex(1);
     QVERIFY2(form->Unit->currentText().contains("(m"), qPrintable(form->Unit->currentText()));
+    // RAS too: the tube lies from x = -20 to 40, so that x read back unturned moves its bounds.
+    form->Frame->setCurrentIndex(1);
+    QVERIFY2(form->Frame->currentText().startsWith("RAS"), qPrintable(form->Frame->currentText()));
     for (const char* format : { "stl", "obj", "ply", "vtp", "vtk", "off", "smesh" })
     {
       QVERIFY(session.SetSurface(original, "tube"));
@@ -404,13 +418,14 @@ private slots:
       QVERIFY2(row >= 0, format);
       form->Formats->setCurrentIndex(row);
       form->Unit->setCurrentIndex(1);
+      form->Frame->setCurrentIndex(1);
       // Capped (its patches named) for TetGen, which needs a closed surface; the others whole.
       form->Cap->setChecked(std::string(format) == "smesh");
       const QString path = folder.filePath(QString("tube-in-metres") + form->suffix());
       QVERIFY(window->exportSurface(path, true));
       QVERIFY(window->waitUntilIdle(120000));
       QVERIFY2(QFileInfo::exists(path), format);
-      // Written in metres, it opens at its size in millimetres, saying so.
+      // Written in RAS metres, it opens where it was in LPS millimetres, saying so.
       QVERIFY(window->openFile(path));
       QVERIFY(window->waitUntilIdle(120000));
       QVERIFY2(session.GetSurfaceName() == QFileInfo(path).fileName().toStdString(),
@@ -419,7 +434,7 @@ private slots:
         qPrintable(QString("%1: %2 mm off")
                      .arg(format)
                      .arg(BoundsDifference(session.GetSurface(), original))));
-      QVERIFY2(window->statusLabel()->text().contains("metres"),
+      QVERIFY2(window->statusLabel()->text().contains("RAS metres"),
         qPrintable(window->statusLabel()->text()));
     }
     window->close();
@@ -458,13 +473,14 @@ private slots:
     auto window = this->tubeWindow(folder.path());
     QVERIFY(window);
     bender::BenderSession& session = window->session();
-    window->bendPanel()->setMaxNarrowing(0.0); // as in bentTubeWindow: the count is tested here
+    QVERIFY(session.GetLumenGuard().enabled); // the bend to the open end passes it
+    window->gesture()->showRibbon(OpenEndRibbon(), 3.0);
     bender::WarpParameters parameters = session.GetParameters();
     parameters.radius = 6;
     window->bendPanel()->setParameters(parameters);
     window->gesture()->applyParameters();
     QVERIFY(window->grab());
-    window->setRibbon(bendertest::Swung(TubeRibbon(), 20));
+    window->setRibbon(bendertest::Swung(OpenEndRibbon(), 20));
     QVERIFY(window->release());
     QVERIFY(window->waitUntilIdle(60000));
     QCOMPARE(session.GetHistoryPosition(), std::size_t(1));
