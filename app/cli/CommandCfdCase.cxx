@@ -193,9 +193,18 @@ void bender::AddCfdCaseCommand(CLI::App& cli)
   cfd
     ->add_option("--cell-size",
       options.cellSize,
-      "cell size at the wall, m (default: smallest end diameter / 8; the background mesh is 2H)")
+      "the wall's base cell size, m (default: the largest end's diameter / the cells across; "
+      "the background mesh is 2H; ends and narrower stretches of the lumen are refined until "
+      "they have the cells across)")
     ->type_name("H")
     ->check(NumberIn(0, 1));
+  cfd
+    ->add_option("--cells-across",
+      options.cellsAcross,
+      "the wall cells across every end and (at least 0.9 x as many) across the lumen on the "
+      "wall (default 8; with --cell-size, the smallest end's diameter / H)")
+    ->type_name("N")
+    ->check(NumberIn(2, 200));
   cfd->add_option("--viscosity", options.viscosity, "kinematic viscosity, m^2/s (blood)")
     ->type_name("NU")
     ->check(NumberAbove(0, 1))

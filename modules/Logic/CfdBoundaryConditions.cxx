@@ -2,6 +2,7 @@
 
 #include "BenderErrors.h"
 #include "CfdDictionaries.h"
+#include "CfdMeshGrading.h"
 #include "CfdPatches.h"
 #include "Vec3.h"
 
@@ -493,15 +494,7 @@ std::string FormatCfdBoundaryConditions(const CfdCaseResult& r)
       }
       break;
   }
-  s << "\n  wall cells across each end (its equivalent diameter / the cell size):";
-  for (const CfdPatch& p : r.patches)
-  {
-    if (IsEndPatch(p.type) && r.cellSize > 0.0)
-    {
-      s << " " << p.name << " " << CfdShort(p.diameter / r.cellSize, 2);
-    }
-  }
-  s << "\n  prism layers: ";
+  s << "\n" << FormatCfdMeshGrading(r.grading) << "  prism layers: ";
   if (r.layers > 0)
   {
     s << r.layers << " on the wall";

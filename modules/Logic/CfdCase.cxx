@@ -7,6 +7,7 @@
 #include "CfdBoundaryConditions.h"
 #include "CfdCaseFile.h"
 #include "CfdDictionaries.h"
+#include "CfdMeshGrading.h"
 #include "CfdMeshing.h"
 #include "CfdPatches.h"
 #include "CfdWallEnds.h"
@@ -148,6 +149,7 @@ nlohmann::ordered_json CaseJson(const CfdCaseResult& r, const CfdCaseOptions& op
   j["iterations"] = options.iterations;
   j["processors"] = options.processors;
   j["cellSize"] = r.cellSize;
+  j["grading"] = CfdMeshGradingJson(r.grading);
   j["backgroundCellSize"] = r.backgroundCellSize;
   j["backgroundCells"] = r.backgroundCells;
   j["insidePoint"] = r.insidePoint;
@@ -180,6 +182,19 @@ void CheckScale(vtkPolyData* surface, double largestEnd, const std::string& name
   }
 }
 
+/// The cell size on the inlet (the faces its profile is sampled on).
+double InletCellSize(const CfdCaseResult& r)
+{
+  for (const CfdEndCells& e : r.grading.ends)
+  {
+    if (e.name == r.inlet)
+    {
+      return e.cellSize;
+    }
+  }
+  return r.cellSize;
+}
+
 void CheckOption(bool ok, const std::string& what)
 {
   if (!ok)
@@ -205,6 +220,10 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     "--layers " + std::to_string(options.layers) + ": give 0 to 10");
   CheckOption(std::isfinite(options.cellSize) && options.cellSize >= 0.0 && options.cellSize < 1.0,
     "--cell-size " + CfdNumber(options.cellSize) + ": give a cell size in m, > 0 and < 1");
+  CheckOption(std::isfinite(options.cellsAcross) &&
+      (options.cellsAcross == 0.0 || (options.cellsAcross >= 2.0 && options.cellsAcross <= 200.0)),
+    "--cells-across " + CfdNumber(options.cellsAcross) + ": give 2 to 200");
+
   CheckOption(
     std::isfinite(options.viscosity) && options.viscosity > 0.0 && options.viscosity < 1.0,
     "--viscosity " + CfdNumber(options.viscosity) + ": give a kinematic viscosity in m^2/s, > 0");
@@ -302,11 +321,17 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
   CfdCaseResult result;
   result.caseDirectory = options.caseDirectory;
   result.inlet = patches[inlet].name;
-  result.cellSize = options.cellSize > 0.0 ? options.cellSize : smallest / 8.0;
-  if (!(result.cellSize > 0.0))
+  // The grading: the cells across every end, the base cell from the largest end unless given.
+  const double across = options.cellsAcross > 0.0 ? options.cellsAcross
+    : options.cellSize > 0.0                      ? smallest / options.cellSize
+                                                  : kCfdDefaultCellsAcross;
+  result.cellSize = options.cellSize > 0.0 ? options.cellSize : largest / across;
+  if (!(result.cellSize > 0.0) || !(smallest > 0.0))
   {
     throw InputError(name + ": its ends have no area");
   }
+  CfdGradedMesh graded = GradeCfdMesh(labelled, patches, result.cellSize, across);
+  result.grading = graded.grading;
   result.backgroundCellSize = 2.0 * result.cellSize;
   const double hb = result.backgroundCellSize;
   double bounds[6];
@@ -351,7 +376,7 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     }
     inlet.outwardNormal = in.normal;
     inlet.flowRate = result.inletFlowRate;
-    inlet.faceSize = result.cellSize;
+    inlet.faceSize = InletCellSize(result);
     profile = PoiseuilleInletProfile(labelled.surface, CellPatchIds(labelled.surface), inlet, name);
     result.inletPeakToMean = profile.peakToMean;
   }
@@ -383,6 +408,18 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
     exportOptions.sourceName = options.sourceName;
     ExportSurface(labelled, exportOptions);
     result.written.push_back("constant/triSurface/" + stl);
+    for (std::size_t i = 0; i < graded.regionSurfaces.size(); ++i)
+    {
+      // The wall triangles of each refinement region, in metres (snappyHexMesh's distances).
+      const std::string region = "constant/triSurface/" + result.grading.regions[i].name + ".stl";
+      ExportSurfaceOptions regionOptions;
+      regionOptions.output = (temp / region).string();
+      regionOptions.unit = "m";
+      regionOptions.stlEncoding = StlEncoding::Ascii;
+      regionOptions.sourceName = result.grading.regions[i].name;
+      ExportSurface(graded.regionSurfaces[i], regionOptions);
+      result.written.push_back(region);
+    }
     const std::string vtp = options.surfaceName + ".vtp";
     WriteMesh(AsWritten(labelled.surface), (temp / "constant" / "triSurface" / vtp).string());
     result.written.push_back("constant/triSurface/" + vtp);
@@ -390,8 +427,12 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
       { "system/blockMeshDict", BlockMeshDict(origin, hb, result.backgroundCells) },
       { "system/surfaceFeatureExtractDict", SurfaceFeatureExtractDict(stl) },
       { "system/snappyHexMeshDict",
-        SnappyHexMeshDict(
-          options.surfaceName, patches, result.insidePoint, result.cellSize, options.layers) },
+        SnappyHexMeshDict(options.surfaceName,
+          patches,
+          result.insidePoint,
+          result.cellSize,
+          options.layers,
+          result.grading) },
       { "system/controlDict", ControlDict(patches, options.iterations) },
       { "system/fvSchemes", FvSchemes() },
       { "system/fvSolution", FvSolution() },

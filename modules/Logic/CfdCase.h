@@ -78,9 +78,17 @@ struct CfdCaseOptions
   std::vector<CfdOutletValue> outletValues;
   /// Prism layers on the wall (snappyHexMesh addLayers); 0: none.
   int layers = 3;
-  /// Cell size at the wall, m (the background mesh is twice as coarse, refined once at the
-  /// surface); 0: the smallest end's equivalent diameter / 8.
+  /// The wall's base cell size H, m (the background mesh is twice as coarse, refined once at
+  /// the surface; ends and narrower stretches of the lumen are refined further, CfdMeshGrading.h);
+  /// 0: the largest end's equivalent diameter / cellsAcross.
   double cellSize = 0.0;
+  /// The wall cells across every end (and, within kCfdWallCellsMargin, across the lumen
+  /// everywhere on the wall) that the grading gives; 0: 8 (kCfdDefaultCellsAcross), or with a
+  /// cellSize, the smallest end's diameter / cellSize (that size everywhere the lumen is as
+  /// wide as the smallest end, narrower places refined). The levels follow from cellsAcross x
+  /// cellSize: a convergence study's finer meshes, H / r with r x the cells across, keep
+  /// mesh-1's levels in the same places.
+  double cellsAcross = 0.0;
   /// Kinematic viscosity, m^2/s (blood: 3.5e-6).
   double viscosity = 3.5e-6;
   /// Density used to report pressures in Pa, kg/m^3 (blood: 1060).
@@ -119,13 +127,46 @@ struct CfdOutletSetting
   bool pressureReference = true; ///< held at p = 0 (ZeroPressure; the largest share of a split)
 };
 
+/// The wall cells across one end: its equivalent diameter over its cell size.
+struct CfdEndCells
+{
+  std::string name;
+  int level = 1;         ///< snappyHexMesh's level on the end (1: the wall's base)
+  double cellSize = 0.0; ///< m
+  double cellsAcross = 0.0;
+};
+
+/// A stretch of the lumen refined beyond the wall's base: the wall triangles too narrow for
+/// the level below, and the lumen within `distance` of them (snappyHexMesh's distance mode).
+struct CfdRefinementRegion
+{
+  std::string name; ///< its surface: constant/triSurface/<name>.stl
+  int level = 2;
+  double cellSize = 0.0; ///< m
+  double distance = 0.0; ///< m: the largest local radius among its triangles
+  long long triangles = 0;
+};
+
+/// How the mesh is graded by the local width of the lumen (CfdMeshGrading.h).
+struct CfdMeshGrading
+{
+  double cellsAcross = 0.0;                 ///< asked for at every end
+  std::vector<CfdEndCells> ends;            ///< in patch order
+  std::vector<CfdRefinementRegion> regions; ///< levels above the base, coarsest first
+  double wallCellsAcross = 0.0;             ///< the fewest across the lumen on the wall
+  double narrowestDiameter = 0.0;           ///< the lumen's narrowest on the wall, m
+  std::array<double, 3> narrowestAt{};      ///< where: that wall triangle's centre, m (LPS)
+  double narrowestCellsAcross = 0.0;        ///< the cells across it there
+};
+
 /// What WriteOpenFoamCase wrote.
 struct CfdCaseResult
 {
   std::string caseDirectory;
   std::vector<CfdPatch> patches; ///< in label order; the inlet has type Inlet, other ends Outlet
   std::string inlet;
-  double cellSize = 0.0;                ///< at the wall, m
+  double cellSize = 0.0;                ///< the wall's base cell size H, m
+  CfdMeshGrading grading;               ///< the cells across each end and the lumen
   double backgroundCellSize = 0.0;      ///< blockMesh's, m
   std::array<int, 3> backgroundCells{}; ///< blockMesh's cells per axis
   std::array<double, 3> insidePoint{};  ///< locationInMesh, m

@@ -100,6 +100,12 @@ CfdConvergenceResult RunCfdConvergence(vtkPolyData* surface, const CfdConvergenc
     CfdCaseOptions caseOptions = options.caseOptions;
     caseOptions.caseDirectory = (fs::path(folder) / mesh).string();
     caseOptions.cellSize = cellSize;
+    if (i > 0)
+    {
+      // The finer meshes keep mesh-1's grading: the same levels in the same places (they
+      // follow from the cell size x the cells across), every cell divided by the ratio.
+      caseOptions.cellsAcross = r.cases[0].grading.cellsAcross * (r.cases[0].cellSize / cellSize);
+    }
     r.cases[i] = WriteOpenFoamCase(surface, caseOptions);
     // H is mesh-1's (the default when none was given); the finer ones divide it exactly.
     cellSize = r.cases[0].cellSize / std::pow(options.ratio, static_cast<double>(i + 1));

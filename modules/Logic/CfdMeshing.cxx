@@ -3,8 +3,10 @@
 #include "BenderErrors.h"
 #include "CfdCaseFile.h"
 #include "CfdDictionaries.h"
+#include "CfdMeshGrading.h"
 #include "CfdPatches.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -71,8 +73,32 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
   const std::vector<CfdPatch>& patches,
   const std::array<double, 3>& inside,
   double cellSize,
-  int layers)
+  int layers,
+  const CfdMeshGrading& grading)
 {
+  // Each end's level (1, the wall's, unless the grading refines it), the finest of them for the
+  // rims, and the finest cell anywhere.
+  const auto endLevel = [&grading](const std::string& name)
+  {
+    for (const CfdEndCells& e : grading.ends)
+    {
+      if (e.name == name)
+      {
+        return e.level;
+      }
+    }
+    return 1;
+  };
+  int rimLevel = 1;
+  for (const CfdEndCells& e : grading.ends)
+  {
+    rimLevel = std::max(rimLevel, e.level);
+  }
+  int finest = rimLevel;
+  for (const CfdRefinementRegion& r : grading.regions)
+  {
+    finest = std::max(finest, r.level);
+  }
   std::ostringstream s;
   s << CfdFoamHeader("dictionary", "system", "snappyHexMeshDict");
   s << "castellatedMesh true;\nsnap            true;\naddLayers       "
@@ -83,26 +109,42 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
   {
     s << "            " << p.name << " { name " << p.name << "; }\n";
   }
-  s << "        }\n    }\n}\n\n";
+  s << "        }\n    }\n";
+  for (const CfdRefinementRegion& r : grading.regions)
+  {
+    s << "    " << r.name << ".stl { type triSurfaceMesh; name " << r.name << "; }\n";
+  }
+  s << "}\n\n";
   s << "castellatedMeshControls\n{\n"
        "    maxLocalCells       2000000;\n    maxGlobalCells      8000000;\n"
        "    minRefinementCells  0;\n    maxLoadUnbalance    0.10;\n"
        "    nCellsBetweenLevels 3;\n\n"
        "    features\n    (\n        { file \""
-    << surfaceName
-    << ".eMesh\"; level 1; }\n    );\n\n"
+    << surfaceName << ".eMesh\"; level " << rimLevel
+    << "; }\n    );\n\n"
        "    // One level of refinement at the surface: cells of "
-    << CfdNumber(cellSize) << " m at the wall.\n    refinementSurfaces\n    {\n        "
-    << surfaceName
+    << CfdNumber(cellSize) << " m at the wall; each end at the level that puts "
+    << CfdShort(grading.cellsAcross, 2)
+    << " cells across it.\n    refinementSurfaces\n    {\n        " << surfaceName
     << "\n        {\n            level (1 1);\n            patchInfo { type wall; }\n"
        "            regions\n            {\n";
   for (const auto& p : patches)
   {
-    s << "                " << p.name << " { level (1 1); patchInfo { type "
-      << (IsEndPatch(p.type) ? "patch" : "wall") << "; } }\n";
+    const int level = IsEndPatch(p.type) ? endLevel(p.name) : 1;
+    s << "                " << p.name << " { level (" << level << " " << level
+      << "); patchInfo { type " << (IsEndPatch(p.type) ? "patch" : "wall") << "; } }\n";
   }
   s << "            }\n        }\n    }\n\n"
-       "    resolveFeatureAngle 30;\n    refinementRegions\n    {\n    }\n\n"
+       "    resolveFeatureAngle 30;\n";
+  s << "    // The lumen near the wall where it is narrow, at the level that puts the cells\n"
+       "    // across it there (within its local radius of those wall triangles).\n"
+       "    refinementRegions\n    {\n";
+  for (const CfdRefinementRegion& r : grading.regions)
+  {
+    s << "        " << r.name << " { mode distance; levels ((" << CfdNumber(r.distance) << " "
+      << r.level << ")); }\n";
+  }
+  s << "    }\n\n"
        "    // A point inside the lumen, behind the inlet.\n"
        "    locationInMesh "
     << CfdVector(inside)
@@ -135,7 +177,7 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
        "meshQualityControls\n{\n"
        "    maxNonOrtho         65;\n    maxBoundarySkewness 4;\n    maxInternalSkewness 4;\n"
        "    maxConcave          80;\n    minVol              "
-    << CfdNumber(std::pow(0.01 * cellSize, 3))
+    << CfdNumber(std::pow(0.01 * CfdLevelCellSize(finest, cellSize), 3))
     << ";\n    minTetQuality       1e-15;\n    minArea             -1;\n"
        "    minTwist            0.02;\n    minDeterminant      0.001;\n"
        "    minFaceWeight       0.05;\n    minVolRatio         0.01;\n"

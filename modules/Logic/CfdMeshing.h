@@ -24,13 +24,16 @@ std::string BlockMeshDict(const std::array<double, 3>& origin,
 /// The feature edges of constant/triSurface/`stl` (the rims of the ends).
 std::string SurfaceFeatureExtractDict(const std::string& stl);
 /// snappyHexMesh on surface `surfaceName` (one region per patch), refined once at the wall
-/// to cellSize (m), the mesh kept on the side of `inside` (m); `layers` prism layers on the
-/// wall patches (0: none), sized relative to the local cell.
+/// to cellSize (m), each end to its level and the lumen near each of the grading's regions
+/// (constant/triSurface/<region>.stl) to theirs (CfdMeshGrading.h), the mesh kept on the side
+/// of `inside` (m); `layers` prism layers on the wall patches (0: none), sized relative to the
+/// local cell.
 std::string SnappyHexMeshDict(const std::string& surfaceName,
   const std::vector<CfdPatch>& patches,
   const std::array<double, 3>& inside,
   double cellSize,
-  int layers);
+  int layers,
+  const CfdMeshGrading& grading = {});
 
 /// Reads the report of the mesh of a case already meshed. Throws InputError naming the log
 /// when log.checkMesh is missing or has no cell count.

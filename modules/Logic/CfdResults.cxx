@@ -4,6 +4,7 @@
 #include "CfdBoundaryConditions.h"
 #include "CfdCaseFile.h"
 #include "CfdDictionaries.h"
+#include "CfdMeshGrading.h"
 #include "CfdMeshing.h"
 #include "CfdPatches.h"
 
@@ -267,6 +268,7 @@ std::string CfdToJson(const CfdCaseResult& written, const CfdRunResult* run)
     { "inletVelocity", written.inletVelocity },
     { "reynolds", written.reynolds },
     { "cellSize", written.cellSize },
+    { "grading", CfdMeshGradingJson(written.grading) },
     { "backgroundCells", written.backgroundCells },
     { "insidePoint", written.insidePoint },
     { "patches", CfdPatchesJson(written.patches) },

@@ -152,6 +152,7 @@ SweepBase PrepareSweepBase(const SweepBaseOptions& options, const ProgressReport
   std::error_code ec;
   fs::remove_all(options.scratchFolder, ec);
   base.caseOptions.cellSize = written.cellSize;
+  base.caseOptions.cellsAcross = written.grading.cellsAcross;
   base.caseOptions.flowRate = written.inletFlowRate;
   base.caseOptions.velocity = 0.0;
   base.caseOptions.inlet = written.inlet;

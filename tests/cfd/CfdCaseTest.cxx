@@ -112,7 +112,7 @@ TEST(CfdCase, WritesACompleteCaseInMetres)
   ASSERT_EQ(r.patches.size(), 4u);
   EXPECT_EQ(r.inlet, "inlet");
   EXPECT_EQ(r.patches[0].name, "wall");
-  double smallest = 1.0;
+  double largestEnd = 0.0;
   for (const auto& p : r.patches)
   {
     if (p.type != bender::PatchType::Wall)
@@ -120,10 +120,11 @@ TEST(CfdCase, WritesACompleteCaseInMetres)
       EXPECT_GT(p.diameter, 3e-3) << p.name;
       EXPECT_LT(p.diameter, 1e-2) << p.name;
       EXPECT_NEAR(std::hypot(std::hypot(p.normal[0], p.normal[1]), p.normal[2]), 1.0, 1e-9);
-      smallest = std::min(smallest, p.diameter);
+      largestEnd = std::max(largestEnd, p.diameter);
     }
   }
-  EXPECT_NEAR(r.cellSize, smallest / 8.0, 1e-12);
+  // The default base cell: 8 across the largest end (narrower ends refined: CfdGradingTest).
+  EXPECT_NEAR(r.cellSize, largestEnd / 8.0, 1e-12);
   EXPECT_DOUBLE_EQ(r.inletFlowRate, 4e-6);
 
   // The STL: a named ASCII solid per patch, coordinates in metres (the aneurysm is ~55 mm).
@@ -170,7 +171,12 @@ TEST(CfdCase, WritesACompleteCaseInMetres)
   for (const auto& p : r.patches)
   {
     EXPECT_NE(snappy.find(p.name + " { name " + p.name + "; }"), std::string::npos) << p.name;
-    EXPECT_NE(snappy.find(p.name + " { level (1 1); patchInfo { type " +
+    std::string level = "1";
+    for (const bender::CfdEndCells& e : r.grading.ends)
+    {
+      level = e.name == p.name ? std::to_string(e.level) : level;
+    }
+    EXPECT_NE(snappy.find(p.name + " { level (" + level + " " + level + "); patchInfo { type " +
                 (p.type == bender::PatchType::Wall ? "wall" : "patch")),
       std::string::npos)
       << p.name;
