@@ -223,7 +223,6 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
   CheckOption(std::isfinite(options.cellsAcross) &&
       (options.cellsAcross == 0.0 || (options.cellsAcross >= 2.0 && options.cellsAcross <= 200.0)),
     "--cells-across " + CfdNumber(options.cellsAcross) + ": give 2 to 200");
-
   CheckOption(
     std::isfinite(options.viscosity) && options.viscosity > 0.0 && options.viscosity < 1.0,
     "--viscosity " + CfdNumber(options.viscosity) + ": give a kinematic viscosity in m^2/s, > 0");

@@ -76,8 +76,11 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
   int layers,
   const CfdMeshGrading& grading)
 {
-  // Each end's level (1, the wall's, unless the grading refines it), the finest of them for the
-  // rims, and the finest cell anywhere.
+  // Each end's level (1, the wall's, unless the grading refines it) and the finest cell
+  // anywhere. The rims of the ends (one feature file for all) stay at the wall's level: a
+  // refined end's rim is refined with its surface, and a finer rim would refine the faces of a
+  // wider end beyond its level (and under-feed a Poiseuille inlet, whose samples are corrected
+  // for faces of its level).
   const auto endLevel = [&grading](const std::string& name)
   {
     for (const CfdEndCells& e : grading.ends)
@@ -89,12 +92,11 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
     }
     return 1;
   };
-  int rimLevel = 1;
+  int finest = 1;
   for (const CfdEndCells& e : grading.ends)
   {
-    rimLevel = std::max(rimLevel, e.level);
+    finest = std::max(finest, e.level);
   }
-  int finest = rimLevel;
   for (const CfdRefinementRegion& r : grading.regions)
   {
     finest = std::max(finest, r.level);
@@ -120,8 +122,8 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
        "    minRefinementCells  0;\n    maxLoadUnbalance    0.10;\n"
        "    nCellsBetweenLevels 3;\n\n"
        "    features\n    (\n        { file \""
-    << surfaceName << ".eMesh\"; level " << rimLevel
-    << "; }\n    );\n\n"
+    << surfaceName
+    << ".eMesh\"; level 1; }\n    );\n\n"
        "    // One level of refinement at the surface: cells of "
     << CfdNumber(cellSize) << " m at the wall; each end at the level that puts "
     << CfdShort(grading.cellsAcross, 2)
