@@ -7,6 +7,7 @@
 #include "FlowCaseCache.h"
 #include "FlowStreamlines.h"
 #include "MeshIO.h"
+#include "WarpedPoints.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -59,7 +60,9 @@ LabelledSurface Labelled(vtkPolyData* surface, const std::string& what)
   return labelled;
 }
 
-/// The plan's Prepare for CFD steps without its warps, all before the first (none) warp.
+/// The plan's Prepare for CFD steps without its warps, all before the first (none) warp. A
+/// step made after warps chose its ends on the bent shape: its positions are carried back
+/// through those warps, so that the original is cut at the same ends (WarpedPoints.h).
 WarpPlan PrepareStepsOnly(const WarpPlan& plan)
 {
   WarpPlan steps;
@@ -67,6 +70,7 @@ WarpPlan PrepareStepsOnly(const WarpPlan& plan)
   steps.cfdSteps = plan.cfdSteps;
   for (CfdStep& step : steps.cfdSteps)
   {
+    CarryBack(CfdStepPoints(step), plan.warps, step.afterWarps);
     step.afterWarps = 0;
   }
   return steps;
@@ -131,7 +135,16 @@ LabelledSurface FlowReadySurface(const FlowStudyInput& input,
     ApplyPlanOptions apply;
     apply.planName = input.name;
     apply.progress = progress;
-    const ApplyPlanResult made = ApplyPlan(input.first, PrepareStepsOnly(input.plan), apply);
+    WarpPlan steps;
+    try
+    {
+      steps = PrepareStepsOnly(input.plan);
+    }
+    catch (const InputError& e)
+    {
+      throw InputError(input.name + ": the original: " + e.what());
+    }
+    const ApplyPlanResult made = ApplyPlan(input.first, steps, apply);
     original = made.prepared.back();
   }
   const std::vector<std::string> want = EndNames(current.patches);
@@ -140,7 +153,7 @@ LabelledSurface FlowReadySurface(const FlowStudyInput& input,
   {
     throw InputError(input.name + ": the original's ends (" + Joined(got) +
       ") are not the current shape's (" + Joined(want) +
-      "): the bend moved an end the Prepare for CFD step names; prepare for CFD before bending");
+      "): the bend changed which ends the Prepare for CFD step finds");
   }
   return original;
 }

@@ -85,11 +85,12 @@ struct FlowShapeResult
 };
 
 /// The CFD-ready surface of `shape`. The original: ApplyPlan of the plan's Prepare for CFD
-/// steps (no warp) to `first`, or `first` itself when the plan has none and it is labelled.
-/// Throws InputError, one line naming input.name: a shape without two labelled ends ("prepare
-/// for CFD first"), an original whose ends are not named as the current shape's (a Prepare
-/// step after a bend that moved an end: prepare before bending), ApplyPlan's errors;
-/// Cancelled.
+/// steps (no warp) to `first`, or `first` itself when the plan has none and it is labelled. A
+/// step made after warps chose its ends on the bent shape: its positions are carried back
+/// through those warps first (CarryBack, WarpedPoints.h), so "bend, then Prepare for CFD" cuts
+/// the original at the same ends. Throws InputError, one line naming input.name: a shape
+/// without two labelled ends ("prepare for CFD first"), a position the warps fold, an original
+/// whose ends are not named as the current shape's, ApplyPlan's errors; Cancelled.
 LabelledSurface FlowReadySurface(const FlowStudyInput& input,
   FlowShape shape,
   const ProgressReporter& progress = {});

@@ -8,11 +8,11 @@
 #include "RibbonLengthChange.h"
 #include "StringUtil.h"
 #include "VesselMeasures.h"
+#include "WarpedPoints.h"
 
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
-#include <vtkPoints.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,53 +29,6 @@ namespace
 std::string BaseName(const std::string& path)
 {
   return fs::path(path).filename().string();
-}
-
-// The points the sweep carries along a candidate's warps: the ends' cuts, names and factors of
-// the original's Prepare for CFD, and the bend point.
-std::vector<Vec3*> StepPoints(CfdStep& step, Vec3& bendPoint)
-{
-  std::vector<Vec3*> points;
-  for (CfdStepEnd& end : step.ends)
-  {
-    points.push_back(&end.position);
-  }
-  for (CfdStepName& name : step.names)
-  {
-    points.push_back(&name.position);
-  }
-  for (CfdStepFactor& factor : step.extensionFactors)
-  {
-    points.push_back(&factor.position);
-  }
-  points.push_back(&bendPoint);
-  return points;
-}
-
-// Moves `points` through the candidate's warps (the same exact warp as the surface's, each
-// point alone: no subdivision).
-void CarryPoints(const std::vector<Vec3*>& points, const WarpPlan& plan)
-{
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> xyz;
-  xyz->SetDataTypeToDouble();
-  for (const Vec3* p : points)
-  {
-    xyz->InsertNextPoint(p->x, p->y, p->z);
-  }
-  cloud->SetPoints(xyz);
-  for (const WarpSpec& warp : plan.warps)
-  {
-    WarpSpec single = warp;
-    single.subdivision.reset();
-    cloud = ApplyWarp(cloud, single);
-  }
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    double p[3];
-    cloud->GetPoint(static_cast<vtkIdType>(i), p);
-    *points[i] = { p[0], p[1], p[2] };
-  }
 }
 
 // The measures of the centerline branch nearest `bendPoint`.
@@ -202,7 +155,9 @@ PreparedCandidate PrepareCandidate(const SweepBase& base,
     {
       return prepared;
     }
-    CarryPoints(StepPoints(step, bendPoint), candidate.plan);
+    std::vector<Vec3*> points = CfdStepPoints(step);
+    points.push_back(&bendPoint);
+    CarryForward(points, candidate.plan.warps, candidate.plan.warps.size());
     prepared.measures.lengthChange = LengthChange(candidate.plan);
   }
   else
