@@ -1,13 +1,14 @@
 // The Flow panel on the demo vessel (issue 23, "done when": on the demo vessel and its bent
 // candidate, bender-cli compare and the Flow panel show the same numbers; labels gui and cfd:
 // OpenFOAM runs). On the real window: Demo (the segmented vessel), its bend by the demo plan,
-// Prepare for CFD (the default step: the three ends clipped, named and capped), then the Flow
+// the Export panel's Prepare for CFD (the three ends clipped, named and capped), then the Flow
 // panel's Run: the original and the bent candidate solved as two jobs on a coarse mesh (cells
 // of 1.6 mm, 20 iterations: the numbers are not converged, the comparison's agreement is what
 // is tested). The panel's table holds the two cases' results, and bender-cli compare of the
 // two case folders gives the same rows, numbers and highlights. The pictures of docs/app.md's
 // Flow section are taken here.
 #include "AppTestUtilities.h"
+#include "ExportPanel.h"
 #include "FlowAppTestUtilities.h"
 #include "FlowPanel.h"
 #include "FlowViews.h"
@@ -23,6 +24,8 @@
 #include <QCheckBox>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QPushButton>
+#include <QSignalSpy>
 #include <QSpinBox>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -71,13 +74,18 @@ private slots:
     QVERIFY2(
       session.ApplyWarp(demo.warps.front()), qPrintable(this->Window->statusLabel()->text()));
     this->Window->setRibbon(demo.warps.front().final); // where a drag would have left it
-    // Prepare for CFD of the bent vessel with the default step, as bender-cli clip does: the
-    // flow's original is the unbent vessel prepared by the same step (clip(vessel) against
-    // clip(warp(vessel)), the pair docs/cfd.md compares).
-    const bender::CfdStep step;
-    const bender::PrepareForCfdResult prepared = bender::ApplyCfdStep(session.GetSurface(), step);
-    QVERIFY(prepared.surface);
-    QVERIFY(session.CommitCfdStep(step, prepared.surface, false));
+    // Prepare for CFD of the bent vessel, as a user does after a bend: the Export panel's
+    // button. Its step writes out every end's cut on the bent shape; the flow's original is the
+    // unbent vessel cut at the same ends (the positions carried back through the bend).
+    auto* exportPanel = this->Window->findChild<ExportPanel*>();
+    QVERIFY(exportPanel);
+    QVERIFY(bendertest::ShowPanel(*this->Window, exportPanel));
+    QSignalSpy prepared(this->Window.get(), &MainWindow::workFinished);
+    QTest::mouseClick(exportPanel->Prepare, Qt::LeftButton);
+    QVERIFY(this->Window->waitUntilIdle(300000));
+    QCOMPARE(prepared.count(), 1);
+    QVERIFY2(prepared.first().first().toBool(), qPrintable(this->Window->statusLabel()->text()));
+    QVERIFY(session.GetCurrentCfdStep() && session.GetCurrentCfdStep()->afterWarps == 1);
     QCOMPARE(bender::ReadPatchLabels(session.GetSurface()).size(), std::size_t(4)); // wall + 3 ends
     qInfo("demo loaded, bent and prepared in %.1f s", clock.elapsed() / 1000.0);
     // Seen from the patient's left, framed: the trunk's swing from anterior to superior lies in
