@@ -11,12 +11,15 @@
 #include "WarpPlanIO.h"
 
 #include <QAbstractButton>
+#include <QApplication>
 #include <QDir>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMessageBox>
 #include <QPointer>
+
+#include <memory>
 
 namespace
 {
@@ -116,11 +119,14 @@ bool FlowReportSaver::save(const QString& folder, const Source& source)
   const std::string pdf = pdfIn(QString::fromStdString(dir)).toStdString();
   const std::string plan = QDir(QString::fromStdString(dir)).filePath(PlanName).toStdString();
   QPointer<FlowReportSaver> self(this);
+  // The comparison (reading both cases, measuring the bends) runs on the worker; the pictures
+  // and the PDF are drawn on this thread when it is done: VTK's rendering and text drawing are
+  // not thread-safe, and the window's own views render here at the same time.
   const bool started = this->Worker->run("Flow report",
     [self, source, dir, pdf, plan](const bender::ProgressReporter& progress) -> WorkRunner::Finisher
     {
       std::string problem;
-      bender::FlowReportResult written;
+      auto comparison = std::make_shared<bender::CfdCaseComparison>();
       const bool planThere = QFileInfo::exists(QString::fromStdString(plan));
       try
       {
@@ -135,13 +141,8 @@ bool FlowReportSaver::save(const QString& folder, const Source& source)
         compare.caseB = source.caseB;
         compare.plan = plan;
         compare.progress = progress;
-        const bender::CfdCaseComparison comparison = bender::CompareCfdCases(compare);
+        *comparison = bender::CompareCfdCases(compare);
         progress.ThrowIfCancelled("pictures");
-        progress.Report("pictures and PDF", 0.0);
-        bender::FlowReportOptions report;
-        report.output = pdf;
-        report.pngFolder = dir;
-        written = bender::WriteFlowReport(comparison, report);
       }
       catch (const bender::Cancelled&)
       {
@@ -149,23 +150,42 @@ bool FlowReportSaver::save(const QString& folder, const Source& source)
       }
       catch (const std::exception& e)
       {
-        // The boundary of the job: every failure is one line in the status bar, and a plan
-        // written for a report that failed does not stay behind.
+        // The boundary of the job: every failure is one line in the status bar.
         problem = std::string("Flow report not saved: ") + e.what();
-        if (!planThere)
+      }
+      return [self, problem, comparison, dir, pdf, plan, planThere]()
+      {
+        std::string failed = problem;
+        bender::FlowReportResult written;
+        if (failed.empty())
         {
+          QApplication::setOverrideCursor(Qt::WaitCursor);
+          try
+          {
+            bender::FlowReportOptions report;
+            report.output = pdf;
+            report.pngFolder = dir;
+            written = bender::WriteFlowReport(*comparison, report);
+          }
+          catch (const std::exception& e)
+          {
+            // The boundary of the drawing: one line in the status bar.
+            failed = std::string("Flow report not saved: ") + e.what();
+          }
+          QApplication::restoreOverrideCursor();
+        }
+        if (!failed.empty() && !planThere)
+        {
+          // A plan written for a report that failed does not stay behind.
           QFile::remove(QString::fromStdString(plan));
         }
-      }
-      return [self, problem, written]()
-      {
         if (!self)
         {
           return;
         }
-        if (!problem.empty())
+        if (!failed.empty())
         {
-          self->Session.AddMessage(bender::MessageSeverity::Error, problem);
+          self->Session.AddMessage(bender::MessageSeverity::Error, failed);
           self->Worker->markFailed();
           emit self->saved(false, QString());
           return;
