@@ -29,6 +29,8 @@ constexpr double OutsideTolerance = 0.05;
 // has 5 %, a cow 2.5 %). Fewer are a crease's few points where the wall's side is uncertain
 // (a Y bifurcation's carina: 4 of 928), said in a warning.
 constexpr double OutsideShare = 0.01;
+// The stretch at each end of a path, in median radii, that the count leaves out.
+constexpr double EndReach = 1.0;
 
 CenterlineResult Fail(CenterlineResult result, const std::string& message)
 {
@@ -220,17 +222,24 @@ CenterlineResult ComputeCenterlines(vtkPolyData* surface, const CenterlineOption
     samplesOut.points = points;
     samplesOut.outlet = rawOutlets[p];
     samplesOut.radius.resize(points.size());
+    // Within EndReach median radii of a path's ends the centerline meets an opening or a tip,
+    // where the wall's side says nothing of the shape (an oblique cut, a cap): not counted.
+    const std::size_t reach = static_cast<std::size_t>(std::ceil(EndReach * medianRadius / step));
     for (std::size_t i = 0; i < points.size(); ++i)
     {
       bool inside = true;
       Point3 closest;
       samplesOut.radius[i] = distance.Query(points[i], inside, closest);
+      if (i < reach || i + reach >= points.size())
+      {
+        continue;
+      }
+      ++sampled;
       if (!inside && samplesOut.radius[i] > OutsideTolerance * medianRadius)
       {
         ++outside;
       }
     }
-    sampled += points.size();
     samplesOut.frames = ComputeCurveFrames(points, medianRadius);
     paths.push_back(std::move(samplesOut));
   }
