@@ -25,9 +25,9 @@ double Seconds(std::chrono::steady_clock::time_point since)
 // inscribed radius is outside the surface (closer to the wall, the side is a matter of the
 // wall's triangles, not of the shape).
 constexpr double OutsideTolerance = 0.05;
-// More than this fraction of the centerline points outside: the shape is not tubular (a bunny
-// has 5 %, a cow 2.5 %). Fewer are a crease's few points where the wall's side is uncertain
-// (a Y bifurcation's carina: 4 of 928), said in a warning.
+// More than this fraction of the centerline points outside (away from the paths' ends): the
+// shape is not tubular (the cow: 60 of 3761). Fewer are a crease's few points where the wall's
+// side is uncertain (a Y bifurcation's carina), said in a warning.
 constexpr double OutsideShare = 0.01;
 // The stretch at each end of a path, in median radii, that the count leaves out.
 constexpr double EndReach = 1.0;
