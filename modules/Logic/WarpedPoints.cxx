@@ -74,7 +74,7 @@ constexpr double kTolerance = 1e-7; ///< mm, |W(q) - p| at the answer
 constexpr int kIterations = 40;     ///< Newton steps per homotopy step
 constexpr int kHomotopy = 8;        ///< fractions of each warp's motion
 
-/// The points q with W(q) = p, `warp` alone, by Newton's method from `start` (its Jacobian by
+/// The points q with W(q) = p, `warp` alone, by Newton's method from `q` (its Jacobian by
 /// central differences; a step that does not reduce the residual is halved). Throws InputError
 /// naming a point with no answer near it (the warp folds the space there).
 std::vector<Vec3> Inverted(const WarpSpec& warp, const std::vector<Vec3>& p, std::vector<Vec3> q)
