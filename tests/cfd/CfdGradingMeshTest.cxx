@@ -6,7 +6,7 @@
 #include "CfdCase.h"
 #include "CfdTestUtilities.h"
 #include "PrepareForCfd.h"
-#include "VesselTestUtilities.h"
+#include "ThinBranchTube.h"
 
 #include <gtest/gtest.h>
 
@@ -19,14 +19,7 @@ TEST(CfdGradingMesh, EveryEndOfATubeWithAThinBranchGetsTheCellsAcrossStated)
   BENDER_REQUIRE_PROGRAM("blockMesh");
   BENDER_REQUIRE_PROGRAM("snappyHexMesh");
   BENDER_REQUIRE_PROGRAM("checkMesh");
-  const std::vector<bender::test::Segment> tubes = { { { { 0, 0, -40 } }, { { 0, 0, 40 } }, 3.013 },
-    { { { 0, 0, 0 } }, { { 40, 0, 0 } }, 0.6013 } };
-  const double bounds[6] = { -5, 20, -4.2, 4.2, -20, 20 };
-  bender::PrepareForCfdOptions prepare;
-  prepare.inletExtension = 2.0;
-  prepare.outletExtension = 2.0;
-  const bender::PrepareForCfdResult prepared =
-    bender::PrepareForCfd(bender::test::ImplicitTubes(tubes, bounds, 0.2), prepare);
+  const bender::PrepareForCfdResult prepared = bender::test::PreparedThinBranchTube();
   ASSERT_EQ(prepared.ends.size(), 3u);
 
   bender::test::TemporaryFolder folder("cfd-grading-mesh");
