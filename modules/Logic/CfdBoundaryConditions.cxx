@@ -253,6 +253,7 @@ CfdInletProfileData PoiseuilleInletProfile(vtkPolyData* surface,
   profile.flowRate = peak * integral;
   profile.area = area;
   profile.peakToMean = area / integral;
+  profile.meanVelocity = ToArray((inlet.flowRate / area) * inward);
   return profile;
 }
 
@@ -279,7 +280,9 @@ std::string BoundaryDataVelocity(const CfdInletProfileData& profile)
   {
     s += CfdVector(u) + "\n";
   }
-  return s + ")\n";
+  // Read only where 0/U says setAverage yes: bender-cli's run puts it on the snapped inlet's
+  // area after meshing, so the inlet carries the flow exactly (here: over the cap's area).
+  return s + ")\n" + kCfdInletAverageMarker + "\n" + CfdVector(profile.meanVelocity) + "\n";
 }
 
 std::vector<CfdOutletSetting> CfdOutletSettings(const std::vector<CfdPatch>& patches,
@@ -389,7 +392,10 @@ std::string VelocityField(const CfdCaseResult& r, const CfdCaseOptions& options)
           CfdNumber(r.inletFlowRate) + " m^3/s:\n        // constant/boundaryData/" + p.name +
           "/points and 0/U, interpolated onto the snapped faces.\n"
           "        type            timeVaryingMappedFixedValue;\n"
-          "        offset          (0 0 0);\n        setAverage      false;\n"
+          "        offset          (0 0 0);\n"
+          "        // yes once bender-cli's run has put the average (the end of 0/U there) on the\n"
+          "        // snapped faces' area: the inlet then carries the flow exactly.\n"
+          "        setAverage      false;\n"
           "        value           uniform (0 0 0);\n";
       }
       if (p.type == PatchType::Inlet && options.velocity > 0.0)

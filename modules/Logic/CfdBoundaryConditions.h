@@ -35,7 +35,14 @@ struct CfdInletProfileData
   double faceCorrection = 1.0;
   double area = 0.0;       ///< m^2, the cap's
   double peakToMean = 0.0; ///< u_max / u_mean (2 for Poiseuille in a circle)
+  /// m/s, into the domain: the flow over the cap's area, the average that 0/U's setAverage
+  /// holds the inlet to once SetInletFlowOnMesh has put it on the snapped inlet's area.
+  std::array<double, 3> meanVelocity{ { 0, 0, 0 } };
 };
+
+/// The line after which constant/boundaryData/<inlet>/0/U gives the inlet's average velocity.
+inline constexpr const char* kCfdInletAverageMarker =
+  "// The mean velocity on the inlet (m/s), held with setAverage:";
 
 /// The inlet a profile is laid on and the flow it carries.
 struct CfdInletFlow
@@ -58,7 +65,8 @@ CfdInletProfileData PoiseuilleInletProfile(vtkPolyData* surface,
   const CfdInletFlow& inlet,
   const std::string& name);
 
-/// constant/boundaryData/<inlet>/points and .../0/U of timeVaryingMappedFixedValue.
+/// constant/boundaryData/<inlet>/points and .../0/U of timeVaryingMappedFixedValue; the
+/// velocities are followed by kCfdInletAverageMarker and meanVelocity.
 std::string BoundaryDataPoints(const CfdInletProfileData& profile);
 std::string BoundaryDataVelocity(const CfdInletProfileData& profile);
 

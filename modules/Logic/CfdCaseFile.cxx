@@ -1,5 +1,8 @@
 #include "CfdCaseFile.h"
 
+#include "AtomicFile.h"
+#include "BenderErrors.h"
+
 #include <fstream>
 #include <sstream>
 
@@ -22,6 +25,21 @@ nlohmann::ordered_json CfdPatchesJson(const std::vector<CfdPatch>& patches)
     list.push_back(j);
   }
   return list;
+}
+
+std::string CfdFoamFile(const std::filesystem::path& caseDirectory)
+{
+  const std::filesystem::path path = caseDirectory / "bender.foam";
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+  {
+    std::string problem;
+    if (!AtomicWriteText(path.string(), "", problem))
+    {
+      throw Error(path.string() + ": " + problem);
+    }
+  }
+  return path.string();
 }
 
 std::string ReadTextFile(const std::filesystem::path& path)

@@ -52,8 +52,6 @@ namespace bender
 namespace
 {
 
-/// The empty file that names the case for vtkOpenFOAMReader (ParaView's convention).
-constexpr const char* kFoamFile = "bender.foam";
 constexpr double kMetresToMm = 1000.0;
 
 /// What MapCfdResults needs from bender-case.json.
@@ -356,16 +354,8 @@ CfdFlowResults MapCfdResults(const std::string& caseDirectory)
   const CfdRunResult run = ReadCfdResults(caseDirectory);
 
   // The last time written, every patch, cell-to-point data (VTK's reader, no hand parsing).
-  if (!fs::exists(dir / kFoamFile, ec))
-  {
-    std::string problem;
-    if (!AtomicWriteText((dir / kFoamFile).string(), "", problem))
-    {
-      throw Error((dir / kFoamFile).string() + ": " + problem);
-    }
-  }
   vtkNew<vtkOpenFOAMReader> reader;
-  reader->SetFileName((dir / kFoamFile).string().c_str());
+  reader->SetFileName(CfdFoamFile(dir).c_str());
   reader->SetCreateCellToPoint(1);
   reader->SetDecomposePolyhedra(1);
   reader->SetReadZones(0);

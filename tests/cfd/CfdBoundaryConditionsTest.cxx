@@ -272,6 +272,72 @@ TEST(CfdInletProfile, TheWrittenProfileIntegratesToTheFlowRate)
   EXPECT_FALSE(fs::exists(options.caseDirectory + "/constant/boundaryData"));
 }
 
+TEST(CfdInletProfile, TheAverageFollowsTheProfileAndIsSetOnlyOnAMeshedPoiseuilleInlet)
+{
+  bender::test::TemporaryFolder folder("cfd-inlet-average");
+  bender::CfdCaseOptions options;
+  options.caseDirectory = folder.Path() + "/case";
+  const bender::CfdCaseResult r = bender::WriteOpenFoamCase(Aneurysm(), options);
+  const std::string valuesPath = options.caseDirectory + "/constant/boundaryData/inlet/0/U";
+  const std::string values = ReadText(valuesPath);
+  const std::size_t marker = values.find(bender::kCfdInletAverageMarker);
+  ASSERT_NE(marker, std::string::npos) << values;
+  EXPECT_NE(values.rfind("\n)\n", marker), std::string::npos) << "after the profile's list";
+  // As written: the flow over the cap's area, into the domain (against the cap's normal), and
+  // not yet applied (0/U: setAverage false until the mesh's inlet is known).
+  std::istringstream average(values.substr(values.find('\n', marker)));
+  char open = 0;
+  std::array<double, 3> u{};
+  average >> open >> u[0] >> u[1] >> u[2];
+  ASSERT_EQ(open, '(');
+  const bender::CfdPatch* inlet = nullptr;
+  for (const auto& p : r.patches)
+  {
+    inlet = p.name == "inlet" ? &p : inlet;
+  }
+  ASSERT_NE(inlet, nullptr);
+  const double speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  EXPECT_NEAR(speed, r.inletFlowRate / inlet->area, 1e-6 * speed);
+  EXPECT_NEAR((u[0] * inlet->normal[0] + u[1] * inlet->normal[1] + u[2] * inlet->normal[2]) / speed,
+    -1.0,
+    1e-6);
+  EXPECT_NE(
+    ReadText(options.caseDirectory + "/0/U").find("setAverage      false;"), std::string::npos);
+
+  // Before meshing: no mesh to measure, one line, the files left as they were.
+  try
+  {
+    bender::SetInletFlowOnMesh(options.caseDirectory);
+    ADD_FAILURE() << "an unmeshed case";
+  }
+  catch (const bender::InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("has the case been meshed?"), std::string::npos)
+      << e.what();
+  }
+  EXPECT_EQ(ReadText(valuesPath), values);
+  // A values file without the average (written by an older Bender or edited): refused by name.
+  {
+    std::ofstream(valuesPath) << values.substr(0, marker);
+  }
+  try
+  {
+    bender::SetInletFlowOnMesh(options.caseDirectory);
+    ADD_FAILURE() << "no average to set";
+  }
+  catch (const bender::InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(valuesPath), std::string::npos) << e.what();
+  }
+  // A plug inlet: OpenFOAM sets the flow itself, nothing to do (and no mesh needed).
+  options.caseDirectory = folder.Path() + "/plug";
+  options.inletProfile = bender::CfdInletProfile::Plug;
+  bender::WriteOpenFoamCase(Aneurysm(), options);
+  const std::string field = ReadText(options.caseDirectory + "/0/U");
+  EXPECT_NO_THROW(bender::SetInletFlowOnMesh(options.caseDirectory));
+  EXPECT_EQ(ReadText(options.caseDirectory + "/0/U"), field);
+}
+
 TEST(CfdOutlets, MurraysSplitFollowsTheCubeOfTheRadiiAndSumsToTheInletsFlow)
 {
   bender::test::TemporaryFolder folder("cfd-outlets");
