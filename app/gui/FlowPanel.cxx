@@ -22,9 +22,10 @@
 #include <QPushButton>
 #include <QSpinBox>
 #include <QStandardPaths>
-#include <QTimer>
 #include <QToolButton>
 #include <QVBoxLayout>
+
+#include <thread>
 
 #include <vtkRenderer.h>
 
@@ -306,7 +307,7 @@ bool FlowPanel::runFlow()
   this->ShowComparison->setEnabled(false);
   this->Running = true;
   this->sessionChanged();
-  this->startShape(0);
+  this->startStudy();
   return this->Running;
 }
 
@@ -319,15 +320,15 @@ void FlowPanel::cancel()
   }
 }
 
-void FlowPanel::startShape(int which)
+void FlowPanel::startStudy()
 {
-  const auto shape = which == 0 ? bender::FlowShape::Original : bender::FlowShape::Current;
   bender::FlowStudyOptions options;
   options.cacheDirectory = QDir(this->CacheFolder).absolutePath().toStdString();
   options.caseOptions = this->caseOptions();
   QPointer<FlowPanel> self(this);
-  options.onIteration = [self, which](const bender::CfdIteration& iteration)
+  const auto onIteration = [self](bender::FlowShape shape, const bender::CfdIteration& iteration)
   {
+    const int which = shape == bender::FlowShape::Original ? 0 : 1;
     QMetaObject::invokeMethod(
       qApp,
       [self, which, iteration]()
@@ -339,18 +340,22 @@ void FlowPanel::startShape(int which)
       },
       Qt::QueuedConnection);
   };
-  this->setStatus(QString("Flow: the %1 (mesh, solve, results)...").arg(ShapeTitle(which)));
+  // Two serial cases on two cores: both at once take about the longer one's time.
+  const unsigned cores = std::thread::hardware_concurrency();
+  const bool concurrent = cores >= 2u * static_cast<unsigned>(options.caseOptions.processors);
+  this->setStatus(QString("Flow: the original and the current shape%1 (mesh, solve, results)...")
+                    .arg(concurrent ? " at once" : ", one after the other"));
   const auto input = this->Input;
-  const bool started = this->Worker->run("Flow: " + ShapeTitle(which),
-    [self, input, options, shape, which](
+  const bool started = this->Worker->run("Flow",
+    [self, input, options, onIteration, concurrent](
       const bender::ProgressReporter& progress) -> WorkRunner::Finisher
     {
       bender::FlowStudyOptions run = options;
       run.progress = progress;
-      auto result = std::make_shared<bender::FlowShapeResult>();
+      auto study = std::make_shared<bender::FlowStudyResult>();
       try
       {
-        *result = bender::RunFlowShape(*input, shape, run);
+        *study = bender::RunFlowStudy(*input, run, onIteration, concurrent);
       }
       catch (const bender::Cancelled&)
       {
@@ -358,7 +363,7 @@ void FlowPanel::startShape(int which)
       }
       catch (const std::exception& e)
       {
-        const QString what = QString("Flow of the %1 failed: %2").arg(ShapeTitle(which), e.what());
+        const QString what = QString("Flow failed: %1").arg(e.what());
         return [self, what]()
         {
           if (self)
@@ -369,11 +374,11 @@ void FlowPanel::startShape(int which)
           }
         };
       }
-      return [self, which, result]()
+      return [self, study]()
       {
         if (self)
         {
-          self->shapeDone(which, result);
+          self->studyDone(*study);
         }
       };
     });
@@ -383,27 +388,15 @@ void FlowPanel::startShape(int which)
   }
 }
 
-void FlowPanel::shapeDone(int which, const std::shared_ptr<bender::FlowShapeResult>& result)
+void FlowPanel::studyDone(const bender::FlowStudyResult& study)
 {
   if (!this->Running)
   {
     return;
   }
-  this->Results[which] = result;
-  if (which == 0)
+  for (int which = 0; which < 2; ++which)
   {
-    this->setStatus(RunLine(0, *result) + "; now the current shape...");
-    // The worker takes the next job once this one's finisher has returned.
-    QTimer::singleShot(0,
-      this,
-      [this]()
-      {
-        if (this->Running)
-        {
-          this->startShape(1);
-        }
-      });
-    return;
+    this->Results[which] = std::make_shared<bender::FlowShapeResult>(study.shapes[which]);
   }
   this->Running = false;
   this->Input.reset();

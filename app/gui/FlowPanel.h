@@ -31,10 +31,10 @@ class WorkRunner;
 class vtkRenderer;
 
 /// The Flow panel (issue 23, "original vs candidate, side by side"): "Run flow for the original
-/// and the current shape" runs bender::RunFlowShape for the original, then for the current
-/// shape, as two jobs on the window's worker (progress in the status bar from the Allrun's
-/// steps and the solver's iterations, Cancel there or here; the window keeps drawing), with the
-/// residuals plotted live. The cases go to the flow cache (FlowCaseCache.h): a shape solved
+/// and the current shape" runs bender::RunFlowStudy as one job on the window's worker: both
+/// shapes at once where the machine has a core for each case, else one after the other
+/// (progress in the status bar from the Allrun's steps and the solver's iterations, named after
+/// the shape; Cancel there or here; the window keeps drawing), with both residuals plotted live. The cases go to the flow cache (FlowCaseCache.h): a shape solved
 /// before is not solved again. When both are in, the comparison window shows the two shapes
 /// in linked views (FlowViews) and the table of bender::CompareCfdResults
 /// (FlowComparisonTable), the same table bender-cli compare prints for the two case folders.
@@ -104,8 +104,8 @@ signals:
   void flowFinished(bool ok);
 
 private:
-  void startShape(int which);
-  void shapeDone(int which, const std::shared_ptr<bender::FlowShapeResult>& result);
+  void startStudy();
+  void studyDone(const bender::FlowStudyResult& study);
   void stop(const QString& why);
   void showComparison();
   void setStatus(const QString& text);

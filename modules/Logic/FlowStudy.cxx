@@ -10,7 +10,9 @@
 #include "WarpedPoints.h"
 
 #include <algorithm>
+#include <exception>
 #include <filesystem>
+#include <thread>
 
 namespace fs = std::filesystem;
 
@@ -170,7 +172,11 @@ FlowShapeResult ReadFlowShape(const std::string& caseDirectory, FlowShape shape)
   return result;
 }
 
-FlowShapeResult RunFlowShape(const FlowStudyInput& input,
+namespace
+{
+/// The shape made CFD-ready and written into the cache (marked used: the last to go when the
+/// cache is trimmed).
+CachedFlowCase StoreFlowShape(const FlowStudyInput& input,
   FlowShape shape,
   const FlowStudyOptions& options)
 {
@@ -185,12 +191,21 @@ FlowShapeResult RunFlowShape(const FlowStudyInput& input,
     caseOptions.sourceName = input.name + " (" + FlowShapeName(shape) + ")";
   }
   const CachedFlowCase stored = StoreFlowCase(ready, caseOptions, options.cacheDirectory);
-  MarkFlowCaseUsed(stored.caseDirectory); // the last to go when the cache is trimmed
-  if (stored.solved)
+  MarkFlowCaseUsed(stored.caseDirectory);
+  return stored;
+}
+
+/// The stored case run unless solved, then read back.
+FlowShapeResult SolveFlowShape(const CachedFlowCase& stored,
+  FlowShape shape,
+  const FlowStudyOptions& options)
+{
+  const ProgressReporter& progress = options.progress;
+  if (HasFlowResults(stored.caseDirectory))
   {
     ReplayIterations(stored.caseDirectory, options.onIteration);
     FlowShapeResult result = ReadFlowShape(stored.caseDirectory, shape);
-    result.cached = true;
+    result.cached = true; // nothing run: solved before, or by the other shape of a study
     AddStreamlines(result, options.streamlineSeeds);
     return result;
   }
@@ -212,7 +227,7 @@ FlowShapeResult RunFlowShape(const FlowStudyInput& input,
       options.onLine(line);
     }
   };
-  const double limit = std::max(1, caseOptions.iterations);
+  const double limit = std::max(1, options.caseOptions.iterations);
   {
     CfdResidualMonitor monitor(stored.caseDirectory,
       [&options, &progress, limit](const CfdIteration& it)
@@ -233,6 +248,77 @@ FlowShapeResult RunFlowShape(const FlowStudyInput& input,
   AddStreamlines(result, options.streamlineSeeds);
   progress.Report("results", 1.0);
   return result;
+}
+} // namespace
+
+FlowShapeResult RunFlowShape(const FlowStudyInput& input,
+  FlowShape shape,
+  const FlowStudyOptions& options)
+{
+  return SolveFlowShape(StoreFlowShape(input, shape, options), shape, options);
+}
+
+FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
+  const FlowStudyOptions& options,
+  const std::function<void(FlowShape, const CfdIteration&)>& onIteration,
+  bool concurrent)
+{
+  constexpr FlowShape shapes[2] = { FlowShape::Original, FlowShape::Current };
+  // Each shape's own options: its iterations, its stages named after it.
+  FlowStudyOptions each[2] = { options, options };
+  for (int k = 0; k < 2; ++k)
+  {
+    const FlowShape shape = shapes[k];
+    each[k].onIteration = onIteration
+      ? std::function<void(const CfdIteration&)>(
+          [onIteration, shape](const CfdIteration& it) { onIteration(shape, it); })
+      : nullptr;
+    each[k].progress.onProgress = options.progress.onProgress
+      ? std::function<void(const std::string&, double)>(
+          [report = options.progress.onProgress, shape](const std::string& stage, double f)
+          { report(std::string(FlowShapeName(shape)) + ": " + stage, f); })
+      : nullptr;
+  }
+  // Both cases written first (cheap), so that a shape whose case is the other's (the same
+  // content, the same cache folder) is run once, never twice at once in one folder.
+  const CachedFlowCase stored[2] = { StoreFlowShape(input, shapes[0], each[0]),
+    StoreFlowShape(input, shapes[1], each[1]) };
+  const bool same = stored[0].caseDirectory == stored[1].caseDirectory;
+  FlowStudyResult study;
+  std::exception_ptr failed[2];
+  const auto solve = [&](int k)
+  {
+    try
+    {
+      study.shapes[k] = SolveFlowShape(stored[k], shapes[k], each[k]);
+    }
+    catch (...)
+    {
+      failed[k] = std::current_exception();
+    }
+  };
+  if (concurrent && !same)
+  {
+    std::thread current(solve, 1);
+    solve(0);
+    current.join();
+  }
+  else
+  {
+    solve(0);
+    if (!failed[0])
+    {
+      solve(1);
+    }
+  }
+  for (const std::exception_ptr& e : failed)
+  {
+    if (e)
+    {
+      std::rethrow_exception(e);
+    }
+  }
+  return study;
 }
 
 } // namespace bender

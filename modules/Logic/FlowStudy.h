@@ -103,6 +103,26 @@ FlowShapeResult RunFlowShape(const FlowStudyInput& input,
   FlowShape shape,
   const FlowStudyOptions& options);
 
+/// Both shapes' flow: shapes[0] the original, shapes[1] the current shape.
+struct FlowStudyResult
+{
+  FlowShapeResult shapes[2];
+};
+
+/// "Run flow for the original and the current shape". Both are made CFD-ready and written into
+/// the cache first, then run (as RunFlowShape: a case found solved is read back): both at once
+/// when `concurrent` (two serial cases on two cores take about the longer one's time instead of
+/// the sum, docs/cfd.md "Speed"), else one after the other; a current shape whose case is the
+/// original's is run once. `onIteration` gets each shape's iterations (on threads of the runs;
+/// options.onIteration is not used); the progress stages are named after their shape
+/// ("original: solve"). A shape that fails does not stop the other, whose case stays solved
+/// in the cache; then the first failure is thrown (the original's before the current's), as
+/// RunFlowShape's. Cancel stops both (Cancelled).
+FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
+  const FlowStudyOptions& options,
+  const std::function<void(FlowShape, const CfdIteration&)>& onIteration,
+  bool concurrent);
+
 /// The results of a case folder that has them (ReadCfdFlowResults and results/surface.vtp).
 /// Throws InputError naming the file.
 FlowShapeResult ReadFlowShape(const std::string& caseDirectory, FlowShape shape);

@@ -1,7 +1,8 @@
 // The flow study really run (issue 23, label cfd): a small tube prepared for CFD and bent, its
 // original and current shape solved by OpenFOAM on a coarse mesh with few iterations. The
 // solver's iterations arrive while it runs; the same inputs again are found in the cache (no
-// second solve: the case folder is untouched); a changed plan is a new case.
+// second solve: the case folder is untouched); a changed plan is a new case; both shapes run at
+// once give what each gives alone.
 
 #include "CfdTestUtilities.h"
 #include "FlowStudy.h"
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <mutex>
 
 using namespace bender;
@@ -97,4 +99,64 @@ TEST(FlowStudyCfd, AShapeIsSolvedOnceAndAChangedPlanIsANewCase)
   EXPECT_FALSE(changed.cached);
   EXPECT_NE(changed.key, current.key);
   EXPECT_EQ(Stamp(current.caseDirectory), stamp);
+}
+
+TEST(FlowStudyCfd, BothShapesRunAtOnceEachWithItsOwnIterationsAndTheirOwnResults)
+{
+  BENDER_REQUIRE_PROGRAM("simpleFoam");
+  BENDER_REQUIRE_PROGRAM("snappyHexMesh");
+  const std::string cache = test::TemporaryFolder("flow_study_both");
+  FlowStudyOptions options;
+  options.cacheDirectory = cache;
+  options.caseOptions.cellSize = 1.6e-3;
+  options.caseOptions.iterations = 25;
+  std::mutex mutex;
+  std::map<FlowShape, std::vector<int>> iterations;
+  std::vector<std::string> stages;
+  options.progress.onProgress = [&](const std::string& stage, double)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    stages.push_back(stage);
+  };
+  const auto onIteration = [&](FlowShape shape, const CfdIteration& it)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    iterations[shape].push_back(it.iteration);
+  };
+
+  const FlowStudyInput input = test::PreparedThenBentTube(15);
+  const FlowStudyResult study = RunFlowStudy(input, options, onIteration, true);
+  const FlowShapeResult& original = study.shapes[0];
+  const FlowShapeResult& current = study.shapes[1];
+  EXPECT_EQ(original.shape, FlowShape::Original);
+  EXPECT_EQ(current.shape, FlowShape::Current);
+  EXPECT_FALSE(original.cached);
+  EXPECT_FALSE(current.cached);
+  EXPECT_NE(original.key, current.key);
+  // Each shape's iterations reach its own plot, each once, in order.
+  for (const FlowShapeResult* r : { &original, &current })
+  {
+    const std::vector<int>& seen = iterations[r->shape];
+    EXPECT_EQ(static_cast<int>(seen.size()), r->results.run.iterations) << FlowShapeName(r->shape);
+    EXPECT_GT(r->results.run.iterations, 0);
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+    ASSERT_TRUE(r->surface);
+  }
+  // The stages are named after their shape.
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "original: solve"), stages.end());
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "current shape: solve"), stages.end());
+
+  // Run at once, each is what it is alone: the original read back by RunFlowShape is the same
+  // case with the same numbers, and the bend changed them.
+  const FlowShapeResult alone = RunFlowShape(input, FlowShape::Original, options);
+  EXPECT_TRUE(alone.cached);
+  EXPECT_EQ(alone.caseDirectory, original.caseDirectory);
+  EXPECT_EQ(CfdFlowResultsToJson(alone.results), CfdFlowResultsToJson(original.results));
+  EXPECT_NE(CfdFlowResultsToJson(current.results), CfdFlowResultsToJson(original.results));
+
+  // Again, one after the other: both found in the cache, nothing run.
+  const FlowStudyResult again = RunFlowStudy(input, options, onIteration, false);
+  EXPECT_TRUE(again.shapes[0].cached);
+  EXPECT_TRUE(again.shapes[1].cached);
+  EXPECT_EQ(again.shapes[1].caseDirectory, current.caseDirectory);
 }
