@@ -34,15 +34,15 @@ class vtkRenderer;
 /// and the current shape" runs bender::RunFlowStudy as one job on the window's worker: both
 /// shapes at once where the machine has a core for each case, else one after the other
 /// (progress in the status bar from the Allrun's steps and the solver's iterations, named after
-/// the shape; Cancel there or here; the window keeps drawing), with both residuals plotted live. The cases go to the flow cache (FlowCaseCache.h): a shape solved
-/// before is not solved again. When both are in, the comparison window shows the two shapes
-/// in linked views (FlowViews) and the table of bender::CompareCfdResults
-/// (FlowComparisonTable), the same table bender-cli compare prints for the two case folders.
-/// The panel keeps only what it shows: the last results and the input of the run under way.
-/// Results of a shape the session no longer has (a later bend, an undo, another surface) are
-/// marked stale, in the panel and the comparison window, until the session is back at that
-/// shape or the flow is run again. "Save report" writes the report of the two cases shown
-/// (FlowReportSaver). After a run the flow cache is trimmed to its limits (FlowCacheTrim.h),
+/// the shape; Cancel there or here; the window keeps drawing), with both residuals plotted live.
+/// The cases go to the flow cache (FlowCaseCache.h): a shape solved before is not solved again.
+/// When both are in, the comparison window shows the two shapes in linked views (FlowViews) and the
+/// table of bender::CompareCfdResults (FlowComparisonTable), the same table bender-cli compare
+/// prints for the two case folders. The panel keeps only what it shows: the last results and the
+/// input of the run under way. Results of a shape the session no longer has (a later bend, an undo,
+/// another surface) are marked stale, in the panel and the comparison window, until the session is
+/// back at that shape or the flow is run again. "Save report" writes the report of the two cases
+/// shown (FlowReportSaver). After a run the flow cache is trimmed to its limits (FlowCacheTrim.h),
 /// never removing the cases shown.
 class FlowPanel : public QWidget
 {

@@ -2,8 +2,8 @@
 // and cfd: OpenFOAM runs). A small tube prepared for CFD and bent is in the session; the panel
 // is driven by QTest events on its widgets:
 //  - Run: one job on the window's worker (the original and the current shape, at once on a
-//    machine with two cores), both solvers' residuals plotted while they run, the status bar's progress naming the step, the event
-//    loop turning throughout; then the comparison window;
+//    machine with two cores), both solvers' residuals plotted while they run, the status bar's
+//    progress naming the step, the event loop turning throughout; then the comparison window;
 //  - the table holds the numbers of the two cases' results/flow.json (as bender-cli compare);
 //  - the two views share one colour scale with its unit, and a drag in one moves the other;
 //  - Save report: the PDF, its pictures and the plan in a folder picked in the dialog; saved
