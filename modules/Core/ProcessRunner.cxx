@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include <csignal>
@@ -95,13 +96,23 @@ pid_t Spawn(const ExecArguments& exec,
   {
     throw EnvironmentError(name + ": cannot be started: " + std::strerror(errno));
   }
-  const pid_t pid = ::fork();
+  // One fork at a time in the process: libraries' fork handlers are not safe against a fork
+  // on another thread (ITK 5.2's thread pool joins its threads before a fork and starts new
+  // ones after it; two flow cases started at once deadlocked in it). The parent holds the lock
+  // until fork returns; the child execs.
+  static std::mutex forking;
+  pid_t pid = -1;
+  int forkError = 0;
+  {
+    const std::lock_guard<std::mutex> lock(forking);
+    pid = ::fork();
+    forkError = errno;
+  }
   if (pid < 0)
   {
-    const int error = errno;
     ::close(report[0]);
     ::close(report[1]);
-    throw EnvironmentError(name + ": cannot be started: " + std::strerror(error));
+    throw EnvironmentError(name + ": cannot be started: " + std::strerror(forkError));
   }
   if (pid == 0)
   {
