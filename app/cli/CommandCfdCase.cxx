@@ -12,9 +12,11 @@
 
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -80,6 +82,11 @@ int RunCfdCase(CfdCaseArguments a)
     bender::CfdConvergenceOptions study;
     study.caseOptions = options;
     study.ratio = a.ratio;
+    // The three meshes at once where the cores allow (each serial, or on its processors).
+    study.jobs = std::clamp(
+      static_cast<int>(std::thread::hardware_concurrency()) / std::max(1, options.processors),
+      1,
+      3);
     if (!a.json)
     {
       study.onLine = [](const std::string& line)

@@ -32,7 +32,10 @@ struct CfdConvergenceOptions
   CfdCaseOptions caseOptions;
   /// Refinement ratio between consecutive meshes, >= MinimumRefinementRatio (1.3).
   double ratio = 1.3;
-  /// Allrun's progress lines, prefixed by "mesh-N: ".
+  /// The three runs at once at most this many (each serial; the finest first); 1: one after
+  /// the other. bender-cli gives the machine's cores (at most 3).
+  int jobs = 1;
+  /// Allrun's progress lines, prefixed by "mesh-N: " (one at a time, from the runs' threads).
   std::function<void(const std::string&)> onLine;
   /// Cancel flag (stops OpenFOAM: Cancelled); its callback gets "mesh-N" stages.
   ProgressReporter progress;

@@ -283,8 +283,9 @@ void SetInletFlowOnMesh(const std::string& caseDirectory)
   double alignment = 1.0;
   for (const auto& p : j.value("patches", nlohmann::json::array()))
   {
-    if (p.is_object() && p.value("name", std::string()) == inlet && p.contains("normal") &&
-      p["normal"].is_array() && p["normal"].size() == 3)
+    if (p.is_object() && p.contains("name") && p["name"].is_string() &&
+      p["name"].get<std::string>() == inlet && p.contains("normal") && p["normal"].is_array() &&
+      p["normal"].size() == 3)
     {
       std::array<double, 3> n{};
       for (std::size_t k = 0; k < 3; ++k)

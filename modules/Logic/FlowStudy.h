@@ -57,7 +57,8 @@ struct FlowStudyOptions
   /// Each iteration of the solver (its initial residuals), on a thread of the run, in order;
   /// for a case found in the cache, its iterations at once.
   std::function<void(const CfdIteration&)> onIteration;
-  /// The Allrun's lines ("bender Allrun: snappyHexMesh"), on the calling thread.
+  /// The Allrun's lines ("bender Allrun: snappyHexMesh"), on the thread that runs the case
+  /// (RunFlowStudy: two at once).
   std::function<void(const std::string&)> onLine;
   /// Streamlines from this many seeds over the inlet (FlowStreamlines); 0: none.
   int streamlineSeeds = 60;
