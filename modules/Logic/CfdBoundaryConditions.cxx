@@ -280,8 +280,8 @@ std::string BoundaryDataVelocity(const CfdInletProfileData& profile)
   {
     s += CfdVector(u) + "\n";
   }
-  // Read only where 0/U says setAverage yes: bender-cli's run puts it on the snapped inlet's
-  // area after meshing, so the inlet carries the flow exactly (here: over the cap's area).
+  // Read only where 0/U says setAverage true: the Allrun's mesh step replaces it with the mean
+  // that carries the flow on the meshed inlet (here: the flow over the cap's area).
   return s + ")\n" + kCfdInletAverageMarker + "\n" + CfdVector(profile.meanVelocity) + "\n";
 }
 
@@ -393,10 +393,11 @@ std::string VelocityField(const CfdCaseResult& r, const CfdCaseOptions& options)
           "/points and 0/U, interpolated onto the snapped faces.\n"
           "        type            timeVaryingMappedFixedValue;\n"
           "        offset          (0 0 0);\n"
-          "        // yes once bender-cli's run has put the average (the end of 0/U there) on the\n"
-          "        // snapped faces' area: the inlet then carries the flow exactly.\n"
-          "        setAverage      false;\n"
-          "        value           uniform (0 0 0);\n";
+          "        // Switched on by the Allrun's mesh step, with the average (the end of the\n"
+          "        // boundaryData's 0/U) that carries the flow on the meshed inlet. No value: "
+          "the\n"
+          "        // profile is mapped when the field is read (postProcess measures it).\n"
+          "        setAverage      false;\n";
       }
       if (p.type == PatchType::Inlet && options.velocity > 0.0)
       {

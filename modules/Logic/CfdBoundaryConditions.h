@@ -35,14 +35,10 @@ struct CfdInletProfileData
   double faceCorrection = 1.0;
   double area = 0.0;       ///< m^2, the cap's
   double peakToMean = 0.0; ///< u_max / u_mean (2 for Poiseuille in a circle)
-  /// m/s, into the domain: the flow over the cap's area, the average that 0/U's setAverage
-  /// holds the inlet to once SetInletFlowOnMesh has put it on the snapped inlet's area.
+  /// m/s, into the domain: the flow over the cap's area (the Allrun's mesh step replaces it
+  /// with the mean that carries the flow on the meshed inlet, held by 0/U's setAverage).
   std::array<double, 3> meanVelocity{ { 0, 0, 0 } };
 };
-
-/// The line after which constant/boundaryData/<inlet>/0/U gives the inlet's average velocity.
-inline constexpr const char* kCfdInletAverageMarker =
-  "// The mean velocity on the inlet (m/s), held with setAverage:";
 
 /// The inlet a profile is laid on and the flow it carries.
 struct CfdInletFlow

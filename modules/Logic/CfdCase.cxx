@@ -443,10 +443,14 @@ CfdCaseResult WriteCase(vtkPolyData* surface,
       { "constant/turbulenceProperties", TurbulenceProperties() },
       { "0/U", VelocityField(result, options) },
       { "0/p", PressureField(result) },
-      { "Allrun", Allrun(options.processors) },
+      { "Allrun",
+        Allrun(options.processors,
+          options.inletProfile == CfdInletProfile::Poiseuille ? in.name : std::string(),
+          result.inletFlowRate) },
     };
     if (options.inletProfile == CfdInletProfile::Poiseuille)
     {
+      files.emplace_back("system/inletFlow", InletFlowDict(in.name));
       const std::string data = "constant/boundaryData/" + in.name + "/";
       files.emplace_back(data + "points", BoundaryDataPoints(profile));
       files.emplace_back(data + "0/U", BoundaryDataVelocity(profile));

@@ -279,15 +279,6 @@ struct CfdRunOptions
 /// complete new one.
 CfdRunResult RunOpenFoamCase(const std::string& caseDirectory, const CfdRunOptions& options = {});
 
-/// After meshing, for a Poiseuille inlet: puts the profile's average on the meshed inlet's area
-/// (constant/boundaryData/<inlet>/0/U, after kCfdInletAverageMarker) and switches 0/U's
-/// setAverage on, so that the inlet carries inletFlowRate exactly whatever the snapped faces
-/// (mapped as written, the flow differs by a few tenths of a percent from mesh to mesh).
-/// Nothing for other inlets. RunOpenFoamCase calls it between its mesh and solve steps.
-/// Throws InputError when the case's files are not as cfd-case wrote them, Error when the
-/// mesh has no inlet faces or a file cannot be written.
-void SetInletFlowOnMesh(const std::string& caseDirectory);
-
 /// The patches of the OpenFOAM mesh (constant/polyMesh/boundary) with their face counts, in
 /// file order. Throws InputError when the file is missing or unreadable.
 std::vector<std::pair<std::string, long long>> ReadMeshPatches(const std::string& caseDirectory);

@@ -200,7 +200,25 @@ std::string TurbulenceProperties()
     "simulationType  laminar;\n";
 }
 
-std::string Allrun(int processors)
+std::string InletFlowDict(const std::string& inlet)
+{
+  std::string s = CfdFoamHeader("dictionary", "system", "inletFlow") +
+    "// Read by the Allrun's mesh step (postProcess -dict system/inletFlow -time 0): the flow\n"
+    "// through the meshed inlet and its mean velocity, as the mapped profile gives them.\n"
+    "functions\n{\n";
+  for (const char* op : { "areaNormalIntegrate", "areaAverage" })
+  {
+    s += std::string("    ") + (op[4] == 'N' ? "inletFlux" : "inletMean") +
+      "\n    {\n        type            surfaceFieldValue;\n"
+      "        libs            (\"libfieldFunctionObjects.so\");\n"
+      "        writeControl    timeStep;\n        log             false;\n"
+      "        writeFields     false;\n        regionType      patch;\n        name            " +
+      inlet + ";\n        operation       " + op + ";\n        fields          (U);\n    }\n";
+  }
+  return s + "}\n";
+}
+
+std::string Allrun(int processors, const std::string& poiseuilleInlet, double flowRate)
 {
   std::ostringstream s;
   s << "#!/bin/sh\n"
@@ -238,7 +256,35 @@ std::string Allrun(int processors)
        "        failed=$(grep '\\*\\*\\*' log.checkMesh | sed 's/^ *\\*\\*\\*//' | tr '\\n' ';' "
        "| sed 's/;$//')\n"
        "        echo \"bender Allrun: checkMesh found problems ($failed), see log.checkMesh\" >&2\n"
-       "        exit 1\n    fi\nfi\n\n"
+       "        exit 1\n    fi\n"
+    << (poiseuilleInlet.empty()
+           ? std::string()
+           : "    # The inlet's mapped profile carries the flow exactly on the meshed faces: its\n"
+             "    # flow and mean measured there, the mean scaled to the flow held by setAverage.\n"
+             "    step postProcess postProcess -dict system/inletFlow -time 0 -fields '(U)'\n"
+             "    flux=$(tail -n 1 postProcessing/inletFlux/0/surfaceFieldValue.dat | awk '{ print "
+             "$2 }')\n"
+             "    mean=$(tail -n 1 postProcessing/inletMean/0/surfaceFieldValue.dat | tr -d '()' | "
+             "awk '{ print $2, $3, $4 }')\n"
+             "    average=$(awk -v q=" +
+             CfdNumber(flowRate) +
+             " -v f=\"$flux\" -v m=\"$mean\" 'BEGIN { split(m, v, \" \"); if (f < 0) f = -f;\n"
+             "        if (!(f > 0)) exit 1; s = q / f;\n"
+             "        printf \"(%.10g %.10g %.10g)\", v[1] * s, v[2] * s, v[3] * s }') || {\n"
+             "        echo \"bender Allrun: the meshed inlet carries no flow, see "
+             "log.postProcess\" >&2\n"
+             "        exit 1\n    }\n"
+             "    values=constant/boundaryData/" +
+             poiseuilleInlet +
+             "/0/U\n"
+             "    sed -i '\\%^" +
+             std::string(kCfdInletAverageMarker).substr(0, 20) +
+             "%,$d' \"$values\"\n"
+             "    printf '%s\\n%s\\n' '" +
+             kCfdInletAverageMarker +
+             "' \"$average\" >> \"$values\"\n"
+             "    sed -i 's/setAverage      false;/setAverage      true;/' 0/U\n")
+    << "fi\n\n"
        "if [ \"$what\" = all ] || [ \"$what\" = solve ]; then\n"
        "    rm -rf postProcessing processor*\n    clean_times\n"
        "    if [ \"$processors\" -gt 1 ]; then\n"

@@ -40,7 +40,19 @@ std::string DecomposeParDict(int processors,
 std::string TransportProperties(double nu);
 std::string TurbulenceProperties();
 /// The Allrun script (mesh, solve; mpirun when processors > 1).
-std::string Allrun(int processors);
+/// The line after which constant/boundaryData/<inlet>/0/U gives the inlet's average velocity.
+inline constexpr const char* kCfdInletAverageMarker =
+  "// The mean velocity on the inlet (m/s), held with setAverage:";
+
+/// The Allrun. With `poiseuilleInlet` (the inlet's patch name; empty: none), its mesh step
+/// then holds the mapped profile's average so that the meshed inlet carries `flowRate` (m^3/s)
+/// exactly: postProcess measures the mapped flow and mean on the meshed faces
+/// (system/inletFlow), and the mean scaled to the flow is written after
+/// kCfdInletAverageMarker in constant/boundaryData/<inlet>/0/U, with 0/U's setAverage on.
+std::string Allrun(int processors, const std::string& poiseuilleInlet = "", double flowRate = 0.0);
+
+/// system/inletFlow: the flow through and the mean velocity on `inlet` (postProcess -dict).
+std::string InletFlowDict(const std::string& inlet);
 
 } // namespace bender
 

@@ -58,9 +58,8 @@ TEST(CfdLayers, ATubeMeshedWithPrismLayersPassesCheckMeshAndCarriesThePrescribed
   EXPECT_GT(100.0 * report.facesExtruded / report.facesToExtrude, 90.0);
   EXPECT_EQ(report.facesToExtrude, report.layers[0].faces);
 
-  // The Poiseuille profile, mapped onto the snapped inlet and held to its average there
-  // (SetInletFlowOnMesh), carries the prescribed flow exactly: to 1e-4, the inlet's faces being
-  // planar to about that.
+  // The Poiseuille profile, mapped onto the snapped inlet and held to the mean that carries the
+  // flow there (the Allrun's mesh step), carries the prescribed flow exactly: to 1e-4.
   EXPECT_NEAR(run.inletFlowRate, options.flowRate, 1e-4 * options.flowRate);
   EXPECT_LT(run.massImbalance, 0.01);
 }
