@@ -271,8 +271,8 @@ std::string Allrun(int processors, const std::string& poiseuilleInlet, double fl
              " -v f=\"$flux\" -v m=\"$mean\" 'BEGIN { split(m, v, \" \"); if (f < 0) f = -f;\n"
              "        if (!(f > 0)) exit 1; s = q / f;\n"
              "        printf \"(%.10g %.10g %.10g)\", v[1] * s, v[2] * s, v[3] * s }') || {\n"
-             "        echo \"bender Allrun: the meshed inlet carries no flow, see "
-             "log.postProcess\" >&2\n"
+             "        echo \"bender Allrun: postProcess failed, see log.postProcess: the meshed "
+             "inlet carries no flow\" >&2\n"
              "        exit 1\n    }\n"
              "    values=constant/boundaryData/" +
              poiseuilleInlet +

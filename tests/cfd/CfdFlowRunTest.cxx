@@ -237,8 +237,12 @@ TEST_F(CfdFlowRun, TheRunIsTimedStageByStage)
     steps += seconds;
   }
   EXPECT_EQ(programs,
-    std::vector<std::string>(
-      { "blockMesh", "surfaceFeatureExtract", "snappyHexMesh", "checkMesh", "simpleFoam" }));
+    std::vector<std::string>({ "blockMesh",
+      "surfaceFeatureExtract",
+      "snappyHexMesh",
+      "checkMesh",
+      "postProcess",
+      "simpleFoam" }));
   EXPECT_GT(t.mesh, 0.0);
   EXPECT_GT(t.layers, 0.0); // the case has 3 prism layers
   EXPECT_GT(t.solve, 0.0);
