@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <locale>
 #include <sstream>
+#include <utility>
 
 namespace bender
 {
@@ -206,9 +207,11 @@ std::string InletFlowDict(const std::string& inlet)
     "// Read by the Allrun's mesh step (postProcess -dict system/inletFlow -time 0): the flow\n"
     "// through the meshed inlet and its mean velocity, as the mapped profile gives them.\n"
     "functions\n{\n";
-  for (const char* op : { "areaNormalIntegrate", "areaAverage" })
+  const std::pair<const char*, const char*> measures[] = { { "inletFlux", "areaNormalIntegrate" },
+    { "inletMean", "areaAverage" } };
+  for (const auto& [name, op] : measures)
   {
-    s += std::string("    ") + (op[4] == 'N' ? "inletFlux" : "inletMean") +
+    s += std::string("    ") + name +
       "\n    {\n        type            surfaceFieldValue;\n"
       "        libs            (\"libfieldFunctionObjects.so\");\n"
       "        writeControl    timeStep;\n        log             false;\n"
