@@ -288,9 +288,27 @@ FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
   std::exception_ptr failed[2];
   const auto solve = [&](int k)
   {
+    // A failure names its shape (the case folder alone does not say which), of the same type.
+    const std::string shape = std::string(FlowShapeName(shapes[k])) + ": ";
     try
     {
       study.shapes[k] = SolveFlowShape(stored[k], shapes[k], each[k]);
+    }
+    catch (const Cancelled&)
+    {
+      failed[k] = std::current_exception();
+    }
+    catch (const EnvironmentError& e)
+    {
+      failed[k] = std::make_exception_ptr(EnvironmentError(shape + e.what()));
+    }
+    catch (const InputError& e)
+    {
+      failed[k] = std::make_exception_ptr(InputError(shape + e.what()));
+    }
+    catch (const Error& e)
+    {
+      failed[k] = std::make_exception_ptr(Error(shape + e.what()));
     }
     catch (...)
     {
