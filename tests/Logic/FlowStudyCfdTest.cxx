@@ -27,6 +27,16 @@ fs::file_time_type Stamp(const std::string& caseDirectory)
 {
   return fs::last_write_time(fs::path(caseDirectory) / "log.simpleFoam");
 }
+
+/// A coarse case (a few thousand cells, 25 iterations) in the cache folder `cache`.
+FlowStudyOptions CoarseStudy(const std::string& cache)
+{
+  FlowStudyOptions options;
+  options.cacheDirectory = cache;
+  options.caseOptions.cellSize = 1.6e-3;
+  options.caseOptions.iterations = 25;
+  return options;
+}
 } // namespace
 
 TEST(FlowStudyCfd, AShapeIsSolvedOnceAndAChangedPlanIsANewCase)
@@ -34,10 +44,7 @@ TEST(FlowStudyCfd, AShapeIsSolvedOnceAndAChangedPlanIsANewCase)
   BENDER_REQUIRE_PROGRAM("simpleFoam");
   BENDER_REQUIRE_PROGRAM("snappyHexMesh");
   const std::string cache = test::TemporaryFolder("flow_study_cfd");
-  FlowStudyOptions options;
-  options.cacheDirectory = cache;
-  options.caseOptions.cellSize = 1.6e-3; // coarse: a few thousand cells
-  options.caseOptions.iterations = 25;
+  FlowStudyOptions options = CoarseStudy(cache);
   std::mutex mutex;
   std::vector<int> iterations;
   options.onIteration = [&](const CfdIteration& it)
@@ -106,10 +113,7 @@ TEST(FlowStudyCfd, BothShapesRunAtOnceEachWithItsOwnIterationsAndTheirOwnResults
   BENDER_REQUIRE_PROGRAM("simpleFoam");
   BENDER_REQUIRE_PROGRAM("snappyHexMesh");
   const std::string cache = test::TemporaryFolder("flow_study_both");
-  FlowStudyOptions options;
-  options.cacheDirectory = cache;
-  options.caseOptions.cellSize = 1.6e-3;
-  options.caseOptions.iterations = 25;
+  FlowStudyOptions options = CoarseStudy(cache);
   std::mutex mutex;
   std::map<FlowShape, std::vector<int>> iterations;
   std::vector<std::string> stages;
