@@ -10,6 +10,7 @@
 #include "WarpedPoints.h"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <filesystem>
 #include <thread>
@@ -286,6 +287,7 @@ FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
   const bool same = stored[0].caseDirectory == stored[1].caseDirectory;
   FlowStudyResult study;
   std::exception_ptr failed[2];
+  std::atomic<bool> cancelled{ false };
   const auto solve = [&](int k)
   {
     // A failure names its shape (the case folder alone does not say which), of the same type.
@@ -296,6 +298,7 @@ FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
     }
     catch (const Cancelled&)
     {
+      cancelled = true;
       failed[k] = std::current_exception();
     }
     catch (const EnvironmentError& e)
@@ -324,7 +327,7 @@ FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
   else
   {
     solve(0);
-    if (!failed[0])
+    if (!cancelled) // a failed original does not keep the current shape from its run
     {
       solve(1);
     }

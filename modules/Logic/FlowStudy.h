@@ -116,10 +116,10 @@ struct FlowStudyResult
 /// the sum, docs/cfd.md "Speed"), else one after the other; a current shape whose case is the
 /// original's is run once. `onIteration` gets each shape's iterations (on threads of the runs;
 /// options.onIteration is not used); the progress stages are named after their shape
-/// ("original: solve"). A shape that fails does not stop the other, whose case stays solved
-/// in the cache; then the first failure is thrown (the original's before the current's), of
-/// RunFlowShape's type, its message led by the shape ("current shape: ..."). Cancel stops both
-/// (Cancelled).
+/// ("original: solve"). A shape that fails does not stop the other (one after the other too:
+/// only Cancel keeps the second from running), whose case stays solved in the cache; then the first
+/// failure is thrown (the original's before the current's), of RunFlowShape's type, its message led
+/// by the shape ("current shape: ..."). Cancel stops both (Cancelled).
 FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
   const FlowStudyOptions& options,
   const std::function<void(FlowShape, const CfdIteration&)>& onIteration,

@@ -2,11 +2,13 @@
 // original and current shape solved by OpenFOAM on a coarse mesh with few iterations. The
 // solver's iterations arrive while it runs; the same inputs again are found in the cache (no
 // second solve: the case folder is untouched); a changed plan is a new case; both shapes run at
-// once give what each gives alone.
+// once give what each gives alone; a shape that fails does not stop the other.
 
+#include "BenderErrors.h"
 #include "CfdTestUtilities.h"
 #include "FlowStudy.h"
 #include "LogicTestUtilities.h"
+#include "ProcessRunner.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +16,9 @@
 #include <vtkPolyData.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <mutex>
 
@@ -36,6 +40,51 @@ FlowStudyOptions CoarseStudy(const std::string& cache)
   options.caseOptions.cellSize = 1.6e-3;
   options.caseOptions.iterations = 25;
   return options;
+}
+
+/// Puts first on PATH a snappyHexMesh that fails the first time it is started (whichever shape
+/// that is) and runs the real one afterwards; the PATH is restored when it goes.
+class FirstMeshingFails
+{
+public:
+  explicit FirstMeshingFails(const std::string& bin)
+    : Bin(bin)
+    , Path(std::getenv("PATH") ? std::getenv("PATH") : "")
+  {
+    const std::string real = FindExecutable("snappyHexMesh");
+    std::ofstream(Bin + "/snappyHexMesh")
+      << "#!/bin/sh\nif mkdir \"" << Bin << "/failed\" 2>/dev/null; then\n"
+      << "    echo 'made to fail by the test' >&2\n    exit 1\nfi\nexec \"" << real
+      << "\" \"$@\"\n";
+    fs::permissions(Bin + "/snappyHexMesh", fs::perms::owner_all);
+    setenv("PATH", (Bin + ":" + Path).c_str(), 1);
+  }
+  ~FirstMeshingFails() { setenv("PATH", Path.c_str(), 1); }
+  FirstMeshingFails(const FirstMeshingFails&) = delete;
+  FirstMeshingFails& operator=(const FirstMeshingFails&) = delete;
+
+private:
+  std::string Bin;
+  std::string Path;
+};
+
+/// The study's failure: its type, its message.
+template<typename Run>
+std::string FailureOf(Run run)
+{
+  try
+  {
+    run();
+  }
+  catch (const InputError& e)
+  {
+    return std::string("InputError: ") + e.what();
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no failure";
 }
 } // namespace
 
@@ -163,4 +212,42 @@ TEST(FlowStudyCfd, BothShapesRunAtOnceEachWithItsOwnIterationsAndTheirOwnResults
   EXPECT_TRUE(again.shapes[0].cached);
   EXPECT_TRUE(again.shapes[1].cached);
   EXPECT_EQ(again.shapes[1].caseDirectory, current.caseDirectory);
+}
+
+TEST(FlowStudyCfd, AShapeThatFailsDoesNotStopTheOther)
+{
+  BENDER_REQUIRE_PROGRAM("simpleFoam");
+  BENDER_REQUIRE_PROGRAM("snappyHexMesh");
+  const FlowStudyInput input = test::PreparedThenBentTube(15);
+  for (const bool concurrent : { true, false })
+  {
+    SCOPED_TRACE(concurrent ? "both at once" : "one after the other");
+    const std::string cache =
+      test::TemporaryFolder(concurrent ? "flow_study_fail_both" : "flow_study_fail_serial");
+    const FlowStudyOptions options = CoarseStudy(cache);
+    std::string failure;
+    {
+      const FirstMeshingFails wrapper(test::TemporaryFolder("flow_study_fail_bin"));
+      failure = FailureOf([&] { RunFlowStudy(input, options, nullptr, concurrent); });
+    }
+    // One line led by the shape that failed (one after the other: the original, run first),
+    // naming the step and its log.
+    const bool originalFailed = failure.rfind("original: ", 0) == 0;
+    EXPECT_TRUE(originalFailed || failure.rfind("current shape: ", 0) == 0) << failure;
+    if (!concurrent)
+    {
+      EXPECT_TRUE(originalFailed) << failure;
+    }
+    EXPECT_NE(failure.find("snappyHexMesh failed, see log.snappyHexMesh"), std::string::npos)
+      << failure;
+    EXPECT_EQ(failure.find('\n'), std::string::npos) << failure;
+
+    // The other shape was solved all the same: run again, it is found in the cache and only the
+    // failed one is run.
+    const FlowStudyResult again = RunFlowStudy(input, options, nullptr, concurrent);
+    const int failed = originalFailed ? 0 : 1;
+    EXPECT_FALSE(again.shapes[failed].cached);
+    EXPECT_TRUE(again.shapes[1 - failed].cached);
+    EXPECT_GT(again.shapes[failed].results.run.iterations, 0);
+  }
 }
