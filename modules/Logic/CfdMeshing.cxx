@@ -156,8 +156,9 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
        "    nRelaxIter          5;\n    nFeatureSnapIter    10;\n"
        "    implicitFeatureSnap false;\n    explicitFeatureSnap true;\n"
        "    multiRegionFeatureSnap true;\n}\n\n"
-       "// Prism layers on the wall, thinner towards it: the outermost is half the local cell,\n"
-       "// each one 1.2 times the one below it (sizes relative to the cell they grow from).\n"
+       "// Prism layers on the wall, thinner towards it: the outermost is 0.4 of the local cell,\n"
+       "// each one 1.2 times the one below it (sizes relative to the cell they grow from; the\n"
+       "// three together about one cell, so that a lumen 7 cells across keeps them whole).\n"
        "addLayersControls\n{\n"
        "    relativeSizes       true;\n    layers\n    {\n";
   for (const auto& p : patches)
@@ -168,7 +169,7 @@ std::string SnappyHexMeshDict(const std::string& surfaceName,
     }
   }
   s << "    }\n"
-       "    expansionRatio      1.2;\n    finalLayerThickness 0.5;\n    minThickness        0.1;\n"
+       "    expansionRatio      1.2;\n    finalLayerThickness 0.4;\n    minThickness        0.1;\n"
        "    nGrow               0;\n    featureAngle        60;\n    slipFeatureAngle    30;\n"
        "    nRelaxIter          3;\n    nSmoothSurfaceNormals 1;\n    nSmoothNormals      3;\n"
        "    nSmoothThickness    10;\n    maxFaceThicknessRatio 0.5;\n"
