@@ -1,5 +1,7 @@
 #include "VesselTestUtilities.h"
 
+#include "CfdVerificationTubes.h"
+
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFlyingEdges3D.h>
@@ -55,11 +57,10 @@ vtkSmartPointer<vtkPolyData> SweptTube(const Curve& curve,
   int sides,
   double radius)
 {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> triangles;
+  // The curve's stations with a rotation-minimising frame (each normal the previous one
+  // projected), swept by the one tube generator (CfdVerificationTubes.h).
+  std::vector<TubeStation> stations;
   Point3 normal{ { 0, 0, 0 } };
-  const double pi = 3.14159265358979323846;
   for (int i = 0; i < rings; ++i)
   {
     const double t = t0 + (t1 - t0) * i / (rings - 1);
@@ -72,36 +73,14 @@ vtkSmartPointer<vtkPolyData> SweptTube(const Curve& curve,
         std::abs(tangent[0]) < 0.9 ? Point3{ { 1, 0, 0 } } : Point3{ { 0, 1, 0 } };
       normal = Unit(Cross(tangent, Cross(axis, tangent)));
     }
-    // Rotation-minimising frame by projection of the previous normal.
     const double d = Dot(normal, tangent);
     normal = Unit(
       { { normal[0] - d * tangent[0], normal[1] - d * tangent[1], normal[2] - d * tangent[2] } });
-    const Point3 binormal = Cross(tangent, normal);
-    for (int k = 0; k < sides; ++k)
-    {
-      const double a = 2.0 * pi * k / sides;
-      const double ca = std::cos(a) * radius, sa = std::sin(a) * radius;
-      points->InsertNextPoint(c[0] + ca * normal[0] + sa * binormal[0],
-        c[1] + ca * normal[1] + sa * binormal[1],
-        c[2] + ca * normal[2] + sa * binormal[2]);
-    }
+    stations.push_back({ { c[0], c[1], c[2] },
+      { tangent[0], tangent[1], tangent[2] },
+      { normal[0], normal[1], normal[2] } });
   }
-  for (int i = 0; i + 1 < rings; ++i)
-  {
-    for (int k = 0; k < sides; ++k)
-    {
-      const vtkIdType a = i * sides + k, b = i * sides + (k + 1) % sides;
-      const vtkIdType c = a + sides, e = b + sides;
-      const vtkIdType t1ids[3] = { a, b, e };
-      const vtkIdType t2ids[3] = { a, e, c };
-      triangles->InsertNextCell(3, t1ids);
-      triangles->InsertNextCell(3, t2ids);
-    }
-  }
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->SetPoints(points);
-  out->SetPolys(triangles);
-  return out;
+  return SweepOpenTube(stations, radius, sides);
 }
 
 vtkSmartPointer<vtkPolyData> ImplicitTubes(const std::vector<Segment>& segments,

@@ -3,6 +3,7 @@
 
 // Pieces shared by the window test suites (AppTests, IgtlAppTests, VesselAppTests).
 
+#include "CfdVerificationTubes.h"
 #include "ExportFlow.h"
 #include "MainWindow.h"
 #include "Vec3.h"
@@ -19,10 +20,8 @@
 #include <QtTest>
 
 #include <vtkCamera.h>
-#include <vtkCellArray.h>
 #include <vtkInteractorObserver.h>
 #include <vtkNew.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
@@ -32,34 +31,15 @@
 namespace bendertest
 {
 
-/// A tube along x of radius r from x0 to x1, `rings` x `sides` points, open at both ends.
+/// A tube along x of radius r from x0 to x1, `rings` x `sides` points, open at both ends (the
+/// one tube generator, CfdVerificationTubes.h; each ring starts on +y).
 inline vtkSmartPointer<vtkPolyData> Tube(double x0,
   double x1,
   double r,
   int rings = 121,
   int sides = 24)
 {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (int i = 0; i < rings; ++i)
-    for (int k = 0; k < sides; ++k)
-    {
-      const double a = 2 * 3.14159265358979 * k / sides;
-      points->InsertNextPoint(x0 + (x1 - x0) * i / (rings - 1), r * std::cos(a), r * std::sin(a));
-    }
-  vtkNew<vtkCellArray> cells;
-  for (int i = 0; i + 1 < rings; ++i)
-    for (int k = 0; k < sides; ++k)
-    {
-      const vtkIdType a = i * sides + k, b = i * sides + (k + 1) % sides;
-      const vtkIdType t1[3] = { a, b, b + sides }, t2[3] = { a, b + sides, a + sides };
-      cells->InsertNextCell(3, t1);
-      cells->InsertNextCell(3, t2);
-    }
-  auto tube = vtkSmartPointer<vtkPolyData>::New();
-  tube->SetPoints(points);
-  tube->SetPolys(cells);
-  return tube;
+  return bender::SweepOpenTube(bender::StraightCentreline(x0, x1, rings - 1), r, sides);
 }
 
 /// A window for tests: autosave in `folder`, no recovery offer, no questions asked.

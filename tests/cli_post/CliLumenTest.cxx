@@ -1,13 +1,19 @@
 // bender-cli check AFTER --before BEFORE: the lumen guard on the command line (issue 22). Both
 // shapes' centerlines, each branch's minimal inscribed radius before and after; exit 1 when a
 // branch the bend moved narrows by more than --max-narrowing (default 5 %).
+#include "CfdVerificationTubes.h"
 #include "CliPostTestUtilities.h"
+#include "MeshIO.h"
 
 #include <nlohmann/json.hpp>
 
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
 #include <cmath>
 #include <functional>
-#include <sstream>
 
 using namespace clitest;
 
@@ -16,34 +22,21 @@ namespace
 
 using Map = std::function<std::array<double, 3>(double x, double y, double z)>;
 
-// An open tube along +x (radius 2, length 40, 81 rings of 32 points) written as OFF, its points
-// mapped by `map`.
+// An open tube along +x (radius 2, length 40, 81 rings of 32 points: the one tube generator,
+// CfdVerificationTubes.h) written as OFF, its points mapped by `map`.
 void WriteTube(const std::string& path, const Map& map)
 {
-  const int rings = 81, sides = 32;
-  const double pi = 3.14159265358979323846;
-  std::ostringstream off;
-  off.precision(17);
-  off << "OFF\n" << rings * sides << " " << 2 * (rings - 1) * sides << " 0\n";
-  for (int r = 0; r < rings; ++r)
+  const vtkSmartPointer<vtkPolyData> tube =
+    bender::SweepOpenTube(bender::StraightCentreline(0.0, 40.0, 80), 2.0, 32);
+  vtkPoints* points = tube->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
   {
-    for (int k = 0; k < sides; ++k)
-    {
-      const double a = 2.0 * pi * k / sides;
-      const auto p = map(40.0 * r / (rings - 1), 2.0 * std::cos(a), 2.0 * std::sin(a));
-      off << p[0] << " " << p[1] << " " << p[2] << "\n";
-    }
+    double p[3];
+    points->GetPoint(i, p);
+    const std::array<double, 3> q = map(p[0], p[1], p[2]);
+    points->SetPoint(i, q.data());
   }
-  for (int r = 0; r + 1 < rings; ++r)
-  {
-    for (int k = 0; k < sides; ++k)
-    {
-      const int a = r * sides + k, b = r * sides + (k + 1) % sides;
-      off << "3 " << a << " " << b << " " << b + sides << "\n";
-      off << "3 " << a << " " << b + sides << " " << a + sides << "\n";
-    }
-  }
-  std::ofstream(path) << off.str();
+  bender::WriteMesh(tube, path);
 }
 
 const Map Straight = [](double x, double y, double z) { return std::array<double, 3>{ x, y, z }; };
