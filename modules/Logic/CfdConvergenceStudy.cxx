@@ -49,10 +49,13 @@ CfdConvergenceQuantity Study(const std::string& name,
   q.name = name;
   q.unit = unit;
   q.study = EstimateMeshConvergence(samples);
-  if (q.study.kind == ConvergenceKind::Monotone && q.study.extrapolated != 0.0)
+  // The best estimate: extrapolated when monotone, else the finest value (study.extrapolated
+  // holds it then).
+  if (q.study.kind != ConvergenceKind::Diverging && q.study.extrapolated != 0.0)
   {
     q.coarseDeviation =
       (q.study.values[2] - q.study.extrapolated) / std::fabs(q.study.extrapolated);
+    q.deviationReference = q.study.kind == ConvergenceKind::Monotone ? "extrapolated" : MeshName(2);
   }
   return q;
 }
@@ -236,11 +239,12 @@ std::string FormatCfdConvergence(const CfdConvergenceResult& r)
       monotone ? Short(s.extrapolated).c_str() : "-",
       monotone ? Short(s.order, 3).c_str() : "-",
       monotone ? (Short(100.0 * s.gci, 2) + " %").c_str() : "-",
-      monotone ? (Short(100.0 * q.coarseDeviation, 2) + " %").c_str() : "-");
+      q.deviationReference.empty() ? "-" : (Short(100.0 * q.coarseDeviation, 2) + " %").c_str());
     text += line;
     if (!monotone)
     {
-      notes += "  " + q.name + ": " + s.note + "\n";
+      notes += "  " + q.name + ": " + s.note +
+        (q.deviationReference.empty() ? "" : "; mesh-1 off from " + q.deviationReference) + "\n";
     }
   }
   return text + notes;
@@ -280,7 +284,10 @@ std::string CfdConvergenceToJson(const CfdConvergenceResult& r)
     qj["extrapolated"] = OrNull(monotone, s.extrapolated);
     qj["gciPercent"] = OrNull(monotone && s.values[0] != 0.0, 100.0 * s.gci);
     qj["uncertainty"] = s.uncertainty;
-    qj["mesh1DeviationPercent"] = OrNull(monotone, 100.0 * q.coarseDeviation);
+    qj["mesh1DeviationPercent"] = OrNull(!q.deviationReference.empty(), 100.0 * q.coarseDeviation);
+    qj["mesh1DeviationFrom"] = q.deviationReference.empty()
+      ? nlohmann::ordered_json(nullptr)
+      : nlohmann::ordered_json(q.deviationReference);
     qj["note"] = s.note;
     j["quantities"].push_back(qj);
   }

@@ -47,8 +47,13 @@ struct CfdConvergenceQuantity
   std::string name; ///< "pressure drop to outlet_1", "flow split of outlet_1", "mean WSS"
   std::string unit; ///< "Pa", "%"
   MeshConvergence study;
-  /// (mesh-1's value - extrapolated) / |extrapolated| when the study is Monotone, else 0.
+  /// How far mesh-1 (the default mesh) is from the best estimate, as a fraction of it:
+  /// (mesh-1's value - reference) / |reference|, the reference being the extrapolated value
+  /// (Monotone) or, where nothing is extrapolated, mesh-3's value (Oscillatory, whose band is
+  /// the values' half range, Celik et al.; Unchanged). 0 when Diverging or the reference is 0.
   double coarseDeviation = 0.0;
+  /// "extrapolated", "mesh-3", or empty when there is no deviation (Diverging, reference 0).
+  std::string deviationReference;
 };
 
 struct CfdConvergenceResult

@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace
 {
@@ -124,6 +125,19 @@ TEST(CfdVerify, ConvergenceRunsThreeMeshesAndExtrapolatesEachQuantity)
     EXPECT_EQ(q.at("extrapolated").is_number(), monotone);
     EXPECT_EQ(q.at("order").is_number(), monotone);
     EXPECT_FALSE(q.at("note").get<std::string>().empty());
+    // mesh-1 (the default mesh) against the best estimate: the extrapolated value, or mesh-3's
+    // where nothing is extrapolated; none when the values diverge.
+    const std::vector<double> values = q.at("values").get<std::vector<double>>();
+    if (q.at("convergence") == "diverging")
+    {
+      EXPECT_TRUE(q.at("mesh1DeviationPercent").is_null());
+      continue;
+    }
+    const double reference = monotone ? q.at("extrapolated").get<double>() : values[2];
+    EXPECT_EQ(q.at("mesh1DeviationFrom"), monotone ? "extrapolated" : "mesh-3");
+    EXPECT_NEAR(q.at("mesh1DeviationPercent").get<double>(),
+      100.0 * (values[0] - reference) / std::fabs(reference),
+      1e-9);
   }
 }
 
