@@ -327,7 +327,9 @@ FlowStudyResult RunFlowStudy(const FlowStudyInput& input,
   else
   {
     solve(0);
-    if (!cancelled) // a failed original does not keep the current shape from its run
+    // A failed original does not keep the current shape from its run, unless it is the same
+    // case (it would fail again).
+    if (!cancelled && !(same && failed[0]))
     {
       solve(1);
     }
