@@ -12,6 +12,7 @@
 #include <exception>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -49,12 +50,9 @@ CfdConvergenceQuantity Study(const std::string& name,
   q.name = name;
   q.unit = unit;
   q.study = EstimateMeshConvergence(samples);
-  // The best estimate: extrapolated when monotone, else the finest value (study.extrapolated
-  // holds it then).
-  if (q.study.kind != ConvergenceKind::Diverging && q.study.extrapolated != 0.0)
+  if (const std::optional<double> deviation = CoarsestDeviation(q.study))
   {
-    q.coarseDeviation =
-      (q.study.values[2] - q.study.extrapolated) / std::fabs(q.study.extrapolated);
+    q.coarseDeviation = *deviation;
     q.deviationReference = q.study.kind == ConvergenceKind::Monotone ? "extrapolated" : MeshName(2);
   }
   return q;

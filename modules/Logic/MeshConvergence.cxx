@@ -75,6 +75,16 @@ const char* ConvergenceKindName(ConvergenceKind kind)
   return "unknown";
 }
 
+std::optional<double> CoarsestDeviation(const MeshConvergence& study)
+{
+  // study.extrapolated holds the finest value where nothing is extrapolated.
+  if (study.kind == ConvergenceKind::Diverging || study.extrapolated == 0.0)
+  {
+    return std::nullopt;
+  }
+  return (study.values[2] - study.extrapolated) / std::fabs(study.extrapolated);
+}
+
 MeshConvergence EstimateMeshConvergence(const std::array<MeshSample, 3>& samples)
 {
   for (std::size_t i = 0; i < samples.size(); ++i)

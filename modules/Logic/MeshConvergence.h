@@ -19,6 +19,7 @@
 // classified and said in one line instead of extrapolated.
 
 #include <array>
+#include <optional>
 #include <string>
 
 namespace bender
@@ -76,6 +77,13 @@ struct MeshConvergence
 /// non-finite value or cell size, a cell size <= 0, or consecutive sizes whose ratio is below
 /// MinimumRefinementRatio.
 MeshConvergence EstimateMeshConvergence(const std::array<MeshSample, 3>& samples);
+
+/// How far the coarsest mesh's value (the default mesh of a study) is from the study's best
+/// estimate, as a fraction of it: (f3 - best) / |best|, the best estimate being the
+/// extrapolated value (Monotone) or the finest value where nothing is extrapolated
+/// (Oscillatory, whose uncertainty is the values' half range, Celik et al.; Unchanged). None
+/// when Diverging or the best estimate is 0.
+std::optional<double> CoarsestDeviation(const MeshConvergence& study);
 
 /// "Monotone", "oscillatory", "diverging", "unchanged".
 const char* ConvergenceKindName(ConvergenceKind kind);

@@ -174,3 +174,25 @@ TEST(MeshConvergence, BadSamplesAreRefusedWithOneLine)
 }
 
 } // namespace
+
+TEST(MeshConvergence, TheCoarsestMeshIsMeasuredFromTheBestEstimate)
+{
+  // Monotone: from the extrapolated value (f0 = 10, f = 10 + 2 h^2).
+  const auto monotone = EstimateMeshConvergence(Analytic(10.0, 2.0, 2.0, { 1.0, 1.3, 1.69 }));
+  ASSERT_EQ(monotone.kind, ConvergenceKind::Monotone);
+  ASSERT_TRUE(bender::CoarsestDeviation(monotone).has_value());
+  EXPECT_NEAR(*bender::CoarsestDeviation(monotone), (10.0 + 2.0 * 1.69 * 1.69 - 10.0) / 10.0, 1e-9);
+  // Oscillatory: from the finest value (coarsest 100, finest 98).
+  const std::array<MeshSample, 3> s = { { { 1.0, 100.0 }, { 0.7, 96.0 }, { 0.5, 98.0 } } };
+  ASSERT_TRUE(bender::CoarsestDeviation(EstimateMeshConvergence(s)).has_value());
+  EXPECT_DOUBLE_EQ(*bender::CoarsestDeviation(EstimateMeshConvergence(s)), 2.0 / 98.0);
+  // Unchanged on the two finest: from the finest value.
+  const std::array<MeshSample, 3> fine = { { { 1.0, 6.0 }, { 0.7, 5.0 }, { 0.5, 5.0 } } };
+  EXPECT_DOUBLE_EQ(bender::CoarsestDeviation(EstimateMeshConvergence(fine)).value_or(-1.0), 0.2);
+  // Diverging, or a best estimate of 0: none.
+  const std::array<MeshSample, 3> diverging = { { { 1.0, 1.0 }, { 0.7, 2.0 }, { 0.5, 4.0 } } };
+  ASSERT_EQ(EstimateMeshConvergence(diverging).kind, ConvergenceKind::Diverging);
+  EXPECT_FALSE(bender::CoarsestDeviation(EstimateMeshConvergence(diverging)).has_value());
+  const std::array<MeshSample, 3> zero = { { { 1.0, 0.0 }, { 0.7, 0.0 }, { 0.5, 0.0 } } };
+  EXPECT_FALSE(bender::CoarsestDeviation(EstimateMeshConvergence(zero)).has_value());
+}
