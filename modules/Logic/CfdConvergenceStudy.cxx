@@ -118,8 +118,8 @@ CfdConvergenceResult RunCfdConvergence(vtkPolyData* surface, const CfdConvergenc
     cellSize = r.cases[0].cellSize / std::pow(options.ratio, static_cast<double>(i + 1));
   }
 
-  // The three runs, `jobs` at once (each serial), the finest first: on two cores mesh-3 takes
-  // one while mesh-1 then mesh-2 take the other.
+  // The three runs, `jobs` at once (each serial), the finest first: on two cores mesh-3 and
+  // mesh-2 start, and mesh-1 follows whichever ends first.
   std::mutex lines;
   const auto onLine = [&](const std::string& line)
   {
