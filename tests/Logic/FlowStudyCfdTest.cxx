@@ -6,6 +6,7 @@
 
 #include "BenderErrors.h"
 #include "CfdTestUtilities.h"
+#include "FlowCaseCache.h"
 #include "FlowStudy.h"
 #include "LogicTestUtilities.h"
 #include "ProcessRunner.h"
@@ -21,6 +22,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <vector>
 
 using namespace bender;
 namespace fs = std::filesystem;
@@ -250,4 +252,31 @@ TEST(FlowStudyCfd, AShapeThatFailsDoesNotStopTheOther)
     EXPECT_TRUE(again.shapes[1 - failed].cached);
     EXPECT_GT(again.shapes[failed].results.run.iterations, 0);
   }
+}
+
+TEST(FlowStudyCfd, AFailedOriginalThatIsTheCurrentShapeIsNotRunTwice)
+{
+  BENDER_REQUIRE_PROGRAM("simpleFoam");
+  BENDER_REQUIRE_PROGRAM("snappyHexMesh");
+  // Nothing bent: both shapes are one case. Its first meshing fails; one after the other, the
+  // current shape (the same case) is not run again, so the case stays without results.
+  const FlowStudyInput input = test::PreparedThenBentTube(0);
+  const std::string cache = test::TemporaryFolder("flow_study_fail_same");
+  const FlowStudyOptions options = CoarseStudy(cache);
+  std::string failure;
+  {
+    const FirstMeshingFails wrapper(test::TemporaryFolder("flow_study_fail_bin"));
+    failure = FailureOf([&] { RunFlowStudy(input, options, nullptr, false); });
+  }
+  EXPECT_EQ(failure.rfind("original: ", 0), 0u) << failure;
+  std::vector<fs::path> cases;
+  for (const auto& entry : fs::directory_iterator(cache))
+  {
+    if (entry.is_directory())
+    {
+      cases.push_back(entry.path());
+    }
+  }
+  ASSERT_EQ(cases.size(), 1u);
+  EXPECT_FALSE(HasFlowResults(cases[0].string()));
 }

@@ -63,7 +63,7 @@ FlowStudyInput PreparedThenBentTube(double degrees)
   FlowStudyInput input;
   if (!session.SetSurface(tube, "tube") ||
     !session.CommitCfdStep(step, ApplyCfdStep(tube, step).surface, false) ||
-    !session.ApplyWarp(Swing(0, 15, degrees, 8)))
+    (degrees != 0.0 && !session.ApplyWarp(Swing(0, 15, degrees, 8))))
   {
     return input; // no shapes: the test fails on them
   }

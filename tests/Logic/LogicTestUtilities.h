@@ -35,7 +35,8 @@ WarpSpec Swing(double from, double to, double degrees, double radius);
 
 /// MakeTube(-20, 20, 5, 41, 32) (LPS mm) prepared for CFD as it is (no clip: its open ends
 /// capped, inlet and outlet, short extensions), then bent by Swing(0, 15, degrees, 8), as a
-/// session holds it: the flow study's input (name "tube").
+/// session holds it: the flow study's input (name "tube"). With degrees 0 nothing is bent: the
+/// current shape is the original.
 FlowStudyInput PreparedThenBentTube(double degrees);
 
 /// Largest coordinate difference between two surfaces of the same points; infinity when the
